@@ -1,0 +1,3 @@
+//! The flockpath command line (placeholder until the CLI lands).
+
+fn main() {}

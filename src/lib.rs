@@ -1,0 +1,34 @@
+//! flockpath: swarm-intelligence crowd planners you can draw scenes for, run, measure and render.
+//!
+//! The core is plain Rust with no web types: a [`Scene`] is validated and turned into a [`World`]
+//! (agent state as struct-of-arrays, a fixed step, one seeded generator), planners steer groups,
+//! [`metrics`] measures the run and [`render`] rasterises it. `web` (wasm32 only) wraps this for
+//! the page; `src/bin/flockpath.rs` is the command line.
+//!
+//! ```
+//! use flockpath::{presets, World};
+//!
+//! let scene = (presets::find("open-field").expect("preset").build)();
+//! let mut world = World::new(scene).expect("valid scene");
+//! world.step_n(600);
+//! let m = world.metrics();
+//! assert_eq!(m.steps, 600);
+//! assert!(m.overall.arrived_share > 0.5);
+//! ```
+
+pub mod codec;
+pub mod geometry;
+pub mod metrics;
+pub mod planners;
+pub mod presets;
+pub mod rng;
+pub mod scene;
+pub mod spatial;
+pub mod world;
+
+pub use codec::{scene_from_any, scene_from_fragment, scene_from_json, scene_to_fragment, scene_to_json};
+pub use geometry::Obstacle;
+pub use metrics::{GroupMetrics, Metrics};
+pub use planners::{Planner, PlannerConfig, PlannerKind};
+pub use scene::{Goal, Group, Region, Scene, SceneError};
+pub use world::{World, DT};

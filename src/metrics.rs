@@ -1,0 +1,304 @@
+//! Run metrics (DESIGN §4): collisions, penetrations, arrival, path length, smoothness, speed.
+//!
+//! Counting rules: a collision is a pair of agents whose discs overlap at the end of a step,
+//! counted once per pair per step; a penetration is an agent whose centre is inside an obstacle
+//! at the end of a step. Key names are a stable contract: add keys, never rename.
+
+use crate::geometry::Aabb;
+use crate::scene::Scene;
+use crate::spatial::{ObstacleIndex, SpatialGrid};
+use glam::Vec2;
+use serde::Serialize;
+
+/// Steps without progress towards the goal after which an agent counts as stuck.
+pub const STUCK_WINDOW: u32 = 300;
+/// Distance from an obstacle surface (px) within which an agent is "near" it.
+pub const NEAR_OBSTACLE: f32 = 30.0;
+/// Below this speed (px/step) a heading is undefined and no turn is measured.
+const MIN_TURN_SPEED: f32 = 1e-3;
+
+/// Metrics of one group, or of the whole run.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct GroupMetrics {
+    /// Group name (empty for the whole run).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+    /// Planner name (only per group).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub planner: Option<String>,
+    /// Number of agents.
+    pub agents: u32,
+    /// Share of agents that have reached their goal (0…1); agents without a goal count as not arrived.
+    pub arrived_share: f64,
+    /// Mean steps from the start to reaching the goal, over arrived agents (null if none).
+    pub mean_time_to_goal: Option<f64>,
+    /// The same in seconds (steps × DT).
+    pub mean_time_to_goal_s: Option<f64>,
+    /// Overlapping agent pairs, summed over steps (a pair across two groups counts in both groups
+    /// and once overall).
+    pub collisions_agent_agent: u64,
+    /// Agents whose centre is inside an obstacle, summed over steps.
+    pub penetrations_agent_obstacle: u64,
+    /// Mean speed over agents and steps (px/step).
+    pub mean_speed: f64,
+    /// Mean speed of agents within 30 px of an obstacle surface (px/step; null if none came near).
+    pub mean_speed_near_obstacles: Option<f64>,
+    /// Mean distance travelled per agent (px).
+    pub mean_path_length: f64,
+    /// Mean turning angle per step (degrees), over moving agents.
+    pub mean_turn_deg: f64,
+    /// Largest turning angle in one step (degrees).
+    pub max_turn_deg: f64,
+    /// Agents with a goal that have not arrived and made no progress in the last 300 steps.
+    pub stuck_agents: u32,
+}
+
+/// Metrics of a run: overall keys at the top level, per-group under `groups`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Metrics {
+    /// Steps simulated.
+    pub steps: u32,
+    /// Seconds simulated (steps × DT).
+    pub time_s: f64,
+    /// Overall metrics.
+    #[serde(flatten)]
+    pub overall: GroupMetrics,
+    /// Overlapping pairs at the end of the last step.
+    pub collisions_last_step: u32,
+    /// Per-group metrics, in scene order.
+    pub groups: Vec<GroupMetrics>,
+}
+
+/// Per-agent and per-group accumulators, updated at the end of every step.
+#[derive(Clone, Debug)]
+pub struct MetricsRecorder {
+    prev_pos: Vec<Vec2>,
+    prev_vel: Vec<Vec2>,
+    path_length: Vec<f32>,
+    arrived_step: Vec<u32>,
+    best_goal_distance: Vec<f32>,
+    last_progress_step: Vec<u32>,
+    groups: Vec<GroupAcc>,
+    collisions_last_step: u32,
+    collisions_total: u64,
+    pairs: Vec<(u32, u32)>,
+}
+
+#[derive(Clone, Debug, Default)]
+struct GroupAcc {
+    collisions: u64,
+    penetrations: u64,
+    speed_sum: f64,
+    speed_samples: u64,
+    near_speed_sum: f64,
+    near_samples: u64,
+    turn_sum: f64,
+    turn_samples: u64,
+    max_turn: f64,
+}
+
+const NOT_ARRIVED: u32 = u32::MAX;
+
+impl MetricsRecorder {
+    /// Starts recording a run whose agents start at `positions`.
+    pub fn new(scene: &Scene, positions: &[Vec2]) -> Self {
+        let n = positions.len();
+        Self {
+            prev_pos: positions.to_vec(),
+            prev_vel: vec![Vec2::ZERO; n],
+            path_length: vec![0.0; n],
+            arrived_step: vec![NOT_ARRIVED; n],
+            best_goal_distance: vec![f32::INFINITY; n],
+            last_progress_step: vec![0; n],
+            groups: vec![GroupAcc::default(); scene.groups.len()],
+            collisions_last_step: 0,
+            collisions_total: 0,
+            pairs: Vec::new(),
+        }
+    }
+
+    /// Records the state at the end of step `step`.
+    #[allow(clippy::too_many_arguments, reason = "one call per step with the world's parallel arrays")]
+    pub fn record(
+        &mut self,
+        step: u32,
+        pos: &[Vec2],
+        vel: &[Vec2],
+        group_of: &[u32],
+        radius: &[f32],
+        goals: &[Option<(Vec2, f32)>],
+        grid: &SpatialGrid,
+        obstacles: &ObstacleIndex,
+    ) {
+        let max_radius = radius.iter().copied().fold(0.0f32, f32::max);
+        // Collisions: pairs closer than the sum of radii, each once.
+        self.pairs.clear();
+        let pairs = &mut self.pairs;
+        grid.for_each_pair_within(2.0 * max_radius, |a, b| {
+            let d2 = pos[a as usize].distance_squared(pos[b as usize]);
+            let r = radius[a as usize] + radius[b as usize];
+            if d2 < r * r {
+                pairs.push((a, b));
+            }
+        });
+        self.collisions_last_step = self.pairs.len() as u32;
+        self.collisions_total += self.pairs.len() as u64;
+        for &(a, b) in &self.pairs {
+            let (ga, gb) = (group_of[a as usize] as usize, group_of[b as usize] as usize);
+            self.groups[ga].collisions += 1;
+            if gb != ga {
+                self.groups[gb].collisions += 1;
+            }
+        }
+
+        for i in 0..pos.len() {
+            let g = group_of[i] as usize;
+            let acc = &mut self.groups[g];
+            let p = pos[i];
+            let v = vel[i];
+            self.path_length[i] += p.distance(self.prev_pos[i]);
+            let speed = v.length();
+            acc.speed_sum += f64::from(speed);
+            acc.speed_samples += 1;
+
+            let prev_v = self.prev_vel[i];
+            let prev_speed = prev_v.length();
+            if speed > MIN_TURN_SPEED && prev_speed > MIN_TURN_SPEED {
+                let cos = (v.dot(prev_v) / (speed * prev_speed)).clamp(-1.0, 1.0);
+                let turn = f64::from(libm::acosf(cos)).to_degrees();
+                acc.turn_sum += turn;
+                acc.turn_samples += 1;
+                acc.max_turn = acc.max_turn.max(turn);
+            }
+
+            if !obstacles.is_empty() {
+                let query = Aabb { min: p, max: p }.inflate(NEAR_OBSTACLE);
+                let (mut inside, mut near) = (false, false);
+                obstacles.for_each_near(query, |_, o| {
+                    let s = o.surface(p);
+                    inside |= s.signed_distance < 0.0;
+                    near |= s.signed_distance < NEAR_OBSTACLE;
+                });
+                if inside {
+                    acc.penetrations += 1;
+                }
+                if near {
+                    acc.near_speed_sum += f64::from(speed);
+                    acc.near_samples += 1;
+                }
+            }
+
+            if let Some((goal, goal_radius)) = goals.get(g).copied().flatten() {
+                let d = p.distance(goal);
+                if self.arrived_step[i] == NOT_ARRIVED && d <= goal_radius {
+                    self.arrived_step[i] = step;
+                }
+                if d < self.best_goal_distance[i] - radius[i] {
+                    self.best_goal_distance[i] = d;
+                    self.last_progress_step[i] = step;
+                }
+            }
+            self.prev_pos[i] = p;
+            self.prev_vel[i] = v;
+        }
+    }
+
+    /// The metrics so far; `planners` names each group's planner.
+    pub fn summary(&self, scene: &Scene, planners: &[&str], steps: u32) -> Metrics {
+        let dt = f64::from(crate::world::DT);
+        let mut overall = GroupAcc::default();
+        let mut groups = Vec::with_capacity(scene.groups.len());
+        let mut start = 0usize;
+        let mut all = Stats::default();
+        for (gi, g) in scene.groups.iter().enumerate() {
+            let agents = start..start + g.count as usize;
+            start = agents.end;
+            let acc = &self.groups[gi];
+            let stats = self.agent_stats(agents, g.goal.is_some(), steps);
+            all.add(&stats);
+            overall.penetrations += acc.penetrations;
+            overall.speed_sum += acc.speed_sum;
+            overall.speed_samples += acc.speed_samples;
+            overall.near_speed_sum += acc.near_speed_sum;
+            overall.near_samples += acc.near_samples;
+            overall.turn_sum += acc.turn_sum;
+            overall.turn_samples += acc.turn_samples;
+            overall.max_turn = overall.max_turn.max(acc.max_turn);
+            let mut m = to_metrics(acc, &stats, acc.collisions, dt);
+            m.name = Some(g.name.clone());
+            m.planner = planners.get(gi).map(|s| s.to_string());
+            groups.push(m);
+        }
+        Metrics {
+            steps,
+            time_s: f64::from(steps) * dt,
+            overall: to_metrics(&overall, &all, self.collisions_total, dt),
+            collisions_last_step: self.collisions_last_step,
+            groups,
+        }
+    }
+
+    fn agent_stats(&self, agents: std::ops::Range<usize>, has_goal: bool, steps: u32) -> Stats {
+        let mut s = Stats::default();
+        for i in agents {
+            s.agents += 1;
+            s.path_sum += f64::from(self.path_length[i]);
+            if self.arrived_step[i] != NOT_ARRIVED {
+                s.arrived += 1;
+                s.arrival_steps_sum += f64::from(self.arrived_step[i]);
+            } else if has_goal && steps >= STUCK_WINDOW && steps - self.last_progress_step[i] >= STUCK_WINDOW
+            {
+                s.stuck += 1;
+            }
+        }
+        s
+    }
+}
+
+#[derive(Default)]
+struct Stats {
+    agents: u32,
+    arrived: u32,
+    arrival_steps_sum: f64,
+    path_sum: f64,
+    stuck: u32,
+}
+
+impl Stats {
+    fn add(&mut self, o: &Stats) {
+        self.agents += o.agents;
+        self.arrived += o.arrived;
+        self.arrival_steps_sum += o.arrival_steps_sum;
+        self.path_sum += o.path_sum;
+        self.stuck += o.stuck;
+    }
+}
+
+fn ratio(num: f64, den: u64) -> f64 {
+    if den == 0 {
+        0.0
+    } else {
+        num / den as f64
+    }
+}
+
+fn to_metrics(acc: &GroupAcc, s: &Stats, collisions: u64, dt: f64) -> GroupMetrics {
+    let mean_time = (s.arrived > 0).then(|| s.arrival_steps_sum / f64::from(s.arrived));
+    GroupMetrics {
+        name: None,
+        planner: None,
+        agents: s.agents,
+        arrived_share: ratio(f64::from(s.arrived), u64::from(s.agents)),
+        mean_time_to_goal: mean_time,
+        mean_time_to_goal_s: mean_time.map(|t| t * dt),
+        collisions_agent_agent: collisions,
+        penetrations_agent_obstacle: acc.penetrations,
+        mean_speed: ratio(acc.speed_sum, acc.speed_samples),
+        mean_speed_near_obstacles: (acc.near_samples > 0)
+            .then(|| acc.near_speed_sum / acc.near_samples as f64),
+        mean_path_length: ratio(s.path_sum, u64::from(s.agents)),
+        mean_turn_deg: ratio(acc.turn_sum, acc.turn_samples),
+        max_turn_deg: acc.max_turn,
+        stuck_agents: s.stuck,
+    }
+}

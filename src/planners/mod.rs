@@ -1,0 +1,285 @@
+//! Crowd planners: one file each behind the [`Planner`] trait, chosen by [`PlannerKind`].
+
+pub mod boids;
+
+use crate::geometry::Obstacle;
+use crate::rng::Rng;
+use crate::spatial::{ObstacleIndex, SpatialGrid};
+use glam::Vec2;
+use serde::{Deserialize, Serialize};
+use std::ops::Range;
+
+pub use boids::{Arbitration, Boids, BoidsParams};
+
+/// Read-only view of the world at the start of a step: planners read it, never write it,
+/// so the new velocities do not depend on the order agents are planned in.
+pub struct StepContext<'a> {
+    /// Positions of all agents (px).
+    pub positions: &'a [Vec2],
+    /// Velocities of all agents (px/step).
+    pub velocities: &'a [Vec2],
+    /// Body radius of every agent (px).
+    pub radii: &'a [f32],
+    /// All agents bucketed for neighbour queries.
+    pub grid: &'a SpatialGrid,
+    /// Static obstacles with a spatial index.
+    pub obstacles: &'a ObstacleIndex,
+    /// World size (px).
+    pub bounds: Vec2,
+    /// Steps simulated so far.
+    pub step: u32,
+}
+
+/// What a planner knows about the group it steers.
+#[derive(Clone, Debug)]
+pub struct GroupView {
+    /// Global ids of the group's agents (groups own contiguous id ranges).
+    pub agents: Range<u32>,
+    /// Current goal position and arrival radius, if the group has a goal.
+    pub goal: Option<(Vec2, f32)>,
+}
+
+/// A crowd planner: computes every new velocity of its group from the old state.
+pub trait Planner {
+    /// Largest radius (px) the planner queries neighbours in; sizes the spatial grid.
+    fn interaction_radius(&self) -> f32;
+    /// Speed limit (px/step); the world checks it after every step.
+    fn max_speed(&self) -> f32;
+    /// Writes the new velocity of agent `group.agents.start + k` to `new_velocities[k]`.
+    fn plan(&mut self, ctx: &StepContext, group: GroupView, rng: &mut Rng, new_velocities: &mut [Vec2]);
+}
+
+/// The closed set of planners, for the URL, the UI and the CLI.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum PlannerKind {
+    /// Reynolds steering (lecture, DESIGN §3.1).
+    Boids,
+}
+
+impl PlannerKind {
+    /// Every planner, in menu order.
+    pub const ALL: &'static [PlannerKind] = &[PlannerKind::Boids];
+
+    /// The CLI / URL name.
+    pub fn name(self) -> &'static str {
+        match self {
+            PlannerKind::Boids => "boids",
+        }
+    }
+
+    /// Looks a planner up by its CLI name.
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.iter().copied().find(|k| k.name() == name)
+    }
+
+    /// Human-readable label.
+    pub fn label(self) -> &'static str {
+        match self {
+            PlannerKind::Boids => "Boids steering",
+        }
+    }
+
+    /// The default configuration of this planner (its paper's parameters).
+    pub fn default_config(self) -> PlannerConfig {
+        match self {
+            PlannerKind::Boids => PlannerConfig::Boids(BoidsParams::default()),
+        }
+    }
+
+    /// The parameter table that drives the sliders and the docs.
+    pub fn param_specs(self) -> &'static [ParamSpec] {
+        match self {
+            PlannerKind::Boids => BoidsParams::SPECS,
+        }
+    }
+}
+
+/// A planner with its parameters, as stored in a scene's group.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "kind", content = "params", rename_all = "snake_case")]
+pub enum PlannerConfig {
+    /// Boids steering.
+    Boids(BoidsParams),
+}
+
+impl Default for PlannerConfig {
+    fn default() -> Self {
+        PlannerConfig::Boids(BoidsParams::default())
+    }
+}
+
+impl PlannerConfig {
+    /// Which planner this is.
+    pub fn kind(&self) -> PlannerKind {
+        match self {
+            PlannerConfig::Boids(_) => PlannerKind::Boids,
+        }
+    }
+
+    /// Checks every parameter against its table range.
+    pub fn validate(&self) -> Result<(), String> {
+        let value = serde_json::to_value(self).map_err(|e| e.to_string())?;
+        let params = value.get("params").cloned().unwrap_or_default();
+        check_params(self.kind().param_specs(), &params)
+    }
+
+    /// A fresh planner for a group of `count` agents.
+    pub fn build(&self, count: usize, obstacles: &[Obstacle]) -> Box<dyn Planner> {
+        let _ = (count, obstacles);
+        match self {
+            PlannerConfig::Boids(p) => Box::new(Boids::new(p.clone())),
+        }
+    }
+
+    /// Sets one parameter by its table key from a JSON value; checks the range.
+    pub fn set_param(&mut self, key: &str, value: serde_json::Value) -> Result<(), String> {
+        let kind = self.kind();
+        let spec = kind
+            .param_specs()
+            .iter()
+            .find(|s| s.key == key)
+            .ok_or_else(|| format!("{} has no parameter {key:?}", kind.label()))?;
+        let mut json = serde_json::to_value(&*self).map_err(|e| e.to_string())?;
+        let params = json
+            .get_mut("params")
+            .and_then(|p| p.as_object_mut())
+            .ok_or_else(|| "planner parameters are not an object".to_string())?;
+        params.insert(spec.key.to_string(), value);
+        let updated: PlannerConfig =
+            serde_json::from_value(json).map_err(|e| format!("{}: {e}", spec.label))?;
+        updated.validate()?;
+        *self = updated;
+        Ok(())
+    }
+}
+
+/// One row of a planner's parameter table: drives a slider, the range check and the docs.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct ParamSpec {
+    /// JSON key in the planner's params.
+    pub key: &'static str,
+    /// Label shown next to the slider.
+    pub label: &'static str,
+    /// Unit shown after the value ("px", "px/step", "" for weights).
+    pub unit: &'static str,
+    /// Smallest allowed value.
+    pub min: f64,
+    /// Largest allowed value.
+    pub max: f64,
+    /// Slider step.
+    pub step: f64,
+    /// Default (the paper's value where it gives one).
+    pub default: f64,
+    /// For a choice parameter, its options (the value is one of these strings).
+    pub choices: &'static [&'static str],
+    /// One-line help.
+    pub help: &'static str,
+}
+
+impl ParamSpec {
+    /// A numeric parameter.
+    pub const fn number(
+        key: &'static str,
+        label: &'static str,
+        unit: &'static str,
+        range: (f64, f64, f64),
+        default: f64,
+        help: &'static str,
+    ) -> Self {
+        Self { key, label, unit, min: range.0, max: range.1, step: range.2, default, choices: &[], help }
+    }
+
+    /// A choice among named options; `default` indexes `choices`.
+    pub const fn choice(
+        key: &'static str,
+        label: &'static str,
+        choices: &'static [&'static str],
+        default: usize,
+        help: &'static str,
+    ) -> Self {
+        Self { key, label, unit: "", min: 0.0, max: 0.0, step: 0.0, default: default as f64, choices, help }
+    }
+}
+
+fn check_params(specs: &[ParamSpec], params: &serde_json::Value) -> Result<(), String> {
+    for spec in specs {
+        let Some(value) = params.get(spec.key) else { continue };
+        if spec.choices.is_empty() {
+            let x = value.as_f64().ok_or_else(|| format!("{} must be a number", spec.label))?;
+            if !x.is_finite() {
+                return Err(format!("{} is not a finite number", spec.label));
+            }
+            if x < spec.min || x > spec.max {
+                return Err(format!(
+                    "{} = {x} is outside {}…{} {}",
+                    spec.label, spec.min, spec.max, spec.unit
+                ));
+            }
+        } else {
+            let s = value.as_str().unwrap_or_default();
+            if !spec.choices.contains(&s) {
+                return Err(format!("{} must be one of {:?}", spec.label, spec.choices));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Scales `v` down to length `max` if longer.
+#[inline]
+pub fn limit(v: Vec2, max: f32) -> Vec2 {
+    let len2 = v.length_squared();
+    if len2 > max * max && len2 > 0.0 {
+        v * (max / len2.sqrt())
+    } else {
+        v
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_spec_default_matches_the_params_default() {
+        for &kind in PlannerKind::ALL {
+            let json = serde_json::to_value(kind.default_config()).expect("serialises");
+            let params = &json["params"];
+            for spec in kind.param_specs() {
+                let value = &params[spec.key];
+                if spec.choices.is_empty() {
+                    let x = value.as_f64().expect("number");
+                    assert!(
+                        (x - spec.default).abs() < 1e-6,
+                        "{}.{}: {x} vs {}",
+                        kind.name(),
+                        spec.key,
+                        spec.default
+                    );
+                    assert!(
+                        spec.min <= x && x <= spec.max,
+                        "{}.{} default out of range",
+                        kind.name(),
+                        spec.key
+                    );
+                } else {
+                    assert_eq!(value.as_str(), Some(spec.choices[spec.default as usize]), "{}", spec.key);
+                }
+            }
+            assert_eq!(kind.default_config().validate(), Ok(()));
+        }
+    }
+
+    #[test]
+    fn set_param_checks_range_and_key() {
+        let mut c = PlannerConfig::default();
+        assert!(c.set_param("max_speed", serde_json::json!(3.0)).is_ok());
+        assert!(matches!(&c, PlannerConfig::Boids(p) if p.max_speed == 3.0));
+        assert!(c.set_param("max_speed", serde_json::json!(1e9)).is_err());
+        assert!(c.set_param("nope", serde_json::json!(1)).is_err());
+        assert!(c.set_param("arbitration", serde_json::json!("priority")).is_ok());
+        assert!(c.set_param("arbitration", serde_json::json!("chaos")).is_err());
+        assert!(matches!(&c, PlannerConfig::Boids(p) if p.max_speed == 3.0));
+    }
+}

@@ -1,0 +1,340 @@
+//! The scene a user draws: bounds, obstacles, goals, groups of agents, seed; and its validation.
+
+use crate::geometry::{v, Obstacle};
+use crate::planners::PlannerConfig;
+use glam::Vec2;
+use serde::{Deserialize, Serialize};
+use std::fmt;
+
+/// Most agents a scene may hold in total (keeps a typo from freezing the page).
+pub const MAX_AGENTS: u32 = 200_000;
+/// Largest scene side in px.
+pub const MAX_SIDE: f32 = 20_000.0;
+/// Most obstacles a scene may hold.
+pub const MAX_OBSTACLES: usize = 5_000;
+/// Most vertices a polygon obstacle may have.
+pub const MAX_POLYGON_POINTS: usize = 1_000;
+
+/// A whole scene. Units: px for lengths, steps for time (one step is [`crate::DT`] seconds).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Scene {
+    /// Display name.
+    #[serde(default)]
+    pub name: String,
+    /// Width of the world in px.
+    pub width: f32,
+    /// Height of the world in px.
+    pub height: f32,
+    /// Seed of the one random generator: same scene + same seed = same run.
+    #[serde(default)]
+    pub seed: u32,
+    /// Static obstacles.
+    #[serde(default)]
+    pub obstacles: Vec<Obstacle>,
+    /// Goals that groups head for.
+    #[serde(default)]
+    pub goals: Vec<Goal>,
+    /// Groups of agents.
+    #[serde(default)]
+    pub groups: Vec<Group>,
+}
+
+/// A goal: agents inside its radius count as arrived.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Goal {
+    /// Centre `[x, y]` in px.
+    pub position: [f32; 2],
+    /// Arrival radius in px.
+    #[serde(default = "default_goal_radius")]
+    pub radius: f32,
+}
+
+fn default_goal_radius() -> f32 {
+    20.0
+}
+
+/// A rectangular region agents are spawned in.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Region {
+    /// Top-left corner `[x, y]` in px.
+    pub min: [f32; 2],
+    /// Bottom-right corner `[x, y]` in px.
+    pub max: [f32; 2],
+}
+
+/// A group of agents sharing a spawn region, a goal, a colour and a planner.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Group {
+    /// Display name.
+    #[serde(default)]
+    pub name: String,
+    /// Colour as `#rrggbb`.
+    #[serde(default = "default_color")]
+    pub color: String,
+    /// Number of agents.
+    pub count: u32,
+    /// Spawn region.
+    pub spawn: Region,
+    /// Index into [`Scene::goals`]; `None` lets the group wander.
+    #[serde(default)]
+    pub goal: Option<u32>,
+    /// Body radius in px (collisions are overlapping discs of this radius).
+    #[serde(default = "default_agent_radius")]
+    pub agent_radius: f32,
+    /// The planner steering this group, with its parameters.
+    #[serde(default)]
+    pub planner: PlannerConfig,
+}
+
+fn default_color() -> String {
+    "#2f6fdf".to_string()
+}
+
+fn default_agent_radius() -> f32 {
+    4.0
+}
+
+/// Why a scene was refused. Each message names the offending item.
+#[derive(Clone, Debug, PartialEq)]
+pub enum SceneError {
+    /// The text is not a scene (bad JSON, bad encoding, unknown version).
+    Parse(String),
+    /// A number is NaN or infinite.
+    NotFinite(String),
+    /// A value is outside its allowed range.
+    OutOfRange(String),
+    /// Something refers to an item that does not exist.
+    BadReference(String),
+    /// The geometry makes the scene unusable (goal inside an obstacle, no room to spawn).
+    Blocked(String),
+}
+
+impl fmt::Display for SceneError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            SceneError::Parse(m) => write!(f, "cannot read the scene: {m}"),
+            SceneError::NotFinite(m) => write!(f, "{m} is not a finite number"),
+            SceneError::OutOfRange(m) | SceneError::BadReference(m) | SceneError::Blocked(m) => {
+                write!(f, "{m}")
+            }
+        }
+    }
+}
+
+impl std::error::Error for SceneError {}
+
+fn finite(what: impl Fn() -> String, values: &[f32]) -> Result<(), SceneError> {
+    if values.iter().all(|x| x.is_finite()) {
+        Ok(())
+    } else {
+        Err(SceneError::NotFinite(what()))
+    }
+}
+
+impl Scene {
+    /// An empty scene of the given size.
+    pub fn empty(width: f32, height: f32) -> Self {
+        Self { name: String::new(), width, height, seed: 1, obstacles: vec![], goals: vec![], groups: vec![] }
+    }
+
+    /// Total number of agents over all groups.
+    pub fn agent_count(&self) -> u64 {
+        self.groups.iter().map(|g| u64::from(g.count)).sum()
+    }
+
+    /// Checks every value; the first problem found is returned with a message naming it.
+    pub fn validate(&self) -> Result<(), SceneError> {
+        finite(|| "scene width/height".into(), &[self.width, self.height])?;
+        if !(10.0..=MAX_SIDE).contains(&self.width) || !(10.0..=MAX_SIDE).contains(&self.height) {
+            return Err(SceneError::OutOfRange(format!(
+                "scene size {}×{} px is outside 10…{MAX_SIDE} px",
+                self.width, self.height
+            )));
+        }
+        if self.obstacles.len() > MAX_OBSTACLES {
+            return Err(SceneError::OutOfRange(format!(
+                "{} obstacles is more than the {MAX_OBSTACLES} allowed",
+                self.obstacles.len()
+            )));
+        }
+        for (i, o) in self.obstacles.iter().enumerate() {
+            validate_obstacle(i, o)?;
+        }
+        for (i, g) in self.goals.iter().enumerate() {
+            finite(|| format!("goal {}", i + 1), &[g.position[0], g.position[1], g.radius])?;
+            if g.radius <= 0.0 || g.radius > MAX_SIDE {
+                return Err(SceneError::OutOfRange(format!(
+                    "goal {} radius {} must be > 0",
+                    i + 1,
+                    g.radius
+                )));
+            }
+            if !self.in_bounds(v(g.position)) {
+                return Err(SceneError::OutOfRange(format!("goal {} lies outside the scene", i + 1)));
+            }
+            if let Some(k) = self.obstacles.iter().position(|o| o.contains(v(g.position))) {
+                return Err(SceneError::Blocked(format!("goal {} is inside obstacle {}", i + 1, k + 1)));
+            }
+        }
+        let total = self.agent_count();
+        if total > u64::from(MAX_AGENTS) {
+            return Err(SceneError::OutOfRange(format!(
+                "{total} agents is more than the {MAX_AGENTS} allowed"
+            )));
+        }
+        for (i, g) in self.groups.iter().enumerate() {
+            self.validate_group(i, g)?;
+        }
+        Ok(())
+    }
+
+    fn validate_group(&self, i: usize, g: &Group) -> Result<(), SceneError> {
+        let name = || format!("group {} ({})", i + 1, g.name);
+        let s = g.spawn;
+        finite(|| format!("{} spawn region", name()), &[s.min[0], s.min[1], s.max[0], s.max[1]])?;
+        finite(|| format!("{} agent radius", name()), &[g.agent_radius])?;
+        if !(0.5..=100.0).contains(&g.agent_radius) {
+            return Err(SceneError::OutOfRange(format!(
+                "{} agent radius {} px is outside 0.5…100",
+                name(),
+                g.agent_radius
+            )));
+        }
+        if s.min[0] > s.max[0] || s.min[1] > s.max[1] {
+            return Err(SceneError::OutOfRange(format!("{} spawn region has min > max", name())));
+        }
+        if !self.in_bounds(v(s.min)) || !self.in_bounds(v(s.max)) {
+            return Err(SceneError::OutOfRange(format!("{} spawn region leaves the scene", name())));
+        }
+        if let Some(goal) = g.goal {
+            if goal as usize >= self.goals.len() {
+                return Err(SceneError::BadReference(format!(
+                    "{} heads for goal {} but the scene has {} goal(s)",
+                    name(),
+                    goal + 1,
+                    self.goals.len()
+                )));
+            }
+        }
+        if !is_hex_color(&g.color) {
+            return Err(SceneError::OutOfRange(format!("{} colour {:?} is not #rrggbb", name(), g.color)));
+        }
+        g.planner.validate().map_err(|m| SceneError::OutOfRange(format!("{}: {m}", name())))
+    }
+
+    /// Whether a point lies within the scene rectangle.
+    pub fn in_bounds(&self, p: Vec2) -> bool {
+        p.x >= 0.0 && p.y >= 0.0 && p.x <= self.width && p.y <= self.height
+    }
+}
+
+fn validate_obstacle(i: usize, o: &Obstacle) -> Result<(), SceneError> {
+    let name = || format!("obstacle {}", i + 1);
+    match o {
+        Obstacle::Circle { center, radius } => {
+            finite(name, &[center[0], center[1], *radius])?;
+            if *radius <= 0.0 || *radius > MAX_SIDE {
+                return Err(SceneError::OutOfRange(format!("{} radius {radius} must be > 0", name())));
+            }
+        }
+        Obstacle::Rect { min, max } => {
+            finite(name, &[min[0], min[1], max[0], max[1]])?;
+            if min[0] >= max[0] || min[1] >= max[1] {
+                return Err(SceneError::OutOfRange(format!("{} rectangle has no area", name())));
+            }
+        }
+        Obstacle::Polygon { points } => {
+            if points.len() < 3 || points.len() > MAX_POLYGON_POINTS {
+                return Err(SceneError::OutOfRange(format!(
+                    "{} polygon needs 3…{MAX_POLYGON_POINTS} points, has {}",
+                    name(),
+                    points.len()
+                )));
+            }
+            let flat: Vec<f32> = points.iter().flat_map(|p| [p[0], p[1]]).collect();
+            finite(name, &flat)?;
+        }
+    }
+    Ok(())
+}
+
+/// Whether `s` is a `#rrggbb` colour.
+pub fn is_hex_color(s: &str) -> bool {
+    s.len() == 7 && s.starts_with('#') && s[1..].chars().all(|c| c.is_ascii_hexdigit())
+}
+
+/// Parses a `#rrggbb` colour into bytes (grey when malformed; validation refuses those first).
+pub fn parse_color(s: &str) -> [u8; 3] {
+    let byte = |i: usize| s.get(i..i + 2).and_then(|h| u8::from_str_radix(h, 16).ok()).unwrap_or(128);
+    if is_hex_color(s) {
+        [byte(1), byte(3), byte(5)]
+    } else {
+        [128, 128, 128]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn scene() -> Scene {
+        let mut s = Scene::empty(400.0, 300.0);
+        s.goals.push(Goal { position: [350.0, 150.0], radius: 20.0 });
+        s.groups.push(Group {
+            name: "a".into(),
+            color: "#ff0000".into(),
+            count: 10,
+            spawn: Region { min: [10.0, 10.0], max: [60.0, 60.0] },
+            goal: Some(0),
+            agent_radius: 4.0,
+            planner: PlannerConfig::default(),
+        });
+        s
+    }
+
+    #[test]
+    fn a_good_scene_validates() {
+        assert_eq!(scene().validate(), Ok(()));
+    }
+
+    #[test]
+    fn nan_is_refused_with_its_name() {
+        let mut s = scene();
+        s.goals[0].position[0] = f32::NAN;
+        let e = s.validate().expect_err("NaN");
+        assert!(matches!(e, SceneError::NotFinite(_)));
+        assert!(e.to_string().contains("goal 1"), "{e}");
+    }
+
+    #[test]
+    fn an_obstacle_over_the_goal_is_refused() {
+        let mut s = scene();
+        s.obstacles.push(Obstacle::Circle { center: [350.0, 150.0], radius: 30.0 });
+        let e = s.validate().expect_err("blocked");
+        assert_eq!(e, SceneError::Blocked("goal 1 is inside obstacle 1".into()));
+    }
+
+    #[test]
+    fn ten_million_agents_are_refused() {
+        let mut s = scene();
+        s.groups[0].count = 10_000_000;
+        assert!(matches!(s.validate(), Err(SceneError::OutOfRange(m)) if m.contains("10000000 agents")));
+    }
+
+    #[test]
+    fn a_missing_goal_is_a_bad_reference() {
+        let mut s = scene();
+        s.groups[0].goal = Some(3);
+        assert!(matches!(s.validate(), Err(SceneError::BadReference(_))));
+    }
+
+    #[test]
+    fn colours_parse() {
+        assert_eq!(parse_color("#ff8000"), [255, 128, 0]);
+        assert_eq!(parse_color("red"), [128, 128, 128]);
+    }
+}

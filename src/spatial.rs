@@ -1,0 +1,351 @@
+//! Uniform grid for neighbour queries, rebuilt every step by a stable counting sort.
+//!
+//! Agents are stored cell by cell, in id order inside a cell, so a query visits candidates in
+//! the same order on every platform: float sums over neighbours are reproducible bit for bit.
+
+use crate::geometry::{Aabb, Obstacle};
+use glam::Vec2;
+
+/// A uniform grid over a rectangle `[0, width] × [0, height]`. Points outside fall in edge cells.
+#[derive(Clone, Debug)]
+pub struct SpatialGrid {
+    cell_size: f32,
+    inv_cell: f32,
+    cols: u32,
+    rows: u32,
+    /// `cell_start[c]..cell_start[c + 1]` indexes `ids`/`pos` for cell `c`.
+    cell_start: Vec<u32>,
+    ids: Vec<u32>,
+    pos: Vec<Vec2>,
+    vel: Vec<Vec2>,
+    scratch_cell: Vec<u32>,
+}
+
+/// One agent found by a query.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Neighbour {
+    /// Agent id.
+    pub id: u32,
+    /// Its position.
+    pub pos: Vec2,
+    /// Its velocity.
+    pub vel: Vec2,
+    /// Squared distance to the query point.
+    pub d2: f32,
+}
+
+/// Cells per agent above which the grid coarsens its cells (memory and rebuild cost stay O(N)).
+const MAX_CELLS_PER_AGENT: usize = 4;
+const MIN_CELL_BUDGET: usize = 16_384;
+
+impl SpatialGrid {
+    /// A grid for a `width × height` world whose queries mostly use radius `cell_size`.
+    /// The cell grows if the world would need far more cells than `expected_agents` can fill.
+    pub fn new(width: f32, height: f32, cell_size: f32, expected_agents: usize) -> Self {
+        let width = width.max(1.0);
+        let height = height.max(1.0);
+        let mut cell = if cell_size.is_finite() && cell_size > 0.0 { cell_size } else { width.max(height) };
+        let budget = (expected_agents * MAX_CELLS_PER_AGENT).max(MIN_CELL_BUDGET);
+        while ((width / cell).ceil() * (height / cell).ceil()) as usize > budget {
+            cell *= 1.5;
+        }
+        let cols = ((width / cell).ceil() as u32).max(1);
+        let rows = ((height / cell).ceil() as u32).max(1);
+        Self {
+            cell_size: cell,
+            inv_cell: 1.0 / cell,
+            cols,
+            rows,
+            cell_start: vec![0; (cols * rows + 1) as usize],
+            ids: Vec::new(),
+            pos: Vec::new(),
+            vel: Vec::new(),
+            scratch_cell: Vec::new(),
+        }
+    }
+
+    /// A grid with one cell: every query scans every agent. The O(N²) baseline for benchmarks.
+    pub fn single_cell(width: f32, height: f32) -> Self {
+        Self::new(width, height, f32::INFINITY, 0)
+    }
+
+    /// Side of a cell in px.
+    pub fn cell_size(&self) -> f32 {
+        self.cell_size
+    }
+
+    #[inline]
+    fn cell_coord(&self, x: f32, n: u32) -> u32 {
+        // Saturating float→int cast: NaN → 0, negatives → 0, huge → clamped.
+        ((x * self.inv_cell) as u32).min(n - 1)
+    }
+
+    #[inline]
+    fn cell_of(&self, p: Vec2) -> u32 {
+        self.cell_coord(p.y, self.rows) * self.cols + self.cell_coord(p.x, self.cols)
+    }
+
+    /// Re-buckets all agents; `positions[i]` and `velocities[i]` belong to agent `i`.
+    pub fn rebuild(&mut self, positions: &[Vec2], velocities: &[Vec2]) {
+        let n = positions.len();
+        self.cell_start.iter_mut().for_each(|c| *c = 0);
+        self.scratch_cell.clear();
+        for &p in positions {
+            let c = self.cell_of(p);
+            self.scratch_cell.push(c);
+            self.cell_start[c as usize + 1] += 1;
+        }
+        for c in 1..self.cell_start.len() {
+            self.cell_start[c] += self.cell_start[c - 1];
+        }
+        self.ids.resize(n, 0);
+        self.pos.resize(n, Vec2::ZERO);
+        self.vel.resize(n, Vec2::ZERO);
+        // Scatter in id order: stable, so each cell lists its agents by increasing id.
+        let mut next = self.cell_start.clone();
+        for (i, &c) in self.scratch_cell.iter().enumerate() {
+            let slot = next[c as usize] as usize;
+            next[c as usize] += 1;
+            self.ids[slot] = i as u32;
+            self.pos[slot] = positions[i];
+            self.vel[slot] = velocities.get(i).copied().unwrap_or(Vec2::ZERO);
+        }
+    }
+
+    /// Calls `visit` for every agent within `radius` of `p`
+    /// (including one at `p` itself), cell by cell in row-major order, by id within a cell.
+    #[inline]
+    pub fn for_each_within(&self, p: Vec2, radius: f32, mut visit: impl FnMut(Neighbour)) {
+        let r2 = radius * radius;
+        let x0 = self.cell_coord(p.x - radius, self.cols);
+        let x1 = self.cell_coord(p.x + radius, self.cols);
+        let y0 = self.cell_coord(p.y - radius, self.rows);
+        let y1 = self.cell_coord(p.y + radius, self.rows);
+        for cy in y0..=y1 {
+            let row = cy * self.cols;
+            let start = self.cell_start[(row + x0) as usize] as usize;
+            let end = self.cell_start[(row + x1 + 1) as usize] as usize;
+            // Cells x0..=x1 of one row are contiguous in the sorted arrays.
+            for k in start..end {
+                let q = self.pos[k];
+                let d2 = p.distance_squared(q);
+                if d2 <= r2 {
+                    visit(Neighbour { id: self.ids[k], pos: q, vel: self.vel[k], d2 });
+                }
+            }
+        }
+    }
+
+    /// Ids of agents within `radius` of `p`, sorted by `(distance², id)`.
+    pub fn within_distance(&self, p: Vec2, radius: f32, out: &mut Vec<(f32, u32)>) {
+        out.clear();
+        self.for_each_within(p, radius, |n| out.push((n.d2, n.id)));
+        out.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+    }
+
+    /// The `k` nearest agents to `p` within `max_radius` (excluding `exclude`), by `(distance², id)`.
+    pub fn k_nearest(&self, p: Vec2, k: usize, max_radius: f32, exclude: u32, out: &mut Vec<(f32, u32)>) {
+        self.within_distance(p, max_radius, out);
+        out.retain(|&(_, id)| id != exclude);
+        out.truncate(k);
+    }
+
+    /// Calls `visit(a, b)` once for every unordered pair of agents closer than `radius`
+    /// (`radius` ≤ cell size), `a < b`.
+    pub fn for_each_pair_within(&self, radius: f32, mut visit: impl FnMut(u32, u32)) {
+        let r2 = radius * radius;
+        let n = self.pos.len();
+        for k in 0..n {
+            let p = self.pos[k];
+            let id = self.ids[k];
+            self.for_each_within(p, radius, |n| {
+                if n.id > id && n.d2 < r2 {
+                    visit(id, n.id);
+                }
+            });
+        }
+    }
+}
+
+/// Static obstacles bucketed into a coarse grid, so a query near a point only tests the
+/// obstacles whose bounding boxes reach it.
+#[derive(Clone, Debug)]
+pub struct ObstacleIndex {
+    obstacles: Vec<Obstacle>,
+    aabbs: Vec<Aabb>,
+    /// Cell ranges `[x0, y0, x1, y1]` each obstacle covers.
+    ranges: Vec<[u32; 4]>,
+    inv_cell: f32,
+    cols: u32,
+    rows: u32,
+    cell_start: Vec<u32>,
+    ids: Vec<u32>,
+}
+
+/// Side of an obstacle-index cell in px (grown for huge worlds).
+const OBSTACLE_CELL: f32 = 64.0;
+
+impl ObstacleIndex {
+    /// Indexes `obstacles` over a `width × height` world.
+    pub fn new(obstacles: Vec<Obstacle>, width: f32, height: f32) -> Self {
+        let (width, height) = (width.max(1.0), height.max(1.0));
+        let mut cell = OBSTACLE_CELL;
+        while ((width / cell).ceil() * (height / cell).ceil()) as usize > MIN_CELL_BUDGET {
+            cell *= 1.5;
+        }
+        let inv_cell = 1.0 / cell;
+        let cols = ((width / cell).ceil() as u32).max(1);
+        let rows = ((height / cell).ceil() as u32).max(1);
+        let coord = |x: f32, n: u32| ((x * inv_cell) as u32).min(n - 1);
+        let aabbs: Vec<Aabb> = obstacles.iter().map(Obstacle::aabb).collect();
+        let ranges: Vec<[u32; 4]> = aabbs
+            .iter()
+            .map(|b| [coord(b.min.x, cols), coord(b.min.y, rows), coord(b.max.x, cols), coord(b.max.y, rows)])
+            .collect();
+        let mut cell_start = vec![0u32; (cols * rows + 1) as usize];
+        for r in &ranges {
+            for cy in r[1]..=r[3] {
+                for cx in r[0]..=r[2] {
+                    cell_start[(cy * cols + cx) as usize + 1] += 1;
+                }
+            }
+        }
+        for c in 1..cell_start.len() {
+            cell_start[c] += cell_start[c - 1];
+        }
+        let mut next = cell_start.clone();
+        let mut ids = vec![0u32; cell_start[cell_start.len() - 1] as usize];
+        for (i, r) in ranges.iter().enumerate() {
+            for cy in r[1]..=r[3] {
+                for cx in r[0]..=r[2] {
+                    let c = (cy * cols + cx) as usize;
+                    ids[next[c] as usize] = i as u32;
+                    next[c] += 1;
+                }
+            }
+        }
+        Self { obstacles, aabbs, ranges, inv_cell, cols, rows, cell_start, ids }
+    }
+
+    /// All obstacles, in scene order.
+    pub fn obstacles(&self) -> &[Obstacle] {
+        &self.obstacles
+    }
+
+    /// Whether the index holds no obstacle.
+    pub fn is_empty(&self) -> bool {
+        self.obstacles.is_empty()
+    }
+
+    /// Calls `visit(index, obstacle)` once for each obstacle whose bounding box overlaps `query`.
+    #[inline]
+    pub fn for_each_near(&self, query: Aabb, mut visit: impl FnMut(u32, &Obstacle)) {
+        if self.obstacles.is_empty() {
+            return;
+        }
+        let coord = |x: f32, n: u32| ((x * self.inv_cell) as u32).min(n - 1);
+        let (qx0, qy0) = (coord(query.min.x, self.cols), coord(query.min.y, self.rows));
+        let (qx1, qy1) = (coord(query.max.x, self.cols), coord(query.max.y, self.rows));
+        for cy in qy0..=qy1 {
+            for cx in qx0..=qx1 {
+                let c = (cy * self.cols + cx) as usize;
+                for &id in &self.ids[self.cell_start[c] as usize..self.cell_start[c + 1] as usize] {
+                    let r = self.ranges[id as usize];
+                    // Report each obstacle only from the first cell where it meets the query.
+                    if (cx, cy) != (r[0].max(qx0), r[1].max(qy0)) {
+                        continue;
+                    }
+                    if self.aabbs[id as usize].overlaps(&query) {
+                        visit(id, &self.obstacles[id as usize]);
+                    }
+                }
+            }
+        }
+    }
+
+    /// Whether `p` lies inside any obstacle.
+    pub fn contains(&self, p: Vec2) -> bool {
+        let mut inside = false;
+        self.for_each_near(Aabb { min: p, max: p }, |_, o| inside |= o.contains(p));
+        inside
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand_core::{Rng, SeedableRng};
+
+    fn brute(points: &[Vec2], p: Vec2, r: f32) -> Vec<(f32, u32)> {
+        let mut v: Vec<(f32, u32)> = points
+            .iter()
+            .enumerate()
+            .map(|(i, q)| (p.distance_squared(*q), i as u32))
+            .filter(|(d2, _)| *d2 <= r * r)
+            .collect();
+        v.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        v
+    }
+
+    #[test]
+    fn grid_equals_brute_force_including_cell_borders() {
+        let mut rng = rand_pcg::Pcg32::seed_from_u64(7);
+        let mut unit = || (rng.next_u32() >> 8) as f32 / (1u32 << 24) as f32;
+        let (w, h, cell) = (500.0, 300.0, 25.0);
+        let mut points: Vec<Vec2> = (0..2000).map(|_| Vec2::new(unit() * w, unit() * h)).collect();
+        // Exactly on cell borders and corners, and outside the world.
+        for i in 0..=20 {
+            points.push(Vec2::new(i as f32 * cell, (i % 12) as f32 * cell));
+        }
+        points.push(Vec2::new(-5.0, 10.0));
+        points.push(Vec2::new(w + 5.0, h + 5.0));
+        let mut grid = SpatialGrid::new(w, h, cell, points.len());
+        grid.rebuild(&points, &[]);
+        let mut out = Vec::new();
+        for (i, &p) in points.iter().enumerate() {
+            for r in [cell * 0.5, cell, cell * 1.7] {
+                grid.within_distance(p, r, &mut out);
+                assert_eq!(out, brute(&points, p, r), "agent {i} radius {r}");
+            }
+        }
+    }
+
+    #[test]
+    fn pairs_are_counted_once() {
+        let points =
+            vec![Vec2::new(1.0, 1.0), Vec2::new(2.0, 1.0), Vec2::new(30.0, 30.0), Vec2::new(1.5, 1.5)];
+        let mut grid = SpatialGrid::new(100.0, 100.0, 10.0, 4);
+        grid.rebuild(&points, &[]);
+        let mut pairs = Vec::new();
+        grid.for_each_pair_within(2.0, |a, b| pairs.push((a, b)));
+        pairs.sort();
+        assert_eq!(pairs, vec![(0, 1), (0, 3), (1, 3)]);
+    }
+
+    #[test]
+    fn obstacle_index_reports_each_nearby_obstacle_once() {
+        let obstacles = vec![
+            Obstacle::Rect { min: [0.0, 0.0], max: [300.0, 20.0] },
+            Obstacle::Circle { center: [500.0, 500.0], radius: 10.0 },
+            Obstacle::Circle { center: [100.0, 100.0], radius: 90.0 },
+        ];
+        let index = ObstacleIndex::new(obstacles, 1000.0, 1000.0);
+        let mut seen = Vec::new();
+        let q = Aabb { min: Vec2::new(0.0, 0.0), max: Vec2::new(400.0, 400.0) };
+        index.for_each_near(q, |i, _| seen.push(i));
+        seen.sort();
+        assert_eq!(seen, vec![0, 2]);
+        assert!(index.contains(Vec2::new(500.0, 505.0)));
+        assert!(!index.contains(Vec2::new(700.0, 700.0)));
+    }
+
+    #[test]
+    fn single_cell_grid_scans_everything() {
+        let points = vec![Vec2::new(1.0, 1.0), Vec2::new(99.0, 99.0)];
+        let mut grid = SpatialGrid::single_cell(100.0, 100.0);
+        grid.rebuild(&points, &[]);
+        let mut out = Vec::new();
+        grid.within_distance(Vec2::ZERO, 1000.0, &mut out);
+        assert_eq!(out.len(), 2);
+    }
+}

@@ -1,0 +1,333 @@
+//! The running simulation: agent state as struct-of-arrays, the two-phase step, seeded spawn.
+
+use crate::geometry::{Aabb, Obstacle};
+use crate::metrics::{Metrics, MetricsRecorder};
+use crate::planners::{GroupView, Planner, PlannerConfig, StepContext};
+use crate::rng::Rng;
+use crate::scene::{Scene, SceneError};
+use crate::spatial::{ObstacleIndex, SpatialGrid};
+use glam::Vec2;
+use std::ops::Range;
+
+/// Seconds per step: the fixed time step (JS owns the frame loop, Rust owns time).
+pub const DT: f32 = 1.0 / 60.0;
+
+/// Random stream used for spawning; planners draw from [`STREAM_PLAN`].
+const STREAM_SPAWN: u32 = 0;
+const STREAM_PLAN: u32 = 1;
+/// Attempts per agent to find a spawn point outside every obstacle.
+const SPAWN_TRIES: u32 = 200;
+/// How far outside a surface a pushed-out agent is placed (px).
+const PUSH_EPSILON: f32 = 0.01;
+
+/// One group at run time.
+struct GroupRuntime {
+    agents: Range<u32>,
+    planner: Box<dyn Planner>,
+}
+
+/// A scene being simulated.
+pub struct World {
+    scene: Scene,
+    step: u32,
+    /// Position of each agent (px).
+    pos: Vec<Vec2>,
+    /// Velocity of each agent (px/step).
+    vel: Vec<Vec2>,
+    /// Group index of each agent.
+    group_of: Vec<u32>,
+    /// Body radius of each agent (px).
+    radius: Vec<f32>,
+    next_vel: Vec<Vec2>,
+    groups: Vec<GroupRuntime>,
+    grid: SpatialGrid,
+    obstacles: ObstacleIndex,
+    rng: Rng,
+    recorder: MetricsRecorder,
+}
+
+impl World {
+    /// Validates the scene, spawns its agents from the scene's seed and builds the planners.
+    pub fn new(scene: Scene) -> Result<Self, SceneError> {
+        scene.validate()?;
+        let obstacles = ObstacleIndex::new(scene.obstacles.clone(), scene.width, scene.height);
+        let total = scene.agent_count() as usize;
+        let mut spawn_rng = Rng::new(scene.seed, STREAM_SPAWN);
+        let mut pos = Vec::with_capacity(total);
+        let mut vel = Vec::with_capacity(total);
+        let mut group_of = Vec::with_capacity(total);
+        let mut radius = Vec::with_capacity(total);
+        let mut groups = Vec::with_capacity(scene.groups.len());
+        let mut interaction = 0.0f32;
+        let mut max_radius = 0.0f32;
+        for (gi, g) in scene.groups.iter().enumerate() {
+            let start = pos.len() as u32;
+            let planner = g.planner.build(g.count as usize, &scene.obstacles);
+            let speed = planner.max_speed() * 0.25;
+            for a in 0..g.count {
+                let p =
+                    spawn_point(&scene, &obstacles, gi, g.agent_radius, &mut spawn_rng).ok_or_else(|| {
+                        SceneError::Blocked(format!(
+                            "group {} ({}): no room to place agent {} of {} outside the obstacles",
+                            gi + 1,
+                            g.name,
+                            a + 1,
+                            g.count
+                        ))
+                    })?;
+                let angle = spawn_rng.range(-std::f32::consts::PI, std::f32::consts::PI);
+                pos.push(p);
+                vel.push(Vec2::from_angle(angle) * speed);
+                group_of.push(gi as u32);
+                radius.push(g.agent_radius);
+            }
+            interaction = interaction.max(planner.interaction_radius());
+            max_radius = max_radius.max(g.agent_radius);
+            groups.push(GroupRuntime { agents: start..pos.len() as u32, planner });
+        }
+        let cell = interaction.max(2.0 * max_radius).max(1.0);
+        let grid = SpatialGrid::new(scene.width, scene.height, cell, total);
+        let recorder = MetricsRecorder::new(&scene, &pos);
+        let rng = Rng::new(scene.seed, STREAM_PLAN);
+        let next_vel = vec![Vec2::ZERO; total];
+        let mut world = Self {
+            scene,
+            step: 0,
+            pos,
+            vel,
+            group_of,
+            radius,
+            next_vel,
+            groups,
+            grid,
+            obstacles,
+            rng,
+            recorder,
+        };
+        world.grid.rebuild(&world.pos, &world.vel);
+        Ok(world)
+    }
+
+    /// The scene this world was built from.
+    pub fn scene(&self) -> &Scene {
+        &self.scene
+    }
+
+    /// Steps simulated since the start.
+    pub fn step_count(&self) -> u32 {
+        self.step
+    }
+
+    /// Number of agents.
+    pub fn agent_count(&self) -> usize {
+        self.pos.len()
+    }
+
+    /// Agent positions (px).
+    pub fn positions(&self) -> &[Vec2] {
+        &self.pos
+    }
+
+    /// Agent velocities (px/step).
+    pub fn velocities(&self) -> &[Vec2] {
+        &self.vel
+    }
+
+    /// Group index of each agent.
+    pub fn group_of(&self) -> &[u32] {
+        &self.group_of
+    }
+
+    /// Body radius of each agent (px).
+    pub fn radii(&self) -> &[f32] {
+        &self.radius
+    }
+
+    /// The obstacle index (for renderers and tools that query obstacles).
+    pub fn obstacles(&self) -> &ObstacleIndex {
+        &self.obstacles
+    }
+
+    /// Current goal position of group `g`, if it has one.
+    pub fn goal_of_group(&self, g: usize) -> Option<(Vec2, f32)> {
+        let goal = self.scene.groups.get(g)?.goal?;
+        let goal = self.scene.goals.get(goal as usize)?;
+        Some((Vec2::new(goal.position[0], goal.position[1]), goal.radius))
+    }
+
+    /// Replaces the planner parameters of group `g` without restarting the run.
+    pub fn set_group_planner(&mut self, g: usize, config: PlannerConfig) -> Result<(), SceneError> {
+        let group = self
+            .scene
+            .groups
+            .get_mut(g)
+            .ok_or_else(|| SceneError::BadReference(format!("there is no group {}", g + 1)))?;
+        config.validate().map_err(SceneError::OutOfRange)?;
+        let count = group.count as usize;
+        group.planner = config;
+        let planner = group.planner.build(count, &self.scene.obstacles);
+        let cell = planner.interaction_radius().max(self.grid.cell_size());
+        if cell > self.grid.cell_size() {
+            self.grid = SpatialGrid::new(self.scene.width, self.scene.height, cell, self.pos.len());
+            self.grid.rebuild(&self.pos, &self.vel);
+        }
+        self.groups[g].planner = planner;
+        Ok(())
+    }
+
+    /// Advances `n` steps.
+    pub fn step_n(&mut self, n: u32) {
+        for _ in 0..n {
+            self.step();
+        }
+    }
+
+    /// One fixed step: every planner computes new velocities from the old state (phase 1),
+    /// then all agents move, are kept out of obstacles and inside the bounds (phase 2).
+    pub fn step(&mut self) {
+        let bounds = Vec2::new(self.scene.width, self.scene.height);
+        let ctx = StepContext {
+            positions: &self.pos,
+            velocities: &self.vel,
+            radii: &self.radius,
+            grid: &self.grid,
+            obstacles: &self.obstacles,
+            bounds,
+            step: self.step,
+        };
+        for (gi, group) in self.groups.iter_mut().enumerate() {
+            let goal = self
+                .scene
+                .groups
+                .get(gi)
+                .and_then(|g| g.goal)
+                .and_then(|k| self.scene.goals.get(k as usize))
+                .map(|goal| (Vec2::new(goal.position[0], goal.position[1]), goal.radius));
+            let view = GroupView { agents: group.agents.clone(), goal };
+            let out = &mut self.next_vel[group.agents.start as usize..group.agents.end as usize];
+            group.planner.plan(&ctx, view, &mut self.rng, out);
+            let max_speed = group.planner.max_speed();
+            for v in out.iter_mut() {
+                // A planner bug must not poison the run: non-finite → stop, overspeed → clamp.
+                *v = if v.is_finite() { crate::planners::limit(*v, max_speed) } else { Vec2::ZERO };
+            }
+        }
+
+        for i in 0..self.pos.len() {
+            let previous = self.pos[i];
+            let mut v = self.next_vel[i];
+            let mut p = previous + v;
+            resolve_obstacles(&self.obstacles, &mut p, &mut v, self.radius[i]);
+            if self.obstacles.contains(p) {
+                // Pushing out failed (overlapping obstacles): stay where it was valid.
+                p = previous;
+                v = Vec2::ZERO;
+            }
+            let r = self.radius[i].min(0.5 * bounds.x.min(bounds.y));
+            let clamped = p.clamp(Vec2::splat(r), bounds - Vec2::splat(r));
+            if clamped.x != p.x {
+                v.x = 0.0;
+            }
+            if clamped.y != p.y {
+                v.y = 0.0;
+            }
+            if !self.obstacles.contains(clamped) {
+                p = clamped;
+            }
+            self.pos[i] = p;
+            self.vel[i] = v;
+        }
+        self.step += 1;
+        self.grid.rebuild(&self.pos, &self.vel);
+        let goals: Vec<Option<(Vec2, f32)>> = (0..self.groups.len()).map(|g| self.goal_of_group(g)).collect();
+        self.recorder.record(
+            self.step,
+            &self.pos,
+            &self.vel,
+            &self.group_of,
+            &self.radius,
+            &goals,
+            &self.grid,
+            &self.obstacles,
+        );
+    }
+
+    /// The metrics of the run so far (DESIGN §4 keys).
+    pub fn metrics(&self) -> Metrics {
+        let planners: Vec<&str> = self.scene.groups.iter().map(|g| g.planner.kind().name()).collect();
+        self.recorder.summary(&self.scene, &planners, self.step)
+    }
+
+    /// A 64-bit FNV-1a digest of every position and velocity bit pattern: equal digests mean a
+    /// bit-identical run (natively, in wasm, in any browser).
+    pub fn digest(&self) -> u64 {
+        let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+        let mut eat = |x: f32| {
+            for b in x.to_bits().to_le_bytes() {
+                h ^= u64::from(b);
+                h = h.wrapping_mul(0x0000_0100_0000_01b3);
+            }
+        };
+        for (p, v) in self.pos.iter().zip(&self.vel) {
+            eat(p.x);
+            eat(p.y);
+            eat(v.x);
+            eat(v.y);
+        }
+        h
+    }
+}
+
+/// Pushes a disc of `radius` at `p` out of any obstacle it overlaps and removes the velocity
+/// component into the surface (agents slide along walls). A few rounds handle corners.
+fn resolve_obstacles(obstacles: &ObstacleIndex, p: &mut Vec2, v: &mut Vec2, radius: f32) {
+    if obstacles.is_empty() {
+        return;
+    }
+    for _ in 0..3 {
+        let mut moved = false;
+        let query = Aabb { min: *p - Vec2::splat(radius), max: *p + Vec2::splat(radius) };
+        let here = *p;
+        let mut push = None;
+        obstacles.for_each_near(query, |_, o: &Obstacle| {
+            if push.is_some() {
+                return;
+            }
+            let s = o.surface(here);
+            if s.signed_distance < radius {
+                push = Some(s);
+            }
+        });
+        if let Some(s) = push {
+            *p = s.point + s.normal * (radius + PUSH_EPSILON);
+            let into = v.dot(s.normal);
+            if into < 0.0 {
+                *v -= s.normal * into;
+            }
+            moved = true;
+        }
+        if !moved {
+            break;
+        }
+    }
+}
+
+fn spawn_point(
+    scene: &Scene,
+    obstacles: &ObstacleIndex,
+    group: usize,
+    radius: f32,
+    rng: &mut Rng,
+) -> Option<Vec2> {
+    let region = scene.groups.get(group)?.spawn;
+    for _ in 0..SPAWN_TRIES {
+        let p = Vec2::new(rng.range(region.min[0], region.max[0]), rng.range(region.min[1], region.max[1]));
+        let mut clear = true;
+        let query = Aabb { min: p - Vec2::splat(radius), max: p + Vec2::splat(radius) };
+        obstacles.for_each_near(query, |_, o| clear &= o.surface(p).signed_distance >= radius);
+        if clear {
+            return Some(p);
+        }
+    }
+    None
+}
