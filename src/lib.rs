@@ -17,6 +17,7 @@
 //! ```
 
 pub mod codec;
+pub mod edit;
 pub mod geometry;
 pub mod metrics;
 pub mod planners;

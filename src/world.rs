@@ -175,6 +175,38 @@ impl World {
         Ok(())
     }
 
+    /// Replaces the neighbour grid by one cell, so every query scans every agent: the O(N²)
+    /// baseline of `flockpath bench`. Same neighbours, only the float summation order differs.
+    #[doc(hidden)]
+    pub fn use_brute_force_neighbours(&mut self) {
+        self.grid = SpatialGrid::single_cell(self.scene.width, self.scene.height);
+        self.grid.rebuild(&self.pos, &self.vel);
+    }
+
+    /// Switches to an edited scene. When only obstacles and goals changed, the run goes on with
+    /// the agents where they are (a wall dropped in front of a moving flock); any change to the
+    /// groups or the seed restarts the run.
+    pub fn edit_scene(&mut self, scene: Scene) -> Result<(), SceneError> {
+        scene.validate()?;
+        let same_agents = scene.seed == self.scene.seed
+            && scene.width == self.scene.width
+            && scene.height == self.scene.height
+            && scene.groups.len() == self.scene.groups.len()
+            && scene.groups.iter().zip(&self.scene.groups).all(|(a, b)| {
+                a.count == b.count
+                    && a.spawn == b.spawn
+                    && a.agent_radius == b.agent_radius
+                    && a.planner == b.planner
+            });
+        if !same_agents {
+            *self = World::new(scene)?;
+            return Ok(());
+        }
+        self.obstacles = ObstacleIndex::new(scene.obstacles.clone(), scene.width, scene.height);
+        self.scene = scene;
+        Ok(())
+    }
+
     /// Advances `n` steps.
     pub fn step_n(&mut self, n: u32) {
         for _ in 0..n {

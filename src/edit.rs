@@ -1,0 +1,236 @@
+//! Scene edits from the editor: add, move, delete and replace items, and picking items under
+//! the pointer. Every edit yields a new validated scene or an error; the old scene is untouched.
+
+use crate::geometry::{v, Obstacle};
+use crate::scene::{Goal, Group, Scene, SceneError};
+use glam::Vec2;
+use serde::{Deserialize, Serialize};
+
+/// A reference to one item of a scene.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(tag = "kind", content = "index", rename_all = "snake_case")]
+pub enum ItemRef {
+    /// `scene.obstacles[i]`.
+    Obstacle(u32),
+    /// `scene.goals[i]`.
+    Goal(u32),
+    /// `scene.groups[i]` (picked by its spawn region).
+    Group(u32),
+}
+
+/// One editing operation, as sent by the page.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "op", rename_all = "snake_case")]
+pub enum Edit {
+    /// Adds an obstacle on top.
+    AddObstacle {
+        /// The new obstacle.
+        obstacle: Obstacle,
+    },
+    /// Adds a goal; with `group`, that group now heads for it.
+    AddGoal {
+        /// Centre in px.
+        position: [f32; 2],
+        /// Arrival radius in px (default 20).
+        #[serde(default)]
+        radius: Option<f32>,
+        /// Group whose goal this becomes.
+        #[serde(default)]
+        group: Option<u32>,
+    },
+    /// Adds a group.
+    AddGroup {
+        /// The new group.
+        group: Group,
+    },
+    /// Translates an item by `(dx, dy)` px.
+    Move {
+        /// What to move.
+        item: ItemRef,
+        /// Shift along x (px).
+        dx: f32,
+        /// Shift along y (px).
+        dy: f32,
+    },
+    /// Removes an item; groups heading for a removed goal wander.
+    Delete {
+        /// What to remove.
+        item: ItemRef,
+    },
+    /// Replaces a group's settings (count, colour, goal, radius, planner, …).
+    SetGroup {
+        /// Which group.
+        index: u32,
+        /// Its new settings.
+        group: Group,
+    },
+}
+
+fn missing(item: ItemRef) -> SceneError {
+    let (what, i) = match item {
+        ItemRef::Obstacle(i) => ("obstacle", i),
+        ItemRef::Goal(i) => ("goal", i),
+        ItemRef::Group(i) => ("group", i),
+    };
+    SceneError::BadReference(format!("there is no {what} {}", u64::from(i) + 1))
+}
+
+fn translate(o: &mut Obstacle, d: Vec2) {
+    let shift = |p: &mut [f32; 2]| {
+        p[0] += d.x;
+        p[1] += d.y;
+    };
+    match o {
+        Obstacle::Circle { center, .. } => shift(center),
+        Obstacle::Rect { min, max } => {
+            shift(min);
+            shift(max);
+        }
+        Obstacle::Polygon { points } => points.iter_mut().for_each(shift),
+    }
+}
+
+/// Applies `edit` to a copy of `scene` and validates the result.
+pub fn apply(scene: &Scene, edit: &Edit) -> Result<Scene, SceneError> {
+    let mut s = scene.clone();
+    match edit {
+        Edit::AddObstacle { obstacle } => s.obstacles.push(obstacle.clone()),
+        Edit::AddGoal { position, radius, group } => {
+            s.goals.push(Goal { position: *position, radius: radius.unwrap_or(20.0) });
+            if let Some(g) = group {
+                let index = (s.goals.len() - 1) as u32;
+                s.groups.get_mut(*g as usize).ok_or_else(|| missing(ItemRef::Group(*g)))?.goal = Some(index);
+            }
+        }
+        Edit::AddGroup { group } => s.groups.push(group.clone()),
+        Edit::Move { item, dx, dy } => {
+            if !dx.is_finite() || !dy.is_finite() {
+                return Err(SceneError::NotFinite("the move distance".into()));
+            }
+            let d = Vec2::new(*dx, *dy);
+            match *item {
+                ItemRef::Obstacle(i) => {
+                    translate(s.obstacles.get_mut(i as usize).ok_or_else(|| missing(*item))?, d)
+                }
+                ItemRef::Goal(i) => {
+                    let g = s.goals.get_mut(i as usize).ok_or_else(|| missing(*item))?;
+                    g.position = [g.position[0] + d.x, g.position[1] + d.y];
+                }
+                ItemRef::Group(i) => {
+                    let g = s.groups.get_mut(i as usize).ok_or_else(|| missing(*item))?;
+                    g.spawn.min = [g.spawn.min[0] + d.x, g.spawn.min[1] + d.y];
+                    g.spawn.max = [g.spawn.max[0] + d.x, g.spawn.max[1] + d.y];
+                }
+            }
+        }
+        Edit::Delete { item } => match *item {
+            ItemRef::Obstacle(i) => {
+                if i as usize >= s.obstacles.len() {
+                    return Err(missing(*item));
+                }
+                s.obstacles.remove(i as usize);
+            }
+            ItemRef::Goal(i) => {
+                if i as usize >= s.goals.len() {
+                    return Err(missing(*item));
+                }
+                s.goals.remove(i as usize);
+                for g in &mut s.groups {
+                    g.goal = match g.goal {
+                        Some(k) if k == i => None,
+                        Some(k) if k > i => Some(k - 1),
+                        other => other,
+                    };
+                }
+            }
+            ItemRef::Group(i) => {
+                if i as usize >= s.groups.len() {
+                    return Err(missing(*item));
+                }
+                s.groups.remove(i as usize);
+            }
+        },
+        Edit::SetGroup { index, group } => {
+            *s.groups.get_mut(*index as usize).ok_or_else(|| missing(ItemRef::Group(*index)))? =
+                group.clone();
+        }
+    }
+    s.validate()?;
+    Ok(s)
+}
+
+/// The topmost item at `p` (scene px), within `tolerance` px: goals first, then obstacles
+/// (last drawn on top), then group spawn regions.
+pub fn pick(scene: &Scene, p: Vec2, tolerance: f32) -> Option<ItemRef> {
+    let tolerance = if tolerance.is_finite() { tolerance.max(0.0) } else { 0.0 };
+    if !p.is_finite() {
+        return None;
+    }
+    let goal = scene
+        .goals
+        .iter()
+        .enumerate()
+        .rev()
+        .find(|(_, g)| p.distance(v(g.position)) <= g.radius.max(6.0) + tolerance);
+    if let Some((i, _)) = goal {
+        return Some(ItemRef::Goal(i as u32));
+    }
+    let obstacle =
+        scene.obstacles.iter().enumerate().rev().find(|(_, o)| o.surface(p).signed_distance <= tolerance);
+    if let Some((i, _)) = obstacle {
+        return Some(ItemRef::Obstacle(i as u32));
+    }
+    scene
+        .groups
+        .iter()
+        .enumerate()
+        .rev()
+        .find(|(_, g)| {
+            p.x >= g.spawn.min[0] - tolerance
+                && p.x <= g.spawn.max[0] + tolerance
+                && p.y >= g.spawn.min[1] - tolerance
+                && p.y <= g.spawn.max[1] + tolerance
+        })
+        .map(|(i, _)| ItemRef::Group(i as u32))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::presets;
+
+    #[test]
+    fn add_move_delete_round() {
+        let s = presets::open_field();
+        let circle = Obstacle::Circle { center: [400.0, 100.0], radius: 30.0 };
+        let s1 = apply(&s, &Edit::AddObstacle { obstacle: circle }).expect("adds");
+        assert_eq!(pick(&s1, Vec2::new(410.0, 100.0), 0.0), Some(ItemRef::Obstacle(0)));
+        let s2 = apply(&s1, &Edit::Move { item: ItemRef::Obstacle(0), dx: 10.0, dy: 5.0 }).expect("moves");
+        assert_eq!(s2.obstacles[0], Obstacle::Circle { center: [410.0, 105.0], radius: 30.0 });
+        let s3 = apply(&s2, &Edit::Delete { item: ItemRef::Obstacle(0) }).expect("deletes");
+        assert_eq!(s3, s);
+    }
+
+    #[test]
+    fn a_new_goal_can_retarget_a_group_and_deleting_it_unlinks() {
+        let s = presets::open_field();
+        let s1 = apply(&s, &Edit::AddGoal { position: [400.0, 400.0], radius: None, group: Some(0) })
+            .expect("adds");
+        assert_eq!(s1.groups[0].goal, Some(1));
+        let s2 = apply(&s1, &Edit::Delete { item: ItemRef::Goal(0) }).expect("deletes");
+        assert_eq!(s2.groups[0].goal, Some(0));
+        assert_eq!(s2.goals[0].position, [400.0, 400.0]);
+    }
+
+    #[test]
+    fn invalid_edits_are_refused_with_messages() {
+        let s = presets::open_field();
+        let over_goal = Obstacle::Circle { center: [700.0, 250.0], radius: 10.0 };
+        assert!(matches!(apply(&s, &Edit::AddObstacle { obstacle: over_goal }), Err(SceneError::Blocked(_))));
+        assert!(apply(&s, &Edit::Delete { item: ItemRef::Group(5) }).is_err());
+        assert!(apply(&s, &Edit::Move { item: ItemRef::Goal(0), dx: f32::NAN, dy: 0.0 }).is_err());
+        let json = r#"{"op":"move","item":{"kind":"group","index":0},"dx":5,"dy":0}"#;
+        let e: Edit = serde_json::from_str(json).expect("parses");
+        assert!(apply(&s, &e).is_ok());
+    }
+}
