@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# Runs every test: formatting and lints, native unit/integration/doc tests, wasm tests in headless
+# Chromium, and the end-to-end page tests. Installs whatever is missing first (scripts/setup.sh).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+export PATH="$HOME/.cargo/bin:$PATH"
+
+section() { printf '\n=== %s ===\n' "$*"; }
+
+section "setup"
+bash scripts/setup.sh
+
+section "format and lints"
+cargo fmt --check
+cargo clippy --all-targets -- -D warnings
+cargo clippy --lib --target wasm32-unknown-unknown -- -D warnings
+
+section "native tests"
+cargo test --all-targets
+cargo test --doc
+
+section "wasm tests (headless Chromium)"
+bash scripts/test-wasm.sh
+
+section "end-to-end tests (headless Chromium)"
+bash scripts/test-e2e.sh
