@@ -45,7 +45,8 @@ pub struct BoidsParams {
     pub avoid_weight: f32,
     /// Length of the forward whisker that probes for obstacles. Default 50 px.
     pub whisker_length: f32,
-    /// Within this distance of the goal the desired speed ramps down (arrival). Default 60 px.
+    /// Over this distance before the goal's edge the desired speed ramps down (arrival); inside
+    /// the goal agents park (brake, keep their distance). Default 60 px.
     pub arrival_radius: f32,
     /// How the forces are combined.
     pub arbitration: Arbitration,
@@ -159,7 +160,7 @@ impl BoidsParams {
             "px",
             (1.0, 500.0, 1.0),
             60.0,
-            "Within this distance of the goal the agent slows down.",
+            "Over this distance before the goal the agent slows down; inside it parks.",
         ),
         ParamSpec::choice(
             "arbitration",
@@ -309,16 +310,24 @@ impl Planner for Boids {
             } else {
                 (Vec2::ZERO, Vec2::ZERO)
             };
+            let mut parked = false;
             let (seek, to_goal) = match group.goal {
-                Some((goal, _)) => {
+                Some((goal, goal_radius)) => {
                     let to = goal - p;
                     let d = to.length();
-                    let speed = prm.max_speed * (d / prm.arrival_radius).min(1.0);
+                    // Inside the goal the agent parks: it brakes and only keeps its distance, so
+                    // an arrived group spreads over the goal instead of piling onto its centre.
+                    parked = d <= goal_radius;
+                    // Arrival: slow down over `arrival_radius` before the goal's edge, and creep
+                    // (a tenth of max speed) the rest of the way so the group keeps filling in.
+                    let ramp = ((d - goal_radius) / prm.arrival_radius).clamp(0.1, 1.0);
+                    let speed = if parked { 0.0 } else { prm.max_speed * ramp };
                     let desired = if d > 1e-6 { to * (speed / d) } else { Vec2::ZERO };
                     (limit(desired - vel, prm.max_force), to)
                 }
                 None => (Vec2::ZERO, Vec2::X),
             };
+            let (alignment, cohesion) = if parked { (Vec2::ZERO, Vec2::ZERO) } else { (alignment, cohesion) };
             let avoid = self.avoid_obstacles(ctx, p, vel, ctx.radii[i], unit_or(to_goal, Vec2::X))
                 + self.contain(ctx, p, vel);
 
