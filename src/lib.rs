@@ -18,10 +18,12 @@
 
 pub mod codec;
 pub mod edit;
+pub mod export;
 pub mod geometry;
 pub mod metrics;
 pub mod planners;
 pub mod presets;
+pub mod recording;
 pub mod rng;
 pub mod scene;
 pub mod spatial;

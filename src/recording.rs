@@ -1,0 +1,143 @@
+//! A bounded recording of agent positions and velocities per step, for exports and replay.
+//!
+//! When the recording would exceed its memory budget it keeps every other recorded step and
+//! records half as often from then on (thinning), and says so in [`Recording::thinned`], so
+//! nothing is dropped silently.
+
+use glam::Vec2;
+
+/// Bytes one agent takes in one recorded step (x, y, vx, vy as `f32`).
+const BYTES_PER_SAMPLE: usize = 16;
+/// Default memory budget: 64 MiB (for example 2,000 agents × 2,000 steps).
+pub const DEFAULT_BUDGET_BYTES: usize = 64 << 20;
+
+/// Recorded frames of a run.
+#[derive(Clone, Debug)]
+pub struct Recording {
+    agents: usize,
+    every: u32,
+    budget_bytes: usize,
+    steps: Vec<u32>,
+    /// `samples[f * agents + i] = [x, y, vx, vy]` of agent `i` at recorded step `steps[f]`.
+    samples: Vec<[f32; 4]>,
+    thinned: u32,
+}
+
+impl Recording {
+    /// An empty recording of `agents` agents, capturing every step, within `budget_bytes`.
+    pub fn new(agents: usize, budget_bytes: usize) -> Self {
+        Self { agents, every: 1, budget_bytes, steps: Vec::new(), samples: Vec::new(), thinned: 0 }
+    }
+
+    /// Records the state after `step` if it falls on the current sampling interval.
+    pub fn capture(&mut self, step: u32, positions: &[Vec2], velocities: &[Vec2]) {
+        if positions.len() != self.agents || !step.is_multiple_of(self.every) {
+            return;
+        }
+        if self.agents > 0 && (self.steps.len() + 1) * self.agents * BYTES_PER_SAMPLE > self.budget_bytes {
+            self.thin();
+            if !step.is_multiple_of(self.every) {
+                return;
+            }
+        }
+        self.steps.push(step);
+        self.samples.extend(positions.iter().zip(velocities).map(|(p, v)| [p.x, p.y, v.x, v.y]));
+    }
+
+    fn thin(&mut self) {
+        self.every = self.every.saturating_mul(2);
+        self.thinned += 1;
+        let agents = self.agents;
+        let mut kept_steps = Vec::with_capacity(self.steps.len() / 2 + 1);
+        let mut kept = Vec::with_capacity(self.samples.len() / 2 + agents);
+        for (f, &s) in self.steps.iter().enumerate() {
+            if s.is_multiple_of(self.every) {
+                kept_steps.push(s);
+                kept.extend_from_slice(&self.samples[f * agents..(f + 1) * agents]);
+            }
+        }
+        self.steps = kept_steps;
+        self.samples = kept;
+    }
+
+    /// Number of agents per frame.
+    pub fn agents(&self) -> usize {
+        self.agents
+    }
+
+    /// The recorded step numbers, increasing.
+    pub fn steps(&self) -> &[u32] {
+        &self.steps
+    }
+
+    /// Steps between recorded frames now.
+    pub fn every(&self) -> u32 {
+        self.every
+    }
+
+    /// How many times the recording was thinned to stay within its budget.
+    pub fn thinned(&self) -> u32 {
+        self.thinned
+    }
+
+    /// `[x, y, vx, vy]` of every agent at recorded frame `f`.
+    pub fn frame(&self, f: usize) -> &[[f32; 4]] {
+        let start = (f * self.agents).min(self.samples.len());
+        let end = ((f + 1) * self.agents).min(self.samples.len());
+        &self.samples[start..end]
+    }
+
+    /// Index of the recorded frame nearest to `step`.
+    pub fn nearest_frame(&self, step: u32) -> Option<usize> {
+        if self.steps.is_empty() {
+            return None;
+        }
+        let i = self.steps.partition_point(|&s| s < step);
+        if i == 0 {
+            return Some(0);
+        }
+        if i >= self.steps.len() {
+            return Some(self.steps.len() - 1);
+        }
+        let (before, after) = (self.steps[i - 1], self.steps[i]);
+        Some(if step - before <= after - step { i - 1 } else { i })
+    }
+
+    /// Bytes held.
+    pub fn bytes(&self) -> usize {
+        self.samples.len() * BYTES_PER_SAMPLE
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn thinning_keeps_within_budget_and_says_so() {
+        let agents = 10;
+        let budget = 100 * agents * BYTES_PER_SAMPLE;
+        let mut r = Recording::new(agents, budget);
+        let pos = vec![Vec2::ONE; agents];
+        for step in 0..1000 {
+            r.capture(step, &pos, &pos);
+            assert!(r.bytes() <= budget);
+        }
+        assert!(r.thinned() >= 3);
+        assert!(r.steps().windows(2).all(|w| w[1] - w[0] == r.every()));
+        assert_eq!(r.steps()[0], 0);
+        assert!(*r.steps().last().expect("frames") > 900);
+    }
+
+    #[test]
+    fn nearest_frame_rounds_to_the_closest_step() {
+        let mut r = Recording::new(1, 1 << 20);
+        for step in [0, 10, 20] {
+            r.capture(step, &[Vec2::splat(step as f32)], &[Vec2::ZERO]);
+        }
+        assert_eq!(r.nearest_frame(4), Some(0));
+        assert_eq!(r.nearest_frame(6), Some(1));
+        assert_eq!(r.nearest_frame(99), Some(2));
+        assert_eq!(r.frame(2)[0][0], 20.0);
+    }
+}
