@@ -1,3 +1,382 @@
-//! The flockpath command line (placeholder until the CLI lands).
+//! The flockpath command line: presets, batch runs with metrics, scene ↔ URL strings, benchmarks.
+//!
+//! A stable contract (DESIGN §5): output formats and flag names are scripted against. Every error
+//! goes to stderr as one line naming the problem, with exit code 2 for a usage mistake and 1 for
+//! a failure (unreadable file, invalid scene).
 
-fn main() {}
+#[path = "flockpath/bench.rs"]
+mod bench;
+
+use flockpath::{presets, scene_from_any, scene_to_fragment, scene_to_json, PlannerKind, Scene, World};
+use std::io::{Read as _, Write as _};
+use std::path::Path;
+use std::process::ExitCode;
+
+/// Most steps one `run` may ask for (about 4.6 hours of simulated time at 60 steps/s).
+const MAX_STEPS: u32 = 1_000_000;
+
+/// Subcommands the DESIGN names that this build does not have yet.
+const LATER_COMMANDS: &[&str] = &["optimize", "tune"];
+/// `run` flags the DESIGN names that this build does not have yet.
+const LATER_RUN_FLAGS: &[&str] = &["--paths", "--maya", "--blender"];
+
+const HELP: &str = "\
+flockpath — swarm-intelligence crowd planners on the command line
+
+USAGE:
+    flockpath <COMMAND> [OPTIONS]
+
+COMMANDS:
+    presets          List the preset scenes (name and description)
+    preset NAME      Print a preset scene as JSON
+    run              Run a scene for N steps and report its metrics
+    url FILE         Print the URL fragment value (the part after #s=) for a scene JSON file
+    scene STRING     Print the scene JSON for a URL fragment value, #s= fragment or URL
+    bench            Measure step and render speed (prints figures)
+    help [COMMAND]   Show this help, or a command's help
+
+Run `flockpath <COMMAND> --help` for a command's options.
+Errors go to stderr; the exit code is 2 for a usage mistake, 1 for a failure.
+";
+
+const RUN_HELP: &str = "\
+flockpath run — simulate a scene and report its metrics
+
+USAGE:
+    flockpath run --scene SCENE --steps N [--planner NAME] [--seed S] [--metrics FILE|-]
+
+OPTIONS:
+    --scene SCENE      A scene JSON file, `-` for stdin, a URL fragment value (1.…),
+                       a #s=… fragment or a whole page URL
+    --steps N          Steps to simulate (1 step = 1/60 s), at most 1000000
+    --planner NAME     Give every group this planner with its default parameters
+    --seed S           Replace the scene's seed (0…4294967295)
+    --metrics FILE|-   Write the metrics JSON to FILE, or to stdout with `-`;
+                       without it a one-line summary is printed
+    -h, --help         Show this help
+
+Not available yet: --paths, --maya, --blender.
+";
+
+const BENCH_HELP: &str = "\
+flockpath bench — ns per agent-step of World::step and render time per frame
+
+USAGE:
+    taskset -c 0 flockpath bench [--quick] [--only step|render] [--json FILE]
+
+OPTIONS:
+    --quick            Fewer and shorter repetitions (CI smoke run; figures are rougher)
+    --only step|render Run only the step or only the render benchmark
+    --json FILE        Also write the figures as JSON
+    -h, --help         Show this help
+
+Scenes are presets::constant_density(N, 9.0): about 9 neighbours per agent at every N.
+Pin to one core (taskset -c 0) so the figures are comparable between runs.
+";
+
+/// A command-line failure: what went wrong, and whether it was a usage mistake.
+#[derive(Debug)]
+enum CliError {
+    /// Bad command line (unknown flag, missing value, bad number): exit code 2.
+    Usage(String),
+    /// The command line was fine but the work failed (missing file, invalid scene): exit code 1.
+    Failed(String),
+}
+
+fn usage(msg: impl Into<String>) -> CliError {
+    CliError::Usage(msg.into())
+}
+
+fn failed(msg: impl Into<String>) -> CliError {
+    CliError::Failed(msg.into())
+}
+
+fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    match dispatch(&args) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(CliError::Usage(msg)) => {
+            eprintln!("flockpath: {msg}");
+            eprintln!("Run `flockpath --help` for usage.");
+            ExitCode::from(2)
+        }
+        Err(CliError::Failed(msg)) => {
+            eprintln!("flockpath: {msg}");
+            ExitCode::from(1)
+        }
+    }
+}
+
+fn dispatch(args: &[String]) -> Result<(), CliError> {
+    let Some((command, rest)) = args.split_first() else {
+        eprint!("{HELP}");
+        return Err(usage("no command given"));
+    };
+    let wants_help = rest.iter().any(|a| a == "-h" || a == "--help");
+    match command.as_str() {
+        "-h" | "--help" => out(HELP),
+        "help" => match rest.first().map(String::as_str) {
+            None => out(HELP),
+            Some("run") => out(RUN_HELP),
+            Some("bench") => out(BENCH_HELP),
+            Some(other) => out(&command_help(other)?),
+        },
+        "-V" | "--version" => out(&format!("flockpath {}\n", env!("CARGO_PKG_VERSION"))),
+        "run" if wants_help => out(RUN_HELP),
+        "bench" if wants_help => out(BENCH_HELP),
+        c if wants_help => out(&command_help(c)?),
+        "presets" => {
+            no_more_args("presets", rest)?;
+            let width = presets::ALL.iter().map(|p| p.name.len()).max().unwrap_or(0);
+            let mut text = String::new();
+            for p in presets::ALL {
+                text.push_str(&format!("{:width$}  {}\n", p.name, p.description));
+            }
+            out(&text)
+        }
+        "preset" => {
+            let name = one_arg("preset", "NAME", rest)?;
+            let preset = presets::find(name).ok_or_else(|| {
+                usage(format!("unknown preset {name:?}; `flockpath presets` lists them ({})", preset_names()))
+            })?;
+            out(&format!("{}\n", scene_to_json(&(preset.build)())))
+        }
+        "url" => {
+            let file = one_arg("url", "FILE", rest)?;
+            let scene = load_scene(file)?;
+            out(&format!("{}\n", scene_to_fragment(&scene)))
+        }
+        "scene" => {
+            let text = one_arg("scene", "STRING", rest)?;
+            let scene = scene_from_any(text).map_err(|e| failed(format!("bad scene string: {e}")))?;
+            out(&format!("{}\n", scene_to_json(&scene)))
+        }
+        "run" => run(rest),
+        "bench" => bench::main(&parse_bench(rest)?).map_err(failed),
+        // Hidden: the scene the benchmarks use, for the browser bench page.
+        "density-scene" => {
+            let n = one_arg("density-scene", "N", rest)?;
+            let n: u32 = parse_number("N", n)?;
+            if n == 0 || n > flockpath::scene::MAX_AGENTS {
+                return Err(usage(format!("N = {n} is outside 1…{}", flockpath::scene::MAX_AGENTS)));
+            }
+            out(&format!("{}\n", scene_to_json(&bench::bench_scene(n))))
+        }
+        c if LATER_COMMANDS.contains(&c) => {
+            Err(usage(format!("`flockpath {c}` is not available yet in this build")))
+        }
+        other => Err(usage(format!("unknown command {other:?}"))),
+    }
+}
+
+fn command_help(command: &str) -> Result<String, CliError> {
+    Ok(match command {
+        "run" => RUN_HELP.to_string(),
+        "bench" => BENCH_HELP.to_string(),
+        "presets" => {
+            "flockpath presets — list the preset scenes, one per line: name, then description\n".into()
+        }
+        "preset" => "flockpath preset NAME — print the preset scene NAME as JSON\n".into(),
+        "url" => {
+            "flockpath url FILE — print the URL fragment value for the scene JSON in FILE (`-` = stdin)\n"
+                .into()
+        }
+        "scene" => {
+            "flockpath scene STRING — print the scene JSON for a fragment value, #s= fragment or URL\n".into()
+        }
+        c if LATER_COMMANDS.contains(&c) => {
+            return Err(usage(format!("`flockpath {c}` is not available yet in this build")))
+        }
+        other => return Err(usage(format!("unknown command {other:?}"))),
+    })
+}
+
+/// Writes to stdout; a closed pipe (`flockpath presets | head -1`) is not an error worth a panic.
+fn out(text: &str) -> Result<(), CliError> {
+    let mut stdout = std::io::stdout().lock();
+    match stdout.write_all(text.as_bytes()).and_then(|()| stdout.flush()) {
+        Ok(()) => Ok(()),
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
+        Err(e) => Err(failed(format!("cannot write to stdout: {e}"))),
+    }
+}
+
+fn preset_names() -> String {
+    presets::ALL.iter().map(|p| p.name).collect::<Vec<_>>().join(", ")
+}
+
+fn no_more_args(command: &str, rest: &[String]) -> Result<(), CliError> {
+    match rest.first() {
+        None => Ok(()),
+        Some(extra) => Err(usage(format!("`flockpath {command}` takes no arguments, got {extra:?}"))),
+    }
+}
+
+fn one_arg<'a>(command: &str, what: &str, rest: &'a [String]) -> Result<&'a str, CliError> {
+    match rest {
+        [one] if !(one.starts_with("--") && one.len() > 2) => Ok(one),
+        [one] => Err(usage(format!("unknown option {one:?} for `flockpath {command}`"))),
+        [] => Err(usage(format!("`flockpath {command}` needs {what}"))),
+        [_, extra, ..] => Err(usage(format!("`flockpath {command}` takes one {what}, got also {extra:?}"))),
+    }
+}
+
+fn parse_number<T: std::str::FromStr>(what: &str, text: &str) -> Result<T, CliError> {
+    text.trim().parse().map_err(|_| usage(format!("{what} must be a whole number, got {text:?}")))
+}
+
+/// Splits `--flag value` / `--flag=value` pairs; every flag takes a value unless listed in
+/// `switches`. Returns `(flag, value)` in order; `value` is empty for switches.
+fn flag_pairs(
+    command: &str,
+    args: &[String],
+    with_value: &[&str],
+    switches: &[&str],
+    later: &[&str],
+) -> Result<Vec<(String, String)>, CliError> {
+    let mut pairs = Vec::new();
+    let mut it = args.iter();
+    while let Some(arg) = it.next() {
+        let (flag, inline) = match arg.split_once('=') {
+            Some((f, v)) if f.starts_with("--") => (f, Some(v.to_string())),
+            _ => (arg.as_str(), None),
+        };
+        if later.contains(&flag) {
+            return Err(usage(format!("{flag} is not available yet in this build")));
+        }
+        if switches.contains(&flag) {
+            if inline.is_some() {
+                return Err(usage(format!("{flag} takes no value")));
+            }
+            pairs.push((flag.to_string(), String::new()));
+        } else if with_value.contains(&flag) {
+            let value = match inline {
+                Some(v) => v,
+                None => it.next().cloned().ok_or_else(|| usage(format!("{flag} needs a value")))?,
+            };
+            if pairs.iter().any(|(f, _)| f == flag) {
+                return Err(usage(format!("{flag} is given twice")));
+            }
+            pairs.push((flag.to_string(), value));
+        } else if flag.starts_with('-') && flag.len() > 1 {
+            return Err(usage(format!("unknown option {flag:?} for `flockpath {command}`")));
+        } else {
+            return Err(usage(format!("unexpected argument {arg:?} for `flockpath {command}`")));
+        }
+    }
+    Ok(pairs)
+}
+
+/// Loads a scene from a file, stdin (`-`), inline JSON, a fragment value or a URL.
+fn load_scene(source: &str) -> Result<Scene, CliError> {
+    let path = Path::new(source);
+    let text = if source == "-" {
+        let mut text = String::new();
+        std::io::stdin().read_to_string(&mut text).map_err(|e| failed(format!("cannot read stdin: {e}")))?;
+        text
+    } else if path.is_file() {
+        std::fs::read_to_string(path)
+            .map_err(|e| failed(format!("cannot read scene file {source:?}: {e}")))?
+    } else if looks_like_path(source) {
+        return Err(failed(format!("cannot read scene file {source:?}: no such file")));
+    } else {
+        source.to_string()
+    };
+    let what = if source == "-" { "stdin".to_string() } else { format!("{source:?}") };
+    let what =
+        if what.len() > 60 { format!("{}…", what.chars().take(57).collect::<String>()) } else { what };
+    scene_from_any(&text).map_err(|e| failed(format!("bad scene in {what}: {e}")))
+}
+
+/// A string that cannot be a scene string or JSON but reads like a file name.
+fn looks_like_path(s: &str) -> bool {
+    let t = s.trim_start();
+    if t.starts_with('{') || t.contains("#s=") || t.contains("://") {
+        return false;
+    }
+    // Fragment values are base64url (no `/`) after a version prefix such as `1.`.
+    t.contains('/') || t.contains('\\') || t.ends_with(".json") || !t.contains('.')
+}
+
+fn run(args: &[String]) -> Result<(), CliError> {
+    let pairs = flag_pairs(
+        "run",
+        args,
+        &["--scene", "--planner", "--seed", "--steps", "--metrics"],
+        &[],
+        LATER_RUN_FLAGS,
+    )?;
+    let get = |flag: &str| pairs.iter().find(|(f, _)| f == flag).map(|(_, v)| v.as_str());
+    let source = get("--scene").ok_or_else(|| usage("`flockpath run` needs --scene"))?;
+    let steps_text = get("--steps").ok_or_else(|| usage("`flockpath run` needs --steps N"))?;
+    let steps: u32 = parse_number("--steps", steps_text)?;
+    if steps > MAX_STEPS {
+        return Err(usage(format!("--steps {steps} is over the limit of {MAX_STEPS}")));
+    }
+    let planner = match get("--planner") {
+        Some(name) => Some(PlannerKind::from_name(name).ok_or_else(|| {
+            let known: Vec<&str> = PlannerKind::ALL.iter().map(|k| k.name()).collect();
+            usage(format!("unknown planner {name:?}; available: {}", known.join(", ")))
+        })?),
+        None => None,
+    };
+    let seed = get("--seed").map(|s| parse_number::<u32>("--seed", s)).transpose()?;
+
+    let mut scene = load_scene(source)?;
+    if let Some(kind) = planner {
+        for g in &mut scene.groups {
+            g.planner = kind.default_config();
+        }
+    }
+    if let Some(seed) = seed {
+        scene.seed = seed;
+    }
+    let mut world = World::new(scene).map_err(|e| failed(format!("cannot run the scene: {e}")))?;
+    world.step_n(steps);
+    let metrics = world.metrics();
+    let json = serde_json::to_string_pretty(&metrics)
+        .map_err(|e| failed(format!("cannot write the metrics: {e}")))?;
+    match get("--metrics") {
+        Some("-") => out(&format!("{json}\n")),
+        Some(file) => {
+            std::fs::write(file, format!("{json}\n"))
+                .map_err(|e| failed(format!("cannot write metrics file {file:?}: {e}")))?;
+            out(&summary(&world))
+        }
+        None => out(&summary(&world)),
+    }
+}
+
+fn summary(world: &World) -> String {
+    let m = world.metrics();
+    let o = &m.overall;
+    format!(
+        "{}: {} agents, {} steps, arrived {:.1}%, collisions {}, penetrations {}, stuck {}, digest {:016x}\n",
+        if world.scene().name.is_empty() { "scene" } else { &world.scene().name },
+        o.agents,
+        m.steps,
+        100.0 * o.arrived_share,
+        o.collisions_agent_agent,
+        o.penetrations_agent_obstacle,
+        o.stuck_agents,
+        world.digest()
+    )
+}
+
+fn parse_bench(args: &[String]) -> Result<bench::Options, CliError> {
+    let pairs = flag_pairs("bench", args, &["--only", "--json"], &["--quick"], &[])?;
+    let mut options = bench::Options::default();
+    for (flag, value) in pairs {
+        match flag.as_str() {
+            "--quick" => options.quick = true,
+            "--json" => options.json = Some(value),
+            "--only" => match value.as_str() {
+                "step" => options.render = false,
+                "render" => options.step = false,
+                other => return Err(usage(format!("--only must be `step` or `render`, got {other:?}"))),
+            },
+            _ => return Err(usage(format!("unknown option {flag:?} for `flockpath bench`"))),
+        }
+    }
+    Ok(options)
+}

@@ -1,0 +1,218 @@
+//! `flockpath bench`: ns per agent-step of `World::step` on constant-density scenes, an O(N²)
+//! brute-force baseline, and render time per frame. Prints figures; it is not a test.
+//!
+//! Wall-clock timing lives here, in `src/bin/`, and nowhere in the core.
+
+use flockpath::spatial::SpatialGrid;
+use flockpath::{presets, Scene, World};
+use serde_json::{json, Map, Value};
+use std::time::Instant;
+
+/// Agents within the perception radius of an agent in the benchmark scenes.
+pub const NEIGHBOURS: f32 = 9.0;
+/// Sizes of the grid-based step benchmark.
+const STEP_SIZES: &[u32] = &[1_000, 10_000, 100_000];
+/// Sizes of the brute-force baseline (O(N²): 100k would take minutes per step).
+const BRUTE_SIZES: &[u32] = &[1_000, 10_000];
+
+/// What to run.
+#[derive(Clone, Debug)]
+pub struct Options {
+    /// Fewer, shorter repetitions (a smoke run for CI).
+    pub quick: bool,
+    /// Run the step benchmarks.
+    pub step: bool,
+    /// Run the render benchmarks.
+    pub render: bool,
+    /// Where to write the figures as JSON.
+    pub json: Option<String>,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Self { quick: false, step: true, render: true, json: None }
+    }
+}
+
+/// The benchmark scene with `n` agents: constant density, about nine neighbours each.
+pub fn bench_scene(n: u32) -> Scene {
+    presets::constant_density(n, NEIGHBOURS)
+}
+
+/// How one configuration is timed. Every repetition starts from freshly spawned worlds, so each
+/// N is measured at the same simulated moment: boids clump over time (a 1k world has ~50
+/// neighbours per agent after 300 steps), and timing later steps of small worlds than of large
+/// ones would compare different densities.
+struct Plan {
+    /// Untimed steps after spawning (caches, allocations, first velocities).
+    warmup_steps: u32,
+    /// Timed steps per world.
+    steps: u32,
+    /// Agents stepped per repetition: small N runs several worlds so each timing is long enough.
+    agents_per_rep: u32,
+    reps: usize,
+}
+
+/// Runs the benchmarks and prints the figures.
+pub fn main(options: &Options) -> Result<(), String> {
+    println!("flockpath bench — {} build", if cfg!(debug_assertions) { "DEBUG (slow!)" } else { "release" });
+    println!("Pin to one core for stable figures: taskset -c 0 flockpath bench");
+    println!(
+        "Scenes: presets::constant_density(N, {NEIGHBOURS}); figures are medians of {} repetitions.",
+        if options.quick { "3 (quick)" } else { "7" }
+    );
+    let mut report = Map::new();
+    report.insert("quick".into(), json!(options.quick));
+    report.insert("neighbours_target".into(), json!(NEIGHBOURS));
+    if options.step {
+        step_benchmarks(options, &mut report)?;
+    }
+    if options.render {
+        render_benchmarks(options, &mut report)?;
+    }
+    if let Some(file) = &options.json {
+        let text = serde_json::to_string_pretty(&Value::Object(report)).map_err(|e| e.to_string())?;
+        std::fs::write(file, format!("{text}\n")).map_err(|e| format!("cannot write {file:?}: {e}"))?;
+        println!("figures written to {file}");
+    }
+    Ok(())
+}
+
+fn step_benchmarks(options: &Options, report: &mut Map<String, Value>) -> Result<(), String> {
+    let grid_plan = if options.quick {
+        Plan { warmup_steps: 3, steps: 10, agents_per_rep: 20_000, reps: 3 }
+    } else {
+        Plan { warmup_steps: 10, steps: 30, agents_per_rep: 100_000, reps: 7 }
+    };
+    let brute_plan = if options.quick {
+        Plan { warmup_steps: 1, steps: 2, agents_per_rep: 1_000, reps: 3 }
+    } else {
+        Plan { warmup_steps: 10, steps: 10, agents_per_rep: 10_000, reps: 5 }
+    };
+
+    println!();
+    println!("World::step, ns per agent-step (median; min…max over repetitions)");
+    println!(
+        "{:>9}  {:>14}  {:>18}  {:>7}  {:>10}",
+        "agents", "ns/agent-step", "range", "steps", "neighbours"
+    );
+    let mut grid_ns = Map::new();
+    let mut by_n = Vec::new();
+    for &n in STEP_SIZES {
+        let r = time_steps(n, &grid_plan, false)?;
+        print_row(n, &r);
+        grid_ns.insert(n.to_string(), json!(r.median));
+        by_n.push((n, r.median));
+    }
+    report.insert("step_ns_per_agent_step".into(), Value::Object(grid_ns));
+
+    println!();
+    println!("Brute-force baseline (one grid cell: every agent scans every agent), ns per agent-step");
+    let mut brute_ns = Map::new();
+    for &n in BRUTE_SIZES {
+        let r = time_steps(n, &brute_plan, true)?;
+        print_row(n, &r);
+        brute_ns.insert(n.to_string(), json!(r.median));
+        if let Some(&(_, grid)) = by_n.iter().find(|(m, _)| *m == n) {
+            println!("{:>9}  grid is {:.1}× faster than brute force", "", r.median / grid);
+        }
+    }
+    report.insert("brute_ns_per_agent_step".into(), Value::Object(brute_ns));
+
+    let first = by_n.first().map(|x| x.1);
+    let last = by_n.last().map(|x| x.1);
+    if let (Some(first), Some(last)) = (first, last) {
+        let growth = last / first;
+        println!();
+        println!("Growth of the per-agent cost 100k / 1k: {growth:.2}× (target < 1.5×)");
+        println!("Per-agent cost at 100k: {last:.0} ns (target ≤ 120 ns)");
+        report.insert("growth_100k_over_1k".into(), json!(growth));
+    }
+    Ok(())
+}
+
+/// Timing of one configuration.
+struct Timing {
+    median: f64,
+    min: f64,
+    max: f64,
+    steps: u32,
+    neighbours: f64,
+}
+
+fn print_row(n: u32, r: &Timing) {
+    println!(
+        "{:>9}  {:>14.1}  {:>18}  {:>7}  {:>10.1}",
+        n,
+        r.median,
+        format!("{:.1}…{:.1}", r.min, r.max),
+        r.steps,
+        r.neighbours
+    );
+}
+
+fn time_steps(n: u32, plan: &Plan, brute: bool) -> Result<Timing, String> {
+    let worlds_per_rep = plan.agents_per_rep.div_ceil(n).max(1);
+    let mut samples = Vec::with_capacity(plan.reps);
+    let mut neighbours = 0.0;
+    for _ in 0..plan.reps {
+        let mut worlds = Vec::with_capacity(worlds_per_rep as usize);
+        for w in 0..worlds_per_rep {
+            let mut scene = bench_scene(n);
+            scene.seed = w + 1;
+            let mut world = World::new(scene).map_err(|e| format!("benchmark scene with {n} agents: {e}"))?;
+            if brute {
+                world.use_brute_force_neighbours();
+            }
+            world.step_n(plan.warmup_steps);
+            worlds.push(world);
+        }
+        let start = Instant::now();
+        for world in &mut worlds {
+            world.step_n(plan.steps);
+        }
+        let ns = start.elapsed().as_nanos() as f64;
+        samples.push(ns / (f64::from(plan.steps) * f64::from(n) * f64::from(worlds_per_rep)));
+        // Keep the optimiser from discarding the work.
+        std::hint::black_box(worlds.iter().map(World::digest).fold(0, u64::wrapping_add));
+        neighbours = worlds.first().map_or(0.0, mean_neighbours);
+    }
+    Ok(Timing {
+        median: median(&mut samples),
+        min: samples.iter().copied().fold(f64::INFINITY, f64::min),
+        max: samples.iter().copied().fold(0.0, f64::max),
+        steps: plan.steps,
+        neighbours,
+    })
+}
+
+/// Mean number of other agents within the perception radius at the end of the run (the scene
+/// promises about nine; flocking clumps agents, so this says what the step really did).
+fn mean_neighbours(world: &World) -> f64 {
+    let radius = flockpath::planners::BoidsParams::default().perception_radius;
+    let scene = world.scene();
+    let mut grid = SpatialGrid::new(scene.width, scene.height, radius, world.agent_count());
+    grid.rebuild(world.positions(), world.velocities());
+    let mut total = 0u64;
+    for &p in world.positions() {
+        grid.for_each_within(p, radius, |_| total += 1);
+    }
+    let n = world.agent_count().max(1) as f64;
+    (total as f64 - n) / n
+}
+
+fn median(samples: &mut [f64]) -> f64 {
+    samples.sort_by(f64::total_cmp);
+    match samples.len() {
+        0 => f64::NAN,
+        len if len % 2 == 1 => samples[len / 2],
+        len => 0.5 * (samples[len / 2 - 1] + samples[len / 2]),
+    }
+}
+
+fn render_benchmarks(_options: &Options, report: &mut Map<String, Value>) -> Result<(), String> {
+    println!();
+    println!("Render: flockpath::render is not in this build yet; skipped.");
+    report.insert("render_ms_per_frame".into(), Value::Null);
+    Ok(())
+}
