@@ -24,6 +24,7 @@ pub mod metrics;
 pub mod planners;
 pub mod presets;
 pub mod recording;
+pub mod render;
 pub mod rng;
 pub mod scene;
 pub mod spatial;
