@@ -12,9 +12,11 @@ bash scripts/build-wasm.sh
 # line unbuffered so the real port can be read when PORT=0.
 coproc SERVER { exec python3 -u -m http.server "${PORT:-0}" --bind 127.0.0.1 -d www 2>&1; }
 server_pid=$SERVER_PID
+# Coproc descriptors are not inherited by background jobs: keep a plain copy of the output end.
+exec {server_out}<&"${SERVER[0]}"
 trap 'kill "$server_pid" 2>/dev/null || true' EXIT INT TERM
 
-if ! IFS= read -r first_line <&"${SERVER[0]}"; then
+if ! IFS= read -r first_line <&"$server_out"; then
   echo "serve.sh: the web server did not start" >&2
   exit 1
 fi
@@ -26,6 +28,6 @@ fi
 
 printf '\n  flockpath playground: http://127.0.0.1:%s/\n\n  (Ctrl+C stops the server)\n\n' "$port"
 
-# Pass the request log through, and stay in the foreground until the server exits.
-cat <&"${SERVER[0]}" &
+# Pass the request log through (and keep the pipe drained), until the server exits.
+cat <&"$server_out" &
 wait "$server_pid"

@@ -172,7 +172,7 @@ export class App extends EventTarget {
   crash(message) {
     if (this.crashed) return;
     this.crashed = true;
-    this.playing = false;
+    this.setPlaying(false);
     showPanic(message);
     this.dispatchEvent(new Event('crash'));
   }

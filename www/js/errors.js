@@ -25,7 +25,8 @@ export function isPanic(error) {
 export function showMessage(text) {
   const el = banner();
   if (!el) return;
-  document.getElementById('banner-text').textContent = text;
+  // Rust messages start in lower case (they compose); a sentence on a projector should not.
+  document.getElementById('banner-text').textContent = text.charAt(0).toUpperCase() + text.slice(1);
   el.hidden = false;
 }
 
@@ -38,6 +39,21 @@ export function hideMessage() {
 /** Wires the banner's dismiss button (once, at boot). */
 export function setupBanner() {
   document.getElementById('banner-close')?.addEventListener('click', hideMessage);
+}
+
+let lastPanicReport = null;
+
+/**
+ * Remembers the panic report Rust's panic hook writes with `console.error` just before the
+ * `unreachable` trap: the trap itself only says "unreachable", the report says where and why.
+ */
+export function capturePanicReports() {
+  const original = console.error.bind(console);
+  console.error = (...args) => {
+    const text = args.map(String).join(' ');
+    if (/panicked at/.test(text)) lastPanicReport = text;
+    original(...args);
+  };
 }
 
 /**
@@ -57,7 +73,7 @@ export function showPanic(message) {
   explain.textContent =
     'This is a bug in flockpath, not in your scene. Copy the message below into a bug report, then reload.';
   const pre = document.createElement('pre');
-  pre.textContent = message;
+  pre.textContent = lastPanicReport ? `${lastPanicReport}\n\n${message}` : message;
   const reload = document.createElement('button');
   reload.type = 'button';
   reload.textContent = 'Reload the page';

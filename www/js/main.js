@@ -6,7 +6,7 @@ import { App } from './app.js';
 import { attach, flockpath } from './api.js';
 import { setupControls } from './controls.js';
 import { Editor } from './editor.js';
-import { isPanic, messageOf, setupBanner, showMessage, showPanic } from './errors.js';
+import { capturePanicReports, isPanic, messageOf, setupBanner, showMessage, showPanic } from './errors.js';
 import { setupHistoryButtons } from './history.js';
 import { startLoop } from './loop.js';
 import { setupMetrics } from './metrics.js';
@@ -16,6 +16,7 @@ import { measure, setupView } from './view.js';
 
 async function boot() {
   setupBanner();
+  capturePanicReports();
   let module;
   try {
     module = await import('../pkg/flockpath.js');

@@ -1,6 +1,8 @@
 // The scene in the address bar: `index.html#s=<fragment>`. Reading happens at boot and on
 // `hashchange`; writing uses replaceState so sharing does not add history entries.
 
+import { messageOf, showMessage } from './errors.js';
+
 /** The `s=` value of the current location's fragment, or null when there is none. */
 export function sceneFromLocation(hash = location.hash) {
   const fragment = hash.startsWith('#') ? hash.slice(1) : hash;
@@ -31,11 +33,12 @@ export function watchLocation(app) {
     const value = sceneFromLocation();
     if (value === null || app.crashed) return;
     if (value === app.guard((sim) => sim.scene_string()).value) return;
-    const result = app.load(value);
-    if (!result.ok) {
-      // The banner already holds the reason; say where it came from.
-      const text = document.getElementById('banner-text');
-      if (text) text.textContent = `The scene in the link could not be loaded: ${text.textContent}. The previous scene keeps running.`;
+    try {
+      app.load(value, { rethrow: true });
+    } catch (error) {
+      if (!app.crashed) {
+        showMessage(`The scene in the link could not be loaded: ${messageOf(error)}. The previous scene keeps running.`);
+      }
     }
   });
 }
