@@ -22,6 +22,8 @@ pub struct Options {
     pub quick: bool,
     /// Run the step benchmarks.
     pub step: bool,
+    /// Include the brute-force baseline in the step benchmarks.
+    pub brute: bool,
     /// Run the render benchmarks.
     pub render: bool,
     /// Where to write the figures as JSON.
@@ -30,7 +32,7 @@ pub struct Options {
 
 impl Default for Options {
     fn default() -> Self {
-        Self { quick: false, step: true, render: true, json: None }
+        Self { quick: false, step: true, brute: true, render: true, json: None }
     }
 }
 
@@ -80,14 +82,14 @@ pub fn main(options: &Options) -> Result<(), String> {
 
 fn step_benchmarks(options: &Options, report: &mut Map<String, Value>) -> Result<(), String> {
     let grid_plan = if options.quick {
-        Plan { warmup_steps: 3, steps: 10, agents_per_rep: 20_000, reps: 3 }
+        Plan { warmup_steps: 2, steps: 5, agents_per_rep: 20_000, reps: 3 }
     } else {
-        Plan { warmup_steps: 10, steps: 30, agents_per_rep: 100_000, reps: 7 }
+        Plan { warmup_steps: 3, steps: 10, agents_per_rep: 100_000, reps: 7 }
     };
     let brute_plan = if options.quick {
         Plan { warmup_steps: 1, steps: 2, agents_per_rep: 1_000, reps: 3 }
     } else {
-        Plan { warmup_steps: 10, steps: 10, agents_per_rep: 10_000, reps: 5 }
+        Plan { warmup_steps: 3, steps: 10, agents_per_rep: 10_000, reps: 5 }
     };
 
     println!();
@@ -105,7 +107,19 @@ fn step_benchmarks(options: &Options, report: &mut Map<String, Value>) -> Result
         by_n.push((n, r.median));
     }
     report.insert("step_ns_per_agent_step".into(), Value::Object(grid_ns));
+    let first = by_n.first().map(|x| x.1);
+    let last = by_n.last().map(|x| x.1);
+    if let (Some(first), Some(last)) = (first, last) {
+        let growth = last / first;
+        println!();
+        println!("Growth of the per-agent cost 100k / 1k: {growth:.2}× (target < 1.5×)");
+        println!("Per-agent cost at 100k: {last:.0} ns (target ≤ 120 ns)");
+        report.insert("growth_100k_over_1k".into(), json!(growth));
+    }
 
+    if !options.brute {
+        return Ok(());
+    }
     println!();
     println!("Brute-force baseline (one grid cell: every agent scans every agent), ns per agent-step");
     let mut brute_ns = Map::new();
@@ -119,15 +133,6 @@ fn step_benchmarks(options: &Options, report: &mut Map<String, Value>) -> Result
     }
     report.insert("brute_ns_per_agent_step".into(), Value::Object(brute_ns));
 
-    let first = by_n.first().map(|x| x.1);
-    let last = by_n.last().map(|x| x.1);
-    if let (Some(first), Some(last)) = (first, last) {
-        let growth = last / first;
-        println!();
-        println!("Growth of the per-agent cost 100k / 1k: {growth:.2}× (target < 1.5×)");
-        println!("Per-agent cost at 100k: {last:.0} ns (target ≤ 120 ns)");
-        report.insert("growth_100k_over_1k".into(), json!(growth));
-    }
     Ok(())
 }
 
