@@ -1,15 +1,12 @@
 #!/usr/bin/env bash
-# End-to-end tests of the page: builds the wasm module if it is missing or older than the Rust
-# sources, then runs tests/e2e/*.test.mjs with `node --test` (playwright-core drives Debian's
-# Chromium; nothing is downloaded). Screenshots land in test-artifacts/. Exits non-zero on failure.
+# End-to-end tests of the page: builds the wasm module if it is missing or stale, then runs
+# tests/e2e/*.test.mjs with `node --test` (playwright-core drives Debian's Chromium; nothing is
+# downloaded). Screenshots land in test-artifacts/. Exits non-zero on failure.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-pkg=www/pkg/flockpath_bg.wasm
-if [ ! -f "$pkg" ] || [ -n "$(find src Cargo.toml Cargo.lock -newer "$pkg" -print -quit 2>/dev/null)" ]; then
-  echo "[test-e2e] building the wasm module" >&2
-  bash scripts/build-wasm.sh
-fi
+# build-wasm.sh is a no-op (under a second) when nothing it depends on changed.
+bash scripts/build-wasm.sh
 
 if [ ! -d node_modules/playwright-core ]; then
   echo "[test-e2e] installing npm packages" >&2
