@@ -147,13 +147,28 @@ export async function sceneToClient(page, x, y) {
   );
 }
 
-/** RGBA bytes of the scene canvas (a plain array). */
-export async function canvasPixels(page) {
-  return page.evaluate(() => {
+/**
+ * Keeps a copy of the scene canvas's pixels in the page under `name` (shipping megabytes of
+ * pixels to the test process is slow; only the sampled pixels travel, see `pixelsAt`).
+ */
+export async function snapshotCanvas(page, name) {
+  await page.evaluate((key) => {
     const canvas = document.getElementById('scene-canvas');
-    const data = canvas.getContext('2d').getImageData(0, 0, canvas.width, canvas.height).data;
-    return { width: canvas.width, height: canvas.height, data: Array.from(data) };
-  });
+    window.__e2eSnapshots ??= {};
+    window.__e2eSnapshots[key] = canvas.getContext('2d').getImageData(0, 0, canvas.width, canvas.height);
+  }, name);
+}
+
+/** `[r, g, b]` of snapshot `name` at each canvas pixel `{x, y}` (null outside the canvas). */
+export async function pixelsAt(page, name, points) {
+  return page.evaluate(([key, pts]) => {
+    const image = window.__e2eSnapshots[key];
+    return pts.map(({ x, y }) => {
+      if (x < 0 || y < 0 || x >= image.width || y >= image.height) return null;
+      const i = (y * image.width + x) * 4;
+      return [image.data[i], image.data[i + 1], image.data[i + 2]];
+    });
+  }, [name, points]);
 }
 
 /** Canvas pixel coordinates (backing store) of a scene point. */
