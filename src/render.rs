@@ -957,6 +957,27 @@ mod tests {
     }
 
     #[test]
+    fn segments_cover_their_path_leave_their_end_and_clip() {
+        let (w, h) = (20usize, 10usize);
+        let mut layer = vec![255u8; w * h * 4];
+        draw_segment(&mut layer, w, h, Vec2::new(2.5, 4.5), Vec2::new(12.5, 4.5), [0, 0, 0], 255);
+        let at = |layer: &[u8], x: usize, y: usize| layer[(y * w + x) * 4];
+        for x in 2..12 {
+            assert_eq!(at(&layer, x, 4), 0, "column {x}");
+        }
+        assert_eq!(at(&layer, 12, 4), 255, "the end column is left for the next segment");
+        assert_eq!(at(&layer, 6, 3), 255);
+        let before = layer.clone();
+        draw_segment(&mut layer, w, h, Vec2::new(-50.0, -50.0), Vec2::new(100.0, 80.0), [0, 0, 0], 255);
+        draw_segment(&mut layer, w, h, Vec2::new(f32::NAN, 1.0), Vec2::new(3.0, 3.0), [0, 0, 0], 255);
+        draw_segment(&mut layer, w, h, Vec2::new(30.0, 3.0), Vec2::new(25.0, 3.0), [0, 0, 0], 255);
+        assert_eq!(layer, before, "jumps, NaN and off-canvas segments draw nothing");
+        draw_segment(&mut layer, w, h, Vec2::new(5.5, 9.5), Vec2::new(5.5, 0.5), [0, 0, 0], 255);
+        assert_eq!(at(&layer, 5, 9), 0, "a steep segment going up covers its start");
+        assert_eq!(at(&layer, 5, 0), 255, "and leaves its end");
+    }
+
+    #[test]
     fn fading_rounds_towards_the_base_in_both_directions() {
         let mut trail = vec![0u8, 255, 100, 101];
         let base = vec![255u8, 0, 100, 100];
