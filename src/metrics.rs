@@ -16,6 +16,12 @@ pub const STUCK_WINDOW: u32 = 300;
 pub const NEAR_OBSTACLE: f32 = 30.0;
 /// Below this speed (px/step) a heading is undefined and no turn is measured.
 const MIN_TURN_SPEED: f32 = 1e-3;
+/// Queue order: brighter neighbours (nearer the goal) farther than this (px) are not looked for;
+/// about a firefly's feeler reach (h + r_safe = 110 px).
+pub const QUEUE_RADIUS: f32 = 120.0;
+/// Queue order: largest angle (degrees) between an agent's heading and its nearest brighter
+/// neighbour for the agent to count as queued behind it.
+pub const QUEUE_HALF_ANGLE_DEG: f32 = 30.0;
 
 /// Metrics of one group, or of the whole run.
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
@@ -51,6 +57,11 @@ pub struct GroupMetrics {
     pub max_turn_deg: f64,
     /// Agents with a goal that have not arrived and made no progress in the last 300 steps.
     pub stuck_agents: u32,
+    /// Queue order at the last step (firefly, DESIGN §3.3): among agents that have a goal, have
+    /// not arrived, and have a same-group neighbour nearer the goal within 120 px, the share whose
+    /// nearest such neighbour lies within ±30° of their heading (0…1; null if no agent qualifies).
+    /// Random headings give about 1/6; single-file queues approach 1.
+    pub queue_order: Option<f64>,
 }
 
 /// Metrics of a run: overall keys at the top level, per-group under `groups`.
@@ -210,6 +221,8 @@ impl MetricsRecorder {
         let mut groups = Vec::with_capacity(scene.groups.len());
         let mut start = 0usize;
         let mut all = Stats::default();
+        let queue = self.queue_order(scene, steps);
+        let (mut queued, mut queue_candidates) = (0u32, 0u32);
         for (gi, g) in scene.groups.iter().enumerate() {
             let agents = start..start + g.count as usize;
             start = agents.end;
@@ -227,15 +240,63 @@ impl MetricsRecorder {
             let mut m = to_metrics(acc, &stats, acc.collisions, dt);
             m.name = Some(g.name.clone());
             m.planner = planners.get(gi).map(|s| s.to_string());
+            let (q, c) = queue.get(gi).copied().unwrap_or_default();
+            m.queue_order = (c > 0).then(|| f64::from(q) / f64::from(c));
+            (queued, queue_candidates) = (queued + q, queue_candidates + c);
             groups.push(m);
         }
+        let mut overall = to_metrics(&overall, &all, self.collisions_total, dt);
+        overall.queue_order = (queue_candidates > 0).then(|| f64::from(queued) / f64::from(queue_candidates));
         Metrics {
             steps,
             time_s: f64::from(steps) * dt,
-            overall: to_metrics(&overall, &all, self.collisions_total, dt),
+            overall,
             collisions_last_step: self.collisions_last_step,
             groups,
         }
+    }
+
+    /// Per group `(queued, candidates)` for [`GroupMetrics::queue_order`], from the state at the
+    /// end of step `steps`. Builds a grid over the last positions: O(N), never O(N²).
+    fn queue_order(&self, scene: &Scene, steps: u32) -> Vec<(u32, u32)> {
+        let mut counts = vec![(0u32, 0u32); scene.groups.len()];
+        let pos = &self.prev_pos;
+        let mut grid = SpatialGrid::new(scene.width, scene.height, QUEUE_RADIUS, pos.len());
+        grid.rebuild(pos, &self.prev_vel);
+        let cos_limit = libm::cosf(QUEUE_HALF_ANGLE_DEG.to_radians());
+        let mut start = 0usize;
+        for (gi, g) in scene.groups.iter().enumerate() {
+            let agents = start as u32..(start + g.count as usize) as u32;
+            start += g.count as usize;
+            let Some(goal) = g.goal.and_then(|k| scene.goals.get(k as usize)) else { continue };
+            let target = goal.position_at(steps);
+            for id in agents.clone() {
+                let i = id as usize;
+                if self.arrived_step[i] != NOT_ARRIVED {
+                    continue;
+                }
+                let p = pos[i];
+                let mine = p.distance_squared(target);
+                let mut nearest: Option<(f32, u32, Vec2)> = None;
+                grid.for_each_within(p, QUEUE_RADIUS, |n| {
+                    if n.id != id
+                        && agents.contains(&n.id)
+                        && n.pos.distance_squared(target) < mine
+                        && nearest.is_none_or(|(d2, j, _)| (n.d2, n.id) < (d2, j))
+                    {
+                        nearest = Some((n.d2, n.id, n.pos));
+                    }
+                });
+                let Some((d2, _, q)) = nearest else { continue };
+                counts[gi].1 += 1;
+                let v = self.prev_vel[i];
+                let speed = v.length();
+                if speed > MIN_TURN_SPEED && d2 > 0.0 && v.dot(q - p) >= cos_limit * speed * d2.sqrt() {
+                    counts[gi].0 += 1;
+                }
+            }
+        }
+        counts
     }
 
     fn agent_stats(&self, agents: std::ops::Range<usize>, has_goal: bool, steps: u32) -> Stats {
@@ -300,5 +361,6 @@ fn to_metrics(acc: &GroupAcc, s: &Stats, collisions: u64, dt: f64) -> GroupMetri
         mean_turn_deg: ratio(acc.turn_sum, acc.turn_samples),
         max_turn_deg: acc.max_turn,
         stuck_agents: s.stuck,
+        queue_order: None,
     }
 }

@@ -1,8 +1,9 @@
 //! Named scenes: one name→builder table shared by the page, the CLI, the tests and the benches.
 
 use crate::geometry::Obstacle;
-use crate::planners::PlannerConfig;
-use crate::scene::{Goal, Group, Region, Scene};
+use crate::planners::{FireflyParams, PlannerConfig, PsoParams};
+use crate::rng::Rng;
+use crate::scene::{Goal, GoalMotion, Group, Region, Scene};
 
 /// A named scene builder.
 #[derive(Clone, Copy, Debug)]
@@ -37,6 +38,46 @@ pub const ALL: &[Preset] = &[
         description: "A group squeezes through a rectangle-walled passage.",
         build: corridor,
     },
+    Preset {
+        name: "pso-influx",
+        description: "PSO (Chen & Lin Fig. 3): 20 people scattered over the field converge on the target.",
+        build: pso_influx,
+    },
+    Preset {
+        name: "pso-stream",
+        description: "PSO (Fig. 4): 20 people on the left stream right, gathering first, then walking together.",
+        build: pso_stream,
+    },
+    Preset {
+        name: "pso-static-obstacle",
+        description: "PSO (Fig. 5): obstacle at (500, 15) with σ = 30, k = 1; set acceptance off to see it penetrated.",
+        build: pso_static_obstacle,
+    },
+    Preset {
+        name: "pso-dodge",
+        description: "PSO (Fig. 6): two persons walking head-on dodge each other (agent σ = 5, k = 1).",
+        build: pso_dodge,
+    },
+    Preset {
+        name: "pso-crowd",
+        description: "PSO (Fig. 7): two crowds of 20 walk through each other, every person avoiding the others.",
+        build: pso_crowd,
+    },
+    Preset {
+        name: "pso-circle-target",
+        description: "PSO (Figs. 8–9): 20 people chase a target moving on a circle of radius 250.",
+        build: pso_circle_target,
+    },
+    Preset {
+        name: "pso-four-corners",
+        description: "PSO (Fig. 10): four groups of 10 cross to the opposite corners past a central obstacle.",
+        build: pso_four_corners,
+    },
+    Preset {
+        name: "firefly-migration",
+        description: "Firefly (Zhang et al.): 80 fireflies on an 800×600 stage gather, then queue in file to the target.",
+        build: firefly_migration,
+    },
 ];
 
 /// Looks a preset up by name.
@@ -63,7 +104,7 @@ fn base(name: &str, width: f32, height: f32) -> Scene {
 /// One group crosses an empty field.
 pub fn open_field() -> Scene {
     let mut s = base("open-field", 800.0, 500.0);
-    s.goals.push(Goal { position: [700.0, 250.0], radius: 40.0 });
+    s.goals.push(Goal::fixed([700.0, 250.0], 40.0));
     s.groups.push(group("flock", "#2f6fdf", 60, ([40.0, 150.0], [160.0, 350.0]), 0));
     s
 }
@@ -78,7 +119,7 @@ pub fn pillars() -> Scene {
             s.obstacles.push(Obstacle::Circle { center: [x, y], radius: 22.0 });
         }
     }
-    s.goals.push(Goal { position: [830.0, 280.0], radius: 40.0 });
+    s.goals.push(Goal::fixed([830.0, 280.0], 40.0));
     s.groups.push(group("flock", "#2f6fdf", 80, ([30.0, 170.0], [170.0, 390.0]), 0));
     s
 }
@@ -86,8 +127,8 @@ pub fn pillars() -> Scene {
 /// Two groups swap sides.
 pub fn two_groups_swap() -> Scene {
     let mut s = base("two-groups-swap", 900.0, 500.0);
-    s.goals.push(Goal { position: [820.0, 250.0], radius: 40.0 });
-    s.goals.push(Goal { position: [80.0, 250.0], radius: 40.0 });
+    s.goals.push(Goal::fixed([820.0, 250.0], 40.0));
+    s.goals.push(Goal::fixed([80.0, 250.0], 40.0));
     s.groups.push(group("left", "#2f6fdf", 50, ([30.0, 150.0], [150.0, 350.0]), 0));
     s.groups.push(group("right", "#df4f2f", 50, ([750.0, 150.0], [870.0, 350.0]), 1));
     s
@@ -98,7 +139,7 @@ pub fn corridor() -> Scene {
     let mut s = base("corridor", 900.0, 500.0);
     s.obstacles.push(Obstacle::Rect { min: [350.0, 0.0], max: [550.0, 205.0] });
     s.obstacles.push(Obstacle::Rect { min: [350.0, 295.0], max: [550.0, 500.0] });
-    s.goals.push(Goal { position: [820.0, 250.0], radius: 40.0 });
+    s.goals.push(Goal::fixed([820.0, 250.0], 40.0));
     s.groups.push(group("flock", "#2f9f5f", 60, ([30.0, 100.0], [200.0, 400.0]), 0));
     s
 }
@@ -113,5 +154,124 @@ pub fn constant_density(n: u32, neighbours: f32) -> Scene {
     let mut g = group("crowd", "#2f6fdf", n, ([0.0, 0.0], [side, side]), 0);
     g.goal = None;
     s.groups.push(g);
+    s
+}
+
+fn pso_group(name: &str, color: &str, count: u32, spawn: ([f32; 2], [f32; 2]), goal: u32) -> Group {
+    Group { planner: PlannerConfig::Pso(PsoParams::default()), ..group(name, color, count, spawn, goal) }
+}
+
+/// PSO influx: 20 people scattered over the whole field converge on a central target.
+pub fn pso_influx() -> Scene {
+    let mut s = base("pso-influx", 1000.0, 600.0);
+    s.goals.push(Goal::fixed([500.0, 300.0], 40.0));
+    s.groups.push(pso_group("people", "#2f6fdf", 20, ([20.0, 20.0], [980.0, 580.0]), 0));
+    s
+}
+
+/// PSO stream: 20 people on the left walk to a target on the right.
+pub fn pso_stream() -> Scene {
+    let mut s = base("pso-stream", 1000.0, 600.0);
+    s.goals.push(Goal::fixed([920.0, 300.0], 40.0));
+    s.groups.push(pso_group("people", "#2f6fdf", 20, ([20.0, 100.0], [140.0, 500.0]), 0));
+    s
+}
+
+/// The paper's static obstacle, at (500, 15) with σ = 30 (a circle of radius 30), lying across
+/// the straight way of 20 people walking along the top edge.
+pub fn pso_static_obstacle() -> Scene {
+    let mut s = base("pso-static-obstacle", 1000.0, 300.0);
+    s.obstacles.push(Obstacle::Circle { center: [500.0, 15.0], radius: 30.0 });
+    s.goals.push(Goal::fixed([950.0, 25.0], 30.0));
+    s.groups.push(pso_group("people", "#2f6fdf", 20, ([10.0, 5.0], [110.0, 60.0]), 0));
+    s
+}
+
+/// Two persons walking head-on, each towards the other's start.
+pub fn pso_dodge() -> Scene {
+    let mut s = base("pso-dodge", 800.0, 300.0);
+    s.goals.push(Goal::fixed([700.0, 150.0], 15.0));
+    s.goals.push(Goal::fixed([100.0, 150.0], 15.0));
+    s.groups.push(pso_group("A", "#2f6fdf", 1, ([98.0, 149.0], [102.0, 151.0]), 0));
+    s.groups.push(pso_group("B", "#df4f2f", 1, ([698.0, 149.0], [702.0, 151.0]), 1));
+    s
+}
+
+/// Two crowds of 20 walking through each other.
+pub fn pso_crowd() -> Scene {
+    let mut s = base("pso-crowd", 1000.0, 600.0);
+    s.goals.push(Goal::fixed([920.0, 300.0], 50.0));
+    s.goals.push(Goal::fixed([80.0, 300.0], 50.0));
+    s.groups.push(pso_group("east", "#2f6fdf", 20, ([20.0, 180.0], [160.0, 420.0]), 0));
+    s.groups.push(pso_group("west", "#df4f2f", 20, ([840.0, 180.0], [980.0, 420.0]), 1));
+    s
+}
+
+/// A target moving on a circle of radius 250 (one turn per 60 s), chased by 20 people.
+pub fn pso_circle_target() -> Scene {
+    let mut s = base("pso-circle-target", 1000.0, 700.0);
+    let mut goal = Goal::fixed([750.0, 350.0], 30.0);
+    goal.motion = Some(GoalMotion::Circle { center: [500.0, 350.0], radius: 250.0, period_steps: 3600 });
+    s.goals.push(goal);
+    s.groups.push(pso_group("chasers", "#2f6fdf", 20, ([440.0, 290.0], [560.0, 410.0]), 0));
+    s
+}
+
+/// Four groups of 10 in the corners cross to the opposite corners past a central pillar.
+pub fn pso_four_corners() -> Scene {
+    let mut s = base("pso-four-corners", 800.0, 800.0);
+    s.obstacles.push(Obstacle::Circle { center: [400.0, 400.0], radius: 40.0 });
+    let corners = [([20.0, 20.0], [120.0, 120.0]), ([680.0, 20.0], [780.0, 120.0])];
+    let corners = [corners[0], corners[1], ([680.0, 680.0], [780.0, 780.0]), ([20.0, 680.0], [120.0, 780.0])];
+    let names = [
+        ("north-west", "#2f6fdf"),
+        ("north-east", "#df4f2f"),
+        ("south-east", "#2f9f5f"),
+        ("south-west", "#bf8f1f"),
+    ];
+    for (k, &(lo, hi)) in corners.iter().enumerate() {
+        let (opposite_lo, opposite_hi) = corners[(k + 2) % 4];
+        let centre = [0.5 * (opposite_lo[0] + opposite_hi[0]), 0.5 * (opposite_lo[1] + opposite_hi[1])];
+        s.goals.push(Goal::fixed(centre, 50.0));
+        s.groups.push(pso_group(names[k].0, names[k].1, 10, (lo, hi), k as u32));
+    }
+    s
+}
+
+/// The firefly migration of the paper with seed 1; see [`firefly_migration_with_seed`].
+pub fn firefly_migration() -> Scene {
+    firefly_migration_with_seed(1)
+}
+
+/// 80 fireflies scattered over an 800×600 stage head for a gathering point on the right, among
+/// circular obstacles (trees) placed at random from `seed` (the paper's §4.1 setting).
+pub fn firefly_migration_with_seed(seed: u32) -> Scene {
+    let mut s = base("firefly-migration", 800.0, 600.0);
+    s.seed = seed;
+    let target = glam::Vec2::new(740.0, 300.0);
+    // Obstacle placement has its own random stream, so the agents' spawn stream is unchanged.
+    let mut rng = Rng::new(seed, 7);
+    let mut placed = 0;
+    for _ in 0..200 {
+        if placed == 6 {
+            break;
+        }
+        let c = glam::Vec2::new(rng.range(150.0, 650.0), rng.range(60.0, 540.0));
+        let r = rng.range(18.0, 40.0);
+        let clear_of_target = c.distance(target) > r + 80.0;
+        let clear_of_others = s.obstacles.iter().all(|o| match o {
+            Obstacle::Circle { center, radius } => c.distance(glam::Vec2::from(*center)) > r + radius + 60.0,
+            _ => true,
+        });
+        if clear_of_target && clear_of_others {
+            s.obstacles.push(Obstacle::Circle { center: [c.x, c.y], radius: r });
+            placed += 1;
+        }
+    }
+    s.goals.push(Goal::fixed([target.x, target.y], 40.0));
+    s.groups.push(Group {
+        planner: PlannerConfig::Firefly(FireflyParams::default()),
+        ..group("fireflies", "#d8b000", 80, ([20.0, 20.0], [560.0, 580.0]), 0)
+    });
     s
 }

@@ -49,6 +49,50 @@ pub struct Goal {
     /// Arrival radius in px.
     #[serde(default = "default_goal_radius")]
     pub radius: f32,
+    /// How the goal moves; `None` (the default, and every scene saved before motions existed)
+    /// keeps it fixed at `position`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub motion: Option<GoalMotion>,
+}
+
+/// A goal's motion over time (steps).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
+pub enum GoalMotion {
+    /// Uniform motion on a circle, starting at the point of the circle nearest to the goal's
+    /// `position` and turning clockwise on screen (y down) as the step count grows.
+    Circle {
+        /// Centre `[x, y]` in px.
+        center: [f32; 2],
+        /// Radius in px, > 0.
+        radius: f32,
+        /// Steps per full turn, ≥ 1.
+        period_steps: u32,
+    },
+}
+
+impl Goal {
+    /// A goal that does not move.
+    pub fn fixed(position: [f32; 2], radius: f32) -> Self {
+        Self { position, radius, motion: None }
+    }
+
+    /// The goal's centre after `step` steps (px). Computed with libm so every platform agrees.
+    pub fn position_at(&self, step: u32) -> Vec2 {
+        match &self.motion {
+            None => v(self.position),
+            Some(GoalMotion::Circle { center, radius, period_steps }) => {
+                let c = v(*center);
+                let start = v(self.position) - c;
+                let phase0 = if start.length_squared() > 0.0 { libm::atan2f(start.y, start.x) } else { 0.0 };
+                // Reduce the step modulo the period first so the angle stays accurate for long runs.
+                let period = (*period_steps).max(1);
+                let turn = (step % period) as f32 / period as f32;
+                let angle = phase0 + std::f32::consts::TAU * turn;
+                c + Vec2::new(libm::cosf(angle), libm::sinf(angle)) * *radius
+            }
+        }
+    }
 }
 
 fn default_goal_radius() -> f32 {
@@ -179,6 +223,22 @@ impl Scene {
             if let Some(k) = self.obstacles.iter().position(|o| o.contains(v(g.position))) {
                 return Err(SceneError::Blocked(format!("goal {} is inside obstacle {}", i + 1, k + 1)));
             }
+            if let Some(GoalMotion::Circle { center, radius, period_steps }) = &g.motion {
+                finite(|| format!("goal {} motion", i + 1), &[center[0], center[1], *radius])?;
+                let c = v(*center);
+                let reach = Vec2::splat(*radius);
+                if *radius <= 0.0
+                    || *period_steps == 0
+                    || !self.in_bounds(c - reach)
+                    || !self.in_bounds(c + reach)
+                {
+                    return Err(SceneError::OutOfRange(format!(
+                        "goal {} circle (radius {radius} px, period {period_steps} steps) must have radius > 0, \
+                         period ≥ 1 and stay inside the scene",
+                        i + 1
+                    )));
+                }
+            }
         }
         let total = self.agent_count();
         if total > u64::from(MAX_AGENTS) {
@@ -283,7 +343,7 @@ mod tests {
 
     fn scene() -> Scene {
         let mut s = Scene::empty(400.0, 300.0);
-        s.goals.push(Goal { position: [350.0, 150.0], radius: 20.0 });
+        s.goals.push(Goal::fixed([350.0, 150.0], 20.0));
         s.groups.push(Group {
             name: "a".into(),
             color: "#ff0000".into(),
@@ -330,6 +390,25 @@ mod tests {
         let mut s = scene();
         s.groups[0].goal = Some(3);
         assert!(matches!(s.validate(), Err(SceneError::BadReference(_))));
+    }
+
+    #[test]
+    fn a_circling_goal_moves_on_its_circle_and_old_scenes_still_load() {
+        let mut goal = Goal::fixed([300.0, 150.0], 20.0);
+        goal.motion = Some(GoalMotion::Circle { center: [200.0, 150.0], radius: 100.0, period_steps: 400 });
+        assert!(goal.position_at(0).distance(Vec2::new(300.0, 150.0)) < 1e-3);
+        assert!(goal.position_at(100).distance(Vec2::new(200.0, 250.0)) < 1e-3);
+        assert!(goal.position_at(400).distance(goal.position_at(0)) < 1e-3);
+        let mut s = scene();
+        s.goals[0] = goal;
+        assert_eq!(s.validate(), Ok(()));
+        let old: Goal = serde_json::from_str(r#"{"position":[1,2],"radius":3}"#).expect("old goal");
+        assert_eq!(old, Goal::fixed([1.0, 2.0], 3.0));
+        assert!(!serde_json::to_string(&old).expect("json").contains("motion"));
+        if let Some(GoalMotion::Circle { radius, .. }) = &mut s.goals[0].motion {
+            *radius = 1000.0;
+        }
+        assert!(matches!(s.validate(), Err(SceneError::OutOfRange(_))));
     }
 
     #[test]

@@ -152,7 +152,7 @@ impl World {
     pub fn goal_of_group(&self, g: usize) -> Option<(Vec2, f32)> {
         let goal = self.scene.groups.get(g)?.goal?;
         let goal = self.scene.goals.get(goal as usize)?;
-        Some((Vec2::new(goal.position[0], goal.position[1]), goal.radius))
+        Some((goal.position_at(self.step), goal.radius))
     }
 
     /// Replaces the planner parameters of group `g` without restarting the run.
@@ -227,6 +227,7 @@ impl World {
             bounds,
             step: self.step,
         };
+        let step = self.step;
         for (gi, group) in self.groups.iter_mut().enumerate() {
             let goal = self
                 .scene
@@ -234,7 +235,7 @@ impl World {
                 .get(gi)
                 .and_then(|g| g.goal)
                 .and_then(|k| self.scene.goals.get(k as usize))
-                .map(|goal| (Vec2::new(goal.position[0], goal.position[1]), goal.radius));
+                .map(|goal| (goal.position_at(step), goal.radius));
             let view = GroupView { agents: group.agents.clone(), goal };
             let out = &mut self.next_vel[group.agents.start as usize..group.agents.end as usize];
             group.planner.plan(&ctx, view, &mut self.rng, out);
@@ -245,12 +246,16 @@ impl World {
             }
         }
 
+        let solid: Vec<bool> = self.groups.iter().map(|g| !g.planner.passes_through_obstacles()).collect();
         for i in 0..self.pos.len() {
             let previous = self.pos[i];
             let mut v = self.next_vel[i];
             let mut p = previous + v;
-            resolve_obstacles(&self.obstacles, &mut p, &mut v, self.radius[i]);
-            if self.obstacles.contains(p) {
+            let solid = solid[self.group_of[i] as usize];
+            if solid {
+                resolve_obstacles(&self.obstacles, &mut p, &mut v, self.radius[i]);
+            }
+            if solid && self.obstacles.contains(p) {
                 // Pushing out failed (overlapping obstacles): stay where it was valid.
                 p = previous;
                 v = Vec2::ZERO;
@@ -263,7 +268,7 @@ impl World {
             if clamped.y != p.y {
                 v.y = 0.0;
             }
-            if !self.obstacles.contains(clamped) {
+            if !solid || !self.obstacles.contains(clamped) {
                 p = clamped;
             }
             self.pos[i] = p;

@@ -1,6 +1,8 @@
 //! Crowd planners: one file each behind the [`Planner`] trait, chosen by [`PlannerKind`].
 
 pub mod boids;
+pub mod firefly;
+pub mod pso;
 
 use crate::geometry::Obstacle;
 use crate::rng::Rng;
@@ -10,6 +12,8 @@ use serde::{Deserialize, Serialize};
 use std::ops::Range;
 
 pub use boids::{Arbitration, Boids, BoidsParams};
+pub use firefly::{Firefly, FireflyParams};
+pub use pso::{Pso, PsoParams};
 
 /// Read-only view of the world at the start of a step: planners read it, never write it,
 /// so the new velocities do not depend on the order agents are planned in.
@@ -47,6 +51,11 @@ pub trait Planner {
     fn max_speed(&self) -> f32;
     /// Writes the new velocity of agent `group.agents.start + k` to `new_velocities[k]`.
     fn plan(&mut self, ctx: &StepContext, group: GroupView, rng: &mut Rng, new_velocities: &mut [Vec2]);
+    /// Whether the world should let this group's agents move into obstacles instead of pushing
+    /// them out. Only for showing a planner's own failure (the original PSO penetrating).
+    fn passes_through_obstacles(&self) -> bool {
+        false
+    }
 }
 
 /// The closed set of planners, for the URL, the UI and the CLI.
@@ -55,16 +64,22 @@ pub trait Planner {
 pub enum PlannerKind {
     /// Reynolds steering (lecture, DESIGN §3.1).
     Boids,
+    /// PSO crowd (Chen & Lin 2009, DESIGN §3.2).
+    Pso,
+    /// Firefly crowd (Zhang, Wei & Chen 2017, DESIGN §3.3).
+    Firefly,
 }
 
 impl PlannerKind {
     /// Every planner, in menu order.
-    pub const ALL: &'static [PlannerKind] = &[PlannerKind::Boids];
+    pub const ALL: &'static [PlannerKind] = &[PlannerKind::Boids, PlannerKind::Pso, PlannerKind::Firefly];
 
     /// The CLI / URL name.
     pub fn name(self) -> &'static str {
         match self {
             PlannerKind::Boids => "boids",
+            PlannerKind::Pso => "pso",
+            PlannerKind::Firefly => "firefly",
         }
     }
 
@@ -77,6 +92,8 @@ impl PlannerKind {
     pub fn label(self) -> &'static str {
         match self {
             PlannerKind::Boids => "Boids steering",
+            PlannerKind::Pso => "PSO crowd (Chen & Lin 2009)",
+            PlannerKind::Firefly => "Firefly crowd (Zhang et al. 2017)",
         }
     }
 
@@ -84,6 +101,8 @@ impl PlannerKind {
     pub fn default_config(self) -> PlannerConfig {
         match self {
             PlannerKind::Boids => PlannerConfig::Boids(BoidsParams::default()),
+            PlannerKind::Pso => PlannerConfig::Pso(PsoParams::default()),
+            PlannerKind::Firefly => PlannerConfig::Firefly(FireflyParams::default()),
         }
     }
 
@@ -91,6 +110,8 @@ impl PlannerKind {
     pub fn param_specs(self) -> &'static [ParamSpec] {
         match self {
             PlannerKind::Boids => BoidsParams::SPECS,
+            PlannerKind::Pso => PsoParams::SPECS,
+            PlannerKind::Firefly => FireflyParams::SPECS,
         }
     }
 }
@@ -101,6 +122,10 @@ impl PlannerKind {
 pub enum PlannerConfig {
     /// Boids steering.
     Boids(BoidsParams),
+    /// PSO crowd.
+    Pso(PsoParams),
+    /// Firefly crowd.
+    Firefly(FireflyParams),
 }
 
 impl Default for PlannerConfig {
@@ -114,6 +139,8 @@ impl PlannerConfig {
     pub fn kind(&self) -> PlannerKind {
         match self {
             PlannerConfig::Boids(_) => PlannerKind::Boids,
+            PlannerConfig::Pso(_) => PlannerKind::Pso,
+            PlannerConfig::Firefly(_) => PlannerKind::Firefly,
         }
     }
 
@@ -126,9 +153,11 @@ impl PlannerConfig {
 
     /// A fresh planner for a group of `count` agents.
     pub fn build(&self, count: usize, obstacles: &[Obstacle]) -> Box<dyn Planner> {
-        let _ = (count, obstacles);
+        let _ = count;
         match self {
             PlannerConfig::Boids(p) => Box::new(Boids::new(p.clone())),
+            PlannerConfig::Pso(p) => Box::new(Pso::new(p.clone(), obstacles)),
+            PlannerConfig::Firefly(p) => Box::new(Firefly::new(p.clone())),
         }
     }
 

@@ -1,0 +1,453 @@
+//! PSO crowd (Chen & Lin 2009, DESIGN §3.2): every person is a particle minimising its own cost
+//! landscape, with a stochastic acceptance test (local search) that keeps it out of obstacles.
+//!
+//! The paper's model, and how its open points are resolved here:
+//!
+//! * Cost of `p` relative to `q` (eq. 3): `C(p,q) = exp(−(Δx²/(σpx+σqx)² + Δy²/(σpy+σqy)²))`.
+//!   Agents have σ = [`PsoParams::agent_sigma`] in both axes. The target has σ = the scene size
+//!   ("the whole search area"). A **circle** obstacle has σ = its radius in both axes, so its cost
+//!   is exactly eq. 3. **Rectangles and polygons** would be badly covered by an ellipse (a box's
+//!   corners stick out of the ellipse through its half extents, concave shapes are worse), so their
+//!   cost is eq. 3 written in the distance to the shape: with `d` the signed distance from `p` to the
+//!   obstacle surface and `R` the obstacle's scope (half its shorter side, or of its bounding box's
+//!   shorter side for a polygon), the σ-scaled distance is `s = (d + R)/(R + σp)` and
+//!   `C = exp(−s²)`. For a circle (`R` = radius) this is the paper's formula; for every shape the
+//!   no-go zone `s ≤ 1` is the shape grown by σp, so it always covers the shape.
+//! * Objective (minimised): `F(p) = c_obs · max_{o∈O} C(p,o) + 1/C(p,g)`, O = static obstacles and
+//!   every other agent; agents farther than `6σ` (s > 3, C < 1.3·10⁻⁴) are ignored, so the max runs
+//!   over a grid query, never over all agents. Each agent evaluates F without itself: every agent
+//!   sees its own landscape.
+//! * `D` is the *direction part* of the velocity (the paper splits velocity into direction and
+//!   speed), so it is kept a unit vector: `D ← unit(ω D + c1 r1 unit(pbest − p) + c2 r2 unit(gbest − p))`.
+//!   Unnormalised, ω = 1 would let |D| grow without bound and freeze the heading.
+//! * Speed `S = Vmax / F(p)` (F ≥ 1): slower near obstacles and crowds.
+//! * pbest = the lowest-cost position this agent has stood on, re-evaluated on the current
+//!   landscape every step (other agents and the target move); the current position replaces it
+//!   when it is at least as good. gbest = the best of the group's pbests, each on its owner's
+//!   landscape (the paper's "best position achieved by the swarm"), and of one **sight point** per
+//!   agent: the point [`PsoParams::sight`] px ahead on the straight line to the target, on that
+//!   agent's landscape (what a walking person sees of the way ahead). O(N) per step. Without sight
+//!   points (sight = 0) a lone person or a small group has no information about where the target
+//!   lies except its own history, and random-walks towards it with a ratchet (measured: 600 px
+//!   head-on in 1000–3000 steps instead of ~400); the paper's two persons walk almost straight.
+//! * Acceptance (eq. 4): a candidate with obstacle cost `f` is accepted with probability
+//!   `1 − f/e^{−k} = 1 − exp(k − s²)`, clamped to [0, 1], where `s` is its smallest σ-scaled
+//!   distance; `s² ≤ k` gives exactly 0, so with k ≥ 1 no agent ever enters a no-go zone.
+//!   Positions outside the scene are never accepted. An agent that is already inside a zone (it
+//!   was spawned there, or another agent stepped next to it) may take any candidate that leaves it
+//!   or moves outwards, otherwise it would be frozen for ever. If the first candidate is refused, up to
+//!   `retries` candidates turned by a random angle in (−20°, 20°) from it are tried and the accepted
+//!   one of lowest F is kept; if none is accepted the agent stays and its heading becomes the least
+//!   bad refused direction, so a person blocked head-on keeps turning instead of pushing forever.
+//! * With `acceptance` off the candidate is always taken and the world lets these agents pass
+//!   through obstacles: the original PSO of the paper's Fig. 5(b).
+
+use super::{GroupView, ParamSpec, Planner, StepContext};
+use crate::geometry::{unit_or, Aabb, Obstacle};
+use crate::rng::Rng;
+use glam::Vec2;
+use serde::{Deserialize, Serialize};
+
+/// Scaled distance beyond which a cost is treated as zero (`exp(−9)` ≈ 1.2·10⁻⁴).
+const CUTOFF_SCALED: f32 = 3.0;
+
+/// PSO crowd parameters. Lengths in px, speeds in px/step.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct PsoParams {
+    /// ω, weight of the previous direction. Range 0…2, default 1.0 (paper).
+    pub inertia: f32,
+    /// c1, pull towards the agent's own best position. Range 0…3, default 0.5 (paper).
+    pub cognitive: f32,
+    /// c2, pull towards the group's best position. Range 0…3, default 0.5 (paper).
+    pub social: f32,
+    /// k of the acceptance probability `1 − f/e^{−k}`: the no-go boundary lies at σ-scaled distance
+    /// √k. Range 0.1…5, default 1 (paper): the boundary is the σ-ellipse itself.
+    pub k: f32,
+    /// c_obs, weight of the obstacle term against the target term. Range 0…50, default 5: at the
+    /// no-go boundary an agent walks at about a third of the speed it has in the open.
+    pub obstacle_weight: f32,
+    /// Vmax, the speed limit (px/step). Range 0.1…20, default 2 (120 px/s).
+    pub max_speed: f32,
+    /// σ of every agent in both axes (px). Range 1…50, default 5 (paper): two agents keep at
+    /// least 2σ = 10 px apart.
+    pub agent_sigma: f32,
+    /// Rotated candidates tried after a refusal. Range 0…32, default 8.
+    pub retries: u32,
+    /// Largest rotation of a retried candidate (degrees). Range 1…90, default 20 (paper).
+    pub retry_angle_deg: f32,
+    /// Distance (px) of each agent's sight point towards the target, a gbest candidate. Range
+    /// 0…500, default 50; 0 is the literal swarm best.
+    pub sight: f32,
+    /// The acceptance step (local search). Default on; off is the original PSO, which lets agents
+    /// walk through obstacles.
+    #[serde(with = "on_off")]
+    pub acceptance: bool,
+}
+
+impl Default for PsoParams {
+    fn default() -> Self {
+        Self {
+            inertia: 1.0,
+            cognitive: 0.5,
+            social: 0.5,
+            k: 1.0,
+            obstacle_weight: 5.0,
+            max_speed: 2.0,
+            agent_sigma: 5.0,
+            retries: 8,
+            retry_angle_deg: 20.0,
+            sight: 50.0,
+            acceptance: true,
+        }
+    }
+}
+
+impl PsoParams {
+    /// The parameter table (sliders, range checks, docs).
+    pub const SPECS: &'static [ParamSpec] = &[
+        ParamSpec::number("inertia", "Inertia ω", "×", (0.0, 2.0, 0.05), 1.0, "Weight of the previous direction."),
+        ParamSpec::number(
+            "cognitive",
+            "Cognitive c1",
+            "×",
+            (0.0, 3.0, 0.05),
+            0.5,
+            "Pull towards the agent's own best position.",
+        ),
+        ParamSpec::number(
+            "social",
+            "Social c2",
+            "×",
+            (0.0, 3.0, 0.05),
+            0.5,
+            "Pull towards the group's best position.",
+        ),
+        ParamSpec::number(
+            "k",
+            "Acceptance k",
+            "",
+            (0.1, 5.0, 0.1),
+            1.0,
+            "Moves closer than σ-scaled distance √k to an obstacle or agent are never accepted.",
+        ),
+        ParamSpec::number(
+            "obstacle_weight",
+            "Obstacle weight c_obs",
+            "×",
+            (0.0, 50.0, 0.5),
+            5.0,
+            "Weight of the obstacle cost against the target cost; slows agents near obstacles.",
+        ),
+        ParamSpec::number("max_speed", "Max speed Vmax", "px/step", (0.1, 20.0, 0.1), 2.0, "Speed limit."),
+        ParamSpec::number(
+            "agent_sigma",
+            "Agent σ",
+            "px",
+            (1.0, 50.0, 0.5),
+            5.0,
+            "Scope of each person in the cost model; agents keep 2σ apart.",
+        ),
+        ParamSpec::number(
+            "retries",
+            "Retries",
+            "",
+            (0.0, 32.0, 1.0),
+            8.0,
+            "Rotated candidates tried when a move is refused.",
+        ),
+        ParamSpec::number(
+            "retry_angle_deg",
+            "Retry angle",
+            "°",
+            (1.0, 90.0, 1.0),
+            20.0,
+            "Largest rotation of a retried candidate.",
+        ),
+        ParamSpec::number(
+            "sight",
+            "Sight",
+            "px",
+            (0.0, 500.0, 5.0),
+            50.0,
+            "Each agent offers the point this far towards the target as a group-best candidate; 0 = pure PSO.",
+        ),
+        ParamSpec::choice(
+            "acceptance",
+            "Acceptance step",
+            &["on", "off"],
+            0,
+            "Off is the original PSO: agents may walk through obstacles.",
+        ),
+    ];
+}
+
+/// Serialises a bool as `"on"`/`"off"` (a choice in the parameter table); reads either form.
+mod on_off {
+    use serde::{Deserialize, Deserializer, Serializer};
+
+    pub fn serialize<S: Serializer>(value: &bool, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(if *value { "on" } else { "off" })
+    }
+
+    #[derive(Deserialize)]
+    #[serde(untagged)]
+    enum OnOff {
+        Bool(bool),
+        Text(String),
+    }
+
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<bool, D::Error> {
+        match OnOff::deserialize(d)? {
+            OnOff::Bool(b) => Ok(b),
+            OnOff::Text(t) if t == "on" => Ok(true),
+            OnOff::Text(t) if t == "off" => Ok(false),
+            OnOff::Text(t) => Err(serde::de::Error::custom(format!("expected \"on\" or \"off\", got {t:?}"))),
+        }
+    }
+}
+
+/// The PSO crowd planner for one group. Per-agent state is struct-of-arrays indexed by the
+/// agent's position within its group.
+#[derive(Clone, Debug)]
+pub struct Pso {
+    params: PsoParams,
+    /// Largest distance (px) from an obstacle's bounding box at which its cost is not negligible.
+    obstacle_reach: f32,
+    /// Unit direction part of each agent's velocity.
+    direction: Vec<Vec2>,
+    /// Each agent's best position.
+    pbest: Vec<Vec2>,
+    /// Scratch: cost of each pbest this step.
+    pbest_cost: Vec<f32>,
+    /// Scratch: objective at each agent's current position this step.
+    here_cost: Vec<f32>,
+    /// Scratch: smallest σ-scaled distance² at each agent's current position this step.
+    here_scaled2: Vec<f32>,
+}
+
+/// What one position costs an agent.
+#[derive(Clone, Copy, Debug)]
+struct Evaluation {
+    /// Smallest σ-scaled distance², over obstacles and other agents (∞ if none near).
+    scaled2: f32,
+    /// The objective F.
+    objective: f32,
+}
+
+impl Pso {
+    /// A planner for a scene with these obstacles.
+    pub fn new(params: PsoParams, obstacles: &[Obstacle]) -> Self {
+        let sigma = params.agent_sigma;
+        let obstacle_reach =
+            obstacles.iter().map(|o| 2.0 * obstacle_scope(o) + CUTOFF_SCALED * sigma).fold(0.0f32, f32::max);
+        Self {
+            params,
+            obstacle_reach,
+            direction: Vec::new(),
+            pbest: Vec::new(),
+            pbest_cost: Vec::new(),
+            here_cost: Vec::new(),
+            here_scaled2: Vec::new(),
+        }
+    }
+
+    /// The obstacle cost `max_{o∈O} C(p, o)` for a smallest σ-scaled distance².
+    fn obstacle_cost(scaled2: f32) -> f32 {
+        if scaled2.is_finite() {
+            libm::expf(-scaled2)
+        } else {
+            0.0
+        }
+    }
+
+    /// F at `p` on the landscape of agent `me`.
+    fn evaluate(&self, ctx: &StepContext, me: u32, p: Vec2, goal: Option<Vec2>) -> Evaluation {
+        let sigma = self.params.agent_sigma;
+        let mut scaled2 = f32::INFINITY;
+        if !ctx.obstacles.is_empty() {
+            let query = Aabb { min: p, max: p }.inflate(self.obstacle_reach);
+            ctx.obstacles.for_each_near(query, |_, o| {
+                let scope = obstacle_scope(o);
+                let s = ((o.surface(p).signed_distance + scope) / (scope + sigma)).max(0.0);
+                scaled2 = scaled2.min(s * s);
+            });
+        }
+        // Agent–agent: σp + σq = 2σ in both axes, so the scaled distance is |p − q| / 2σ.
+        let pair = 2.0 * sigma;
+        let mut nearest2 = f32::INFINITY;
+        ctx.grid.for_each_within(p, CUTOFF_SCALED * pair, |n| {
+            if n.id != me {
+                nearest2 = nearest2.min(n.d2);
+            }
+        });
+        scaled2 = scaled2.min(nearest2 / (pair * pair));
+        let target = match goal {
+            // 1/C(p, g) with the target's σ = the whole search area.
+            Some(g) => {
+                let d = p - g;
+                let sx = ctx.bounds.x + sigma;
+                let sy = ctx.bounds.y + sigma;
+                libm::expf(d.x * d.x / (sx * sx) + d.y * d.y / (sy * sy))
+            }
+            None => 1.0,
+        };
+        Evaluation { scaled2, objective: self.params.obstacle_weight * Self::obstacle_cost(scaled2) + target }
+    }
+
+    /// The new direction and velocity of agent `id` (index `k` in the group).
+    fn move_agent(
+        &self,
+        ctx: &StepContext,
+        k: usize,
+        id: u32,
+        gbest: Vec2,
+        goal: Option<Vec2>,
+        rng: &mut Rng,
+    ) -> (Vec2, Vec2) {
+        let prm = &self.params;
+        let p = ctx.positions[id as usize];
+        let (r1, r2) = (rng.unit(), rng.unit());
+        let here2 = self.here_scaled2[k];
+        let old = self.direction[k];
+        let pull = old * prm.inertia
+            + unit_or(self.pbest[k] - p, Vec2::ZERO) * (prm.cognitive * r1)
+            + unit_or(gbest - p, Vec2::ZERO) * (prm.social * r2);
+        let direction = unit_or(pull, old);
+        let speed = prm.max_speed / self.here_cost[k].max(1.0);
+        if !prm.acceptance || self.try_move(ctx, id, p + direction * speed, here2, goal, rng).0 {
+            return (direction, direction * speed);
+        }
+        let max_angle = prm.retry_angle_deg.to_radians();
+        let mut best_accepted: Option<(f32, Vec2)> = None;
+        let mut least_bad = (f32::NEG_INFINITY, direction);
+        for _ in 0..prm.retries {
+            let d = Vec2::from_angle(rng.range(-max_angle, max_angle)).rotate(direction);
+            let (accepted, e) = self.try_move(ctx, id, p + d * speed, here2, goal, rng);
+            if accepted {
+                if best_accepted.is_none_or(|(c, _)| e.objective < c) {
+                    best_accepted = Some((e.objective, d));
+                }
+            } else if e.scaled2 > least_bad.0 {
+                least_bad = (e.scaled2, d);
+            }
+        }
+        match best_accepted {
+            Some((_, d)) => (d, d * speed),
+            None => (least_bad.1, Vec2::ZERO),
+        }
+    }
+
+    /// The acceptance test of a candidate position: (accepted, its evaluation). Positions
+    /// outside the scene (less the body radius) are refused; inside a no-go zone (`here2 ≤ k`),
+    /// moves outwards are always accepted.
+    fn try_move(
+        &self,
+        ctx: &StepContext,
+        id: u32,
+        candidate: Vec2,
+        here2: f32,
+        goal: Option<Vec2>,
+        rng: &mut Rng,
+    ) -> (bool, Evaluation) {
+        let e = self.evaluate(ctx, id, candidate, goal);
+        let r = Vec2::splat(ctx.radii[id as usize]);
+        let inside = candidate.cmpge(r).all() && candidate.cmple(ctx.bounds - r).all();
+        // Draw even for refused positions so the random stream does not depend on geometry edge cases.
+        let draw = rng.unit();
+        let escaping = here2 <= self.params.k && e.scaled2 > here2;
+        (inside && (escaping || draw < self.acceptance_probability(e.scaled2)), e)
+    }
+
+    /// Eq. 4 in σ-scaled distance: `1 − f e^{k} = 1 − exp(k − s²)`, exactly 0 when `s² ≤ k`.
+    fn acceptance_probability(&self, scaled2: f32) -> f32 {
+        if !scaled2.is_finite() {
+            return 1.0;
+        }
+        (1.0 - libm::expf(self.params.k - scaled2)).clamp(0.0, 1.0)
+    }
+}
+
+/// The scope `R` of an obstacle (px): its radius, or half the shorter side of its (bounding) box.
+fn obstacle_scope(o: &Obstacle) -> f32 {
+    match o {
+        Obstacle::Circle { radius, .. } => *radius,
+        _ => {
+            let b = o.aabb();
+            let size = b.max - b.min;
+            0.5 * size.x.min(size.y).max(0.0)
+        }
+    }
+}
+
+impl Planner for Pso {
+    fn interaction_radius(&self) -> f32 {
+        CUTOFF_SCALED * 2.0 * self.params.agent_sigma
+    }
+
+    fn max_speed(&self) -> f32 {
+        self.params.max_speed
+    }
+
+    fn passes_through_obstacles(&self) -> bool {
+        !self.params.acceptance
+    }
+
+    fn plan(&mut self, ctx: &StepContext, group: GroupView, rng: &mut Rng, new_velocities: &mut [Vec2]) {
+        let n = group.agents.len();
+        let goal = group.goal.map(|(g, _)| g);
+        let start = group.agents.start;
+        if self.direction.len() != n {
+            // First step (or a resized group): the velocities the world spawned are random,
+            // as the paper initialises them.
+            self.direction = (0..n)
+                .map(|k| {
+                    let fallback = Vec2::from_angle(rng.range(-std::f32::consts::PI, std::f32::consts::PI));
+                    unit_or(ctx.velocities[start as usize + k], fallback)
+                })
+                .collect();
+            self.pbest = (0..n).map(|k| ctx.positions[start as usize + k]).collect();
+            self.pbest_cost = vec![0.0; n];
+            self.here_cost = vec![0.0; n];
+            self.here_scaled2 = vec![0.0; n];
+        }
+
+        // Phase 1: re-evaluate every pbest on the current landscape; the group's best is gbest.
+        let mut gbest: Option<(f32, Vec2)> = None;
+        for k in 0..n {
+            let id = start + k as u32;
+            let p = ctx.positions[id as usize];
+            let now = self.evaluate(ctx, id, p, goal);
+            let here = now.objective;
+            let best = self.evaluate(ctx, id, self.pbest[k], goal).objective;
+            self.here_cost[k] = here;
+            self.here_scaled2[k] = now.scaled2;
+            if here <= best {
+                self.pbest[k] = p;
+                self.pbest_cost[k] = here;
+            } else {
+                self.pbest_cost[k] = best;
+            }
+            if gbest.is_none_or(|(c, _)| self.pbest_cost[k] < c) {
+                gbest = Some((self.pbest_cost[k], self.pbest[k]));
+            }
+            if let Some(g) = goal.filter(|_| self.params.sight > 0.0) {
+                let to = g - p;
+                let sight = p + to * (self.params.sight / to.length().max(self.params.sight));
+                let cost = self.evaluate(ctx, id, sight, goal).objective;
+                if gbest.is_none_or(|(c, _)| cost < c) {
+                    gbest = Some((cost, sight));
+                }
+            }
+        }
+        let Some((_, gbest)) = gbest else { return };
+
+        // Phase 2: direction, speed, acceptance.
+        for (k, out) in new_velocities.iter_mut().enumerate().take(n) {
+            let id = start + k as u32;
+            let (direction, velocity) = self.move_agent(ctx, k, id, gbest, goal, rng);
+            self.direction[k] = direction;
+            *out = velocity;
+        }
+    }
+}
