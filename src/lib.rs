@@ -25,9 +25,12 @@ pub mod optim;
 pub mod planners;
 pub mod presets;
 pub mod recording;
+pub mod render;
 pub mod rng;
 pub mod scene;
 pub mod spatial;
+#[cfg(target_arch = "wasm32")]
+pub mod web;
 pub mod world;
 
 pub use codec::{scene_from_any, scene_from_fragment, scene_from_json, scene_to_fragment, scene_to_json};

@@ -67,7 +67,9 @@ USAGE:
 
 OPTIONS:
     --quick            Fewer and shorter repetitions (CI smoke run; figures are rougher)
-    --only step|render Run only the step or only the render benchmark
+    --only step|grid|render
+                       Run only the step benchmarks (grid and brute force), only the
+                       grid step benchmark, or only the render benchmark
     --json FILE        Also write the figures as JSON
     -h, --help         Show this help
 
@@ -391,8 +393,11 @@ fn parse_bench(args: &[String]) -> Result<bench::Options, CliError> {
             "--json" => options.json = Some(value),
             "--only" => match value.as_str() {
                 "step" => options.render = false,
+                "grid" => (options.render, options.brute) = (false, false),
                 "render" => options.step = false,
-                other => return Err(usage(format!("--only must be `step` or `render`, got {other:?}"))),
+                other => {
+                    return Err(usage(format!("--only must be `step`, `grid` or `render`, got {other:?}")))
+                }
             },
             _ => return Err(usage(format!("unknown option {flag:?} for `flockpath bench`"))),
         }

@@ -176,6 +176,17 @@ impl BoidsParams {
 #[derive(Clone, Debug)]
 pub struct Boids {
     params: BoidsParams,
+    /// Scratch: the neighbours of the agent being planned (reused to avoid allocating).
+    near: Vec<NearAgent>,
+}
+
+/// A neighbour found within the perception radius.
+#[derive(Clone, Copy, Debug, Default)]
+struct NearAgent {
+    id: u32,
+    d2: f32,
+    pos: Vec2,
+    vel: Vec2,
 }
 
 /// Side whiskers: angle from the heading (radians) and length relative to the main whisker.
@@ -185,7 +196,7 @@ const SIDE_WHISKER_SCALE: f32 = 0.6;
 impl Boids {
     /// A planner with these parameters.
     pub fn new(params: BoidsParams) -> Self {
-        Self { params }
+        Self { params, near: Vec::new() }
     }
 
     /// `desired − velocity` with the desired velocity along `direction` at max speed, limited.
@@ -279,6 +290,8 @@ impl Planner for Boids {
         let prm = &self.params;
         let sep_r2 = prm.separation_radius * prm.separation_radius;
         let look = self.interaction_radius();
+        let look2 = look * look;
+        let (first, end) = (group.agents.start, group.agents.end);
         for (k, id) in group.agents.clone().enumerate() {
             let i = id as usize;
             let p = ctx.positions[i];
@@ -286,22 +299,40 @@ impl Planner for Boids {
 
             let (mut sep, mut n_sep) = (Vec2::ZERO, 0u32);
             let (mut sum_vel, mut sum_pos, mut n_flock) = (Vec2::ZERO, Vec2::ZERO, 0u32);
-            ctx.grid.for_each_within(p, look, |n| {
+            // Pass 1 gathers the neighbours without a branch per candidate (whether a candidate of
+            // the nearby cells is within reach is a coin flip the CPU cannot predict); pass 2 sums
+            // over them in the same order, so the sums are those of a plain loop, bit for bit.
+            // `near` only grows; `count` is how much of it holds this agent's neighbours.
+            let near = &mut self.near;
+            let mut count = 0usize;
+            ctx.grid.for_each_candidate_run(p, look, |ids, positions, velocities| {
+                if near.len() <= count + ids.len() {
+                    near.resize(count + ids.len() + 1, NearAgent::default());
+                }
+                for ((&nid, &q), &nv) in ids.iter().zip(positions).zip(velocities) {
+                    let d2 = p.distance_squared(q);
+                    if let Some(slot) = near.get_mut(count) {
+                        *slot = NearAgent { id: nid, d2, pos: q, vel: nv };
+                    }
+                    count += usize::from(d2 <= look2);
+                }
+            });
+            for n in &near[..count] {
                 if n.id == id || n.d2 <= 0.0 {
-                    return;
+                    continue;
                 }
-                if n.d2 < sep_r2 {
-                    // (p − q)/|p − q|²: the lecture's normalised difference over the distance.
-                    sep += (p - n.pos) / n.d2;
-                    n_sep += 1;
-                }
+                // (p − q)/|p − q|²: the lecture's normalised difference over the distance. Masked,
+                // not branched: the test is unpredictable, and adding +0 leaves the sum exact.
+                let close = n.d2 < sep_r2;
+                sep += keep_if(close, (p - n.pos) / n.d2);
+                n_sep += u32::from(close);
                 // Alignment and cohesion only with the agent's own group.
-                if group.agents.contains(&n.id) {
+                if n.id >= first && n.id < end {
                     sum_vel += n.vel;
                     sum_pos += n.pos;
                     n_flock += 1;
                 }
-            });
+            }
 
             let separation = if n_sep > 0 { self.steer_towards(sep, vel) } else { Vec2::ZERO };
             let (alignment, cohesion) = if n_flock > 0 {
@@ -359,4 +390,12 @@ impl Planner for Boids {
             new_velocities[k] = limit(vel + acceleration, prm.max_speed);
         }
     }
+}
+
+/// `v` if `keep`, else `+0` in both lanes, without a branch (a NaN from a skipped `0/0` is
+/// masked out too). Sums start at `+0`, so adding the `+0` is exact.
+#[inline(always)]
+fn keep_if(keep: bool, v: Vec2) -> Vec2 {
+    let mask = 0u32.wrapping_sub(u32::from(keep));
+    Vec2::new(f32::from_bits(v.x.to_bits() & mask), f32::from_bits(v.y.to_bits() & mask))
 }

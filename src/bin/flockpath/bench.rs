@@ -3,6 +3,7 @@
 //!
 //! Wall-clock timing lives here, in `src/bin/`, and nowhere in the core.
 
+use flockpath::render::Renderer;
 use flockpath::spatial::SpatialGrid;
 use flockpath::{presets, Scene, World};
 use serde_json::{json, Map, Value};
@@ -22,6 +23,8 @@ pub struct Options {
     pub quick: bool,
     /// Run the step benchmarks.
     pub step: bool,
+    /// Include the brute-force baseline in the step benchmarks.
+    pub brute: bool,
     /// Run the render benchmarks.
     pub render: bool,
     /// Where to write the figures as JSON.
@@ -30,7 +33,7 @@ pub struct Options {
 
 impl Default for Options {
     fn default() -> Self {
-        Self { quick: false, step: true, render: true, json: None }
+        Self { quick: false, step: true, brute: true, render: true, json: None }
     }
 }
 
@@ -80,14 +83,14 @@ pub fn main(options: &Options) -> Result<(), String> {
 
 fn step_benchmarks(options: &Options, report: &mut Map<String, Value>) -> Result<(), String> {
     let grid_plan = if options.quick {
-        Plan { warmup_steps: 3, steps: 10, agents_per_rep: 20_000, reps: 3 }
+        Plan { warmup_steps: 2, steps: 5, agents_per_rep: 20_000, reps: 3 }
     } else {
-        Plan { warmup_steps: 10, steps: 30, agents_per_rep: 100_000, reps: 7 }
+        Plan { warmup_steps: 3, steps: 10, agents_per_rep: 100_000, reps: 7 }
     };
     let brute_plan = if options.quick {
         Plan { warmup_steps: 1, steps: 2, agents_per_rep: 1_000, reps: 3 }
     } else {
-        Plan { warmup_steps: 10, steps: 10, agents_per_rep: 10_000, reps: 5 }
+        Plan { warmup_steps: 3, steps: 10, agents_per_rep: 10_000, reps: 5 }
     };
 
     println!();
@@ -105,7 +108,19 @@ fn step_benchmarks(options: &Options, report: &mut Map<String, Value>) -> Result
         by_n.push((n, r.median));
     }
     report.insert("step_ns_per_agent_step".into(), Value::Object(grid_ns));
+    let first = by_n.first().map(|x| x.1);
+    let last = by_n.last().map(|x| x.1);
+    if let (Some(first), Some(last)) = (first, last) {
+        let growth = last / first;
+        println!();
+        println!("Growth of the per-agent cost 100k / 1k: {growth:.2}× (target < 1.5×)");
+        println!("Per-agent cost at 100k: {last:.0} ns (target ≤ 120 ns)");
+        report.insert("growth_100k_over_1k".into(), json!(growth));
+    }
 
+    if !options.brute {
+        return Ok(());
+    }
     println!();
     println!("Brute-force baseline (one grid cell: every agent scans every agent), ns per agent-step");
     let mut brute_ns = Map::new();
@@ -119,15 +134,6 @@ fn step_benchmarks(options: &Options, report: &mut Map<String, Value>) -> Result
     }
     report.insert("brute_ns_per_agent_step".into(), Value::Object(brute_ns));
 
-    let first = by_n.first().map(|x| x.1);
-    let last = by_n.last().map(|x| x.1);
-    if let (Some(first), Some(last)) = (first, last) {
-        let growth = last / first;
-        println!();
-        println!("Growth of the per-agent cost 100k / 1k: {growth:.2}× (target < 1.5×)");
-        println!("Per-agent cost at 100k: {last:.0} ns (target ≤ 120 ns)");
-        report.insert("growth_100k_over_1k".into(), json!(growth));
-    }
     Ok(())
 }
 
@@ -210,9 +216,58 @@ fn median(samples: &mut [f64]) -> f64 {
     }
 }
 
-fn render_benchmarks(_options: &Options, report: &mut Map<String, Value>) -> Result<(), String> {
+/// Canvas size of the render benchmark (device px).
+const CANVAS: (u32, u32) = (1280, 800);
+/// Sizes of the render benchmark.
+const RENDER_SIZES: &[u32] = &[1_000, 10_000];
+
+fn render_benchmarks(options: &Options, report: &mut Map<String, Value>) -> Result<(), String> {
+    let (frames, reps, warmup) = if options.quick { (10, 3, 5) } else { (60, 7, 30) };
     println!();
-    println!("Render: flockpath::render is not in this build yet; skipped.");
-    report.insert("render_ms_per_frame".into(), Value::Null);
+    println!(
+        "Render::render at {}×{}, trails on, ms per frame (median of {reps} runs of {frames} frames)",
+        CANVAS.0, CANVAS.1
+    );
+    println!("{:>9}  {:>10}  {:>18}  {:>16}", "agents", "render ms", "range", "step+render ms");
+    let mut render_ms = Map::new();
+    let mut frame_ms = Map::new();
+    for &n in RENDER_SIZES {
+        let mut world =
+            World::new(bench_scene(n)).map_err(|e| format!("benchmark scene with {n} agents: {e}"))?;
+        let mut renderer = Renderer::new(CANVAS.0, CANVAS.1);
+        for _ in 0..warmup {
+            world.step();
+            renderer.render(&world);
+        }
+        let (mut render_samples, mut frame_samples) = (Vec::new(), Vec::new());
+        for _ in 0..reps {
+            let (mut render_ns, mut frame_ns) = (0u128, 0u128);
+            for _ in 0..frames {
+                let start = Instant::now();
+                world.step();
+                let stepped = Instant::now();
+                renderer.render(&world);
+                let done = Instant::now();
+                render_ns += (done - stepped).as_nanos();
+                frame_ns += (done - start).as_nanos();
+            }
+            render_samples.push(render_ns as f64 / 1e6 / f64::from(frames));
+            frame_samples.push(frame_ns as f64 / 1e6 / f64::from(frames));
+        }
+        std::hint::black_box(renderer.pixels().first());
+        let render = median(&mut render_samples);
+        let frame = median(&mut frame_samples);
+        println!(
+            "{:>9}  {:>10.2}  {:>18}  {:>16.2}",
+            n,
+            render,
+            format!("{:.2}…{:.2}", render_samples[0], render_samples[render_samples.len() - 1]),
+            frame
+        );
+        render_ms.insert(n.to_string(), json!(render));
+        frame_ms.insert(n.to_string(), json!(frame));
+    }
+    report.insert("render_ms_per_frame".into(), Value::Object(render_ms));
+    report.insert("step_and_render_ms_per_frame".into(), Value::Object(frame_ms));
     Ok(())
 }

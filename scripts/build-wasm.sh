@@ -1,0 +1,43 @@
+#!/usr/bin/env bash
+# Builds the page's wasm module into www/pkg (release, wasm-opt -O, SIMD) and prints its size.
+# Idempotent: skips the build when nothing under src/, Cargo.toml, Cargo.lock or .cargo/ changed
+# since the last one (stamp file www/pkg/.build-stamp). Pass --force to rebuild anyway.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+export PATH="$HOME/.cargo/bin:$PATH"
+
+out=www/pkg
+wasm="$out/flockpath_bg.wasm"
+stamp="$out/.build-stamp"
+
+force=0
+[ "${1:-}" = "--force" ] && force=1
+
+# A fingerprint of every input: a changed, added or removed file changes it.
+inputs_hash() {
+  find src Cargo.toml Cargo.lock .cargo -type f -print0 | sort -z | xargs -0 sha256sum | sha256sum | cut -d' ' -f1
+}
+
+hash=$(inputs_hash)
+if [ $force = 0 ] && [ -f "$wasm" ] && [ -f "$out/flockpath.js" ] && [ -f "$stamp" ] \
+   && [ "$(cat "$stamp")" = "$hash" ]; then
+  echo "[build-wasm] up to date ($(stat -c %s "$wasm") bytes): $wasm"
+  exit 0
+fi
+
+# wasm-opt is disabled in Cargo.toml's wasm-pack metadata: wasm-pack would otherwise try to
+# download its own, and Debian's binaryen is too old for current wasm-bindgen output.
+wasm-pack build --release --target web --out-dir www/pkg --no-typescript
+rm -f "$out/.gitignore" "$out/package.json" "$out/README.md"
+
+# Rust's wasm32 target emits these post-MVP features; wasm-opt must be told it may keep them.
+node_modules/.bin/wasm-opt -O \
+  --enable-simd --enable-bulk-memory --enable-nontrapping-float-to-int --enable-sign-ext \
+  --enable-mutable-globals --enable-reference-types --enable-multivalue \
+  "$wasm" -o "$wasm.opt"
+mv "$wasm.opt" "$wasm"
+
+echo "$hash" > "$stamp"
+raw=$(stat -c %s "$wasm")
+gz=$(gzip -9 -c "$wasm" | wc -c)
+echo "[build-wasm] $wasm: $raw bytes ($gz gzipped)"

@@ -1,0 +1,938 @@
+//! Rasterises a running [`World`] into one reusable RGBA frame: a cached static base, an
+//! incremental trail layer, then goals, spawn regions, agents (pre-rendered sprites) and the
+//! selection.
+//!
+//! Costs drive the shape. tiny-skia spends microseconds per anti-aliased shape, so it only draws
+//! what is rare or batched: the base layer (rebuilt when the obstacles or the size change), one
+//! trail path per group per frame, goals, spawn regions, and a small set of agent sprites (one per
+//! group and heading bucket). Agents are then copied in with a direct premultiplied-over byte loop,
+//! or written as single pixels when they are smaller than two device pixels. Every layer is opaque,
+//! so the premultiplied bytes are also the straight-alpha bytes `ImageData` wants.
+
+use crate::edit::ItemRef;
+use crate::geometry::Obstacle;
+use crate::scene::{parse_color, Scene};
+use crate::world::World;
+use glam::Vec2;
+use std::f32::consts::TAU;
+use tiny_skia::{
+    Color, FillRule, LineCap, Paint, Path, PathBuilder, Pixmap, PixmapMut, Rect, Stroke, StrokeDash,
+    Transform,
+};
+
+/// Fill colour of obstacles (RGB). Tests and page checks look for it at an obstacle's centre.
+pub const OBSTACLE_COLOR: [u8; 3] = [0x5b, 0x63, 0x70];
+/// Outline colour of obstacles (RGB), darker than the fill.
+pub const OBSTACLE_OUTLINE_COLOR: [u8; 3] = [0x2c, 0x31, 0x38];
+/// Background of the scene rectangle (RGB).
+pub const BACKGROUND_COLOR: [u8; 3] = [0xf6, 0xf5, 0xf0];
+/// Canvas area outside the scene rectangle when the aspect ratios differ (RGB).
+pub const LETTERBOX_COLOR: [u8; 3] = [0xd8, 0xd8, 0xd3];
+/// Faint grid lines (RGB).
+pub const GRID_COLOR: [u8; 3] = [0xe4, 0xe2, 0xda];
+/// Goals no group heads for (RGB); goals in use take their first group's colour.
+pub const GOAL_COLOR: [u8; 3] = [0x3a, 0x8a, 0x4f];
+/// Outline of the selected item (RGB).
+pub const SELECTION_COLOR: [u8; 3] = [0xff, 0x8c, 0x00];
+/// Default share of a trail's visibility lost per frame.
+pub const DEFAULT_TRAIL_FADE: f32 = 0.01;
+/// Number of pre-rendered headings per group: 32 steps of 11.25°.
+pub const HEADING_BUCKETS: usize = 32;
+/// Largest canvas side in device px; larger requests are clamped (and smaller than 1 become 1).
+pub const MAX_CANVAS_SIDE: u32 = 8192;
+
+/// Grid spacing in scene px.
+const GRID_SPACING: f32 = 50.0;
+/// The grid is left out when its lines would be closer than this (device px).
+const MIN_GRID_SPACING_PX: f32 = 6.0;
+/// Opacity of a trail segment (out of 255).
+const TRAIL_ALPHA: u8 = 90;
+/// A trail segment is drawn once an agent has moved its body radius (clamped to this range,
+/// device px) from its last drawn point: the open end stays hidden under the agent, stationary
+/// agents cost nothing, and fewer, longer segments are cheaper and do not darken at the joins.
+const TRAIL_SEGMENT_PX: (f32, f32) = (1.0, 4.0);
+/// Agents are drawn in bands of 2^this device rows, top to bottom, so that consecutive sprites
+/// touch nearby frame memory (10,000 agents in id order hit the cache far less well).
+const BAND_SHIFT: u32 = 3;
+/// Fading is spread over this many frames: each frame fades every n-th row by n frames' worth
+/// (an eighth of a full pass per frame; neighbouring rows differ by at most 7 frames' fade).
+const FADE_ROW_PERIOD: u32 = 8;
+/// Agents whose body radius is below this (device px) are drawn as single pixels.
+const DOT_RADIUS_PX: f32 = 1.0;
+
+/// How scene px map to canvas px: `canvas = scene * scale + offset`. The scene is fitted into the
+/// canvas keeping its aspect ratio, centred, with letterbox bands on the spare sides.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ViewTransform {
+    /// Device px per scene px.
+    pub scale: f32,
+    /// Canvas x of scene x = 0 (device px).
+    pub offset_x: f32,
+    /// Canvas y of scene y = 0 (device px).
+    pub offset_y: f32,
+}
+
+impl ViewTransform {
+    /// The transform fitting a `scene_width × scene_height` scene into a canvas, centred.
+    pub fn fit(scene_width: f32, scene_height: f32, canvas_width: u32, canvas_height: u32) -> Self {
+        let (cw, ch) = (canvas_width as f32, canvas_height as f32);
+        if !(scene_width > 0.0 && scene_height > 0.0) {
+            return Self { scale: 1.0, offset_x: 0.0, offset_y: 0.0 };
+        }
+        let scale = (cw / scene_width).min(ch / scene_height);
+        Self {
+            scale,
+            offset_x: 0.5 * (cw - scene_width * scale),
+            offset_y: 0.5 * (ch - scene_height * scale),
+        }
+    }
+
+    /// Scene px → canvas px.
+    pub fn to_canvas(&self, p: Vec2) -> Vec2 {
+        p * self.scale + Vec2::new(self.offset_x, self.offset_y)
+    }
+
+    /// Canvas px → scene px (for pointer input).
+    pub fn to_scene(&self, p: Vec2) -> Vec2 {
+        (p - Vec2::new(self.offset_x, self.offset_y)) / self.scale
+    }
+
+    fn transform(&self) -> Transform {
+        Transform::from_row(self.scale, 0.0, 0.0, self.scale, self.offset_x, self.offset_y)
+    }
+}
+
+/// What the base layer was drawn from: it is rebuilt when any of this changes.
+#[derive(Clone, Debug, PartialEq)]
+struct BaseKey {
+    width: f32,
+    height: f32,
+    obstacles: Vec<Obstacle>,
+}
+
+impl BaseKey {
+    fn matches(&self, scene: &Scene) -> bool {
+        self.width == scene.width && self.height == scene.height && self.obstacles == scene.obstacles
+    }
+}
+
+/// A pre-rendered agent image: premultiplied RGBA, cropped to its visible pixels.
+#[derive(Clone, Debug, Default)]
+struct Sprite {
+    /// Offset of the image's top-left pixel from the agent's pixel.
+    left: i32,
+    top: i32,
+    width: usize,
+    height: usize,
+    data: Vec<u8>,
+    /// Per row, the columns `start..end` holding visible pixels (a triangle leaves half of its
+    /// box empty).
+    spans: Vec<(u16, u16)>,
+}
+
+/// An agent ready to draw: its pixel, group and heading bucket.
+#[derive(Clone, Copy, Debug, Default)]
+struct Placed {
+    x: i32,
+    y: i32,
+    group: u32,
+    heading: u8,
+}
+
+/// The sprites of one group, valid for one colour and one device radius.
+#[derive(Clone, Debug)]
+struct GroupSprites {
+    color: [u8; 3],
+    radius_px: f32,
+    /// Empty when the agents are drawn as dots.
+    headings: Vec<Sprite>,
+}
+
+/// Renders worlds into one reusable RGBA frame of `width × height` device px.
+pub struct Renderer {
+    width: u32,
+    height: u32,
+    /// The frame JS shows: opaque RGBA.
+    frame: Vec<u8>,
+    /// Background, grid and obstacles.
+    base: Vec<u8>,
+    /// Base plus the trails drawn so far.
+    trails: Vec<u8>,
+    base_key: Option<BaseKey>,
+    view: ViewTransform,
+    trails_on: bool,
+    trail_fade: f32,
+    /// Set when the trail layer must restart from the base at the next frame.
+    trails_stale: bool,
+    /// Device position of each agent where its trail was last drawn to.
+    last_drawn: Vec<Vec2>,
+    /// Step count of the world at the last frame (a smaller one means the run was reset).
+    last_step: u32,
+    /// Heading bucket of each agent, kept while it stands still.
+    heading: Vec<u8>,
+    fade_phase: u32,
+    sprites: Vec<GroupSprites>,
+    selection: Option<ItemRef>,
+    /// Reused per frame: agents placed on the canvas, their drawing order, band counts.
+    placed: Vec<Placed>,
+    drawing_order: Vec<u32>,
+    band_counts: Vec<u32>,
+}
+
+impl Renderer {
+    /// A renderer for a canvas of `width × height` device px (clamped to 1…[`MAX_CANVAS_SIDE`]).
+    pub fn new(width: u32, height: u32) -> Self {
+        let mut r = Self {
+            width: 0,
+            height: 0,
+            frame: Vec::new(),
+            base: Vec::new(),
+            trails: Vec::new(),
+            base_key: None,
+            view: ViewTransform { scale: 1.0, offset_x: 0.0, offset_y: 0.0 },
+            trails_on: true,
+            trail_fade: DEFAULT_TRAIL_FADE,
+            trails_stale: true,
+            last_drawn: Vec::new(),
+            last_step: 0,
+            heading: Vec::new(),
+            fade_phase: 0,
+            sprites: Vec::new(),
+            selection: None,
+            placed: Vec::new(),
+            drawing_order: Vec::new(),
+            band_counts: Vec::new(),
+        };
+        r.resize(width, height);
+        r
+    }
+
+    /// Changes the canvas size (device px, clamped like [`Renderer::new`]). The next frame
+    /// rebuilds the base layer for the new size; trails restart.
+    pub fn resize(&mut self, width: u32, height: u32) {
+        let width = width.clamp(1, MAX_CANVAS_SIDE);
+        let height = height.clamp(1, MAX_CANVAS_SIDE);
+        if width == self.width && height == self.height {
+            return;
+        }
+        self.width = width;
+        self.height = height;
+        let len = width as usize * height as usize * 4;
+        for layer in [&mut self.frame, &mut self.base, &mut self.trails] {
+            layer.clear();
+            layer.resize(len, 255);
+        }
+        self.base_key = None;
+        self.trails_stale = true;
+        self.sprites.clear();
+    }
+
+    /// Frame width in device px.
+    pub fn width(&self) -> u32 {
+        self.width
+    }
+
+    /// Frame height in device px.
+    pub fn height(&self) -> u32 {
+        self.height
+    }
+
+    /// The last rendered frame: `width × height` RGBA pixels, row-major, every alpha 255 (so
+    /// premultiplied and straight alpha agree).
+    pub fn pixels(&self) -> &[u8] {
+        &self.frame
+    }
+
+    /// The scene → canvas mapping used by the last frame.
+    pub fn view(&self) -> ViewTransform {
+        self.view
+    }
+
+    /// Turns trails on or off. Turning them on starts from a clean layer.
+    pub fn set_trails(&mut self, on: bool) {
+        if on && !self.trails_on {
+            self.trails_stale = true;
+        }
+        self.trails_on = on;
+    }
+
+    /// Whether trails are drawn.
+    pub fn trails(&self) -> bool {
+        self.trails_on
+    }
+
+    /// Share of a trail's visibility lost per frame: 0 keeps trails forever, 1 shows only the
+    /// newest segment. Values outside 0…1 are clamped; NaN is ignored.
+    pub fn set_trail_fade(&mut self, fade: f32) {
+        if !fade.is_nan() {
+            self.trail_fade = fade.clamp(0.0, 1.0);
+        }
+    }
+
+    /// The current trail fade per frame.
+    pub fn trail_fade(&self) -> f32 {
+        self.trail_fade
+    }
+
+    /// Erases all trails; they restart from the agents' positions at the next frame. Call it
+    /// when a different run is shown: a reset or a new agent count is noticed by itself, but a
+    /// new scene with as many agents, still at step 0, would otherwise draw jumps.
+    pub fn clear_trails(&mut self) {
+        self.trails_stale = true;
+    }
+
+    /// Outlines an item of the scene (or nothing). An index that does not exist draws nothing.
+    pub fn set_selection(&mut self, item: Option<ItemRef>) {
+        self.selection = item;
+    }
+
+    /// Draws `world` into the frame.
+    pub fn render(&mut self, world: &World) {
+        let scene = world.scene();
+        if !self.base_key.as_ref().is_some_and(|k| k.matches(scene)) {
+            self.view = ViewTransform::fit(scene.width, scene.height, self.width, self.height);
+            self.draw_base(scene);
+            self.base_key = Some(BaseKey {
+                width: scene.width,
+                height: scene.height,
+                obstacles: scene.obstacles.clone(),
+            });
+            self.trails_stale = true;
+        }
+        let n = world.agent_count();
+        if self.last_drawn.len() != n || world.step_count() < self.last_step {
+            self.trails_stale = true;
+        }
+        if self.trails_stale {
+            self.restart_trails(world);
+        }
+        if self.trails_on {
+            self.fade_trails();
+            self.draw_trail_segments(world);
+            self.frame.copy_from_slice(&self.trails);
+        } else {
+            self.frame.copy_from_slice(&self.base);
+        }
+        self.last_step = world.step_count();
+
+        let view = self.view;
+        if let Some(mut pixmap) = PixmapMut::from_bytes(&mut self.frame, self.width, self.height) {
+            draw_spawn_regions(&mut pixmap, scene, view);
+            draw_goals(&mut pixmap, scene, view);
+        }
+        self.update_sprites(scene);
+        self.draw_agents(world);
+        if let Some(item) = self.selection {
+            if let Some(mut pixmap) = PixmapMut::from_bytes(&mut self.frame, self.width, self.height) {
+                draw_selection(&mut pixmap, scene, view, item);
+            }
+        }
+    }
+
+    fn draw_base(&mut self, scene: &Scene) {
+        let view = self.view;
+        let Some(mut pixmap) = PixmapMut::from_bytes(&mut self.base, self.width, self.height) else {
+            return;
+        };
+        pixmap.fill(color(LETTERBOX_COLOR, 255));
+        let scene_rect = Rect::from_xywh(0.0, 0.0, scene.width, scene.height);
+        if let Some(rect) = scene_rect.and_then(|r| r.transform(view.transform())) {
+            pixmap.fill_rect(rect, &paint(BACKGROUND_COLOR, 255), Transform::identity(), None);
+        }
+        if GRID_SPACING * view.scale >= MIN_GRID_SPACING_PX {
+            let mut pb = PathBuilder::new();
+            let mut x = GRID_SPACING;
+            while x < scene.width {
+                pb.move_to(x, 0.0);
+                pb.line_to(x, scene.height);
+                x += GRID_SPACING;
+            }
+            let mut y = GRID_SPACING;
+            while y < scene.height {
+                pb.move_to(0.0, y);
+                pb.line_to(scene.width, y);
+                y += GRID_SPACING;
+            }
+            stroke_scene_path(&mut pixmap, pb, view, GRID_COLOR, 255, 0.0, None);
+        }
+        let fill = paint(OBSTACLE_COLOR, 255);
+        let outline_width = (1.5 * view.scale).clamp(1.0, 3.0);
+        for obstacle in &scene.obstacles {
+            let Some(path) = obstacle_path(obstacle).and_then(|p| p.transform(view.transform())) else {
+                continue;
+            };
+            pixmap.fill_path(&path, &fill, FillRule::Winding, Transform::identity(), None);
+            let stroke = Stroke { width: outline_width, ..Stroke::default() };
+            pixmap.stroke_path(
+                &path,
+                &paint(OBSTACLE_OUTLINE_COLOR, 255),
+                &stroke,
+                Transform::identity(),
+                None,
+            );
+        }
+    }
+
+    fn restart_trails(&mut self, world: &World) {
+        self.trails.copy_from_slice(&self.base);
+        let view = self.view;
+        self.last_drawn.clear();
+        self.last_drawn.extend(world.positions().iter().map(|&p| view.to_canvas(p)));
+        self.heading.clear();
+        self.heading.extend(world.velocities().iter().map(|&v| heading_bucket(v).unwrap_or(0)));
+        self.trails_stale = false;
+    }
+
+    /// Moves a stripe of rows (every [`FADE_ROW_PERIOD`]-th) of the trail layer towards the
+    /// base by [`FADE_ROW_PERIOD`] frames' worth of fade: an even, small cost per frame.
+    fn fade_trails(&mut self) {
+        if self.trail_fade <= 0.0 {
+            return;
+        }
+        if self.trail_fade >= 1.0 {
+            self.trails.copy_from_slice(&self.base);
+            return;
+        }
+        let keep = libm::powf(1.0 - self.trail_fade, FADE_ROW_PERIOD as f32);
+        let amount = (((1.0 - keep) * 128.0).round() as i16).clamp(1, 128);
+        let row = self.width as usize * 4;
+        let phase = self.fade_phase as usize;
+        self.fade_phase = (self.fade_phase + 1) % FADE_ROW_PERIOD;
+        let period = FADE_ROW_PERIOD as usize;
+        for (trail_row, base_row) in
+            self.trails.chunks_exact_mut(row).zip(self.base.chunks_exact(row)).skip(phase).step_by(period)
+        {
+            fade_row(trail_row, base_row, amount);
+        }
+    }
+
+    /// Adds, per group, one path of the segments from each agent's last drawn point to where it
+    /// is now, and strokes it once.
+    fn draw_trail_segments(&mut self, world: &World) {
+        let view = self.view;
+        let groups = world.scene().groups.len();
+        let mut builders: Vec<PathBuilder> = (0..groups).map(|_| PathBuilder::new()).collect();
+        let (lo, hi) = TRAIL_SEGMENT_PX;
+        let min_step: Vec<f32> =
+            world.scene().groups.iter().map(|g| (g.agent_radius * view.scale).clamp(lo, hi)).collect();
+        for ((&p, &g), last) in world.positions().iter().zip(world.group_of()).zip(self.last_drawn.iter_mut())
+        {
+            let now = view.to_canvas(p);
+            let moved = now.distance(*last);
+            if moved < min_step.get(g as usize).copied().unwrap_or(lo) {
+                continue;
+            }
+            if let Some(pb) = builders.get_mut(g as usize) {
+                pb.move_to(last.x, last.y);
+                pb.line_to(now.x, now.y);
+            }
+            *last = now;
+        }
+        let Some(mut pixmap) = PixmapMut::from_bytes(&mut self.trails, self.width, self.height) else {
+            return;
+        };
+        // Hairline width (≤ 1 device px) keeps tiny-skia on its cheap path: no stroke outline.
+        let stroke = Stroke { width: 1.0, line_cap: LineCap::Butt, ..Stroke::default() };
+        for (group, pb) in world.scene().groups.iter().zip(builders) {
+            if let Some(path) = pb.finish() {
+                let rgb = parse_color(&group.color);
+                pixmap.stroke_path(&path, &paint(rgb, TRAIL_ALPHA), &stroke, Transform::identity(), None);
+            }
+        }
+    }
+
+    /// Rebuilds the sprites of groups whose colour or device size changed.
+    fn update_sprites(&mut self, scene: &Scene) {
+        self.sprites.truncate(scene.groups.len());
+        for (i, group) in scene.groups.iter().enumerate() {
+            let rgb = parse_color(&group.color);
+            let radius_px = group.agent_radius * self.view.scale;
+            let fresh = self.sprites.get(i).is_some_and(|s| s.color == rgb && s.radius_px == radius_px);
+            if fresh {
+                continue;
+            }
+            let headings = if radius_px < DOT_RADIUS_PX {
+                Vec::new()
+            } else {
+                (0..HEADING_BUCKETS).map(|b| agent_sprite(rgb, radius_px, b)).collect()
+            };
+            let sprites = GroupSprites { color: rgb, radius_px, headings };
+            if i < self.sprites.len() {
+                self.sprites[i] = sprites;
+            } else {
+                self.sprites.push(sprites);
+            }
+        }
+    }
+
+    /// Places every agent on the canvas, orders them top to bottom by band (a counting sort),
+    /// then blits each one's sprite or writes its dot.
+    fn draw_agents(&mut self, world: &World) {
+        let view = self.view;
+        let (w, h) = (self.width as i32, self.height as i32);
+        self.heading.resize(world.agent_count(), 0);
+        self.placed.clear();
+        let agents = world.positions().iter().zip(world.velocities()).zip(world.group_of());
+        for (((&p, &v), &group), heading) in agents.zip(self.heading.iter_mut()) {
+            if let Some(b) = heading_bucket(v) {
+                *heading = b;
+            }
+            let c = view.to_canvas(p);
+            if c.is_finite() {
+                let (x, y) = (c.x.round() as i32, c.y.round() as i32);
+                self.placed.push(Placed { x, y, group, heading: *heading });
+            }
+        }
+
+        let bands = (h as usize >> BAND_SHIFT) + 1;
+        let band_of = |p: &Placed| (p.y.clamp(0, h - 1) as usize) >> BAND_SHIFT;
+        self.band_counts.clear();
+        self.band_counts.resize(bands + 1, 0);
+        for p in &self.placed {
+            self.band_counts[band_of(p) + 1] += 1;
+        }
+        for b in 1..=bands {
+            self.band_counts[b] += self.band_counts[b - 1];
+        }
+        self.drawing_order.clear();
+        self.drawing_order.resize(self.placed.len(), 0);
+        for (i, p) in self.placed.iter().enumerate() {
+            let slot = &mut self.band_counts[band_of(p)];
+            self.drawing_order[*slot as usize] = i as u32;
+            *slot += 1;
+        }
+
+        for &i in &self.drawing_order {
+            let p = self.placed[i as usize];
+            let Some(sprites) = self.sprites.get(p.group as usize) else { continue };
+            match sprites.headings.get(p.heading as usize) {
+                Some(sprite) => blit_over(&mut self.frame, w, h, sprite, p.x, p.y),
+                None => {
+                    if (0..w).contains(&p.x) && (0..h).contains(&p.y) {
+                        let at = (p.y as usize * w as usize + p.x as usize) * 4;
+                        self.frame[at..at + 3].copy_from_slice(&sprites.color);
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// The heading bucket of a velocity, or `None` when it is too slow to have a direction.
+fn heading_bucket(v: Vec2) -> Option<u8> {
+    let speed2 = v.length_squared();
+    if speed2.is_nan() || speed2 <= 1e-8 {
+        return None;
+    }
+    let turns = libm::atan2f(v.y, v.x) / TAU;
+    let bucket = (turns * HEADING_BUCKETS as f32).round() as i32;
+    Some(bucket.rem_euclid(HEADING_BUCKETS as i32) as u8)
+}
+
+/// Moves each byte of `trail` towards `base` by `amount / 128` of the gap (`amount` in
+/// 1…128), at least one step, so faded trails reach the base exactly instead of leaving a residue.
+/// 16-bit lanes (|gap · amount| ≤ 255 · 128 fits) let the loop vectorise eight bytes at a time.
+fn fade_row(trail: &mut [u8], base: &[u8], amount: i16) {
+    for (t, &b) in trail.iter_mut().zip(base) {
+        let gap = i16::from(b) - i16::from(*t);
+        // Arithmetic shift floors: rounding up for positive gaps makes both directions round
+        // away from zero.
+        let step = (gap * amount + if gap > 0 { 127 } else { 0 }) >> 7;
+        *t = (i16::from(*t) + step) as u8;
+    }
+}
+
+/// Draws `sprite` centred on pixel `(x, y)` of an opaque `w × h` RGBA frame with
+/// premultiplied source-over, clipped to the frame.
+fn blit_over(frame: &mut [u8], w: i32, h: i32, sprite: &Sprite, x: i32, y: i32) {
+    let left = x + sprite.left;
+    let top = y + sprite.top;
+    let x0 = left.max(0);
+    let x1 = (left + sprite.width as i32).min(w);
+    let y0 = top.max(0);
+    let y1 = (top + sprite.height as i32).min(h);
+    if x0 >= x1 || y0 >= y1 {
+        return;
+    }
+    for row in y0..y1 {
+        let sprite_row = (row - top) as usize;
+        let Some(&(start, end)) = sprite.spans.get(sprite_row) else { continue };
+        // Visible columns of this row, in frame coordinates, clipped to the frame.
+        let from = (left + i32::from(start)).max(x0);
+        let to = (left + i32::from(end)).min(x1);
+        if from >= to {
+            continue;
+        }
+        let span = (to - from) as usize * 4;
+        let src_at = (sprite_row * sprite.width + (from - left) as usize) * 4;
+        let dst_at = (row as usize * w as usize + from as usize) * 4;
+        let src = &sprite.data[src_at..src_at + span];
+        let dst = &mut frame[dst_at..dst_at + span];
+        for (d, s) in dst.chunks_exact_mut(4).zip(src.chunks_exact(4)) {
+            let alpha = s[3];
+            if alpha == 0 {
+                continue;
+            }
+            if alpha == 255 {
+                d[..3].copy_from_slice(&s[..3]);
+                continue;
+            }
+            let inverse = 255 - u32::from(alpha);
+            for k in 0..3 {
+                d[k] = s[k].saturating_add(div255(u32::from(d[k]) * inverse));
+            }
+        }
+    }
+}
+
+/// `x / 255` rounded, for `x ≤ 255 · 255`.
+#[inline]
+fn div255(x: u32) -> u8 {
+    let x = x + 128;
+    ((x + (x >> 8)) >> 8) as u8
+}
+
+/// An oriented triangle for heading bucket `bucket`, cropped to its visible pixels.
+fn agent_sprite(rgb: [u8; 3], radius_px: f32, bucket: usize) -> Sprite {
+    let reach = 1.5 * radius_px;
+    let half = (reach + 2.0).ceil() as i32;
+    let side = (2 * half + 1) as u32;
+    let Some(mut pixmap) = Pixmap::new(side, side) else {
+        return Sprite::default();
+    };
+    let angle = bucket as f32 * TAU / HEADING_BUCKETS as f32;
+    let (sin, cos) = (libm::sinf(angle), libm::cosf(angle));
+    // Pixel (half, half) is the agent's pixel; its centre is at half + 0.5.
+    let centre = Vec2::splat(half as f32 + 0.5);
+    let corner = |forward: f32, side: f32| {
+        let p = centre + Vec2::new(cos, sin) * forward + Vec2::new(-sin, cos) * side;
+        (p.x, p.y)
+    };
+    let mut pb = PathBuilder::new();
+    let tip = corner(reach, 0.0);
+    let left = corner(-radius_px, 0.9 * radius_px);
+    let notch = corner(-0.5 * radius_px, 0.0);
+    let right = corner(-radius_px, -0.9 * radius_px);
+    pb.move_to(tip.0, tip.1);
+    pb.line_to(left.0, left.1);
+    pb.line_to(notch.0, notch.1);
+    pb.line_to(right.0, right.1);
+    pb.close();
+    if let Some(path) = pb.finish() {
+        pixmap.fill_path(&path, &paint(rgb, 255), FillRule::Winding, Transform::identity(), None);
+        if radius_px >= 3.0 {
+            let dark = rgb.map(|c| (u16::from(c) * 3 / 5) as u8);
+            let stroke = Stroke { width: (0.12 * radius_px).clamp(1.0, 2.0), ..Stroke::default() };
+            pixmap.stroke_path(&path, &paint(dark, 230), &stroke, Transform::identity(), None);
+        }
+    }
+    crop(&pixmap, half)
+}
+
+/// The smallest sub-image holding every non-transparent pixel of `pixmap`.
+fn crop(pixmap: &Pixmap, half: i32) -> Sprite {
+    let (w, h) = (pixmap.width() as usize, pixmap.height() as usize);
+    let data = pixmap.data();
+    let visible = |x: usize, y: usize| data[(y * w + x) * 4 + 3] != 0;
+    let rows: Vec<usize> = (0..h).filter(|&y| (0..w).any(|x| visible(x, y))).collect();
+    let cols: Vec<usize> = (0..w).filter(|&x| (0..h).any(|y| visible(x, y))).collect();
+    let (Some(&y0), Some(&y1), Some(&x0), Some(&x1)) = (rows.first(), rows.last(), cols.first(), cols.last())
+    else {
+        return Sprite::default();
+    };
+    let (width, height) = (x1 - x0 + 1, y1 - y0 + 1);
+    let mut out = Vec::with_capacity(width * height * 4);
+    let mut spans = Vec::with_capacity(height);
+    for y in y0..=y1 {
+        out.extend_from_slice(&data[(y * w + x0) * 4..(y * w + x1 + 1) * 4]);
+        let start = (x0..=x1).find(|&x| visible(x, y)).map_or(0, |x| x - x0);
+        let end = (x0..=x1).rev().find(|&x| visible(x, y)).map_or(0, |x| x - x0 + 1);
+        spans.push((start as u16, end as u16));
+    }
+    Sprite { left: x0 as i32 - half, top: y0 as i32 - half, width, height, data: out, spans }
+}
+
+fn color(rgb: [u8; 3], alpha: u8) -> Color {
+    Color::from_rgba8(rgb[0], rgb[1], rgb[2], alpha)
+}
+
+fn paint(rgb: [u8; 3], alpha: u8) -> Paint<'static> {
+    let mut p = Paint::default();
+    p.set_color(color(rgb, alpha));
+    p.anti_alias = true;
+    p
+}
+
+/// The outline of an obstacle in scene px.
+fn obstacle_path(obstacle: &Obstacle) -> Option<Path> {
+    match obstacle {
+        Obstacle::Circle { center, radius } => PathBuilder::from_circle(center[0], center[1], *radius),
+        Obstacle::Rect { min, max } => {
+            Rect::from_ltrb(min[0], min[1], max[0], max[1]).map(PathBuilder::from_rect)
+        }
+        Obstacle::Polygon { points } => {
+            let mut pb = PathBuilder::new();
+            let (first, rest) = points.split_first()?;
+            pb.move_to(first[0], first[1]);
+            for p in rest {
+                pb.line_to(p[0], p[1]);
+            }
+            pb.close();
+            pb.finish()
+        }
+    }
+}
+
+/// Strokes a path given in scene px with a width and dash pattern in device px (width 0 is a
+/// one-pixel hairline).
+fn stroke_scene_path(
+    pixmap: &mut PixmapMut,
+    pb: PathBuilder,
+    view: ViewTransform,
+    rgb: [u8; 3],
+    alpha: u8,
+    width: f32,
+    dash: Option<[f32; 2]>,
+) {
+    let Some(path) = pb.finish().and_then(|p| p.transform(view.transform())) else { return };
+    let dash = dash.and_then(|[on, off]| StrokeDash::new(vec![on, off], 0.0));
+    let stroke = Stroke { width, dash, ..Stroke::default() };
+    pixmap.stroke_path(&path, &paint(rgb, alpha), &stroke, Transform::identity(), None);
+}
+
+fn push_rect(pb: &mut PathBuilder, min: [f32; 2], max: [f32; 2]) {
+    if let Some(r) = Rect::from_ltrb(min[0], min[1], max[0], max[1]) {
+        pb.push_rect(r);
+    }
+}
+
+/// Each group's spawn region as a faint dashed rectangle in its colour.
+fn draw_spawn_regions(pixmap: &mut PixmapMut, scene: &Scene, view: ViewTransform) {
+    for group in &scene.groups {
+        let mut pb = PathBuilder::new();
+        push_rect(&mut pb, group.spawn.min, group.spawn.max);
+        stroke_scene_path(pixmap, pb, view, parse_color(&group.color), 110, 1.0, Some([5.0, 4.0]));
+    }
+}
+
+/// Each goal as a ring (its arrival radius) and a centre dot; goals no group uses are dimmer.
+fn draw_goals(pixmap: &mut PixmapMut, scene: &Scene, view: ViewTransform) {
+    for (i, goal) in scene.goals.iter().enumerate() {
+        let user = scene.groups.iter().find(|g| g.goal == Some(i as u32));
+        let (rgb, alpha) = match user {
+            Some(g) => (parse_color(&g.color), 230),
+            None => (GOAL_COLOR, 90),
+        };
+        let [x, y] = goal.position;
+        let mut ring = PathBuilder::new();
+        ring.push_circle(x, y, goal.radius);
+        stroke_scene_path(pixmap, ring, view, rgb, alpha, 2.0, None);
+        let c = view.to_canvas(Vec2::new(x, y));
+        if let Some(dot) = PathBuilder::from_circle(c.x, c.y, 3.0) {
+            pixmap.fill_path(&dot, &paint(rgb, alpha), FillRule::Winding, Transform::identity(), None);
+        }
+    }
+}
+
+/// An orange outline around the selected item; a stale index draws nothing.
+fn draw_selection(pixmap: &mut PixmapMut, scene: &Scene, view: ViewTransform, item: ItemRef) {
+    let mut pb = PathBuilder::new();
+    match item {
+        ItemRef::Obstacle(i) => {
+            let Some(path) = scene.obstacles.get(i as usize).and_then(obstacle_path) else { return };
+            pb.push_path(&path);
+        }
+        ItemRef::Goal(i) => {
+            let Some(goal) = scene.goals.get(i as usize) else { return };
+            pb.push_circle(goal.position[0], goal.position[1], goal.radius.max(6.0) + 4.0 / view.scale);
+        }
+        ItemRef::Group(i) => {
+            let Some(group) = scene.groups.get(i as usize) else { return };
+            push_rect(&mut pb, group.spawn.min, group.spawn.max);
+        }
+    }
+    stroke_scene_path(pixmap, pb, view, SELECTION_COLOR, 255, 2.5, None);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::planners::PlannerConfig;
+    use crate::presets;
+    use crate::scene::{Goal, Group, Region};
+
+    fn pixel(r: &Renderer, x: u32, y: u32) -> [u8; 4] {
+        let at = (y as usize * r.width() as usize + x as usize) * 4;
+        let p = r.pixels();
+        [p[at], p[at + 1], p[at + 2], p[at + 3]]
+    }
+
+    fn canvas_of(r: &Renderer, scene_point: Vec2) -> (u32, u32) {
+        let c = r.view().to_canvas(scene_point);
+        (c.x as u32, c.y as u32)
+    }
+
+    /// One red agent heading right across an empty field.
+    fn lone_agent() -> Scene {
+        let mut s = Scene::empty(400.0, 200.0);
+        s.goals.push(Goal { position: [380.0, 100.0], radius: 10.0 });
+        s.groups.push(Group {
+            name: "solo".into(),
+            color: "#ff0000".into(),
+            count: 1,
+            spawn: Region { min: [40.0, 95.0], max: [45.0, 105.0] },
+            goal: Some(0),
+            agent_radius: 5.0,
+            planner: PlannerConfig::default(),
+        });
+        s
+    }
+
+    #[test]
+    fn obstacle_centres_have_the_obstacle_colour() {
+        let world = World::new(presets::pillars()).expect("valid");
+        let mut r = Renderer::new(900, 560);
+        r.render(&world);
+        for o in &world.scene().obstacles {
+            let Obstacle::Circle { center, .. } = o else { panic!("pillars are circles") };
+            let (x, y) = canvas_of(&r, Vec2::from(*center));
+            let [cr, cg, cb] = OBSTACLE_COLOR;
+            assert_eq!(pixel(&r, x, y), [cr, cg, cb, 255], "pillar at {center:?}");
+        }
+        let corridor = World::new(presets::corridor()).expect("valid");
+        r.render(&corridor);
+        let (x, y) = canvas_of(&r, Vec2::new(450.0, 100.0));
+        assert_eq!(pixel(&r, x, y)[..3], OBSTACLE_COLOR, "rectangle wall");
+    }
+
+    #[test]
+    fn every_pixel_is_opaque() {
+        let mut world = World::new(presets::two_groups_swap()).expect("valid");
+        let mut r = Renderer::new(333, 217);
+        for _ in 0..5 {
+            world.step_n(10);
+            r.render(&world);
+        }
+        assert_eq!(r.pixels().len(), 333 * 217 * 4);
+        assert!(r.pixels().chunks_exact(4).all(|p| p[3] == 255));
+    }
+
+    #[test]
+    fn an_agent_shows_its_group_colour_near_its_position() {
+        let mut world = World::new(lone_agent()).expect("valid");
+        world.step_n(20);
+        let mut r = Renderer::new(800, 400);
+        r.set_trails(false);
+        r.render(&world);
+        let (x, y) = canvas_of(&r, world.positions()[0]);
+        let red = (x.saturating_sub(3)..x + 4)
+            .flat_map(|px| (y.saturating_sub(3)..y + 4).map(move |py| (px, py)))
+            .filter(|&(px, py)| pixel(&r, px, py) == [255, 0, 0, 255])
+            .count();
+        assert!(red >= 4, "only {red} pure red pixels around the agent at ({x}, {y})");
+        // Far from the agent there is no red.
+        assert_ne!(pixel(&r, x + 100, y)[..3], [255, 0, 0]);
+    }
+
+    #[test]
+    fn tiny_agents_become_dots_in_their_colour() {
+        let mut world = World::new(lone_agent()).expect("valid");
+        world.step_n(5);
+        // 0.1 device px per scene px: the 5 px agent is half a pixel across.
+        let mut r = Renderer::new(40, 20);
+        r.render(&world);
+        let (x, y) = canvas_of(&r, world.positions()[0]);
+        assert_eq!(pixel(&r, x, y), [255, 0, 0, 255]);
+    }
+
+    #[test]
+    fn trails_mark_the_path_between_frames_and_fade_away() {
+        let mut world = World::new(lone_agent()).expect("valid");
+        let mut r = Renderer::new(800, 400);
+        r.set_trail_fade(0.0);
+        r.render(&world);
+        let start = r.view().to_canvas(world.positions()[0]);
+        world.step_n(60);
+        r.render(&world);
+        let end = r.view().to_canvas(world.positions()[0]);
+        assert!(start.distance(end) > 20.0, "the agent should have moved: {start} → {end}");
+        let mid = (start + end) * 0.5;
+        let at = (mid.y as usize * 800 + mid.x as usize) * 4;
+        let (trail, base) = (&r.trails[at..at + 3], &r.base[at..at + 3]);
+        assert_ne!(trail, base, "no trail at {mid}");
+        assert!(trail[0] > trail[1] && trail[0] > trail[2], "trail is not reddish: {trail:?}");
+        assert_eq!(r.pixels()[at..at + 3], *trail, "the frame shows the trail");
+
+        // With fading on, the trail returns exactly to the base.
+        r.set_trail_fade(0.5);
+        for _ in 0..40 {
+            r.render(&world);
+        }
+        assert_eq!(&r.trails[at..at + 3], &r.base[at..at + 3]);
+
+        // A reset (step count going back) restarts the trails rather than drawing a jump.
+        r.set_trail_fade(0.0);
+        let reset = World::new(lone_agent()).expect("valid");
+        r.render(&reset);
+        assert_eq!(r.trails, r.base);
+    }
+
+    #[test]
+    fn resize_keeps_rendering_the_same_scene() {
+        let world = World::new(presets::pillars()).expect("valid");
+        let mut r = Renderer::new(200, 100);
+        r.render(&world);
+        r.resize(300, 400);
+        r.render(&world);
+        assert_eq!((r.width(), r.height()), (300, 400));
+        assert_eq!(r.pixels().len(), 300 * 400 * 4);
+        let (x, y) = canvas_of(&r, Vec2::new(300.0, 110.0));
+        assert_eq!(pixel(&r, x, y)[..3], OBSTACLE_COLOR);
+        r.resize(0, 0);
+        r.render(&world);
+        assert_eq!(r.pixels().len(), 4, "a zero size is clamped to one pixel");
+    }
+
+    #[test]
+    fn the_view_fits_the_scene_centred() {
+        let scene = presets::pillars();
+        for (w, h) in [(900, 560), (1000, 300), (300, 1000), (1, 1)] {
+            let view = ViewTransform::fit(scene.width, scene.height, w, h);
+            let a = view.to_canvas(Vec2::ZERO);
+            let b = view.to_canvas(Vec2::new(scene.width, scene.height));
+            let eps = 1e-3;
+            assert!(a.x >= -eps && a.y >= -eps, "{w}×{h}: {a}");
+            assert!(b.x <= w as f32 + eps && b.y <= h as f32 + eps, "{w}×{h}: {b}");
+            // Letterboxed on one axis only, equally on both sides.
+            assert!((a.x - (w as f32 - b.x)).abs() < eps && (a.y - (h as f32 - b.y)).abs() < eps);
+            assert!(a.x.min(a.y).abs() < eps, "{w}×{h}: the scene touches two edges");
+            let back = view.to_scene(Vec2::new(123.0, 45.0));
+            assert!(view.to_canvas(back).distance(Vec2::new(123.0, 45.0)) < 1e-3);
+        }
+    }
+
+    #[test]
+    fn the_selection_is_outlined() {
+        let world = World::new(presets::pillars()).expect("valid");
+        let mut r = Renderer::new(900, 560);
+        r.render(&world);
+        let before = r.pixels().to_vec();
+        r.set_selection(Some(ItemRef::Obstacle(0)));
+        r.render(&world);
+        let orange = r.pixels().chunks_exact(4).filter(|p| p[..3] == SELECTION_COLOR).count();
+        assert!(orange > 50, "{orange} selection pixels");
+        r.set_selection(Some(ItemRef::Obstacle(999)));
+        r.render(&world);
+        assert_eq!(r.pixels(), &before[..], "a stale selection draws nothing");
+    }
+
+    #[test]
+    fn fading_rounds_towards_the_base_in_both_directions() {
+        let mut trail = vec![0u8, 255, 100, 101];
+        let base = vec![255u8, 0, 100, 100];
+        for _ in 0..300 {
+            fade_row(&mut trail, &base, 3);
+        }
+        assert_eq!(trail, base);
+    }
+}

@@ -1,0 +1,256 @@
+//! The page's wasm-bindgen API: converts JS values to core calls and core errors to JS `Error`s
+//! carrying the core's message. No simulation logic lives here.
+//!
+//! The frame crosses as a pointer and a length into wasm memory ([`Sim::frame_ptr`],
+//! [`Sim::frame_len`]); JS wraps it in a `Uint8ClampedArray` after every call, because the view
+//! dies when memory grows.
+
+use crate::codec;
+use crate::edit::{self, Edit, ItemRef};
+use crate::planners::PlannerKind;
+use crate::presets;
+use crate::render::Renderer;
+use crate::world::World;
+use glam::Vec2;
+use std::fmt::Display;
+use wasm_bindgen::prelude::*;
+
+/// Installs the panic hook so a Rust panic shows its message in the console (runs on load).
+#[wasm_bindgen(start)]
+pub fn init() {
+    console_error_panic_hook::set_once();
+}
+
+/// A JS `Error` with the core's message.
+fn js_error(e: impl Display) -> JsError {
+    JsError::new(&e.to_string())
+}
+
+fn to_json<T: serde::Serialize>(value: &T) -> Result<String, JsError> {
+    serde_json::to_string(value).map_err(js_error)
+}
+
+/// A running scene with its renderer: the handle the page keeps.
+#[wasm_bindgen]
+pub struct Sim {
+    world: World,
+    renderer: Renderer,
+}
+
+#[wasm_bindgen]
+impl Sim {
+    /// Starts a scene from JSON, a fragment value or a URL, rendered at `width × height` device px.
+    #[wasm_bindgen(constructor)]
+    pub fn new(scene_text: &str, width: u32, height: u32) -> Result<Sim, JsError> {
+        console_error_panic_hook::set_once();
+        let scene = codec::scene_from_any(scene_text).map_err(js_error)?;
+        let world = World::new(scene).map_err(js_error)?;
+        Ok(Sim { world, renderer: Renderer::new(width, height) })
+    }
+
+    /// Replaces the scene; on error the current scene keeps running unchanged.
+    pub fn load(&mut self, scene_text: &str) -> Result<(), JsError> {
+        let scene = codec::scene_from_any(scene_text).map_err(js_error)?;
+        self.world = World::new(scene).map_err(js_error)?;
+        self.renderer.set_selection(None);
+        self.renderer.clear_trails();
+        Ok(())
+    }
+
+    /// Restarts the current scene from step 0 with the same seed.
+    pub fn reset(&mut self) -> Result<(), JsError> {
+        self.world = World::new(self.world.scene().clone()).map_err(js_error)?;
+        self.renderer.clear_trails();
+        Ok(())
+    }
+
+    /// Advances `n` fixed steps.
+    pub fn step(&mut self, n: u32) {
+        self.world.step_n(n);
+    }
+
+    /// Steps simulated since the start.
+    pub fn steps(&self) -> u32 {
+        self.world.step_count()
+    }
+
+    /// Sets the canvas backing-store size in device px.
+    pub fn resize(&mut self, width: u32, height: u32) {
+        self.renderer.resize(width, height);
+    }
+
+    /// Draws the current state into the frame.
+    pub fn render(&mut self) {
+        self.renderer.render(&self.world);
+    }
+
+    /// Address of the RGBA frame in wasm memory.
+    pub fn frame_ptr(&self) -> u32 {
+        self.renderer.pixels().as_ptr() as u32
+    }
+
+    /// Length of the RGBA frame in bytes (`width * height * 4`).
+    pub fn frame_len(&self) -> u32 {
+        self.renderer.pixels().len() as u32
+    }
+
+    /// Frame width in device px.
+    pub fn width(&self) -> u32 {
+        self.renderer.width()
+    }
+
+    /// Frame height in device px.
+    pub fn height(&self) -> u32 {
+        self.renderer.height()
+    }
+
+    /// `[scale, offset_x, offset_y]`: canvas px = scene px · scale + offset.
+    pub fn view(&self) -> Vec<f32> {
+        let v = self.renderer.view();
+        vec![v.scale, v.offset_x, v.offset_y]
+    }
+
+    /// The metrics of the run so far as JSON (DESIGN §4 keys).
+    pub fn metrics_json(&self) -> Result<String, JsError> {
+        to_json(&self.world.metrics())
+    }
+
+    /// Agent positions as a flat JSON array `[x0, y0, x1, y1, …]` in scene px.
+    pub fn positions_json(&self) -> Result<String, JsError> {
+        let flat: Vec<f32> = self.world.positions().iter().flat_map(|p| [p.x, p.y]).collect();
+        to_json(&flat)
+    }
+
+    /// The current scene as pretty JSON.
+    pub fn scene_json(&self) -> String {
+        codec::scene_to_json(self.world.scene())
+    }
+
+    /// The current scene as a URL fragment value (`1.…`).
+    pub fn scene_string(&self) -> String {
+        codec::scene_to_fragment(self.world.scene())
+    }
+
+    /// The scene's seed.
+    pub fn seed(&self) -> u32 {
+        self.world.scene().seed
+    }
+
+    /// Changes the seed and restarts the run; on error the current run continues.
+    pub fn set_seed(&mut self, seed: u32) -> Result<(), JsError> {
+        let mut scene = self.world.scene().clone();
+        scene.seed = seed;
+        self.world = World::new(scene).map_err(js_error)?;
+        self.renderer.clear_trails();
+        Ok(())
+    }
+
+    /// Sets one planner parameter of a group (0-based) from a JSON value, live, without a reset.
+    pub fn set_group_param(&mut self, group: u32, key: &str, value_json: &str) -> Result<(), JsError> {
+        let value: serde_json::Value = serde_json::from_str(value_json)
+            .map_err(|e| js_error(format!("the value for {key:?} is not JSON: {e}")))?;
+        let mut config = self
+            .world
+            .scene()
+            .groups
+            .get(group as usize)
+            .ok_or_else(|| js_error(format!("there is no group {}", u64::from(group) + 1)))?
+            .planner
+            .clone();
+        config.set_param(key, value).map_err(js_error)?;
+        self.world.set_group_planner(group as usize, config).map_err(js_error)
+    }
+
+    /// Switches a group (0-based) to another planner with that planner's default parameters.
+    pub fn set_group_planner(&mut self, group: u32, planner_name: &str) -> Result<(), JsError> {
+        let kind = PlannerKind::from_name(planner_name).ok_or_else(|| {
+            let names: Vec<&str> = PlannerKind::ALL.iter().map(|k| k.name()).collect();
+            js_error(format!("unknown planner {planner_name:?}; known: {}", names.join(", ")))
+        })?;
+        self.world.set_group_planner(group as usize, kind.default_config()).map_err(js_error)
+    }
+
+    /// Applies an editor operation (JSON of `crate::edit::Edit`); on error nothing changes.
+    pub fn edit(&mut self, edit_json: &str) -> Result<(), JsError> {
+        let edit: Edit =
+            serde_json::from_str(edit_json).map_err(|e| js_error(format!("cannot read the edit: {e}")))?;
+        let scene = edit::apply(self.world.scene(), &edit).map_err(js_error)?;
+        self.world.edit_scene(scene).map_err(js_error)?;
+        if self.world.step_count() == 0 {
+            // The agents may have been respawned elsewhere: do not draw the jump as a trail.
+            self.renderer.clear_trails();
+        }
+        Ok(())
+    }
+
+    /// The topmost item at scene point `(x, y)` within `tolerance` px: JSON of an item
+    /// reference, or `"null"`.
+    pub fn pick(&self, x: f32, y: f32, tolerance: f32) -> Result<String, JsError> {
+        to_json(&edit::pick(self.world.scene(), Vec2::new(x, y), tolerance))
+    }
+
+    /// Outlines an item (JSON item reference) or nothing (`"null"`).
+    pub fn set_selection(&mut self, item_json: &str) -> Result<(), JsError> {
+        let item: Option<ItemRef> = serde_json::from_str(item_json)
+            .map_err(|e| js_error(format!("cannot read the selected item: {e}")))?;
+        self.renderer.set_selection(item);
+        Ok(())
+    }
+
+    /// Turns trails on or off.
+    pub fn set_trails(&mut self, on: bool) {
+        self.renderer.set_trails(on);
+    }
+
+    /// Share of a trail's visibility lost per frame (0 = permanent, 1 = one frame).
+    pub fn set_trail_fade(&mut self, fade: f32) {
+        self.renderer.set_trail_fade(fade);
+    }
+
+    /// Erases the trails.
+    pub fn clear_trails(&mut self) {
+        self.renderer.clear_trails();
+    }
+
+    /// The run's digest as 16 hex digits: equal digests mean bit-identical runs.
+    pub fn digest(&self) -> String {
+        format!("{:016x}", self.world.digest())
+    }
+}
+
+/// The presets as JSON `[{name, description}]`, in menu order.
+#[wasm_bindgen]
+pub fn presets_json() -> Result<String, JsError> {
+    let list: Vec<serde_json::Value> = presets::ALL
+        .iter()
+        .map(|p| serde_json::json!({ "name": p.name, "description": p.description }))
+        .collect();
+    to_json(&list)
+}
+
+/// The scene JSON of a preset; throws for an unknown name.
+#[wasm_bindgen]
+pub fn preset_scene_json(name: &str) -> Result<String, JsError> {
+    let preset = presets::find(name).ok_or_else(|| {
+        let names: Vec<&str> = presets::ALL.iter().map(|p| p.name).collect();
+        js_error(format!("unknown preset {name:?}; known: {}", names.join(", ")))
+    })?;
+    Ok(codec::scene_to_json(&(preset.build)()))
+}
+
+/// The planners as JSON `[{name, label, params: [ParamSpec…]}]`, in menu order.
+#[wasm_bindgen]
+pub fn planners_json() -> Result<String, JsError> {
+    let list: Vec<serde_json::Value> = PlannerKind::ALL
+        .iter()
+        .map(|k| serde_json::json!({ "name": k.name(), "label": k.label(), "params": k.param_specs() }))
+        .collect();
+    to_json(&list)
+}
+
+/// Validates a scene given as JSON, a fragment value or a URL and returns it as JSON; throws with
+/// the reason otherwise.
+#[wasm_bindgen]
+pub fn scene_from_text(text: &str) -> Result<String, JsError> {
+    codec::scene_from_any(text).map(|s| codec::scene_to_json(&s)).map_err(js_error)
+}

@@ -1,0 +1,222 @@
+//! The command line as scripts use it (DESIGN §5): runs the built `flockpath` binary.
+
+use std::io::Write as _;
+use std::path::PathBuf;
+use std::process::{Command, Output, Stdio};
+
+/// Every metrics key DESIGN §4 promises, at the top level and per group.
+const METRIC_KEYS: &[&str] = &[
+    "agents",
+    "arrived_share",
+    "mean_time_to_goal",
+    "collisions_agent_agent",
+    "penetrations_agent_obstacle",
+    "mean_speed",
+    "mean_path_length",
+    "mean_turn_deg",
+    "max_turn_deg",
+    "stuck_agents",
+];
+
+fn flockpath(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_flockpath")).args(args).output().expect("the binary runs")
+}
+
+fn flockpath_with_stdin(args: &[&str], stdin: &str) -> Output {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_flockpath"))
+        .args(args)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("the binary starts");
+    child.stdin.take().expect("stdin is piped").write_all(stdin.as_bytes()).expect("stdin accepts the scene");
+    child.wait_with_output().expect("the binary finishes")
+}
+
+fn stdout(o: &Output) -> String {
+    String::from_utf8(o.stdout.clone()).expect("stdout is UTF-8")
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8(o.stderr.clone()).expect("stderr is UTF-8")
+}
+
+fn ok(o: Output) -> String {
+    assert!(o.status.success(), "exit {:?}, stderr: {}", o.status, stderr(&o));
+    stdout(&o)
+}
+
+/// Asserts a failure with a non-zero exit, nothing on stdout, and `needle` in the message.
+fn fails_naming(o: Output, needle: &str) {
+    let err = stderr(&o);
+    assert!(!o.status.success(), "expected a failure naming {needle:?}, got success: {}", stdout(&o));
+    assert!(err.contains(needle), "stderr should name {needle:?}: {err}");
+    assert!(o.stdout.is_empty(), "stdout should be empty on failure: {}", stdout(&o));
+}
+
+/// A scratch file path unique to this test process and `name`.
+fn temp_path(name: &str) -> PathBuf {
+    std::env::temp_dir().join(format!("flockpath-cli-{}-{name}", std::process::id()))
+}
+
+fn preset_json(name: &str) -> String {
+    ok(flockpath(&["preset", name]))
+}
+
+#[test]
+fn presets_lists_the_four_presets_with_descriptions() {
+    let text = ok(flockpath(&["presets"]));
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines.len(), flockpath::presets::ALL.len());
+    for name in ["pillars", "open-field", "two-groups-swap", "corridor"] {
+        let line = lines.iter().find(|l| l.split_whitespace().next() == Some(name));
+        let line = line.unwrap_or_else(|| panic!("{name} missing from {text}"));
+        assert!(line.len() > name.len() + 10, "{name} has no description: {line:?}");
+    }
+}
+
+#[test]
+fn preset_prints_valid_json_that_run_accepts_from_stdin_and_from_a_file() {
+    for p in flockpath::presets::ALL {
+        let json = preset_json(p.name);
+        let scene = flockpath::scene_from_json(&json).expect("preset JSON parses");
+        assert_eq!(scene, (p.build)(), "{}", p.name);
+
+        let piped = ok(flockpath_with_stdin(&["run", "--scene", "-", "--steps", "20"], &json));
+        assert!(piped.contains("20 steps"), "{piped}");
+
+        let file = temp_path(&format!("{}.json", p.name));
+        std::fs::write(&file, &json).expect("temp file written");
+        let from_file =
+            ok(flockpath(&["run", "--scene", file.to_str().expect("utf-8 path"), "--steps", "20"]));
+        std::fs::remove_file(&file).ok();
+        assert_eq!(piped, from_file, "{}: stdin and file runs differ", p.name);
+    }
+}
+
+#[test]
+fn run_metrics_to_stdout_has_every_design_key() {
+    let json = preset_json("two-groups-swap");
+    let out = ok(flockpath_with_stdin(&["run", "--scene", "-", "--steps", "120", "--metrics", "-"], &json));
+    let m: serde_json::Value = serde_json::from_str(&out).expect("metrics are JSON");
+    assert_eq!(m["steps"], 120);
+    for key in METRIC_KEYS {
+        assert!(m.get(key).is_some(), "top-level key {key} missing: {out}");
+    }
+    assert_eq!(m["agents"], 100);
+    let groups = m["groups"].as_array().expect("groups is an array");
+    assert_eq!(groups.len(), 2);
+    for (g, name) in groups.iter().zip(["left", "right"]) {
+        assert_eq!(g["name"], name);
+        assert_eq!(g["planner"], "boids");
+        for key in METRIC_KEYS {
+            assert!(g.get(key).is_some(), "group key {key} missing: {g}");
+        }
+    }
+    let mean_speed = m["mean_speed"].as_f64().expect("mean_speed is a number");
+    assert!(mean_speed > 0.0 && mean_speed <= 2.0 + 1e-6, "mean speed {mean_speed}");
+}
+
+#[test]
+fn metrics_file_seed_and_planner_overrides() {
+    let json = preset_json("open-field");
+    let file = temp_path("metrics.json");
+    let path = file.to_str().expect("utf-8 path");
+    let seeded = |seed: &str| {
+        ok(flockpath_with_stdin(&["run", "--scene", "-", "--steps", "60", "--seed", seed], &json))
+    };
+    let (a, b, c) = (seeded("5"), seeded("5"), seeded("6"));
+    assert_eq!(a, b, "same seed, same run");
+    assert_ne!(a, c, "another seed, another run");
+
+    ok(flockpath_with_stdin(
+        &["run", "--scene", "-", "--steps", "60", "--planner", "boids", "--metrics", path],
+        &json,
+    ));
+    let written = std::fs::read_to_string(&file).expect("metrics file written");
+    std::fs::remove_file(&file).ok();
+    let m: serde_json::Value = serde_json::from_str(&written).expect("metrics file is JSON");
+    assert_eq!(m["steps"], 60);
+    assert_eq!(m["groups"][0]["planner"], "boids");
+}
+
+#[test]
+fn url_and_scene_round_trip() {
+    let json = preset_json("corridor");
+    let file = temp_path("corridor.json");
+    std::fs::write(&file, &json).expect("temp file written");
+    let fragment = ok(flockpath(&["url", file.to_str().expect("utf-8 path")]));
+    std::fs::remove_file(&file).ok();
+    let fragment = fragment.trim();
+    assert!(fragment.starts_with("1."), "{fragment}");
+    assert!(!fragment.contains(['/', '+', '=', '#', ' ']), "not URL-safe: {fragment}");
+
+    let back = ok(flockpath(&["scene", fragment]));
+    assert_eq!(
+        flockpath::scene_from_json(&back).expect("scene prints JSON"),
+        flockpath::scene_from_json(&json).expect("preset JSON")
+    );
+    // A whole page URL works too, and run takes the fragment directly.
+    let url = format!("https://example.org/flockpath/index.html#s={fragment}");
+    assert_eq!(ok(flockpath(&["scene", &url])), back);
+    let run = ok(flockpath(&["run", "--scene", fragment, "--steps", "5"]));
+    assert!(run.starts_with("corridor:"), "{run}");
+}
+
+#[test]
+fn bad_inputs_fail_with_a_message_naming_the_problem() {
+    let json = preset_json("pillars");
+    let file = temp_path("pillars-for-errors.json");
+    std::fs::write(&file, &json).expect("temp file written");
+    let path = file.to_str().expect("utf-8 path");
+
+    fails_naming(flockpath(&["run", "--scene", "no/such/scene.json", "--steps", "5"]), "no/such/scene.json");
+    fails_naming(flockpath(&["url", "missing-scene.json"]), "no such file");
+    fails_naming(flockpath(&["run", "--scene", "1.garbled!!", "--steps", "5"]), "base64");
+    fails_naming(flockpath(&["scene", "1.AAAAAAAA"]), "damaged");
+    fails_naming(flockpath(&["scene", "7.abc"]), "version");
+    fails_naming(flockpath(&["run", "--scene", path, "--steps", "ten"]), "--steps");
+    fails_naming(flockpath(&["run", "--scene", path, "--steps", "5", "--seed", "-3"]), "--seed");
+    fails_naming(flockpath(&["run", "--scene", path, "--steps", "5000000000"]), "--steps");
+    fails_naming(flockpath(&["run", "--scene", path, "--steps", "2000000"]), "limit");
+    fails_naming(flockpath(&["run", "--scene", path, "--steps", "5", "--planner", "ants"]), "ants");
+    fails_naming(flockpath(&["run", "--scene", path, "--steps", "5", "--fast"]), "--fast");
+    fails_naming(flockpath(&["run", "--scene", path]), "--steps");
+    fails_naming(flockpath(&["run", "--steps", "5"]), "--scene");
+    fails_naming(
+        flockpath(&["run", "--scene", path, "--steps", "5", "--maya", "out.mel"]),
+        "not available yet",
+    );
+    fails_naming(flockpath(&["optimize"]), "not available yet");
+    fails_naming(flockpath(&["fly"]), "fly");
+    fails_naming(flockpath(&["preset", "moon-base"]), "moon-base");
+    fails_naming(flockpath(&[]), "no command");
+
+    // NaN and out-of-range values inside the scene are refused by name.
+    let nan = json.replacen("\"width\": 900.0", "\"width\": NaN", 1);
+    assert_ne!(nan, json);
+    fails_naming(flockpath_with_stdin(&["run", "--scene", "-", "--steps", "5"], &nan), "stdin");
+    let mut scene: serde_json::Value = serde_json::from_str(&json).expect("preset JSON");
+    scene["goals"][0]["radius"] = serde_json::json!(-1.0);
+    fails_naming(
+        flockpath_with_stdin(&["run", "--scene", "-", "--steps", "5"], &scene.to_string()),
+        "goal 1 radius",
+    );
+    scene["goals"][0]["radius"] = serde_json::json!(1e39);
+    fails_naming(flockpath_with_stdin(&["run", "--scene", "-", "--steps", "5"], &scene.to_string()), "goal");
+    std::fs::remove_file(&file).ok();
+}
+
+#[test]
+fn help_is_available_for_the_tool_and_its_commands() {
+    let top = ok(flockpath(&["--help"]));
+    for command in ["presets", "preset", "run", "url", "scene", "bench"] {
+        assert!(top.contains(command), "{command} missing from --help");
+    }
+    let run = ok(flockpath(&["run", "--help"]));
+    for flag in ["--scene", "--planner", "--seed", "--steps", "--metrics"] {
+        assert!(run.contains(flag), "{flag} missing from run --help");
+    }
+    assert!(ok(flockpath(&["help", "bench"])).contains("--quick"));
+}

@@ -1,0 +1,231 @@
+// Shared setup for the end-to-end tests: a static server for www/ (under a sub-path, to prove the
+// page uses only relative URLs), Debian's Chromium driven by playwright-core, console-error
+// collection, and small helpers that talk to the page only through its public surface.
+
+import { createServer } from 'node:http';
+import { mkdtemp, mkdir, readFile, rm, stat } from 'node:fs/promises';
+import { tmpdir } from 'node:os';
+import path from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { chromium } from 'playwright-core';
+
+const here = path.dirname(fileURLToPath(import.meta.url));
+export const ROOT = path.resolve(here, '..', '..');
+/** The folder served; FLOCKPATH_WWW points the tests at another copy of the page (a deploy dir). */
+export const WWW = path.resolve(process.env.FLOCKPATH_WWW ?? path.join(ROOT, 'www'));
+export const ARTIFACTS = path.join(ROOT, 'test-artifacts');
+/** The page is served below this prefix, as a course site might host it. */
+export const SUB_PATH = '/course/demo/flockpath/';
+
+/** Chromium flags for a root user without network (see TOOLCHAIN.md). */
+export const CHROMIUM_ARGS = [
+  '--no-sandbox',
+  '--disable-dev-shm-usage',
+  '--disable-gpu',
+  '--disable-quic',
+  '--no-first-run',
+  '--disable-background-networking',
+  '--disable-component-update',
+  '--disable-sync',
+];
+
+const MIME = {
+  '.html': 'text/html; charset=utf-8',
+  '.js': 'text/javascript; charset=utf-8',
+  '.mjs': 'text/javascript; charset=utf-8',
+  '.css': 'text/css; charset=utf-8',
+  '.json': 'application/json',
+  '.wasm': 'application/wasm',
+  '.png': 'image/png',
+  '.svg': 'image/svg+xml',
+  '.ts': 'text/plain; charset=utf-8',
+};
+
+/** Serves www/ at SUB_PATH on 127.0.0.1 and a free port; resolves to { url, close }. */
+export async function startServer() {
+  const server = createServer(async (req, res) => {
+    const pathname = decodeURIComponent(new URL(req.url, 'http://x').pathname);
+    if (!pathname.startsWith(SUB_PATH)) {
+      res.writeHead(404).end('not found');
+      return;
+    }
+    let file = path.join(WWW, pathname.slice(SUB_PATH.length));
+    if (!file.startsWith(WWW)) {
+      res.writeHead(403).end('forbidden');
+      return;
+    }
+    try {
+      if ((await stat(file)).isDirectory()) file = path.join(file, 'index.html');
+      const body = await readFile(file);
+      res.writeHead(200, {
+        'content-type': MIME[path.extname(file)] ?? 'application/octet-stream',
+        'cache-control': 'no-store',
+      });
+      res.end(body);
+    } catch {
+      res.writeHead(404).end('not found');
+    }
+  });
+  await new Promise((resolve) => server.listen(0, '127.0.0.1', resolve));
+  const { port } = server.address();
+  return {
+    url: `http://127.0.0.1:${port}${SUB_PATH}`,
+    close: () => new Promise((resolve) => server.close(resolve)),
+  };
+}
+
+/**
+ * Launches Chromium with a fresh profile, opens the page and waits for `flockpath-ready`.
+ * Options: viewport, deviceScaleFactor, hasTouch, hash (appended to the URL), expectBootError.
+ * Returns { page, context, server, errors, close } where `errors` collects console errors and
+ * page errors; `close()` tears everything down.
+ */
+export async function openPage(options = {}) {
+  const server = await startServer();
+  const profile = await mkdtemp(path.join(tmpdir(), 'flockpath-e2e-'));
+  const context = await chromium.launchPersistentContext(profile, {
+    executablePath: '/usr/bin/chromium',
+    headless: true,
+    args: CHROMIUM_ARGS,
+    viewport: options.viewport ?? { width: 1280, height: 800 },
+    deviceScaleFactor: options.deviceScaleFactor ?? 1,
+    hasTouch: options.hasTouch ?? false,
+    isMobile: false,
+  });
+  const page = context.pages()[0] ?? (await context.newPage());
+  const errors = [];
+  page.on('console', (msg) => {
+    if (msg.type() === 'error') errors.push(`console: ${msg.text()}`);
+  });
+  page.on('pageerror', (error) => errors.push(`page error: ${error.message}`));
+  page.on('requestfailed', (request) => errors.push(`request failed: ${request.url()}`));
+  const close = async () => {
+    await context.close().catch(() => {});
+    await server.close();
+    await rm(profile, { recursive: true, force: true });
+  };
+  try {
+    await page.goto(server.url + (options.hash ?? ''));
+    await waitReady(page);
+  } catch (error) {
+    await close();
+    throw new Error(`the page did not boot: ${error.message}\n${errors.join('\n')}`);
+  }
+  return { page, context, server, errors, close };
+}
+
+/** Resolves when `window.flockpath` exists (the page sets it after boot). */
+export async function waitReady(page) {
+  await page.waitForFunction(() => window.flockpath !== undefined, null, { timeout: 30_000 });
+}
+
+/** Waits until the page has painted `n` more animation frames. */
+export async function frames(page, n = 2) {
+  await page.evaluate(
+    (count) =>
+      new Promise((resolve) => {
+        const tick = (left) => (left === 0 ? resolve() : requestAnimationFrame(() => tick(left - 1)));
+        tick(count);
+      }),
+    n,
+  );
+}
+
+/** Client (CSS) coordinates of a scene point, from the page's published view transform. */
+export async function sceneToClient(page, x, y) {
+  return page.evaluate(
+    ([sx, sy]) => {
+      const canvas = document.getElementById('scene-canvas');
+      const rect = canvas.getBoundingClientRect();
+      const { scale, offsetX, offsetY } = window.flockpath.view();
+      return {
+        x: rect.left + ((sx * scale + offsetX) * rect.width) / canvas.width,
+        y: rect.top + ((sy * scale + offsetY) * rect.height) / canvas.height,
+      };
+    },
+    [x, y],
+  );
+}
+
+/**
+ * Keeps a copy of the scene canvas's pixels in the page under `name` (shipping megabytes of
+ * pixels to the test process is slow; only the sampled pixels travel, see `pixelsAt`).
+ */
+export async function snapshotCanvas(page, name) {
+  await page.evaluate((key) => {
+    const canvas = document.getElementById('scene-canvas');
+    window.__e2eSnapshots ??= {};
+    window.__e2eSnapshots[key] = canvas.getContext('2d').getImageData(0, 0, canvas.width, canvas.height);
+  }, name);
+}
+
+/** `[r, g, b]` of snapshot `name` at each canvas pixel `{x, y}` (null outside the canvas). */
+export async function pixelsAt(page, name, points) {
+  return page.evaluate(([key, pts]) => {
+    const image = window.__e2eSnapshots[key];
+    return pts.map(({ x, y }) => {
+      if (x < 0 || y < 0 || x >= image.width || y >= image.height) return null;
+      const i = (y * image.width + x) * 4;
+      return [image.data[i], image.data[i + 1], image.data[i + 2]];
+    });
+  }, [name, points]);
+}
+
+/** Canvas pixel coordinates (backing store) of a scene point. */
+export async function sceneToCanvasPixel(page, x, y) {
+  return page.evaluate(
+    ([sx, sy]) => {
+      const { scale, offsetX, offsetY } = window.flockpath.view();
+      return { x: Math.round(sx * scale + offsetX), y: Math.round(sy * scale + offsetY) };
+    },
+    [x, y],
+  );
+}
+
+/** Saves a screenshot under test-artifacts/ (git-ignored) and returns its path. */
+export async function screenshot(page, name) {
+  await mkdir(ARTIFACTS, { recursive: true });
+  const file = path.join(ARTIFACTS, `${name}.png`);
+  await page.screenshot({ path: file });
+  return file;
+}
+
+/** The text of the message banner, or null when it is hidden. */
+export async function bannerText(page) {
+  return page.evaluate(() => {
+    const banner = document.getElementById('banner');
+    return banner && !banner.hidden ? document.getElementById('banner-text').textContent : null;
+  });
+}
+
+/** A small scene: one group heading for one goal, no obstacles. */
+export function simpleScene(overrides = {}) {
+  return {
+    name: 'e2e',
+    width: 800,
+    height: 500,
+    seed: 7,
+    obstacles: [],
+    goals: [{ position: [700, 250], radius: 30 }],
+    groups: [
+      {
+        name: 'flock',
+        color: '#2f6fdf',
+        count: 30,
+        spawn: { min: [40, 200], max: [140, 300] },
+        goal: 0,
+        agent_radius: 4,
+        planner: { kind: 'boids', params: {} },
+      },
+    ],
+    ...overrides,
+  };
+}
+
+/** Fails with every collected console/page error, except those matching `allowed` patterns. */
+export function assertNoUnexpectedErrors(errors, allowed = []) {
+  const unexpected = errors.filter((e) => !allowed.some((pattern) => pattern.test(e)));
+  if (unexpected.length) {
+    throw new Error(`unexpected errors in the page:\n${unexpected.join('\n')}`);
+  }
+}

@@ -1,0 +1,150 @@
+//! Browser tests of the wasm API in headless Chromium (`bash scripts/test-wasm.sh`): the wasm
+//! build reproduces the native golden digest bit for bit, draws obstacles in their colour, and
+//! turns bad input into JS errors that leave the running scene untouched.
+#![cfg(target_arch = "wasm32")]
+
+use flockpath::render::OBSTACLE_COLOR;
+use flockpath::web::{planners_json, preset_scene_json, presets_json, scene_from_text, Sim};
+use flockpath::{scene_from_json, scene_to_fragment, Obstacle};
+use wasm_bindgen::{JsCast, JsError, JsValue};
+use wasm_bindgen_test::{wasm_bindgen_test, wasm_bindgen_test_configure};
+
+wasm_bindgen_test_configure!(run_in_browser);
+
+/// Digest of preset `pillars`, seed 7, after 300 steps, from a native run.
+const GOLDEN_DIGEST: &str = include_str!("data/golden-digest.txt");
+
+fn pillars() -> String {
+    preset_scene_json("pillars").expect("preset exists")
+}
+
+/// The message of the JS `Error` a call threw.
+fn message(e: JsError) -> String {
+    let value = JsValue::from(e);
+    let error: &js_sys::Error = value.dyn_ref().expect("a JS Error");
+    String::from(error.message())
+}
+
+/// The frame as the page sees it: a view on wasm memory at `frame_ptr`, copied out.
+fn frame(sim: &Sim) -> Vec<u8> {
+    // Allocate first: growing wasm memory detaches every view made before.
+    let mut out = vec![0u8; sim.frame_len() as usize];
+    let memory: js_sys::WebAssembly::Memory = wasm_bindgen::memory().dyn_into().expect("memory");
+    let bytes = js_sys::Uint8Array::new(&memory.buffer());
+    let start = sim.frame_ptr();
+    bytes.subarray(start, start + sim.frame_len()).copy_to(&mut out);
+    out
+}
+
+#[wasm_bindgen_test]
+fn the_golden_digest_matches_the_native_run() {
+    let mut sim = Sim::new(&pillars(), 64, 64).expect("starts");
+    sim.set_seed(7).expect("reseeds");
+    sim.step(300);
+    assert_eq!(sim.steps(), 300);
+    assert_eq!(sim.digest(), GOLDEN_DIGEST.trim());
+}
+
+#[wasm_bindgen_test]
+fn obstacles_are_drawn_in_the_obstacle_colour() {
+    let mut sim = Sim::new(&pillars(), 450, 280).expect("starts");
+    sim.step(5);
+    sim.render();
+    let (w, h) = (sim.width(), sim.height());
+    let pixels = frame(&sim);
+    assert_eq!(pixels.len(), (w * h * 4) as usize);
+    let view = sim.view();
+    let scene = scene_from_json(&sim.scene_json()).expect("valid");
+    assert!(!scene.obstacles.is_empty());
+    for obstacle in &scene.obstacles {
+        let Obstacle::Circle { center, .. } = obstacle else { panic!("pillars are circles") };
+        let x = (center[0] * view[0] + view[1]) as usize;
+        let y = (center[1] * view[0] + view[2]) as usize;
+        let at = (y * w as usize + x) * 4;
+        let [r, g, b] = OBSTACLE_COLOR;
+        assert_eq!(pixels[at..at + 4], [r, g, b, 255], "obstacle at {center:?}");
+    }
+}
+
+#[wasm_bindgen_test]
+fn bad_scenes_are_js_errors_and_the_run_goes_on() {
+    let mut sim = Sim::new(&pillars(), 120, 80).expect("starts");
+    sim.step(25);
+    let scene_before = sim.scene_json();
+    let digest_before = sim.digest();
+
+    let good = scene_from_json(&pillars()).expect("valid");
+    let fragment = scene_to_fragment(&good);
+    let mut crowd = good.clone();
+    crowd.groups[0].count = 10_000_000;
+    let mut blocked = good.clone();
+    blocked.obstacles.push(Obstacle::Circle { center: good.goals[0].position, radius: 30.0 });
+    let nan_json = pillars().replacen("\"width\": 900.0", "\"width\": NaN", 1);
+    assert_ne!(nan_json, pillars(), "the NaN was put in");
+    let huge_json = pillars().replacen("\"width\": 900.0", "\"width\": 1e39", 1);
+    let cases: Vec<(&str, String, &str)> = vec![
+        ("garbled fragment", format!("{}!!x", &fragment[..fragment.len() / 2]), "scene"),
+        ("unknown version", "9.abcdef".to_string(), "version"),
+        ("NaN in JSON", nan_json, "scene"),
+        ("overflowing number", huge_json, "finite"),
+        ("10 million agents", serde_json::to_string(&crowd).expect("json"), "10000000 agents"),
+        ("obstacle over the goal", serde_json::to_string(&blocked).expect("json"), "inside obstacle"),
+        ("empty text", String::new(), "empty"),
+    ];
+    for (what, text, expected) in &cases {
+        let error = sim.load(text).err().unwrap_or_else(|| panic!("{what} was accepted"));
+        let said = message(error);
+        assert!(said.contains(expected), "{what}: {said:?} does not mention {expected:?}");
+        assert!(Sim::new(text, 10, 10).is_err(), "{what}: the constructor throws too");
+        assert!(scene_from_text(text).is_err(), "{what}: scene_from_text throws too");
+    }
+    assert_eq!(sim.steps(), 25, "the step count survives refused loads");
+    assert_eq!(sim.scene_json(), scene_before, "the scene survives refused loads");
+    assert_eq!(sim.digest(), digest_before, "the agents survive refused loads");
+    sim.step(1);
+    assert_eq!(sim.steps(), 26, "the run goes on");
+}
+
+#[wasm_bindgen_test]
+fn bad_edits_and_parameters_are_js_errors_and_change_nothing() {
+    let mut sim = Sim::new(&pillars(), 120, 80).expect("starts");
+    sim.step(10);
+    let scene_before = sim.scene_json();
+    let digest_before = sim.digest();
+    let over_goal =
+        r#"{"op": "add_obstacle", "obstacle": {"shape": "circle", "center": [830, 280], "radius": 25}}"#;
+    assert!(message(sim.edit(over_goal).expect_err("blocked")).contains("inside obstacle"));
+    assert!(sim.edit("{not json").is_err());
+    assert!(sim.edit(r#"{"op": "delete", "item": {"kind": "goal", "index": 99}}"#).is_err());
+    assert!(sim
+        .edit(r#"{"op": "move", "item": {"kind": "obstacle", "index": 0}, "dx": 1e39, "dy": 0}"#)
+        .is_err());
+    assert!(sim.set_group_param(0, "max_speed", "1e9").is_err());
+    assert!(sim.set_group_param(0, "no_such_key", "1").is_err());
+    assert!(sim.set_group_param(7, "max_speed", "1").is_err());
+    assert!(sim.set_group_param(0, "max_speed", "not json").is_err());
+    assert!(sim.set_group_planner(0, "no_such_planner").is_err());
+    assert!(sim.set_selection("{\"kind\": \"nothing\"}").is_err());
+    assert_eq!(sim.steps(), 10);
+    assert_eq!(sim.scene_json(), scene_before);
+    assert_eq!(sim.digest(), digest_before);
+
+    // A good edit applies and an obstacle edit keeps the run going.
+    let aside =
+        r#"{"op": "add_obstacle", "obstacle": {"shape": "rect", "min": [600, 20], "max": [640, 60]}}"#;
+    sim.edit(aside).expect("a free spot");
+    assert_eq!(sim.steps(), 10);
+    assert_eq!(sim.pick(620.0, 40.0, 0.0).expect("json"), r#"{"kind":"obstacle","index":16}"#);
+    assert_eq!(sim.pick(5.0, 5.0, 0.0).expect("json"), "null");
+}
+
+#[wasm_bindgen_test]
+fn catalogues_list_presets_and_planners() {
+    let presets: serde_json::Value = serde_json::from_str(&presets_json().expect("json")).expect("parses");
+    let first = presets[0]["name"].as_str().expect("a name");
+    assert_eq!(first, "pillars");
+    assert!(message(preset_scene_json("no-such-preset").expect_err("unknown")).contains("pillars"));
+    let planners: serde_json::Value = serde_json::from_str(&planners_json().expect("json")).expect("parses");
+    assert_eq!(planners[0]["name"], "boids");
+    assert!(planners[0]["params"].as_array().is_some_and(|p| !p.is_empty()));
+}

@@ -1,0 +1,135 @@
+// The page API for course notes, scripts and tests: `window.flockpath` and this module's exports.
+//
+//   import flockpath from './js/api.js';
+//   await flockpath.ready;
+//   flockpath.load(sceneJson); flockpath.step(600); flockpath.metrics().arrived_share;
+//
+// Every call goes through the same guarded path as the UI: a refused input throws an `Error` with
+// a readable message (also shown in the page's banner) and the current scene keeps running.
+
+let app = null;
+let resolveReady;
+
+/** Resolves with the API once the wasm module has booted and the first scene runs. */
+export const ready = new Promise((resolve) => {
+  resolveReady = resolve;
+});
+
+function booted() {
+  if (!app) throw new Error('flockpath is still loading: await flockpath.ready first');
+  return app;
+}
+
+/**
+ * Loads a scene: JSON text, a scene object, a URL fragment value (`1.…`), a `#s=…` fragment or
+ * a whole URL. Returns the loaded scene object; throws a readable Error and keeps the current
+ * scene when the input is refused.
+ */
+export function load(sceneJsonOrUrlString) {
+  const a = booted();
+  let text = sceneJsonOrUrlString;
+  if (text !== null && typeof text === 'object') text = JSON.stringify(text);
+  if (typeof text !== 'string') {
+    throw new TypeError(`load() takes scene JSON text, a scene object or a URL string, not ${typeof text}`);
+  }
+  a.load(text, { rethrow: true });
+  return scene();
+}
+
+/** Starts the frame loop stepping. */
+export function play() {
+  booted().setPlaying(true);
+}
+
+/** Stops the frame loop stepping (the canvas keeps showing the current state). */
+export function pause() {
+  booted().setPlaying(false);
+}
+
+/** Whether the frame loop is stepping. */
+export function isPlaying() {
+  return booted().playing;
+}
+
+/** Advances `n` fixed steps now, synchronously; returns the step count afterwards. */
+export function step(n = 1) {
+  const count = Number(n);
+  if (!Number.isInteger(count) || count < 0 || count > 0xffffffff) {
+    throw new RangeError(`step(n) takes a whole number of steps ≥ 0, not ${n}`);
+  }
+  return booted().stepNow(count, { rethrow: true }).value;
+}
+
+/** Restarts the current scene from step 0 with its seed. */
+export function reset() {
+  booted().reset({ rethrow: true });
+}
+
+/** The metrics object (DESIGN §4 keys: steps, agents, arrived_share, …, groups). */
+export function metrics() {
+  return booted().guard((sim) => JSON.parse(sim.metrics_json()), { rethrow: true }).value;
+}
+
+/** The current scene as a JSON object (a copy: changing it changes nothing). */
+export function scene() {
+  return booted().guard((sim) => JSON.parse(sim.scene_json()), { rethrow: true }).value;
+}
+
+/** The URL fragment value of the current scene: `index.html#s=<value>` reopens it. */
+export function sceneString() {
+  return booted().guard((sim) => sim.scene_string(), { rethrow: true }).value;
+}
+
+/** A hash of every agent's state, for checking that two runs are identical. */
+export function digest() {
+  return booted().guard((sim) => String(sim.digest()), { rethrow: true }).value;
+}
+
+/**
+ * Agent positions as `[[x, y], …]` in scene px, in agent order (groups in scene order), for
+ * tests and course notes that want to measure something the metrics do not cover.
+ */
+export function positions() {
+  return booted().guard((sim) => {
+    const flat = JSON.parse(sim.positions_json());
+    const pairs = [];
+    for (let i = 0; i + 1 < flat.length; i += 2) pairs.push([flat[i], flat[i + 1]]);
+    return pairs;
+  }, { rethrow: true }).value;
+}
+
+/**
+ * The scene→canvas transform: canvas backing-store px = scene px × scale + offset. With the
+ * canvas's CSS box it maps scene points to pointer positions (`canvasWidth` is in device px).
+ */
+export function view() {
+  return booted().guard((sim) => {
+    const [scale, offsetX, offsetY] = sim.view();
+    return { scale, offsetX, offsetY, canvasWidth: sim.width(), canvasHeight: sim.height() };
+  }, { rethrow: true }).value;
+}
+
+/** The API object: `window.flockpath` and this module's default export. */
+export const flockpath = Object.freeze({
+  ready,
+  load,
+  play,
+  pause,
+  isPlaying,
+  step,
+  reset,
+  metrics,
+  scene,
+  sceneString,
+  digest,
+  positions,
+  view,
+});
+
+export default flockpath;
+
+/** Called once by main.js when the first scene runs. */
+export function attach(booted_app) {
+  app = booted_app;
+  resolveReady(flockpath);
+}

@@ -1,0 +1,200 @@
+// The shell's shared state: the wasm `Sim` handle, what the UI shows, and the one door every
+// wasm call goes through (so every thrown error reaches the banner and a panic reaches the panel).
+
+import { History } from './history.js';
+import { isPanic, messageOf, showMessage, showPanic } from './errors.js';
+
+/** Colours handed to new groups, in order. */
+export const PALETTE = ['#2f6fdf', '#df4f2f', '#2f9f5f', '#9f4fdf', '#df9f1f', '#1f9fbf', '#df3f8f', '#6f7f8f'];
+
+export class App extends EventTarget {
+  /**
+   * @param {object} wasm   the instance exports returned by `init()` (for `memory`)
+   * @param {object} module the JS bindings (`presets_json`, `preset_scene_json`, …)
+   * @param {object} sim    the `Sim` handle
+   */
+  constructor(wasm, module, sim) {
+    super();
+    this.wasm = wasm;
+    this.module = module;
+    this.sim = sim;
+    this.presets = JSON.parse(module.presets_json());
+    this.planners = JSON.parse(module.planners_json());
+    this.history = new History(200);
+    this.playing = true;
+    this.stepsPerFrame = 2;
+    this.activeGroup = 0;
+    this.selection = null;
+    this.trails = true;
+    this.trailFade = 0.01;
+    /** Set when the canvas must be re-rendered even though the simulation is paused. */
+    this.dirty = true;
+    this.crashed = false;
+    this.scene = JSON.parse(sim.scene_json());
+  }
+
+  /**
+   * Runs `fn(sim)`; a thrown error shows in the banner (or the crash panel for a panic) and the
+   * current scene keeps running. Returns `{ ok, value, error }`; with `rethrow` the error is
+   * thrown again as a plain `Error` carrying the readable message (for the page API).
+   */
+  guard(fn, { rethrow = false } = {}) {
+    if (this.crashed) {
+      const error = new Error('the simulation crashed; reload the page');
+      if (rethrow) throw error;
+      return { ok: false, error };
+    }
+    try {
+      return { ok: true, value: fn(this.sim) };
+    } catch (thrown) {
+      const message = messageOf(thrown);
+      if (isPanic(thrown)) {
+        this.crash(message);
+      } else {
+        showMessage(message);
+      }
+      if (rethrow) throw thrown instanceof Error ? thrown : new Error(message);
+      return { ok: false, error: thrown };
+    }
+  }
+
+  /**
+   * Runs a scene-changing call (`edit`, `load`, `set_group_param`, …) through `guard`, records the
+   * scene before it for undo, and tells the UI. `record: false` skips the undo entry (undo itself,
+   * a slider drag whose entry is recorded once at the end).
+   */
+  change(fn, { rethrow = false, record = true, clearSelection = true } = {}) {
+    const before = this.crashed ? null : this.sim.scene_json();
+    const result = this.guard(fn, { rethrow });
+    if (!result.ok) return result;
+    if (record && before !== null) {
+      this.history.record(before);
+      this.dispatchEvent(new Event('history'));
+    }
+    if (clearSelection) this.select(null);
+    this.sceneChanged();
+    return result;
+  }
+
+  /** Loads scene text (JSON or fragment) as one undoable change. */
+  load(text, options = {}) {
+    const result = this.change((sim) => sim.load(text), options);
+    if (result.ok) this.afterLoad();
+    return result;
+  }
+
+  /** Re-applies display settings a fresh world may not carry over, and clears stale state. */
+  afterLoad() {
+    this.guard((sim) => {
+      sim.set_trails(this.trails);
+      sim.set_trail_fade(this.trailFade);
+      // A different run with as many agents would otherwise draw jumps from the old positions.
+      sim.clear_trails();
+    });
+    this.sceneChanged();
+  }
+
+  /** Refreshes the cached scene and tells the panels. */
+  sceneChanged() {
+    if (this.crashed) return;
+    const result = this.guard((sim) => JSON.parse(sim.scene_json()));
+    if (result.ok) this.scene = result.value;
+    const groups = this.scene.groups?.length ?? 0;
+    if (this.activeGroup >= groups) this.activeGroup = Math.max(0, groups - 1);
+    this.dirty = true;
+    this.dispatchEvent(new Event('scene'));
+  }
+
+  /** Marks a group as the one the panel edits and new goals attach to. */
+  setActiveGroup(index) {
+    this.activeGroup = index;
+    this.dispatchEvent(new Event('scene'));
+  }
+
+  /** Sets (or clears, with null) the highlighted item. */
+  select(item) {
+    this.selection = item;
+    this.guard((sim) => sim.set_selection(item ? JSON.stringify(item) : 'null'));
+    this.dirty = true;
+    this.dispatchEvent(new Event('selection'));
+  }
+
+  /** Play or pause the frame loop's stepping. */
+  setPlaying(playing) {
+    this.playing = playing;
+    this.dispatchEvent(new Event('playing'));
+  }
+
+  /** Advances `n` steps now (paused stepping, the page API). */
+  stepNow(n, options = {}) {
+    const result = this.guard((sim) => {
+      sim.step(n);
+      return sim.steps();
+    }, options);
+    this.dirty = true;
+    this.dispatchEvent(new Event('stepped'));
+    return result;
+  }
+
+  /** Restarts the current scene from its seed. */
+  reset(options = {}) {
+    const result = this.guard((sim) => sim.reset(), options);
+    this.dirty = true;
+    this.dispatchEvent(new Event('stepped'));
+    return result;
+  }
+
+  /** Steps back to the scene before the last change. */
+  undo() {
+    this.travel(this.history.undoStack, this.history.redoStack);
+  }
+
+  /** Re-applies the last undone change. */
+  redo() {
+    this.travel(this.history.redoStack, this.history.undoStack);
+  }
+
+  travel(from, to) {
+    if (from.length === 0 || this.crashed) return;
+    const target = from.pop();
+    const current = this.sim.scene_json();
+    const result = this.change((sim) => sim.load(target), { record: false });
+    if (result.ok) {
+      to.push(current);
+      this.afterLoad();
+    } else {
+      from.push(target);
+    }
+    this.dispatchEvent(new Event('history'));
+  }
+
+  /** Stops everything and shows the crash panel. */
+  crash(message) {
+    if (this.crashed) return;
+    this.crashed = true;
+    this.setPlaying(false);
+    showPanic(message);
+    this.dispatchEvent(new Event('crash'));
+  }
+
+  /** The next palette colour no group uses yet. */
+  nextColor() {
+    const used = new Set((this.scene.groups ?? []).map((g) => g.color.toLowerCase()));
+    return PALETTE.find((c) => !used.has(c)) ?? PALETTE[(this.scene.groups?.length ?? 0) % PALETTE.length];
+  }
+
+  /** The spec list of a planner by name. */
+  plannerSpec(name) {
+    return this.planners.find((p) => p.name === name);
+  }
+
+  /** A planner config with every parameter at its default (from the params table). */
+  defaultPlanner(name = this.planners[0]?.name) {
+    const spec = this.plannerSpec(name);
+    const params = {};
+    for (const p of spec?.params ?? []) {
+      params[p.key] = p.choices && p.choices.length ? p.choices[p.default] : p.default;
+    }
+    return { kind: name, params };
+  }
+}

@@ -1,0 +1,101 @@
+// The browser half of the benchmark (scripts/bench.sh): ns per agent-step of Sim.step in wasm on
+// the same constant-density scenes as `flockpath bench`, and the 10k-agent frame time
+// (step + render + putImageData). Wall-clock time is fine here: this page measures, it does not
+// simulate. Results go to the page and to `window.benchResults` (read by the driver script).
+
+import init, { Sim } from '../pkg/flockpath.js';
+
+const SIZES = [1_000, 10_000, 100_000];
+const FRAME_AGENTS = 10_000;
+const CANVAS = { width: 1280, height: 800 };
+
+const out = document.getElementById('out');
+const log = (line) => {
+  out.textContent += `${line}\n`;
+};
+
+function median(samples) {
+  const s = [...samples].sort((a, b) => a - b);
+  const mid = s.length >> 1;
+  return s.length % 2 ? s[mid] : 0.5 * (s[mid - 1] + s[mid]);
+}
+
+async function sceneText(n) {
+  const response = await fetch(`bench/density-${n}.json`, { cache: 'no-store' });
+  if (!response.ok) throw new Error(`bench/density-${n}.json: HTTP ${response.status} (run scripts/bench.sh)`);
+  return response.text();
+}
+
+/**
+ * Like the native bench: every repetition steps freshly spawned worlds (same simulated moment
+ * for every N: boids clump over time), several worlds for small N so each timing is long enough.
+ */
+function timeSteps(text, n, plan) {
+  const worlds = Math.max(1, Math.ceil(plan.agentsPerRep / n));
+  const samples = [];
+  for (let rep = 0; rep < plan.reps; rep++) {
+    const sims = [];
+    for (let w = 0; w < worlds; w++) {
+      // A 1×1 frame: these Sims never render, so they must not each hold a 4 MB pixmap.
+      const sim = new Sim(text, 1, 1);
+      sim.step(plan.warmupSteps);
+      sims.push(sim);
+    }
+    const start = performance.now();
+    for (const sim of sims) sim.step(plan.steps);
+    const ms = performance.now() - start;
+    samples.push((ms * 1e6) / (plan.steps * n * worlds));
+    for (const sim of sims) sim.free();
+  }
+  return { median: median(samples), min: Math.min(...samples), max: Math.max(...samples) };
+}
+
+function timeFrames(wasm, text, frames, reps) {
+  const canvas = document.getElementById('frame');
+  const ctx = canvas.getContext('2d');
+  const sim = new Sim(text, CANVAS.width, CANVAS.height);
+  const frame = () => {
+    sim.step(1);
+    sim.render();
+    // Rebuild the view every frame: it dies when wasm memory grows.
+    const pixels = new Uint8ClampedArray(wasm.memory.buffer, sim.frame_ptr(), sim.frame_len());
+    ctx.putImageData(new ImageData(pixels, sim.width(), sim.height()), 0, 0);
+  };
+  for (let i = 0; i < 20; i++) frame();
+  const samples = [];
+  for (let rep = 0; rep < reps; rep++) {
+    const start = performance.now();
+    for (let i = 0; i < frames; i++) frame();
+    samples.push((performance.now() - start) / frames);
+  }
+  sim.free();
+  return { median: median(samples), min: Math.min(...samples), max: Math.max(...samples) };
+}
+
+async function main() {
+  const quick = location.hash.includes('quick');
+  const wasm = await init();
+  const plan = quick
+    ? { warmupSteps: 2, steps: 5, agentsPerRep: 20_000, reps: 3 }
+    : { warmupSteps: 3, steps: 10, agentsPerRep: 100_000, reps: 7 };
+  out.textContent = '';
+  log(`Sim.step in wasm, ns per agent-step (median of ${plan.reps}; min…max)`);
+  const results = { quick, step_ns_per_agent_step: {}, frame_ms: null };
+  for (const n of SIZES) {
+    const t = timeSteps(await sceneText(n), n, plan);
+    results.step_ns_per_agent_step[n] = t.median;
+    log(`${String(n).padStart(9)}  ${t.median.toFixed(1).padStart(8)}  ${t.min.toFixed(1)}…${t.max.toFixed(1)}`);
+    // Let the page breathe between sizes (keeps the tab responsive, lets GC run).
+    await new Promise((resolve) => setTimeout(resolve, 0));
+  }
+  const f = timeFrames(wasm, await sceneText(FRAME_AGENTS), quick ? 10 : 60, quick ? 3 : 5);
+  results.frame_ms = f.median;
+  log(`Frame at ${FRAME_AGENTS} agents, ${CANVAS.width}×${CANVAS.height} (step + render + putImageData): ` +
+    `${f.median.toFixed(2)} ms (${f.min.toFixed(2)}…${f.max.toFixed(2)})`);
+  window.benchResults = results;
+}
+
+main().catch((error) => {
+  log(`benchmark failed: ${error.message}`);
+  window.benchResults = { error: error.message };
+});

@@ -1,0 +1,155 @@
+// Playback, run settings, presets, sharing and keyboard shortcuts.
+
+import { TOOLS } from './editor.js';
+import { writeSceneToLocation } from './url.js';
+
+const $ = (id) => document.getElementById(id);
+
+/** Whether a key event is typing into a field (shortcuts must not steal those keys). */
+function typingInto(target) {
+  if (!(target instanceof HTMLElement)) return false;
+  if (target.isContentEditable || target.tagName === 'TEXTAREA' || target.tagName === 'SELECT') return true;
+  return target.tagName === 'INPUT' && !['checkbox', 'radio', 'range', 'button', 'color'].includes(target.type);
+}
+
+/** A fresh seed from the browser's CSPRNG: user input, not simulation randomness. */
+export function randomSeed() {
+  return crypto.getRandomValues(new Uint32Array(1))[0];
+}
+
+export function setupControls(app, editor) {
+  const play = $('play');
+  const refreshPlay = () => {
+    play.textContent = app.playing ? 'Pause' : 'Play';
+    play.setAttribute('aria-pressed', String(app.playing));
+  };
+  app.addEventListener('playing', refreshPlay);
+  refreshPlay();
+  const toggle = () => app.setPlaying(!app.playing);
+  const stepOnce = () => {
+    app.setPlaying(false);
+    app.stepNow(1);
+  };
+  play.addEventListener('click', toggle);
+  $('step').addEventListener('click', stepOnce);
+  $('reset').addEventListener('click', () => app.reset());
+
+  const spf = $('spf');
+  const spfValue = $('spf-value');
+  const applySpeed = () => {
+    app.stepsPerFrame = Math.min(20, Math.max(1, Math.round(Number(spf.value)) || 1));
+    spfValue.textContent = `${app.stepsPerFrame}×`;
+  };
+  spf.value = String(app.stepsPerFrame);
+  spf.addEventListener('input', applySpeed);
+  applySpeed();
+
+  // Seed: changing it restarts the run (set_seed resets), and is an undoable scene change.
+  const seed = $('seed');
+  const showSeed = () => {
+    if (document.activeElement !== seed) seed.value = String(app.scene.seed ?? 0);
+  };
+  const setSeed = (value) => {
+    if (!Number.isInteger(value) || value < 0 || value > 0xffffffff) {
+      app.guard(() => {
+        throw new Error(`the seed must be a whole number from 0 to 4294967295, not ${seed.value || 'empty'}`);
+      });
+      seed.value = String(app.scene.seed ?? 0);
+      return;
+    }
+    app.change((sim) => sim.set_seed(value), { clearSelection: false });
+  };
+  seed.addEventListener('change', () => setSeed(Number(seed.value)));
+  $('new-seed').addEventListener('click', () => setSeed(randomSeed()));
+  app.addEventListener('scene', showSeed);
+  showSeed();
+
+  // Trails are a display setting, not part of the scene.
+  const trails = $('trails');
+  trails.checked = app.trails;
+  trails.addEventListener('change', () => {
+    app.trails = trails.checked;
+    app.guard((sim) => sim.set_trails(app.trails));
+    app.dirty = true;
+  });
+  const fade = $('fade');
+  const fadeValue = $('fade-value');
+  fade.value = String(app.trailFade);
+  const applyFade = () => {
+    app.trailFade = Number(fade.value);
+    fadeValue.textContent = app.trailFade.toFixed(3);
+    app.guard((sim) => sim.set_trail_fade(app.trailFade));
+    app.dirty = true;
+  };
+  fade.addEventListener('input', applyFade);
+  fadeValue.textContent = app.trailFade.toFixed(3);
+  $('clear-trails').addEventListener('click', () => {
+    app.guard((sim) => sim.clear_trails());
+    app.dirty = true;
+  });
+
+  // Presets: the picker lists names; the line beside it shows the one-line description.
+  const preset = $('preset');
+  const description = $('preset-description');
+  for (const p of app.presets) {
+    preset.append(Object.assign(document.createElement('option'), { value: p.name, textContent: p.name, title: p.description }));
+  }
+  const custom = Object.assign(document.createElement('option'), { value: '', textContent: '(edited scene)', disabled: true });
+  preset.append(custom);
+  const showPreset = () => {
+    const match = app.presets.find((p) => p.name === app.scene.name);
+    preset.value = match ? match.name : '';
+    description.textContent = match ? match.description : app.scene.name ? `Scene “${app.scene.name}”` : '';
+  };
+  preset.addEventListener('change', () => {
+    const name = preset.value;
+    const text = app.guard(() => app.module.preset_scene_json(name));
+    if (text.ok) app.load(text.value);
+    showPreset();
+  });
+  app.addEventListener('scene', showPreset);
+  showPreset();
+
+  $('share').addEventListener('click', async () => {
+    const result = app.guard((sim) => sim.scene_string());
+    if (!result.ok) return;
+    const url = writeSceneToLocation(result.value);
+    try {
+      await navigator.clipboard.writeText(url);
+      $('share').textContent = 'Link copied';
+    } catch {
+      $('share').textContent = 'Link in address bar';
+    }
+    setTimeout(() => ($('share').textContent = 'Copy link'), 2000);
+  });
+
+  document.addEventListener('keydown', (e) => {
+    if (app.crashed || typingInto(e.target)) return;
+    const key = e.key;
+    const ctrl = e.ctrlKey || e.metaKey;
+    if (ctrl && !e.altKey) {
+      const lower = key.toLowerCase();
+      if (lower === 'z' && !e.shiftKey) app.undo();
+      else if ((lower === 'z' && e.shiftKey) || lower === 'y') app.redo();
+      else return;
+      e.preventDefault();
+      return;
+    }
+    if (e.altKey) return;
+    if (key === ' ') toggle();
+    else if (key === 's' || key === 'S') stepOnce();
+    else if (key === 'r' || key === 'R') app.reset();
+    else if (key >= '1' && key <= String(TOOLS.length)) editor.setTool(TOOLS[Number(key) - 1]);
+    else if (key === 'Delete' || key === 'Backspace') editor.deleteSelection();
+    else if (key === 'Escape') {
+      editor.cancel();
+      app.select(null);
+    } else if (key === 'Enter' && editor.tool === 'polygon' && editor.polygon.length) editor.closePolygon();
+    else return;
+    e.preventDefault();
+  });
+  // A Space keyup on a focused button would also click it: the keydown already toggled.
+  document.addEventListener('keyup', (e) => {
+    if (e.key === ' ' && !typingInto(e.target)) e.preventDefault();
+  });
+}

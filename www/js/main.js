@@ -1,0 +1,86 @@
+// Boot: load the wasm module, start the first scene (the link's, else the first preset), wire the
+// UI modules, then publish the page API. Every path is relative, so the folder works from any
+// static server, under any sub-path, offline.
+
+import { App } from './app.js';
+import { attach, flockpath } from './api.js';
+import { setupControls } from './controls.js';
+import { Editor } from './editor.js';
+import { capturePanicReports, isPanic, messageOf, setupBanner, showMessage, showPanic } from './errors.js';
+import { setupHistoryButtons } from './history.js';
+import { startLoop } from './loop.js';
+import { setupMetrics } from './metrics.js';
+import { Panel } from './panel.js';
+import { sceneFromLocation, watchLocation } from './url.js';
+import { measure, setupView } from './view.js';
+
+async function boot() {
+  setupBanner();
+  capturePanicReports();
+  let module;
+  try {
+    module = await import('../pkg/flockpath.js');
+  } catch (error) {
+    throw new Error(
+      `the simulation module (pkg/flockpath.js) could not be loaded: ${messageOf(error)}. ` +
+        'Build it with: bash scripts/build-wasm.sh',
+    );
+  }
+  const wasm = await module.default();
+
+  const canvas = document.getElementById('scene-canvas');
+  const overlay = document.getElementById('overlay-canvas');
+  const { width, height } = measure(canvas);
+  canvas.width = width;
+  canvas.height = height;
+  overlay.width = width;
+  overlay.height = height;
+
+  const presets = JSON.parse(module.presets_json());
+  const sim = new module.Sim(module.preset_scene_json(presets[0].name), width, height);
+
+  const linked = sceneFromLocation();
+  let linkError = null;
+  if (linked !== null) {
+    try {
+      sim.load(linked);
+    } catch (error) {
+      if (isPanic(error)) throw error;
+      linkError = messageOf(error);
+    }
+  }
+
+  const app = new App(wasm, module, sim);
+  window.addEventListener('unhandledrejection', (e) => {
+    if (isPanic(e.reason)) app.crash(messageOf(e.reason));
+  });
+  window.addEventListener('error', (e) => {
+    if (isPanic(e.error)) app.crash(messageOf(e.error));
+  });
+  app.afterLoad();
+  setupView(app, canvas, overlay);
+  const editor = new Editor(app, overlay, canvas);
+  new Panel(app);
+  setupControls(app, editor);
+  setupHistoryButtons(app);
+  watchLocation(app);
+  const onFrame = setupMetrics(app);
+  startLoop(app, canvas, onFrame);
+  document.getElementById('loading').hidden = true;
+  if (linkError !== null) {
+    showMessage(`The scene in the link could not be loaded: ${linkError}. Showing the default scene “${presets[0].name}” instead.`);
+  }
+
+  attach(app);
+  window.flockpath = flockpath;
+  window.dispatchEvent(new Event('flockpath-ready'));
+}
+
+boot().catch((error) => {
+  const message = messageOf(error);
+  document.getElementById('loading')?.setAttribute('hidden', '');
+  if (isPanic(error)) showPanic(message);
+  else showMessage(`flockpath could not start: ${message}`);
+  // Leave a trace for whoever opens the console (and fail e2e tests loudly).
+  console.error(error);
+});

@@ -1,0 +1,226 @@
+// The side panel: the group list and editor, the planner picker and the parameter sliders, all
+// generated from `planners_json()` (the Rust params table), so a new planner needs no JS.
+
+const el = (tag, props = {}, children = []) => {
+  const node = document.createElement(tag);
+  for (const [key, value] of Object.entries(props)) {
+    if (key === 'dataset') Object.assign(node.dataset, value);
+    else if (key in node) node[key] = value;
+    else node.setAttribute(key, value);
+  }
+  node.append(...children);
+  return node;
+};
+
+/** Shows a number the way its slider step suggests (0.05 → two decimals). */
+export function formatValue(value, step) {
+  if (typeof value !== 'number') return String(value);
+  const decimals = step > 0 && step < 1 ? Math.min(4, Math.ceil(-Math.log10(step) - 1e-9)) : 0;
+  return value.toFixed(decimals);
+}
+
+export class Panel {
+  constructor(app) {
+    this.app = app;
+    this.list = document.getElementById('group-list');
+    this.groupForm = document.getElementById('group-editor');
+    this.plannerSelect = document.getElementById('planner');
+    this.params = document.getElementById('params');
+    this.defaults = document.getElementById('params-defaults');
+    /** Key of the generated controls: rebuilt only when it changes, so a slider being dragged survives. */
+    this.builtFor = '';
+    /** Scene before a slider gesture started; recorded for undo when the gesture ends. */
+    this.pendingUndo = null;
+    for (const planner of app.planners) {
+      this.plannerSelect.append(el('option', { value: planner.name, textContent: planner.label }));
+    }
+    this.plannerSelect.addEventListener('change', () => {
+      const index = this.app.activeGroup;
+      const name = this.plannerSelect.value;
+      this.app.change((sim) => sim.set_group_planner(index, name), { clearSelection: false });
+    });
+    this.defaults.addEventListener('click', () => this.resetParams());
+    app.addEventListener('scene', () => this.render());
+    this.render();
+  }
+
+  group() {
+    return this.app.scene.groups?.[this.app.activeGroup] ?? null;
+  }
+
+  render() {
+    const scene = this.app.scene;
+    const group = this.group();
+    const key = JSON.stringify([
+      this.app.activeGroup,
+      (scene.groups ?? []).map((g) => [g.name, g.color]),
+      (scene.goals ?? []).length,
+      group?.planner?.kind,
+    ]);
+    if (key !== this.builtFor) {
+      this.builtFor = key;
+      this.buildList();
+      this.buildGroupForm();
+      this.buildParams();
+    }
+    this.fillValues();
+  }
+
+  buildList() {
+    const groups = this.app.scene.groups ?? [];
+    this.list.replaceChildren(
+      ...groups.map((g, i) => {
+        const button = el('button', {
+          type: 'button',
+          role: 'option',
+          title: `Edit group ${i + 1}`,
+          'aria-selected': String(i === this.app.activeGroup),
+        }, [el('span', { className: 'swatch' }), g.name || `group ${i + 1}`]);
+        button.querySelector('.swatch').style.background = g.color;
+        button.addEventListener('click', () => {
+          this.app.setActiveGroup(i);
+          this.app.select({ kind: 'group', index: i });
+        });
+        return button;
+      }),
+    );
+  }
+
+  /** Whole-group edit: every field change sends the full group through `edit` `set_group`. */
+  updateGroup(patch) {
+    const index = this.app.activeGroup;
+    const group = this.group();
+    if (!group) return;
+    const op = { op: 'set_group', index, group: { ...group, ...patch } };
+    const result = this.app.change((sim) => sim.edit(JSON.stringify(op)), { clearSelection: false });
+    if (!result.ok) this.fillValues();
+  }
+
+  buildGroupForm() {
+    const group = this.group();
+    if (!group) {
+      this.groupForm.replaceChildren();
+      return;
+    }
+    const goals = this.app.scene.goals ?? [];
+    const row = (label, input) => el('label', { className: 'row' }, [el('span', { className: 'label', textContent: label }), input]);
+    const name = el('input', { type: 'text', name: 'name', maxLength: 40 });
+    name.addEventListener('change', () => this.updateGroup({ name: name.value }));
+    const count = el('input', { type: 'number', name: 'count', min: 0, max: 200000, step: 1, title: 'Number of agents' });
+    count.addEventListener('change', () => this.updateGroup({ count: Number(count.value) }));
+    const color = el('input', { type: 'color', name: 'color', title: 'Group colour' });
+    color.addEventListener('change', () => this.updateGroup({ color: color.value }));
+    const goal = el('select', { name: 'goal', title: 'The goal this group heads for' }, [
+      el('option', { value: '', textContent: 'none (wander)' }),
+      ...goals.map((_, i) => el('option', { value: String(i), textContent: `goal ${i + 1}` })),
+    ]);
+    goal.addEventListener('change', () => this.updateGroup({ goal: goal.value === '' ? null : Number(goal.value) }));
+    const radius = el('input', { type: 'number', name: 'agent_radius', min: 0.5, max: 100, step: 0.5, title: 'Body radius of each agent (px)' });
+    radius.addEventListener('change', () => this.updateGroup({ agent_radius: Number(radius.value) }));
+    const remove = el('button', { type: 'button', className: 'small ghost', textContent: 'Delete group', title: 'Remove this group (undo brings it back)' });
+    remove.addEventListener('click', () => {
+      const item = { kind: 'group', index: this.app.activeGroup };
+      this.app.change((sim) => sim.edit(JSON.stringify({ op: 'delete', item })));
+    });
+    this.groupForm.replaceChildren(
+      row('Name', name),
+      row('Agents', count),
+      row('Colour', color),
+      row('Goal', goal),
+      row('Radius (px)', radius),
+      remove,
+    );
+    this.fields = { name, count, color, goal, radius };
+  }
+
+  buildParams() {
+    const group = this.group();
+    this.plannerSelect.disabled = !group;
+    this.defaults.disabled = !group;
+    this.params.replaceChildren();
+    this.sliders = new Map();
+    if (!group) return;
+    const planner = this.app.plannerSpec(group.planner.kind);
+    if (!planner) return;
+    for (const spec of planner.params) {
+      const id = `param-${spec.key}`;
+      const output = el('output', { htmlFor: id });
+      let input;
+      if (spec.choices && spec.choices.length) {
+        input = el('select', { id, name: spec.key, title: spec.help },
+          spec.choices.map((c) => el('option', { value: c, textContent: c })));
+        input.addEventListener('change', () => this.setParam(spec, input.value, true));
+      } else {
+        input = el('input', { id, name: spec.key, type: 'range', min: spec.min, max: spec.max, step: spec.step, title: spec.help });
+        input.addEventListener('input', () => this.setParam(spec, Number(input.value), false));
+        input.addEventListener('change', () => this.setParam(spec, Number(input.value), true));
+      }
+      const label = el('label', { className: 'label', htmlFor: id, textContent: spec.label, title: spec.help });
+      this.params.append(el('div', { className: 'param', dataset: { key: spec.key } }, [label, output, input]));
+      this.sliders.set(spec.key, { spec, input, output });
+    }
+  }
+
+  /**
+   * Applies one parameter live. A drag sends many `input` events; the scene before the first is
+   * kept and recorded for undo once, when the gesture ends (`change`).
+   */
+  setParam(spec, value, endOfGesture) {
+    const index = this.app.activeGroup;
+    if (this.pendingUndo === null) this.pendingUndo = this.app.sim.scene_json();
+    const result = this.app.change((sim) => sim.set_group_param(index, spec.key, JSON.stringify(value)), {
+      record: false,
+      clearSelection: false,
+    });
+    if (endOfGesture || !result.ok) {
+      if (result.ok && this.pendingUndo !== this.app.sim.scene_json()) {
+        this.app.history.record(this.pendingUndo);
+        this.app.dispatchEvent(new Event('history'));
+      }
+      this.pendingUndo = null;
+    }
+    this.showParam(spec.key);
+  }
+
+  /** Puts every parameter of the active group back to its table default (one undo step). */
+  resetParams() {
+    const group = this.group();
+    if (!group) return;
+    const defaults = this.app.defaultPlanner(group.planner.kind);
+    const index = this.app.activeGroup;
+    this.app.change((sim) => {
+      for (const [key, value] of Object.entries(defaults.params)) {
+        sim.set_group_param(index, key, JSON.stringify(value));
+      }
+    }, { clearSelection: false });
+  }
+
+  showParam(key) {
+    const entry = this.sliders?.get(key);
+    const value = this.group()?.planner?.params?.[key];
+    if (!entry || value === undefined) return;
+    const { spec, input, output } = entry;
+    if (document.activeElement !== input || input.tagName === 'SELECT') input.value = String(value);
+    output.textContent = spec.choices?.length ? '' : `${formatValue(value, spec.step)} ${spec.unit}`.trim();
+  }
+
+  fillValues() {
+    for (const button of this.list.children) {
+      const index = [...this.list.children].indexOf(button);
+      button.setAttribute('aria-selected', String(index === this.app.activeGroup));
+    }
+    const group = this.group();
+    if (!group) return;
+    this.plannerSelect.value = group.planner.kind;
+    const f = this.fields;
+    const set = (input, value) => {
+      if (document.activeElement !== input) input.value = value;
+    };
+    set(f.name, group.name ?? '');
+    set(f.count, String(group.count));
+    set(f.color, group.color);
+    set(f.goal, group.goal === null || group.goal === undefined ? '' : String(group.goal));
+    set(f.radius, String(group.agent_radius));
+    for (const key of this.sliders.keys()) this.showParam(key);
+  }
+}
