@@ -37,16 +37,6 @@ pub const ALL: &[Preset] = &[
         description: "A group squeezes through a rectangle-walled passage.",
         build: corridor,
     },
-    Preset {
-        name: "igsa-path-1",
-        description: "Scene of the GSA/IGSA path experiment 1: pillars block the straight line (Liu & Liu 2022, Fig. 8–9).",
-        build: igsa_path_1,
-    },
-    Preset {
-        name: "igsa-path-2",
-        description: "Scene of the GSA/IGSA path experiment 2: a detour over a wall, past a triangle and a disc (Fig. 10–11).",
-        build: igsa_path_2,
-    },
 ];
 
 /// Looks a preset up by name.
@@ -127,6 +117,8 @@ pub fn constant_density(n: u32, neighbours: f32) -> Scene {
 }
 
 /// Path 1 of the IGSA experiments: pillars block the straight line from start to goal.
+/// (Not in [`ALL`] until the `igsa` crowd planner lands: Boids, the groups' default planner,
+/// is not meant to find these detours, and every listed preset must be reachable by Boids.)
 pub fn igsa_path_1() -> Scene {
     let mut s = base("igsa-path-1", 800.0, 500.0);
     for (c, r) in

@@ -136,15 +136,15 @@ fn thread_count_does_not_change_results() {
     }
 }
 
-/// IGSA (the paper's planner, its default settings) plans a path on both path presets that
+/// IGSA (the paper's planner, its default settings) plans a path on both path scenes that
 /// never crosses an obstacle and keeps some clearance, for every seed tried; a path that does
 /// cross (GSA's, sometimes) always pays more than the crossing penalty, so a crossing path is
 /// never preferred to a valid one.
 #[test]
-fn planned_paths_never_cross_obstacles_on_the_path_presets() {
+fn planned_paths_never_cross_obstacles_on_the_path_scenes() {
     let settings = Settings { population: 30, iterations: 300, ..Settings::default() };
-    for name in ["igsa-path-1", "igsa-path-2"] {
-        let scene = (presets::find(name).expect("preset").build)();
+    for scene in [presets::igsa_path_1(), presets::igsa_path_2()] {
+        let name = scene.name.clone();
         let problem = PathProblem::from_scene(&scene, 0, PathParams::default()).expect("group with goal");
         let straight = ((problem.goal[0] - problem.start[0]).powi(2)
             + (problem.goal[1] - problem.start[1]).powi(2))
