@@ -21,6 +21,7 @@ pub mod edit;
 pub mod export;
 pub mod geometry;
 pub mod metrics;
+pub mod optim;
 pub mod planners;
 pub mod presets;
 pub mod recording;

@@ -275,3 +275,30 @@ pub fn firefly_migration_with_seed(seed: u32) -> Scene {
     });
     s
 }
+
+/// Path 1 of the IGSA experiments: pillars block the straight line from start to goal.
+/// (Not in [`ALL`] until the `igsa` crowd planner lands: Boids, the groups' default planner,
+/// is not meant to find these detours, and every listed preset must be reachable by Boids.)
+pub fn igsa_path_1() -> Scene {
+    let mut s = base("igsa-path-1", 800.0, 500.0);
+    for (c, r) in
+        [([260.0, 260.0], 70.0), ([430.0, 165.0], 65.0), ([450.0, 365.0], 60.0), ([610.0, 255.0], 55.0)]
+    {
+        s.obstacles.push(Obstacle::Circle { center: c, radius: r });
+    }
+    s.goals.push(Goal::fixed([745.0, 250.0], 30.0));
+    s.groups.push(group("group", "#2f6fdf", 40, ([30.0, 215.0], [100.0, 285.0]), 0));
+    s
+}
+
+/// Path 2 of the IGSA experiments: a wall from the bottom edge forces a detour over its top
+/// end; a triangle and a disc add clutter on both sides.
+pub fn igsa_path_2() -> Scene {
+    let mut s = base("igsa-path-2", 800.0, 500.0);
+    s.obstacles.push(Obstacle::Rect { min: [380.0, 150.0], max: [425.0, 500.0] });
+    s.obstacles.push(Obstacle::Polygon { points: vec![[170.0, 250.0], [255.0, 160.0], [265.0, 330.0]] });
+    s.obstacles.push(Obstacle::Circle { center: [590.0, 250.0], radius: 60.0 });
+    s.goals.push(Goal::fixed([745.0, 330.0], 30.0));
+    s.groups.push(group("group", "#df4f2f", 40, ([30.0, 380.0], [110.0, 460.0]), 0));
+    s
+}

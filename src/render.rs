@@ -805,7 +805,7 @@ mod tests {
     /// One red agent heading right across an empty field.
     fn lone_agent() -> Scene {
         let mut s = Scene::empty(400.0, 200.0);
-        s.goals.push(Goal { position: [380.0, 100.0], radius: 10.0 });
+        s.goals.push(Goal::fixed([380.0, 100.0], 10.0));
         s.groups.push(Group {
             name: "solo".into(),
             color: "#ff0000".into(),

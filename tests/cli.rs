@@ -188,7 +188,7 @@ fn bad_inputs_fail_with_a_message_naming_the_problem() {
         flockpath(&["run", "--scene", path, "--steps", "5", "--maya", "out.mel"]),
         "not available yet",
     );
-    fails_naming(flockpath(&["optimize"]), "not available yet");
+    fails_naming(flockpath(&["optimize", "--algorithms", "nope"]), "nope");
     fails_naming(flockpath(&["fly"]), "fly");
     fails_naming(flockpath(&["preset", "moon-base"]), "moon-base");
     fails_naming(flockpath(&[]), "no command");

@@ -16,7 +16,7 @@ use std::process::ExitCode;
 const MAX_STEPS: u32 = 1_000_000;
 
 /// Subcommands the DESIGN names that this build does not have yet.
-const LATER_COMMANDS: &[&str] = &["optimize", "tune"];
+const LATER_COMMANDS: &[&str] = &["tune"];
 /// `run` flags the DESIGN names that this build does not have yet.
 const LATER_RUN_FLAGS: &[&str] = &["--paths", "--maya", "--blender"];
 
@@ -33,6 +33,7 @@ COMMANDS:
     url FILE         Print the URL fragment value (the part after #s=) for a scene JSON file
     scene STRING     Print the scene JSON for a URL fragment value, #s= fragment or URL
     bench            Measure step and render speed (prints figures)
+    optimize         Run swarm optimizers on benchmark functions (table, JSON, curves)
     help [COMMAND]   Show this help, or a command's help
 
 Run `flockpath <COMMAND> --help` for a command's options.
@@ -154,6 +155,7 @@ fn dispatch(args: &[String]) -> Result<(), CliError> {
             out(&format!("{}\n", scene_to_json(&scene)))
         }
         "run" => run(rest),
+        "optimize" => optimize(rest),
         "bench" => bench::main(&parse_bench(rest)?).map_err(failed),
         // Hidden: the scene the benchmarks use, for the browser bench page.
         "density-scene" => {
@@ -175,6 +177,7 @@ fn command_help(command: &str) -> Result<String, CliError> {
     Ok(match command {
         "run" => RUN_HELP.to_string(),
         "bench" => BENCH_HELP.to_string(),
+        "optimize" => flockpath::optim::report::HELP.to_string(),
         "presets" => {
             "flockpath presets — list the preset scenes, one per line: name, then description\n".into()
         }
@@ -191,6 +194,22 @@ fn command_help(command: &str) -> Result<String, CliError> {
         }
         other => return Err(usage(format!("unknown command {other:?}"))),
     })
+}
+
+/// `flockpath optimize`: the logic lives in `flockpath::optim::report`; this adds the clock
+/// and the progress line on stderr.
+fn optimize(rest: &[String]) -> Result<(), CliError> {
+    let start = std::time::Instant::now();
+    let clock = move || start.elapsed().as_secs_f64();
+    let mut progress = |done: usize, total: usize| {
+        eprint!("{}", flockpath::optim::report::progress_line(done, total));
+        if done == total {
+            eprintln!();
+        }
+    };
+    let args = flockpath::optim::report::OptimizeArgs::parse(rest).map_err(usage)?;
+    let text = flockpath::optim::report::execute(&args, &clock, &mut progress).map_err(failed)?;
+    out(&text)
 }
 
 /// Writes to stdout; a closed pipe (`flockpath presets | head -1`) is not an error worth a panic.

@@ -1,0 +1,426 @@
+//! Group path planning as optimization (Liu & Liu 2022, experiment II): a path is K waypoints
+//! between a fixed start and goal, a particle is the 2K waypoint coordinates, and the fitness
+//! is `length + obstacle penalty + turning penalty`, minimised by GSA or IGSA.
+//!
+//! - Obstacle penalty (any [`Obstacle`] shape): every segment is sampled every `clearance / 2`
+//!   px; each sample closer than `clearance` to an obstacle surface (or inside it) adds
+//!   `obstacle_weight · (clearance − signed distance) · sample spacing`. On top of that every
+//!   segment that exactly intersects an obstacle (or starts inside one) adds
+//!   `crossing_penalty`, so a path through a wall is never cheaper than one around it.
+//! - Turning penalty: `turn_weight · Σ θ_k²` over the polyline's vertices (θ in radians), after
+//!   dropping waypoints that coincide with the previous one (otherwise stacking waypoints would
+//!   hide a corner behind zero-length segments). The square makes one sharp turn cost more
+//!   than the same total turn spread over several vertices, which is what "smooth" means.
+//!
+//! Measures reported per path: length, maximum deflection angle, mean turning angle (degrees),
+//! exact crossings and the smallest sampled clearance.
+
+use super::{Algorithm, Bounds, Objective, Settings};
+use crate::geometry::{v, Obstacle};
+use crate::rng::Rng;
+use crate::scene::Scene;
+use glam::Vec2;
+use serde::Serialize;
+
+/// Waypoint coordinates are searched in `[−100, 100]` and mapped linearly onto the scene: the
+/// gravitational constants (G0 is an acceleration in search units) were set by Rashedi on
+/// `[−100, 100]`-sized boxes, so the same G0 means the same thing on every scene size.
+pub const SEARCH_HALF_RANGE: f64 = 100.0;
+
+/// Random stream of the path planner (separate from the world's spawn and plan streams).
+pub const PATH_STREAM: u32 = 0x9a7b;
+
+/// Parameters of the path fitness.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PathParams {
+    /// Free waypoints between start and goal. Default 3 (more make the search much harder: with 4–6, GSA and IGSA often end on a path through an obstacle within N = 30, T = 300).
+    pub waypoints: usize,
+    /// Wanted distance from obstacle surfaces (px). Default 12 (agent radius 4 plus margin).
+    pub clearance: f64,
+    /// Penalty per px of intrusion into the clearance per px of path. Default 20.
+    pub obstacle_weight: f64,
+    /// Penalty per segment that intersects an obstacle (px). Default 2000.
+    pub crossing_penalty: f64,
+    /// Penalty per squared radian of turning (px/rad²). Default 40.
+    pub turn_weight: f64,
+}
+
+impl Default for PathParams {
+    fn default() -> Self {
+        Self {
+            waypoints: 3,
+            clearance: 12.0,
+            obstacle_weight: 20.0,
+            crossing_penalty: 2000.0,
+            turn_weight: 40.0,
+        }
+    }
+}
+
+/// A path-planning problem on a scene.
+#[derive(Clone, Debug)]
+pub struct PathProblem {
+    /// Start point (px).
+    pub start: [f64; 2],
+    /// Goal point (px).
+    pub goal: [f64; 2],
+    /// Obstacles to avoid.
+    pub obstacles: Vec<Obstacle>,
+    /// Fitness parameters.
+    pub params: PathParams,
+    /// Smallest waypoint coordinates (px): the scene inset by the clearance.
+    pub area_min: [f64; 2],
+    /// Largest waypoint coordinates (px).
+    pub area_max: [f64; 2],
+    bounds: Bounds,
+}
+
+/// Quality measures of a path.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct PathMeasures {
+    /// Total length (px).
+    pub length: f64,
+    /// Largest turning (deflection) angle at a vertex (degrees).
+    pub max_turn_deg: f64,
+    /// Mean turning angle over the vertices (degrees).
+    pub mean_turn_deg: f64,
+    /// Segments that intersect an obstacle (0 for a valid path).
+    pub crossings: u32,
+    /// Smallest distance from a sampled path point to an obstacle surface (px; negative inside).
+    pub min_clearance: f64,
+}
+
+/// The result of planning.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PlannedPath {
+    /// Start, the waypoints, goal.
+    pub points: Vec<[f64; 2]>,
+    /// Fitness of the path.
+    pub fitness: f64,
+    /// Its measures.
+    pub measures: PathMeasures,
+    /// Objective evaluations used.
+    pub evaluations: u64,
+}
+
+impl PathProblem {
+    /// A problem in a `width × height` world.
+    pub fn new(
+        start: [f64; 2],
+        goal: [f64; 2],
+        obstacles: Vec<Obstacle>,
+        width: f64,
+        height: f64,
+        params: PathParams,
+    ) -> Self {
+        let k = params.waypoints.max(1);
+        let m = params.clearance.min(0.25 * width.min(height)).max(0.0);
+        let bounds = Bounds::uniform(2 * k, -SEARCH_HALF_RANGE, SEARCH_HALF_RANGE);
+        Self {
+            start,
+            goal,
+            obstacles,
+            params: PathParams { waypoints: k, ..params },
+            area_min: [m, m],
+            area_max: [width - m, height - m],
+            bounds,
+        }
+    }
+
+    /// The problem for group `group` of `scene`: from the centre of its spawn region to its goal.
+    /// `None` when the group does not exist or has no goal.
+    pub fn from_scene(scene: &Scene, group: usize, params: PathParams) -> Option<Self> {
+        let g = scene.groups.get(group)?;
+        let goal = scene.goals.get(g.goal? as usize)?;
+        let s = g.spawn;
+        let start = [0.5 * f64::from(s.min[0] + s.max[0]), 0.5 * f64::from(s.min[1] + s.max[1])];
+        let goal = [f64::from(goal.position[0]), f64::from(goal.position[1])];
+        Some(Self::new(
+            start,
+            goal,
+            scene.obstacles.clone(),
+            f64::from(scene.width),
+            f64::from(scene.height),
+            params,
+        ))
+    }
+
+    /// Start, waypoints from the particle `x` (search coordinates mapped onto the scene), goal.
+    pub fn points(&self, x: &[f64]) -> Vec<[f64; 2]> {
+        let mut pts = Vec::with_capacity(x.len() / 2 + 2);
+        pts.push(self.start);
+        let map = |u: f64, d: usize| {
+            let s = (u + SEARCH_HALF_RANGE) / (2.0 * SEARCH_HALF_RANGE);
+            self.area_min[d] + s * (self.area_max[d] - self.area_min[d])
+        };
+        pts.extend(x.chunks_exact(2).map(|c| [map(c[0], 0), map(c[1], 1)]));
+        pts.push(self.goal);
+        pts
+    }
+
+    /// Whether segment a→b intersects an obstacle (or starts or ends inside one).
+    pub fn segment_crosses(&self, a: [f64; 2], b: [f64; 2]) -> bool {
+        let (pa, pb) = (to_vec2(a), to_vec2(b));
+        self.obstacles.iter().any(|o| o.contains(pa) || o.contains(pb) || o.ray_cast(pa, pb - pa).is_some())
+    }
+
+    /// Sum of the obstacle penalties along the polyline and the smallest sampled clearance.
+    fn obstacle_terms(&self, pts: &[[f64; 2]]) -> (f64, f64, u32) {
+        let c = self.params.clearance;
+        let spacing = (0.5 * c).max(1.0);
+        let mut penalty = 0.0;
+        let mut min_clear = f64::INFINITY;
+        let mut crossings = 0u32;
+        for w in pts.windows(2) {
+            let (a, b) = (w[0], w[1]);
+            if self.segment_crosses(a, b) {
+                crossings += 1;
+            }
+            let len = dist(a, b);
+            let samples = (len / spacing).ceil().max(1.0) as usize;
+            let ds = len / samples as f64;
+            for s in 0..=samples {
+                let t = s as f64 / samples as f64;
+                let p = Vec2::new((a[0] + t * (b[0] - a[0])) as f32, (a[1] + t * (b[1] - a[1])) as f32);
+                for o in &self.obstacles {
+                    let bb = o.aabb().inflate(c as f32);
+                    if !bb.contains(p) {
+                        min_clear = min_clear.min(c);
+                        continue;
+                    }
+                    let sd = f64::from(o.surface(p).signed_distance);
+                    min_clear = min_clear.min(sd);
+                    if sd < c {
+                        penalty += (c - sd) * ds.max(1.0);
+                    }
+                }
+            }
+        }
+        (penalty, min_clear, crossings)
+    }
+
+    /// Length, max and mean turning angle (radians) and Σθ² of the polyline, ignoring
+    /// coincident points.
+    fn shape_terms(pts: &[[f64; 2]]) -> (f64, f64, f64, f64) {
+        let mut kept: Vec<[f64; 2]> = Vec::with_capacity(pts.len());
+        for &p in pts {
+            if kept.last().is_none_or(|&q| dist(p, q) > 1e-6) {
+                kept.push(p);
+            }
+        }
+        let length: f64 = kept.windows(2).map(|w| dist(w[0], w[1])).sum();
+        let (mut max, mut sum, mut sum2) = (0.0f64, 0.0, 0.0);
+        let vertices = kept.len().saturating_sub(2);
+        for w in kept.windows(3) {
+            let (ux, uy) = (w[1][0] - w[0][0], w[1][1] - w[0][1]);
+            let (vx, vy) = (w[2][0] - w[1][0], w[2][1] - w[1][1]);
+            let theta = libm::atan2((ux * vy - uy * vx).abs(), ux * vx + uy * vy);
+            max = max.max(theta);
+            sum += theta;
+            sum2 += theta * theta;
+        }
+        let mean = if vertices > 0 { sum / vertices as f64 } else { 0.0 };
+        (length, max, mean, sum2)
+    }
+
+    /// The measures of the polyline through `pts`.
+    pub fn measure(&self, pts: &[[f64; 2]]) -> PathMeasures {
+        let (length, max, mean, _) = Self::shape_terms(pts);
+        let (_, min_clearance, crossings) = self.obstacle_terms(pts);
+        PathMeasures {
+            length,
+            max_turn_deg: max.to_degrees(),
+            mean_turn_deg: mean.to_degrees(),
+            crossings,
+            min_clearance: if min_clearance.is_finite() { min_clearance } else { self.params.clearance },
+        }
+    }
+
+    /// The fitness of the polyline through `pts`.
+    pub fn fitness_of(&self, pts: &[[f64; 2]]) -> f64 {
+        let (length, _, _, turn2) = Self::shape_terms(pts);
+        let (penalty, _, crossings) = self.obstacle_terms(pts);
+        length
+            + self.params.obstacle_weight * penalty
+            + self.params.crossing_penalty * f64::from(crossings)
+            + self.params.turn_weight * turn2
+    }
+
+    /// Optimises the path with `algorithm` (GSA or IGSA in the paper; any works) for
+    /// `settings.iterations` iterations from `seed`.
+    pub fn plan(&self, algorithm: Algorithm, settings: &Settings, seed: u32) -> PlannedPath {
+        let mut opt = algorithm.build(self, settings, Rng::new(seed, PATH_STREAM));
+        for _ in 0..settings.iterations {
+            opt.step(self);
+        }
+        let points = self.points(opt.best_position());
+        PlannedPath {
+            measures: self.measure(&points),
+            fitness: opt.best_value(),
+            points,
+            evaluations: opt.evaluations(),
+        }
+    }
+}
+
+impl Objective for PathProblem {
+    fn bounds(&self) -> &Bounds {
+        &self.bounds
+    }
+
+    fn evaluate(&self, x: &[f64]) -> f64 {
+        self.fitness_of(&self.points(x))
+    }
+}
+
+/// One algorithm on one scene over several seeds: the mean measures of its planned paths.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct PathRow {
+    /// Scene name.
+    pub scene: String,
+    /// Algorithm name.
+    pub algorithm: &'static str,
+    /// Seeds run.
+    pub runs: u32,
+    /// Mean path length (px).
+    pub length: f64,
+    /// Mean of the maximum deflection angle (degrees).
+    pub max_turn_deg: f64,
+    /// Mean of the mean turning angle (degrees).
+    pub mean_turn_deg: f64,
+    /// Mean fitness.
+    pub fitness: f64,
+    /// Runs whose path intersects an obstacle.
+    pub crossing_runs: u32,
+    /// Every run's measures, in seed order.
+    #[serde(skip)]
+    pub per_run: Vec<PathMeasures>,
+}
+
+/// Plans every scene's first group with every algorithm for seeds `0..runs` (in parallel
+/// natively) and averages the measures. `progress(done, total)` counts plans.
+pub fn compare_paths(
+    scenes: &[Scene],
+    algorithms: &[Algorithm],
+    runs: u32,
+    settings: &Settings,
+    params: &PathParams,
+    progress: &mut dyn FnMut(usize, usize),
+) -> Vec<PathRow> {
+    let problems: Vec<(String, PathProblem)> = scenes
+        .iter()
+        .filter_map(|s| PathProblem::from_scene(s, 0, params.clone()).map(|p| (s.name.clone(), p)))
+        .collect();
+    let mut jobs = Vec::new();
+    for p in 0..problems.len() {
+        for &a in algorithms {
+            for seed in 0..runs {
+                jobs.push((p, a, seed));
+            }
+        }
+    }
+    let plans =
+        super::report::map_in_order(&jobs, &|&(p, a, seed)| problems[p].1.plan(a, settings, seed), progress);
+    let mut rows = Vec::new();
+    for (k, chunk) in plans.chunks(runs.max(1) as usize).enumerate() {
+        let (p, a, _) = jobs[k * runs.max(1) as usize];
+        let n = chunk.len() as f64;
+        let mean = |f: &dyn Fn(&PlannedPath) -> f64| chunk.iter().map(f).sum::<f64>() / n;
+        rows.push(PathRow {
+            scene: problems[p].0.clone(),
+            algorithm: a.name(),
+            runs,
+            length: mean(&|c| c.measures.length),
+            max_turn_deg: mean(&|c| c.measures.max_turn_deg),
+            mean_turn_deg: mean(&|c| c.measures.mean_turn_deg),
+            fitness: mean(&|c| c.fitness),
+            crossing_runs: chunk.iter().filter(|c| c.measures.crossings > 0).count() as u32,
+            per_run: chunk.iter().map(|c| c.measures.clone()).collect(),
+        });
+    }
+    rows
+}
+
+/// The rows as a text table, plus, per scene, on how many seeds the second algorithm's path
+/// has a smaller maximum deflection than the first's.
+pub fn path_table_text(rows: &[PathRow]) -> String {
+    let mut s = format!(
+        "{:<14}{:<9}{:>6}{:>11}{:>13}{:>14}{:>12}{:>11}\n",
+        "scene", "planner", "runs", "length", "max turn °", "mean turn °", "fitness", "crossing"
+    );
+    for r in rows {
+        s.push_str(&format!(
+            "{:<14}{:<9}{:>6}{:>11.1}{:>13.1}{:>14.1}{:>12.1}{:>11}\n",
+            r.scene,
+            r.algorithm,
+            r.runs,
+            r.length,
+            r.max_turn_deg,
+            r.mean_turn_deg,
+            r.fitness,
+            r.crossing_runs
+        ));
+    }
+    for pair in rows.chunks(2) {
+        if let [a, b] = pair {
+            if a.scene == b.scene {
+                let smoother =
+                    a.per_run.iter().zip(&b.per_run).filter(|(x, y)| y.max_turn_deg < x.max_turn_deg).count();
+                let shorter = a.per_run.iter().zip(&b.per_run).filter(|(x, y)| y.length < x.length).count();
+                s.push_str(&format!(
+                    "{}: {} has the smaller max turn on {smoother}/{} seeds and the shorter path on {shorter}/{}\n",
+                    a.scene,
+                    b.algorithm,
+                    a.per_run.len(),
+                    a.per_run.len()
+                ));
+            }
+        }
+    }
+    s
+}
+
+fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {
+    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+    libm::sqrt(dx * dx + dy * dy)
+}
+
+fn to_vec2(p: [f64; 2]) -> Vec2 {
+    v([p[0] as f32, p[1] as f32])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn wall_problem() -> PathProblem {
+        let wall = Obstacle::Rect { min: [180.0, 0.0], max: [220.0, 160.0] };
+        PathProblem::new([40.0, 100.0], [360.0, 100.0], vec![wall], 400.0, 240.0, PathParams::default())
+    }
+
+    #[test]
+    fn straight_path_measures() {
+        let p = PathProblem::new([0.0, 0.0], [30.0, 40.0], vec![], 100.0, 100.0, PathParams::default());
+        let m = p.measure(&[[0.0, 0.0], [30.0, 40.0]]);
+        assert!((m.length - 50.0).abs() < 1e-12);
+        assert_eq!((m.max_turn_deg, m.mean_turn_deg, m.crossings), (0.0, 0.0, 0));
+        let right_angle = p.measure(&[[0.0, 0.0], [10.0, 0.0], [10.0, 10.0], [10.0, 10.0]]);
+        assert!((right_angle.max_turn_deg - 90.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn crossing_a_wall_costs_more_than_going_around() {
+        let p = wall_problem();
+        let through = p.fitness_of(&[[40.0, 100.0], [200.0, 100.0], [360.0, 100.0]]);
+        let around = p.fitness_of(&[[40.0, 100.0], [200.0, 190.0], [360.0, 100.0]]);
+        assert!(p.measure(&[[40.0, 100.0], [360.0, 100.0]]).crossings == 1);
+        assert!(around < through, "{around} vs {through}");
+    }
+
+    #[test]
+    fn stacked_waypoints_do_not_hide_a_corner() {
+        let p = wall_problem();
+        let m = p.measure(&[[0.0, 0.0], [10.0, 0.0], [10.0, 0.0], [10.0, 0.0], [10.0, 10.0]]);
+        assert!((m.max_turn_deg - 90.0).abs() < 1e-9);
+    }
+}

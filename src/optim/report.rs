@@ -1,0 +1,571 @@
+//! `flockpath optimize`: argument parsing, independent seeded runs (in parallel natively),
+//! the Table-3-style summary, JSON records and convergence-curve CSV.
+//!
+//! The core has no clock: the caller passes one (`clock()` = seconds since any fixed instant)
+//! and a progress callback, both used only for reporting.
+
+use super::functions::{Benchmark, Function};
+use super::gsa::{gravity_accelerations, GravityScratch};
+use super::{run_rng, Algorithm, Settings};
+use crate::rng::Rng;
+use serde::Serialize;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+/// Help text of `flockpath optimize`.
+pub const HELP: &str = "\
+flockpath optimize — run swarm optimizers on benchmark functions (Liu & Liu 2022, Table 3)
+
+USAGE:
+    flockpath optimize [--algorithms LIST] [--functions LIST] [--dim D] [--pop N] [--iters T]
+                       [--runs R] [--seed S] [--g0 X] [--alpha X] [--json FILE] [--curves PATH]
+    flockpath optimize --bench-force
+
+OPTIONS:
+    --algorithms LIST  Comma-separated: gsa,igsa,pso,firefly,ga or `all` (default all)
+    --functions LIST   Comma-separated: sphere,ackley,griewank,rastrigin,rastrigin-5.12,
+                       rosenbrock, `paper` (the first four, default) or `all`
+    --dim D            Dimension (default 30)
+    --pop N            Population size (default 50)
+    --iters T          Iterations per run (default 1000)
+    --runs R           Independent runs per algorithm and function (default 30)
+    --seed S           Master seed; run r draws from stream r of it (default 1)
+    --g0 X, --alpha X  Override G0 and α of GSA and IGSA (defaults GSA 100/20, IGSA 1/30)
+    --json FILE        Write one record per algorithm and function:
+                       {algorithm, function, dim, runs, best, worst, mean, median, seconds, ...}
+    --curves PATH      Convergence curves as CSV (algorithm,function,run,iteration,best):
+                       PATH ending in .csv is one file, otherwise a directory of one file
+                       per function
+    --bench-force      Time the O(N²) GSA force step at N = 50 and 1000 (d = 30) and exit
+    --paths            Plan the igsa-path-1 and igsa-path-2 scenes with the chosen
+                       algorithms for seeds 0..R and print length / deflection / turning
+                       (e.g. --paths --algorithms gsa,igsa --runs 20 --iters 500)
+    -h, --help         Show this help
+
+Runs use every core natively; results do not depend on the number of threads.
+";
+
+/// Parsed `flockpath optimize` options.
+#[derive(Clone, Debug, PartialEq)]
+pub struct OptimizeArgs {
+    /// Algorithms to run, in table order.
+    pub algorithms: Vec<Algorithm>,
+    /// Functions to run, in table order.
+    pub functions: Vec<Function>,
+    /// Dimension.
+    pub dim: usize,
+    /// Population size and iteration budget (plus G0/α overrides).
+    pub settings: Settings,
+    /// Runs per cell.
+    pub runs: u32,
+    /// Master seed.
+    pub seed: u32,
+    /// Where to write JSON records.
+    pub json: Option<PathBuf>,
+    /// Where to write convergence curves.
+    pub curves: Option<PathBuf>,
+    /// Only time the force step.
+    pub bench_force: bool,
+    /// Run the GSA-vs-IGSA path experiment (`igsa-path-1`, `igsa-path-2`) instead.
+    pub paths: bool,
+}
+
+impl Default for OptimizeArgs {
+    fn default() -> Self {
+        Self {
+            algorithms: Algorithm::ALL.to_vec(),
+            functions: Function::PAPER.to_vec(),
+            dim: 30,
+            settings: Settings::default(),
+            runs: 30,
+            seed: 1,
+            json: None,
+            curves: None,
+            bench_force: false,
+            paths: false,
+        }
+    }
+}
+
+fn number<T>(flag: &str, value: &str, lo: T, hi: T) -> Result<T, String>
+where
+    T: std::str::FromStr + PartialOrd + std::fmt::Display + Copy,
+{
+    let x: T = value.parse().map_err(|_| format!("{flag} needs a number, got {value:?}"))?;
+    if x < lo || x > hi {
+        return Err(format!("{flag} = {x} is outside {lo}…{hi}"));
+    }
+    Ok(x)
+}
+
+fn list<T: Copy>(
+    flag: &str,
+    value: &str,
+    lookup: fn(&str) -> Option<T>,
+    groups: &[(&str, &[T])],
+) -> Result<Vec<T>, String> {
+    let mut out = Vec::new();
+    for name in value.split(',').map(str::trim).filter(|s| !s.is_empty()) {
+        if let Some((_, all)) = groups.iter().find(|(g, _)| *g == name) {
+            out.extend_from_slice(all);
+        } else {
+            out.push(lookup(name).ok_or_else(|| format!("{flag}: unknown name {name:?}"))?);
+        }
+    }
+    if out.is_empty() {
+        return Err(format!("{flag} needs at least one name"));
+    }
+    Ok(out)
+}
+
+impl OptimizeArgs {
+    /// Parses the arguments after `optimize` (`--flag value` or `--flag=value`).
+    pub fn parse(args: &[String]) -> Result<Self, String> {
+        let mut a = Self::default();
+        let mut i = 0;
+        while i < args.len() {
+            let (flag, inline) = match args[i].split_once('=') {
+                Some((f, v)) => (f.to_string(), Some(v.to_string())),
+                None => (args[i].clone(), None),
+            };
+            i += 1;
+            if flag == "--bench-force" {
+                a.bench_force = true;
+                continue;
+            }
+            if flag == "--paths" {
+                a.paths = true;
+                continue;
+            }
+            let value = match inline {
+                Some(v) => v,
+                None => {
+                    let v = args.get(i).ok_or_else(|| format!("{flag} needs a value"))?.clone();
+                    i += 1;
+                    v
+                }
+            };
+            match flag.as_str() {
+                "--algorithms" => {
+                    a.algorithms = list(&flag, &value, Algorithm::from_name, &[("all", Algorithm::ALL)])?
+                }
+                "--functions" => {
+                    a.functions = list(
+                        &flag,
+                        &value,
+                        Function::from_name,
+                        &[("all", Function::ALL), ("paper", Function::PAPER)],
+                    )?
+                }
+                "--dim" => a.dim = number(&flag, &value, 1, 10_000)?,
+                "--pop" => a.settings.population = number(&flag, &value, 2, 100_000)?,
+                "--iters" => a.settings.iterations = number(&flag, &value, 1, 10_000_000)?,
+                "--runs" => a.runs = number(&flag, &value, 1, 100_000)?,
+                "--seed" => a.seed = number(&flag, &value, 0, u32::MAX)?,
+                "--g0" => a.settings.g0 = Some(number(&flag, &value, 0.0, 1e12)?),
+                "--alpha" => a.settings.alpha = Some(number(&flag, &value, 0.0, 1e6)?),
+                "--json" => a.json = Some(PathBuf::from(value)),
+                "--curves" => a.curves = Some(PathBuf::from(value)),
+                other => return Err(format!("optimize: unknown option {other:?}")),
+            }
+        }
+        Ok(a)
+    }
+}
+
+/// One independent run: its final best value, best-so-far per iteration (index 0 = after
+/// initialisation), evaluations and time.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RunOutcome {
+    /// Best value at the end.
+    pub best: f64,
+    /// Best value so far after initialisation and after each iteration (T + 1 values).
+    pub curve: Vec<f64>,
+    /// Objective evaluations used.
+    pub evaluations: u64,
+    /// Wall time of this run (seconds, from the caller's clock).
+    pub seconds: f64,
+}
+
+/// One algorithm on one function over all runs: a cell of the table and a JSON record.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Cell {
+    /// Algorithm name.
+    pub algorithm: &'static str,
+    /// Function name.
+    pub function: &'static str,
+    /// Dimension.
+    pub dim: usize,
+    /// Number of runs.
+    pub runs: u32,
+    /// Lowest final value over the runs.
+    pub best: f64,
+    /// Highest final value over the runs.
+    pub worst: f64,
+    /// Mean final value.
+    pub mean: f64,
+    /// Median final value.
+    pub median: f64,
+    /// Sum of the runs' wall times: the cell's cost on one core, whatever the thread count.
+    pub seconds: f64,
+    /// Objective evaluations per run (mean).
+    pub evaluations: f64,
+    /// Population size.
+    pub population: usize,
+    /// Iterations per run.
+    pub iterations: u32,
+    /// Master seed.
+    pub seed: u32,
+    /// Every run's convergence curve, in run order.
+    #[serde(skip)]
+    pub curves: Vec<Vec<f64>>,
+}
+
+/// The whole table, cells in algorithm-major order.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Table {
+    /// The options it was run with.
+    pub args: OptimizeArgs,
+    /// One cell per algorithm and function.
+    pub cells: Vec<Cell>,
+}
+
+/// Runs one seeded optimization of `algorithm` on `function`.
+pub fn run_once(
+    algorithm: Algorithm,
+    function: Function,
+    dim: usize,
+    settings: &Settings,
+    rng: Rng,
+    clock: &dyn Fn() -> f64,
+) -> RunOutcome {
+    let start = clock();
+    let objective = Benchmark::new(function, dim);
+    let mut opt = algorithm.build(&objective, settings, rng);
+    let mut curve = Vec::with_capacity(settings.iterations as usize + 1);
+    curve.push(opt.best_value());
+    for _ in 0..settings.iterations {
+        opt.step(&objective);
+        curve.push(opt.best_value());
+    }
+    RunOutcome { best: opt.best_value(), curve, evaluations: opt.evaluations(), seconds: clock() - start }
+}
+
+/// Maps `f` over `jobs` in order, on every core natively (rayon) and sequentially in wasm.
+/// Jobs run in chunks so `progress(done, total)` is called from this thread between chunks;
+/// results never depend on the number of threads because each job owns its generator.
+pub fn map_in_order<J: Sync, T: Send>(
+    jobs: &[J],
+    f: &(dyn Fn(&J) -> T + Sync),
+    progress: &mut dyn FnMut(usize, usize),
+) -> Vec<T> {
+    let mut out = Vec::with_capacity(jobs.len());
+    #[cfg(not(target_arch = "wasm32"))]
+    {
+        use rayon::prelude::*;
+        let chunk = (rayon::current_num_threads() * 4).max(1);
+        for part in jobs.chunks(chunk) {
+            let done: Vec<T> = part.par_iter().map(f).collect();
+            out.extend(done);
+            progress(out.len(), jobs.len());
+        }
+    }
+    #[cfg(target_arch = "wasm32")]
+    for job in jobs {
+        out.push(f(job));
+        progress(out.len(), jobs.len());
+    }
+    out
+}
+
+fn median(sorted: &[f64]) -> f64 {
+    let n = sorted.len();
+    if n == 0 {
+        return f64::NAN;
+    }
+    if n % 2 == 1 {
+        sorted[n / 2]
+    } else {
+        0.5 * (sorted[n / 2 - 1] + sorted[n / 2])
+    }
+}
+
+/// Runs the whole table: `runs` independent runs per algorithm × function.
+pub fn run_optimize(
+    args: &OptimizeArgs,
+    clock: &(dyn Fn() -> f64 + Sync),
+    progress: &mut dyn FnMut(usize, usize),
+) -> Result<Table, String> {
+    if args.algorithms.is_empty() || args.functions.is_empty() || args.runs == 0 {
+        return Err("optimize: nothing to run (no algorithm, function or run)".into());
+    }
+    let mut jobs = Vec::new();
+    for &a in &args.algorithms {
+        for &f in &args.functions {
+            for r in 0..args.runs {
+                jobs.push((a, f, r));
+            }
+        }
+    }
+    let outcomes = map_in_order(
+        &jobs,
+        &|&(a, f, r)| run_once(a, f, args.dim, &args.settings, run_rng(args.seed, r), clock),
+        progress,
+    );
+    let mut cells = Vec::new();
+    for (k, chunk) in outcomes.chunks(args.runs as usize).enumerate() {
+        let (a, f, _) = jobs[k * args.runs as usize];
+        let mut finals: Vec<f64> = chunk.iter().map(|o| o.best).collect();
+        finals.sort_by(f64::total_cmp);
+        let n = finals.len() as f64;
+        cells.push(Cell {
+            algorithm: a.name(),
+            function: f.name(),
+            dim: args.dim,
+            runs: args.runs,
+            best: finals[0],
+            worst: finals[finals.len() - 1],
+            mean: finals.iter().sum::<f64>() / n,
+            median: median(&finals),
+            seconds: chunk.iter().map(|o| o.seconds).sum(),
+            evaluations: chunk.iter().map(|o| o.evaluations as f64).sum::<f64>() / n,
+            population: args.settings.population,
+            iterations: args.settings.iterations,
+            seed: args.seed,
+            curves: chunk.iter().map(|o| o.curve.clone()).collect(),
+        });
+    }
+    Ok(Table { args: args.clone(), cells })
+}
+
+impl Table {
+    /// The cell of `algorithm` on `function`, if it was run.
+    pub fn cell(&self, algorithm: &str, function: &str) -> Option<&Cell> {
+        self.cells.iter().find(|c| c.algorithm == algorithm && c.function == function)
+    }
+
+    /// The Table-3-style text: per function, rows best / worst / mean / median, one column per
+    /// algorithm, five significant digits.
+    pub fn to_text(&self) -> String {
+        let a = &self.args;
+        let mut s = format!(
+            "d = {}, N = {}, T = {}, {} runs, seed {}\n",
+            a.dim, a.settings.population, a.settings.iterations, a.runs, a.seed
+        );
+        let _ = write!(s, "{:<16}{:<8}", "function", "");
+        for alg in &a.algorithms {
+            let _ = write!(s, "{:>13}", alg.name());
+        }
+        s.push('\n');
+        for f in &a.functions {
+            for (k, stat) in ["best", "worst", "mean", "median"].iter().enumerate() {
+                let name = if k == 0 { f.name() } else { "" };
+                let _ = write!(s, "{name:<16}{stat:<8}");
+                for alg in &a.algorithms {
+                    let v = self.cell(alg.name(), f.name()).map_or(f64::NAN, |c| match k {
+                        0 => c.best,
+                        1 => c.worst,
+                        2 => c.mean,
+                        _ => c.median,
+                    });
+                    let _ = write!(s, "{v:>13.4e}");
+                }
+                s.push('\n');
+            }
+        }
+        let _ = write!(s, "{:<24}", "evaluations/run");
+        for alg in &a.algorithms {
+            let e = self.cells.iter().find(|c| c.algorithm == alg.name()).map_or(0.0, |c| c.evaluations);
+            let _ = write!(s, "{e:>13.0}");
+        }
+        s.push('\n');
+        let _ = write!(s, "{:<24}", "seconds (1 core)");
+        for alg in &a.algorithms {
+            let t: f64 = self.cells.iter().filter(|c| c.algorithm == alg.name()).map(|c| c.seconds).sum();
+            let _ = write!(s, "{t:>13.2}");
+        }
+        s.push('\n');
+        s
+    }
+
+    /// The JSON records (an array, one object per cell).
+    pub fn to_json(&self) -> String {
+        serde_json::to_string_pretty(&self.cells).unwrap_or_else(|_| "[]".into())
+    }
+
+    /// Convergence curves of `function` (or all functions) as CSV with a header.
+    pub fn curves_csv(&self, function: Option<&str>) -> String {
+        let mut s = String::from("algorithm,function,run,iteration,best\n");
+        for c in self.cells.iter().filter(|c| function.is_none_or(|f| f == c.function)) {
+            for (run, curve) in c.curves.iter().enumerate() {
+                for (it, v) in curve.iter().enumerate() {
+                    let _ = writeln!(s, "{},{},{run},{it},{v:e}", c.algorithm, c.function);
+                }
+            }
+        }
+        s
+    }
+
+    /// Writes the curves to `path`: one file if it ends in `.csv`, otherwise a directory with
+    /// `curves-<function>.csv` per function.
+    pub fn write_curves(&self, path: &Path) -> Result<(), String> {
+        let err = |p: &Path, e: std::io::Error| format!("cannot write {}: {e}", p.display());
+        if path.extension().is_some_and(|e| e == "csv") {
+            std::fs::write(path, self.curves_csv(None)).map_err(|e| err(path, e))
+        } else {
+            std::fs::create_dir_all(path).map_err(|e| err(path, e))?;
+            for f in &self.args.functions {
+                let file = path.join(format!("curves-{}.csv", f.name()));
+                std::fs::write(&file, self.curves_csv(Some(f.name()))).map_err(|e| err(&file, e))?;
+            }
+            Ok(())
+        }
+    }
+}
+
+/// Times the O(N²·d) force step ([`gravity_accelerations`] with every particle attracting) at
+/// N = 50 and 1000, d = 30, and returns one line per N.
+pub fn bench_force(clock: &dyn Fn() -> f64) -> String {
+    let mut s = String::new();
+    let dim = 30;
+    for n in [50usize, 1000] {
+        let mut rng = Rng::new(1, 0);
+        let x: Vec<f64> = (0..n * dim).map(|_| rng.unit_f64() * 160.0 - 80.0).collect();
+        let fitness: Vec<f64> = (0..n).map(|i| Function::Sphere.value(&x[i * dim..(i + 1) * dim])).collect();
+        let mut acc = vec![0.0; n * dim];
+        let mut scratch = GravityScratch::default();
+        let mut reps = 0u32;
+        let start = clock();
+        let mut elapsed = 0.0;
+        while elapsed < 0.5 || reps < 3 {
+            gravity_accelerations(&x, &fitness, dim, 1.0, n, &mut rng, &mut scratch, &mut acc);
+            reps += 1;
+            elapsed = clock() - start;
+        }
+        let per = elapsed / f64::from(reps);
+        let pairs = (n * (n - 1)) as f64;
+        let _ = writeln!(
+            s,
+            "gsa force step  N = {n:>4}  d = {dim}: {:>10.1} µs/iteration  ({:.2} ns per pair, {} reps)",
+            per * 1e6,
+            per * 1e9 / pairs,
+            reps
+        );
+    }
+    s
+}
+
+/// A one-line progress bar for stderr: `[#####.....] done/total`.
+pub fn progress_line(done: usize, total: usize) -> String {
+    let width = 30;
+    let filled = (done * width).checked_div(total).unwrap_or(width).min(width);
+    format!("\r[{}{}] {done}/{total} runs", "#".repeat(filled), ".".repeat(width - filled))
+}
+
+/// The whole `optimize` command: parses `args`, runs, writes the requested files and returns
+/// the text for stdout. `clock` gives seconds; `progress` receives (done, total) runs.
+pub fn command(
+    args: &[String],
+    clock: &(dyn Fn() -> f64 + Sync),
+    progress: &mut dyn FnMut(usize, usize),
+) -> Result<String, String> {
+    if args.iter().any(|a| a == "-h" || a == "--help") {
+        return Ok(HELP.to_string());
+    }
+    execute(&OptimizeArgs::parse(args)?, clock, progress)
+}
+
+/// Runs already-parsed options: the table (or the force benchmark), the files, the text.
+pub fn execute(
+    parsed: &OptimizeArgs,
+    clock: &(dyn Fn() -> f64 + Sync),
+    progress: &mut dyn FnMut(usize, usize),
+) -> Result<String, String> {
+    if parsed.bench_force {
+        return Ok(bench_force(clock));
+    }
+    if parsed.paths {
+        let scenes = [crate::presets::igsa_path_1(), crate::presets::igsa_path_2()];
+        let algorithms: Vec<Algorithm> = parsed.algorithms.clone();
+        let start = clock();
+        let rows = super::path::compare_paths(
+            &scenes,
+            &algorithms,
+            parsed.runs,
+            &parsed.settings,
+            &super::path::PathParams::default(),
+            progress,
+        );
+        let mut text = format!(
+            "N = {}, T = {}, {} seeds per planner and scene\n",
+            parsed.settings.population, parsed.settings.iterations, parsed.runs
+        );
+        text.push_str(&super::path::path_table_text(&rows));
+        let _ = writeln!(text, "wall time {:.1} s on {} threads", clock() - start, threads());
+        if let Some(path) = &parsed.json {
+            let json = serde_json::to_string_pretty(&rows).unwrap_or_else(|_| "[]".into());
+            std::fs::write(path, json + "\n").map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+        }
+        return Ok(text);
+    }
+    let start = clock();
+    let table = run_optimize(parsed, clock, progress)?;
+    let wall = clock() - start;
+    if let Some(path) = &parsed.json {
+        std::fs::write(path, table.to_json() + "\n")
+            .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+    }
+    if let Some(path) = &parsed.curves {
+        table.write_curves(path)?;
+    }
+    let mut text = table.to_text();
+    let _ = writeln!(text, "wall time {wall:.1} s on {} threads", threads());
+    Ok(text)
+}
+
+/// Worker threads the runs use.
+pub fn threads() -> usize {
+    #[cfg(not(target_arch = "wasm32"))]
+    {
+        rayon::current_num_threads()
+    }
+    #[cfg(target_arch = "wasm32")]
+    {
+        1
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn strings(s: &[&str]) -> Vec<String> {
+        s.iter().map(|x| x.to_string()).collect()
+    }
+
+    #[test]
+    fn parses_lists_groups_and_numbers() {
+        let a = OptimizeArgs::parse(&strings(&[
+            "--algorithms",
+            "gsa,pso",
+            "--functions=all",
+            "--dim",
+            "10",
+            "--runs=3",
+        ]))
+        .expect("parses");
+        assert_eq!(a.algorithms, vec![Algorithm::Gsa, Algorithm::Pso]);
+        assert_eq!(a.functions, Function::ALL.to_vec());
+        assert_eq!((a.dim, a.runs), (10, 3));
+        assert!(OptimizeArgs::parse(&strings(&["--algorithms", "nope"])).is_err());
+        assert!(OptimizeArgs::parse(&strings(&["--dim", "0"])).is_err());
+        assert!(OptimizeArgs::parse(&strings(&["--dim"])).is_err());
+        assert!(OptimizeArgs::parse(&strings(&["--what", "1"])).is_err());
+    }
+
+    #[test]
+    fn median_of_even_and_odd() {
+        assert_eq!(median(&[1.0, 2.0, 3.0]), 2.0);
+        assert_eq!(median(&[1.0, 2.0, 3.0, 5.0]), 2.5);
+    }
+}
