@@ -96,7 +96,7 @@ pub fn apply(scene: &Scene, edit: &Edit) -> Result<Scene, SceneError> {
     match edit {
         Edit::AddObstacle { obstacle } => s.obstacles.push(obstacle.clone()),
         Edit::AddGoal { position, radius, group } => {
-            s.goals.push(Goal { position: *position, radius: radius.unwrap_or(20.0) });
+            s.goals.push(Goal::fixed(*position, radius.unwrap_or(20.0)));
             if let Some(g) = group {
                 let index = (s.goals.len() - 1) as u32;
                 s.groups.get_mut(*g as usize).ok_or_else(|| missing(ItemRef::Group(*g)))?.goal = Some(index);

@@ -18,6 +18,7 @@
 
 pub mod codec;
 pub mod edit;
+pub mod fitness;
 pub mod geometry;
 pub mod metrics;
 pub mod planners;
@@ -25,6 +26,7 @@ pub mod presets;
 pub mod rng;
 pub mod scene;
 pub mod spatial;
+pub mod tune;
 pub mod world;
 
 pub use codec::{scene_from_any, scene_from_fragment, scene_from_json, scene_to_fragment, scene_to_json};

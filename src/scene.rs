@@ -49,6 +49,102 @@ pub struct Goal {
     /// Arrival radius in px.
     #[serde(default = "default_goal_radius")]
     pub radius: f32,
+    /// How the goal moves; `None` keeps it at `position`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub motion: Option<GoalMotion>,
+}
+
+/// Most points a goal's polyline path may have.
+pub const MAX_PATH_POINTS: usize = 1_000;
+
+/// How a goal moves over time (step `t` counts from the start of the run).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
+pub enum GoalMotion {
+    /// Round a circle, counter-clockwise on screen as the angle grows, starting at angle 0
+    /// (`center + (radius, 0)`).
+    Circle {
+        /// Centre `[x, y]` in px.
+        center: [f32; 2],
+        /// Radius in px, ≥ 0.
+        radius: f32,
+        /// Steps per full turn, > 0.
+        period_steps: f32,
+    },
+    /// Along a polyline at a constant speed from its first point; it stays at the last point.
+    Polyline {
+        /// Vertices `[x, y]` in px (at least one).
+        points: Vec<[f32; 2]>,
+        /// Speed along the path in px/step, ≥ 0.
+        speed: f32,
+    },
+}
+
+impl GoalMotion {
+    /// Position at step `step`.
+    pub fn position_at(&self, step: u32) -> Vec2 {
+        match self {
+            GoalMotion::Circle { center, radius, period_steps } => {
+                let turns = (f64::from(step) / f64::from(period_steps.max(f32::MIN_POSITIVE))).fract();
+                let angle = (turns * std::f64::consts::TAU) as f32;
+                v(*center) + Vec2::new(libm::cosf(angle), libm::sinf(angle)) * *radius
+            }
+            GoalMotion::Polyline { points, speed } => {
+                let mut left = *speed * step as f32;
+                let Some(first) = points.first() else { return Vec2::ZERO };
+                let mut at = v(*first);
+                for next in points.iter().skip(1).map(|p| v(*p)) {
+                    let length = at.distance(next);
+                    if left <= length {
+                        return if length > 0.0 { at + (next - at) * (left / length) } else { at };
+                    }
+                    left -= length;
+                    at = next;
+                }
+                at
+            }
+        }
+    }
+
+    fn validate(&self, name: &dyn Fn() -> String) -> Result<(), SceneError> {
+        match self {
+            GoalMotion::Circle { center, radius, period_steps } => {
+                finite(name, &[center[0], center[1], *radius, *period_steps])?;
+                if *radius < 0.0 || *radius > MAX_SIDE || *period_steps < 1.0 {
+                    return Err(SceneError::OutOfRange(format!(
+                        "{} circle needs radius 0…{MAX_SIDE} px and a period of at least 1 step",
+                        name()
+                    )));
+                }
+            }
+            GoalMotion::Polyline { points, speed } => {
+                let flat: Vec<f32> = points.iter().flat_map(|p| [p[0], p[1]]).chain([*speed]).collect();
+                finite(name, &flat)?;
+                if points.is_empty() || points.len() > MAX_PATH_POINTS || *speed < 0.0 || *speed > MAX_SIDE {
+                    return Err(SceneError::OutOfRange(format!(
+                        "{} path needs 1…{MAX_PATH_POINTS} points and a speed ≥ 0 px/step",
+                        name()
+                    )));
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+impl Goal {
+    /// A goal that stays at `position`.
+    pub fn fixed(position: [f32; 2], radius: f32) -> Self {
+        Self { position, radius, motion: None }
+    }
+
+    /// Where the goal is at step `step`: `position` for a fixed goal, else along its motion.
+    pub fn position_at(&self, step: u32) -> Vec2 {
+        match &self.motion {
+            None => v(self.position),
+            Some(m) => m.position_at(step),
+        }
+    }
 }
 
 fn default_goal_radius() -> f32 {
@@ -179,6 +275,9 @@ impl Scene {
             if let Some(k) = self.obstacles.iter().position(|o| o.contains(v(g.position))) {
                 return Err(SceneError::Blocked(format!("goal {} is inside obstacle {}", i + 1, k + 1)));
             }
+            if let Some(m) = &g.motion {
+                m.validate(&|| format!("goal {} motion", i + 1))?;
+            }
         }
         let total = self.agent_count();
         if total > u64::from(MAX_AGENTS) {
@@ -283,7 +382,7 @@ mod tests {
 
     fn scene() -> Scene {
         let mut s = Scene::empty(400.0, 300.0);
-        s.goals.push(Goal { position: [350.0, 150.0], radius: 20.0 });
+        s.goals.push(Goal::fixed([350.0, 150.0], 20.0));
         s.groups.push(Group {
             name: "a".into(),
             color: "#ff0000".into(),
@@ -330,6 +429,28 @@ mod tests {
         let mut s = scene();
         s.groups[0].goal = Some(3);
         assert!(matches!(s.validate(), Err(SceneError::BadReference(_))));
+    }
+
+    #[test]
+    fn moving_goals_follow_their_paths() {
+        let line = GoalMotion::Polyline { points: vec![[0.0, 0.0], [10.0, 0.0], [10.0, 10.0]], speed: 2.0 };
+        assert_eq!(line.position_at(0), Vec2::new(0.0, 0.0));
+        assert_eq!(line.position_at(3), Vec2::new(6.0, 0.0));
+        assert_eq!(line.position_at(7), Vec2::new(10.0, 4.0));
+        assert_eq!(line.position_at(100), Vec2::new(10.0, 10.0));
+        let circle = GoalMotion::Circle { center: [100.0, 100.0], radius: 10.0, period_steps: 40.0 };
+        assert!(circle.position_at(0).distance(Vec2::new(110.0, 100.0)) < 1e-4);
+        assert!(circle.position_at(10).distance(Vec2::new(100.0, 110.0)) < 1e-4);
+        assert!(circle.position_at(40).distance(circle.position_at(0)) < 1e-4);
+        let mut s = scene();
+        s.goals[0].motion = Some(GoalMotion::Polyline { points: vec![], speed: 1.0 });
+        assert!(matches!(s.validate(), Err(SceneError::OutOfRange(m)) if m.contains("goal 1 motion")));
+        s.goals[0].motion = Some(circle);
+        assert_eq!(s.validate(), Ok(()));
+        let json = serde_json::to_string(&s.goals[0]).expect("serialises");
+        assert!(json.contains(r#""kind":"circle""#), "{json}");
+        assert_eq!(serde_json::from_str::<Goal>(&json).expect("parses"), s.goals[0]);
+        assert!(!serde_json::to_string(&Goal::fixed([1.0, 2.0], 3.0)).expect("ok").contains("motion"));
     }
 
     #[test]

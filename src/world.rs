@@ -152,7 +152,7 @@ impl World {
     pub fn goal_of_group(&self, g: usize) -> Option<(Vec2, f32)> {
         let goal = self.scene.groups.get(g)?.goal?;
         let goal = self.scene.goals.get(goal as usize)?;
-        Some((Vec2::new(goal.position[0], goal.position[1]), goal.radius))
+        Some((goal.position_at(self.step), goal.radius))
     }
 
     /// Replaces the planner parameters of group `g` without restarting the run.
@@ -234,7 +234,7 @@ impl World {
                 .get(gi)
                 .and_then(|g| g.goal)
                 .and_then(|k| self.scene.goals.get(k as usize))
-                .map(|goal| (Vec2::new(goal.position[0], goal.position[1]), goal.radius));
+                .map(|goal| (goal.position_at(self.step), goal.radius));
             let view = GroupView { agents: group.agents.clone(), goal };
             let out = &mut self.next_vel[group.agents.start as usize..group.agents.end as usize];
             group.planner.plan(&ctx, view, &mut self.rng, out);

@@ -1,6 +1,7 @@
 //! Crowd planners: one file each behind the [`Planner`] trait, chosen by [`PlannerKind`].
 
 pub mod boids;
+pub mod forces;
 
 use crate::geometry::Obstacle;
 use crate::rng::Rng;
@@ -10,6 +11,7 @@ use serde::{Deserialize, Serialize};
 use std::ops::Range;
 
 pub use boids::{Arbitration, Boids, BoidsParams};
+pub use forces::{Forces, ForcesParams};
 
 /// Read-only view of the world at the start of a step: planners read it, never write it,
 /// so the new velocities do not depend on the order agents are planned in.
@@ -55,16 +57,19 @@ pub trait Planner {
 pub enum PlannerKind {
     /// Reynolds steering (lecture, DESIGN §3.1).
     Boids,
+    /// Five GA-tunable virtual forces (DESIGN §3.5).
+    Forces,
 }
 
 impl PlannerKind {
     /// Every planner, in menu order.
-    pub const ALL: &'static [PlannerKind] = &[PlannerKind::Boids];
+    pub const ALL: &'static [PlannerKind] = &[PlannerKind::Boids, PlannerKind::Forces];
 
     /// The CLI / URL name.
     pub fn name(self) -> &'static str {
         match self {
             PlannerKind::Boids => "boids",
+            PlannerKind::Forces => "forces",
         }
     }
 
@@ -77,6 +82,7 @@ impl PlannerKind {
     pub fn label(self) -> &'static str {
         match self {
             PlannerKind::Boids => "Boids steering",
+            PlannerKind::Forces => "Virtual forces (GA-tuned)",
         }
     }
 
@@ -84,6 +90,7 @@ impl PlannerKind {
     pub fn default_config(self) -> PlannerConfig {
         match self {
             PlannerKind::Boids => PlannerConfig::Boids(BoidsParams::default()),
+            PlannerKind::Forces => PlannerConfig::Forces(ForcesParams::default()),
         }
     }
 
@@ -91,6 +98,7 @@ impl PlannerKind {
     pub fn param_specs(self) -> &'static [ParamSpec] {
         match self {
             PlannerKind::Boids => BoidsParams::SPECS,
+            PlannerKind::Forces => ForcesParams::SPECS,
         }
     }
 }
@@ -101,6 +109,8 @@ impl PlannerKind {
 pub enum PlannerConfig {
     /// Boids steering.
     Boids(BoidsParams),
+    /// Virtual forces.
+    Forces(ForcesParams),
 }
 
 impl Default for PlannerConfig {
@@ -114,6 +124,7 @@ impl PlannerConfig {
     pub fn kind(&self) -> PlannerKind {
         match self {
             PlannerConfig::Boids(_) => PlannerKind::Boids,
+            PlannerConfig::Forces(_) => PlannerKind::Forces,
         }
     }
 
@@ -129,6 +140,7 @@ impl PlannerConfig {
         let _ = (count, obstacles);
         match self {
             PlannerConfig::Boids(p) => Box::new(Boids::new(p.clone())),
+            PlannerConfig::Forces(p) => Box::new(Forces::new(p.clone())),
         }
     }
 
