@@ -108,6 +108,30 @@ pub fn angle_difference(a: f32, b: f32) -> f32 {
     d.min(std::f32::consts::TAU - d)
 }
 
+/// The same as [`SpatialGrid::k_nearest`] (the `k` nearest by `(distance², id)`, `exclude` left
+/// out), but selects before sorting: the neighbour radius holds far more than k agents.
+pub fn k_nearest(
+    grid: &SpatialGrid,
+    p: Vec2,
+    k: usize,
+    radius: f32,
+    exclude: u32,
+    out: &mut Vec<(f32, u32)>,
+) {
+    out.clear();
+    grid.for_each_within(p, radius, |n| {
+        if n.id != exclude {
+            out.push((n.d2, n.id));
+        }
+    });
+    let order = |a: &(f32, u32), b: &(f32, u32)| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1));
+    if out.len() > k && k > 0 {
+        out.select_nth_unstable_by(k - 1, order);
+    }
+    out.truncate(k);
+    out.sort_unstable_by(order);
+}
+
 /// Accumulates the measures frame by frame.
 #[derive(Clone, Debug)]
 pub struct FitnessRecorder {
@@ -174,7 +198,7 @@ impl FitnessRecorder {
         for (j, &p) in pos.iter().enumerate() {
             let r = radius.get(j).copied().unwrap_or(0.0);
             // The k nearest within the radius; an agent alone scores 0 on Gm, Ga and Gd.
-            self.grid.k_nearest(p, prm.k as usize, prm.neighbour_radius, j as u32, &mut self.near);
+            k_nearest(&self.grid, p, prm.k as usize, prm.neighbour_radius, j as u32, &mut self.near);
             if !self.near.is_empty() {
                 let k = self.near.len() as f32;
                 let mean = self.near.iter().map(|(d2, _)| d2.sqrt()).sum::<f32>() / k;
@@ -468,6 +492,23 @@ mod tests {
         rec.record(&[Vec2::new(5.0, 5.0)], &[Vec2::ZERO], &[1.0], &[None], &no_obstacles());
         let m = rec.measures();
         assert_eq!((m.gm, m.ga, m.gd, m.gc), (0.0, 0.0, 0.0, 1.0));
+    }
+
+    #[test]
+    fn selecting_k_nearest_equals_the_grid_query() {
+        let mut rng = crate::rng::Rng::new(4, 0);
+        let points: Vec<Vec2> =
+            (0..300).map(|_| Vec2::new(rng.range(0.0, 200.0), rng.range(0.0, 200.0).floor())).collect();
+        let mut grid = SpatialGrid::new(200.0, 200.0, 20.0, points.len());
+        grid.rebuild(&points, &[]);
+        let (mut ours, mut theirs) = (Vec::new(), Vec::new());
+        for (i, &p) in points.iter().enumerate() {
+            for k in [0, 1, 7, 400] {
+                k_nearest(&grid, p, k, 30.0, i as u32, &mut ours);
+                grid.k_nearest(p, k, 30.0, i as u32, &mut theirs);
+                assert_eq!(ours, theirs, "agent {i}, k {k}");
+            }
+        }
     }
 
     #[test]

@@ -27,6 +27,7 @@ pub mod rng;
 pub mod scene;
 pub mod spatial;
 pub mod tune;
+pub mod tune_cli;
 pub mod world;
 
 pub use codec::{scene_from_any, scene_from_fragment, scene_from_json, scene_to_fragment, scene_to_json};

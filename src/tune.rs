@@ -36,6 +36,8 @@ const GENE_MAX: f32 = GENE_MASK as f32;
 const STREAM_GA: u32 = 7;
 /// Frames simulated per fitness evaluation by default (400 steps = 6.7 s of scene time).
 pub const DEFAULT_FRAMES: u32 = 400;
+/// Frames between two samples of the measures by default.
+pub const DEFAULT_SAMPLE_EVERY: u32 = 1;
 
 /// The five weights `[s1, s2, s3, s4, s5]` encoded in a chromosome.
 pub fn decode(chromosome: u64) -> [f32; GENES] {
@@ -166,6 +168,8 @@ pub struct TuneTask {
     pub scene: Scene,
     /// Steps simulated per evaluation.
     pub frames: u32,
+    /// The measures are taken every this many steps (1 = every frame, as in the paper).
+    pub sample_every: u32,
     /// Parameters of the measures.
     pub fitness: FitnessParams,
     /// The designer's weights S.
@@ -178,6 +182,7 @@ impl TuneTask {
         Self {
             scene: crate::presets::forces_scene(behaviour, environment),
             frames: DEFAULT_FRAMES,
+            sample_every: DEFAULT_SAMPLE_EVERY,
             fitness: behaviour.fitness_params(),
             weights: behaviour.weights(),
         }
@@ -185,7 +190,13 @@ impl TuneTask {
 
     /// A task on any scene (its groups get the virtual forces) with a behaviour's measures.
     pub fn on_scene(scene: Scene, behaviour: Behaviour, frames: u32) -> Self {
-        Self { scene, frames, fitness: behaviour.fitness_params(), weights: behaviour.weights() }
+        Self {
+            scene,
+            frames,
+            sample_every: DEFAULT_SAMPLE_EVERY,
+            fitness: behaviour.fitness_params(),
+            weights: behaviour.weights(),
+        }
     }
 
     /// The scene with every group steered by the virtual forces with `weights`.
@@ -218,8 +229,11 @@ impl TuneTask {
         let mut recorder =
             FitnessRecorder::new(self.fitness.clone(), world.scene().width, world.scene().height, n);
         let mut goals: Vec<Option<Vec2>> = vec![None; n];
-        for _ in 0..self.frames {
+        for frame in 1..=self.frames {
             world.step();
+            if !frame.is_multiple_of(self.sample_every.max(1)) {
+                continue;
+            }
             let group_goals: Vec<Option<Vec2>> =
                 (0..groups).map(|g| world.goal_of_group(g).map(|(p, _)| p)).collect();
             for (goal, &g) in goals.iter_mut().zip(world.group_of()) {

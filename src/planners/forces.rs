@@ -201,6 +201,8 @@ impl ForcesParams {
 const TRACE_EVERY: u32 = 5;
 /// Samples of the goal's trace kept (newest last).
 const TRACE_LEN: usize = 64;
+/// Older trace points tried when the followed point is out of sight (bounds the ray casts).
+const TRACE_SEARCH: usize = 8;
 /// Below this speed (px/step) an agent has no heading: it sees all round and turns freely.
 const MIN_HEADING_SPEED: f32 = 1e-3;
 
@@ -276,12 +278,13 @@ impl Forces {
 
     /// Following (after the leader-trace model of the paper's ref. 5): head for the followed
     /// point if the straight line to it is free, else for the newest older trace point that is
-    /// in sight; steering `desired − velocity` normalised by the speed limit.
+    /// in sight (among the next 8); steering `desired − velocity` normalised by the speed limit.
     fn following(&self, ctx: &StepContext, p: Vec2, vel: Vec2, goal: Option<(Vec2, f32)>) -> Vec2 {
         let Some((goal, _)) = goal else { return Vec2::ZERO };
         let (mut target, before) = self.followed_point(goal);
         if !ctx.obstacles.is_empty() && !Self::clear_line(ctx, p, target) {
-            if let Some(k) = (0..before).rev().find(|&k| Self::clear_line(ctx, p, self.trace[k])) {
+            let oldest = before.saturating_sub(TRACE_SEARCH);
+            if let Some(k) = (oldest..before).rev().find(|&k| Self::clear_line(ctx, p, self.trace[k])) {
                 target = self.trace[k];
             }
         }
