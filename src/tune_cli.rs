@@ -230,25 +230,18 @@ pub fn run_table(
     log: &mut dyn FnMut(&str),
 ) -> Result<TableReport, String> {
     let mut runs = Vec::new();
-    for b in Behaviour::ALL {
-        for e in Environment::ALL {
-            for &seed in &args.seeds {
+    // Seed-major: after the first seed every pair and the cross-scene check have a result.
+    for &seed in &args.seeds {
+        for b in Behaviour::ALL {
+            for e in Environment::ALL {
                 let mut quiet = |_: &str| {};
                 let r = tune_pair(b, e, seed, args, clock, &mut quiet)?;
-                log(&format!(
-                    "{}-{} seed {seed}: Gsum {:.3} s={:?} in {} generations, {} evals, {:.1} s",
-                    b.code().to_uppercase(),
-                    e.code().to_uppercase(),
-                    r.best.gsum,
-                    r.best.weights.map(|w| (w * 100.0).round() / 100.0),
-                    r.generations,
-                    r.evaluations,
-                    r.seconds
-                ));
+                log(&run_row(&r));
                 runs.push(r);
             }
         }
     }
+    runs.sort_by_key(|r| (r.behaviour, r.environment, r.seed));
     let mut cross = Vec::new();
     for b in Behaviour::ALL {
         let Some(e1) = best_run(&runs, b, Environment::Open) else { continue };
@@ -268,35 +261,39 @@ pub fn run_table(
     Ok(TableReport { runs, cross })
 }
 
+/// One run as a row of the Markdown table.
+pub fn run_row(r: &TuneReport) -> String {
+    let w = r.best.weights;
+    let m = r.best.measures;
+    format!(
+        "| {}-{} | {} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} | {:.2} | {} | {} | {:.1} |",
+        r.behaviour.to_uppercase(),
+        r.environment.to_uppercase(),
+        r.seed,
+        w[0],
+        w[1],
+        w[2],
+        w[3],
+        w[4],
+        m.gm,
+        m.gg,
+        m.gc,
+        m.ga,
+        m.gd,
+        r.best.gsum,
+        r.generations,
+        r.evaluations,
+        r.seconds
+    )
+}
+
 /// The table as Markdown.
 pub fn markdown(report: &TableReport) -> String {
     let mut out = String::new();
     let _ = writeln!(out, "| pair | seed | s1 sep | s2 align | s3 coh | s4 fol | s5 col | Gm | Gg | Gc | Ga | Gd | Gsum | gens | evals | s |");
     let _ = writeln!(out, "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|");
     for r in &report.runs {
-        let w = r.best.weights;
-        let m = r.best.measures;
-        let _ = writeln!(
-            out,
-            "| {}-{} | {} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} | {:.2} | {} | {} | {:.1} |",
-            r.behaviour.to_uppercase(),
-            r.environment.to_uppercase(),
-            r.seed,
-            w[0],
-            w[1],
-            w[2],
-            w[3],
-            w[4],
-            m.gm,
-            m.gg,
-            m.gc,
-            m.ga,
-            m.gd,
-            r.best.gsum,
-            r.generations,
-            r.evaluations,
-            r.seconds
-        );
+        let _ = writeln!(out, "{}", run_row(r));
     }
     let _ = writeln!(
         out,
