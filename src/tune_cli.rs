@@ -11,6 +11,7 @@ use std::fmt::Write as _;
 /// Usage text of `flockpath tune`.
 pub const USAGE: &str = "usage: flockpath tune --behaviour b1|b2|b3 --environment e1|e2|e3 --seed S \
 [--generations G] [--population P] [--frames F] [--sample-every K] [--json FILE]\n       \
+flockpath tune --behaviour b1|b2|b3 --environment e1|e2|e3 --score s1,s2,s3,s4,s5\n       \
 flockpath tune --table [--seeds 1,2,3] [--generations G] [--population P] [--frames F] \
 [--markdown FILE] [--json FILE]";
 
@@ -37,6 +38,8 @@ pub struct TuneArgs {
     pub json: Option<String>,
     /// Where to write the Markdown table (table mode).
     pub markdown: Option<String>,
+    /// Only score these weights `[s1…s5]` on the pair (no tuning).
+    pub score: Option<[f32; 5]>,
 }
 
 fn number<T: std::str::FromStr>(flag: &str, value: Option<&String>) -> Result<T, String> {
@@ -60,6 +63,7 @@ pub fn parse(args: &[String]) -> Result<TuneArgs, String> {
         sample_every: crate::tune::DEFAULT_SAMPLE_EVERY,
         json: None,
         markdown: None,
+        score: None,
     };
     let mut it = args.iter();
     while let Some(flag) = it.next() {
@@ -93,6 +97,15 @@ pub fn parse(args: &[String]) -> Result<TuneArgs, String> {
             "--json" => parsed.json = Some(it.next().ok_or("--json needs a file name or -")?.clone()),
             "--markdown" => parsed.markdown = Some(it.next().ok_or("--markdown needs a file name")?.clone()),
             "--table" => parsed.table = true,
+            "--score" => {
+                let v = it.next().ok_or("--score needs five weights such as 0.4,0.1,0.2,0.8,0.4")?;
+                let w: Vec<f32> = v
+                    .split(',')
+                    .map(|x| x.trim().parse::<f32>().ok().filter(|w| (0.0..=1.0).contains(w)))
+                    .collect::<Option<_>>()
+                    .ok_or_else(|| format!("--score: {v:?} is not five weights in 0…1"))?;
+                parsed.score = Some(w.try_into().map_err(|_| format!("--score: {v:?} is not five weights"))?);
+            }
             other => return Err(format!("unknown option {other:?}\n{USAGE}")),
         }
     }
@@ -105,7 +118,11 @@ pub fn parse(args: &[String]) -> Result<TuneArgs, String> {
     if !parsed.table {
         parsed.behaviour = behaviour.ok_or_else(|| format!("missing --behaviour\n{USAGE}"))?;
         parsed.environment = environment.ok_or_else(|| format!("missing --environment\n{USAGE}"))?;
-        parsed.seed = seed.ok_or_else(|| format!("missing --seed\n{USAGE}"))?;
+        parsed.seed = match (seed, parsed.score) {
+            (Some(seed), _) => seed,
+            (None, Some(_)) => 1,
+            (None, None) => return Err(format!("missing --seed\n{USAGE}")),
+        };
     } else if parsed.seeds.is_empty() {
         return Err("--seeds needs at least one seed".into());
     }
@@ -360,6 +377,14 @@ fn run(args: &TuneArgs, clock: &dyn Fn() -> f64) -> Result<(), String> {
         }
         return Ok(());
     }
+    if let Some(weights) = args.score {
+        let mut task = TuneTask::new(args.behaviour, args.environment);
+        task.frames = args.frames;
+        task.sample_every = args.sample_every;
+        let e = task.evaluate(weights);
+        println!("{}", serde_json::json!({ "weights": e.weights, "gsum": e.gsum, "measures": e.measures }));
+        return Ok(());
+    }
     let report = tune_pair(args.behaviour, args.environment, args.seed, args, clock, &mut log)?;
     eprintln!(
         "{} agents × {} frames per evaluation: {} evaluations in {:.1} s = {:.1} evaluations/s ({} threads)",
@@ -417,6 +442,13 @@ mod tests {
             .expect_err("x")
             .contains("\"x\""));
         assert!(parse(&strings("--frobnicate")).expect_err("flag").contains("--frobnicate"));
+        let s = parse(&strings("--behaviour b1 --environment e2 --seed 1 --score 0.1,0.2,0.3,0.4,1"))
+            .expect("ok");
+        assert_eq!(s.score, Some([0.1, 0.2, 0.3, 0.4, 1.0]));
+        assert!(parse(&strings("--behaviour b1 --environment e2 --seed 1 --score 0.1,0.2")).is_err());
+        assert!(
+            parse(&strings("--behaviour b1 --environment e2 --seed 1 --score 0.1,0.2,0.3,0.4,2")).is_err()
+        );
         let t = parse(&strings("--table --seeds 4,5")).expect("table");
         assert!(t.table);
         assert_eq!(t.seeds, vec![4, 5]);
