@@ -19,6 +19,7 @@
 pub mod codec;
 pub mod edit;
 pub mod export;
+pub mod fitness;
 pub mod geometry;
 pub mod metrics;
 pub mod optim;
@@ -29,6 +30,8 @@ pub mod render;
 pub mod rng;
 pub mod scene;
 pub mod spatial;
+pub mod tune;
+pub mod tune_cli;
 #[cfg(target_arch = "wasm32")]
 pub mod web;
 pub mod world;

@@ -1,5 +1,6 @@
 //! Named scenes: one name→builder table shared by the page, the CLI, the tests and the benches.
 
+use crate::fitness::{Behaviour, Environment};
 use crate::geometry::Obstacle;
 use crate::planners::{FireflyParams, PlannerConfig, PsoParams};
 use crate::rng::Rng;
@@ -78,6 +79,21 @@ pub const ALL: &[Preset] = &[
         description: "Firefly (Zhang et al.): 80 fireflies on an 800×600 stage gather, then queue in file to the target.",
         build: firefly_migration,
     },
+    Preset {
+        name: "forces-e1-open",
+        description: "Virtual forces, E1: a group follows a moving goal across open space.",
+        build: forces_e1_open,
+    },
+    Preset {
+        name: "forces-e2-narrow",
+        description: "Virtual forces, E2: a group follows a moving goal through a narrow passage.",
+        build: forces_e2_narrow,
+    },
+    Preset {
+        name: "forces-e3-cluttered",
+        description: "Virtual forces, E3: a group follows a moving goal among small obstacles.",
+        build: forces_e3_cluttered,
+    },
 ];
 
 /// Looks a preset up by name.
@@ -141,6 +157,69 @@ pub fn corridor() -> Scene {
     s.obstacles.push(Obstacle::Rect { min: [350.0, 295.0], max: [550.0, 500.0] });
     s.goals.push(Goal::fixed([820.0, 250.0], 40.0));
     s.groups.push(group("flock", "#2f9f5f", 60, ([30.0, 100.0], [200.0, 400.0]), 0));
+    s
+}
+
+/// E1 with the following behaviour (B2).
+pub fn forces_e1_open() -> Scene {
+    forces_scene(Behaviour::Following, Environment::Open)
+}
+
+/// E2 with the following behaviour (B2).
+pub fn forces_e2_narrow() -> Scene {
+    forces_scene(Behaviour::Following, Environment::Narrow)
+}
+
+/// E3 with the following behaviour (B2).
+pub fn forces_e3_cluttered() -> Scene {
+    forces_scene(Behaviour::Following, Environment::Cluttered)
+}
+
+/// Agents in every scene of the virtual-force experiment.
+pub const FORCES_AGENTS: u32 = 30;
+
+/// A scene of the virtual-force experiment (DESIGN §3.5): an 800×400 world, 30 agents with the
+/// `forces` planner on the left, heading right. B1 heads for a fixed goal on the right; B2 and
+/// B3 go with a goal that moves along the middle line (1.2 and 0.8 px/step).
+pub fn forces_scene(behaviour: Behaviour, environment: Environment) -> Scene {
+    let name = format!("forces-{}-{}", behaviour.code(), environment.code());
+    let mut s = base(&name, 800.0, 400.0);
+    match environment {
+        Environment::Open => {}
+        Environment::Narrow => {
+            // A wall across the world with one 50 px gap (about six bodies wide).
+            s.obstacles.push(Obstacle::Rect { min: [370.0, 0.0], max: [430.0, 175.0] });
+            s.obstacles.push(Obstacle::Rect { min: [370.0, 225.0], max: [430.0, 400.0] });
+        }
+        Environment::Cluttered => {
+            // Small pillars (radius 8 px) on a staggered 50 px lattice.
+            for col in 0..9 {
+                let x = 230.0 + col as f32 * 50.0;
+                let offset = if col % 2 == 1 { 25.0 } else { 0.0 };
+                for row in 0..8 {
+                    let y = 30.0 + offset + row as f32 * 50.0;
+                    if y < 390.0 {
+                        s.obstacles.push(Obstacle::Circle { center: [x, y], radius: 8.0 });
+                    }
+                }
+            }
+        }
+    }
+    let mut flock = group("flock", "#8f3fbf", FORCES_AGENTS, ([40.0, 140.0], [160.0, 260.0]), 0);
+    flock.planner = PlannerConfig::Forces(crate::planners::ForcesParams::default());
+    match behaviour {
+        Behaviour::GroupMoving => s.goals.push(Goal::fixed([730.0, 200.0], 40.0)),
+        Behaviour::Following | Behaviour::Guarding => {
+            let speed = if behaviour == Behaviour::Following { 1.2 } else { 0.8 };
+            s.goals.push(Goal {
+                position: [180.0, 200.0],
+                radius: 20.0,
+                motion: Some(GoalMotion::Polyline { points: vec![[180.0, 200.0], [740.0, 200.0]], speed }),
+            });
+            flock.spawn = Region { min: [60.0, 140.0], max: [170.0, 260.0] };
+        }
+    }
+    s.groups.push(flock);
     s
 }
 
@@ -211,7 +290,7 @@ pub fn pso_crowd() -> Scene {
 pub fn pso_circle_target() -> Scene {
     let mut s = base("pso-circle-target", 1000.0, 700.0);
     let mut goal = Goal::fixed([750.0, 350.0], 30.0);
-    goal.motion = Some(GoalMotion::Circle { center: [500.0, 350.0], radius: 250.0, period_steps: 3600 });
+    goal.motion = Some(GoalMotion::Circle { center: [500.0, 350.0], radius: 250.0, period_steps: 3600.0 });
     s.goals.push(goal);
     s.groups.push(pso_group("chasers", "#2f6fdf", 20, ([440.0, 290.0], [560.0, 410.0]), 0));
     s

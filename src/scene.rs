@@ -55,7 +55,10 @@ pub struct Goal {
     pub motion: Option<GoalMotion>,
 }
 
-/// A goal's motion over time (steps).
+/// Most points a goal's polyline path may have.
+pub const MAX_PATH_POINTS: usize = 1_000;
+
+/// How a goal moves over time (step `t` counts from the start of the run).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
 pub enum GoalMotion {
@@ -64,33 +67,87 @@ pub enum GoalMotion {
     Circle {
         /// Centre `[x, y]` in px.
         center: [f32; 2],
-        /// Radius in px, > 0.
+        /// Radius in px, ≥ 0.
         radius: f32,
-        /// Steps per full turn, ≥ 1.
-        period_steps: u32,
+        /// Steps per full turn, > 0.
+        period_steps: f32,
+    },
+    /// Along a polyline at a constant speed from its first point; it stays at the last point.
+    Polyline {
+        /// Vertices `[x, y]` in px (at least one).
+        points: Vec<[f32; 2]>,
+        /// Speed along the path in px/step, ≥ 0.
+        speed: f32,
     },
 }
 
+impl GoalMotion {
+    /// Position at step `step` of a goal that starts at `start`. Computed with libm (and the
+    /// turn fraction in f64) so every platform agrees and long runs stay accurate.
+    pub fn position_at(&self, start: Vec2, step: u32) -> Vec2 {
+        match self {
+            GoalMotion::Circle { center, radius, period_steps } => {
+                let c = v(*center);
+                let from = start - c;
+                let phase0 = if from.length_squared() > 0.0 { libm::atan2f(from.y, from.x) } else { 0.0 };
+                let turns = (f64::from(step) / f64::from(period_steps.max(f32::MIN_POSITIVE))).fract();
+                let angle = phase0 + (turns * std::f64::consts::TAU) as f32;
+                c + Vec2::new(libm::cosf(angle), libm::sinf(angle)) * *radius
+            }
+            GoalMotion::Polyline { points, speed } => {
+                let mut left = *speed * step as f32;
+                let Some(first) = points.first() else { return Vec2::ZERO };
+                let mut at = v(*first);
+                for next in points.iter().skip(1).map(|p| v(*p)) {
+                    let length = at.distance(next);
+                    if left <= length {
+                        return if length > 0.0 { at + (next - at) * (left / length) } else { at };
+                    }
+                    left -= length;
+                    at = next;
+                }
+                at
+            }
+        }
+    }
+
+    fn validate(&self, name: &dyn Fn() -> String) -> Result<(), SceneError> {
+        match self {
+            GoalMotion::Circle { center, radius, period_steps } => {
+                finite(name, &[center[0], center[1], *radius, *period_steps])?;
+                if *radius < 0.0 || *radius > MAX_SIDE || *period_steps < 1.0 {
+                    return Err(SceneError::OutOfRange(format!(
+                        "{} circle needs radius 0…{MAX_SIDE} px and a period of at least 1 step",
+                        name()
+                    )));
+                }
+            }
+            GoalMotion::Polyline { points, speed } => {
+                let flat: Vec<f32> = points.iter().flat_map(|p| [p[0], p[1]]).chain([*speed]).collect();
+                finite(name, &flat)?;
+                if points.is_empty() || points.len() > MAX_PATH_POINTS || *speed < 0.0 || *speed > MAX_SIDE {
+                    return Err(SceneError::OutOfRange(format!(
+                        "{} path needs 1…{MAX_PATH_POINTS} points and a speed ≥ 0 px/step",
+                        name()
+                    )));
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
 impl Goal {
-    /// A goal that does not move.
+    /// A goal that stays at `position`.
     pub fn fixed(position: [f32; 2], radius: f32) -> Self {
         Self { position, radius, motion: None }
     }
 
-    /// The goal's centre after `step` steps (px). Computed with libm so every platform agrees.
+    /// Where the goal is at step `step`: `position` for a fixed goal, else along its motion.
     pub fn position_at(&self, step: u32) -> Vec2 {
         match &self.motion {
             None => v(self.position),
-            Some(GoalMotion::Circle { center, radius, period_steps }) => {
-                let c = v(*center);
-                let start = v(self.position) - c;
-                let phase0 = if start.length_squared() > 0.0 { libm::atan2f(start.y, start.x) } else { 0.0 };
-                // Reduce the step modulo the period first so the angle stays accurate for long runs.
-                let period = (*period_steps).max(1);
-                let turn = (step % period) as f32 / period as f32;
-                let angle = phase0 + std::f32::consts::TAU * turn;
-                c + Vec2::new(libm::cosf(angle), libm::sinf(angle)) * *radius
-            }
+            Some(m) => m.position_at(v(self.position), step),
         }
     }
 }
@@ -223,20 +280,16 @@ impl Scene {
             if let Some(k) = self.obstacles.iter().position(|o| o.contains(v(g.position))) {
                 return Err(SceneError::Blocked(format!("goal {} is inside obstacle {}", i + 1, k + 1)));
             }
-            if let Some(GoalMotion::Circle { center, radius, period_steps }) = &g.motion {
-                finite(|| format!("goal {} motion", i + 1), &[center[0], center[1], *radius])?;
-                let c = v(*center);
-                let reach = Vec2::splat(*radius);
-                if *radius <= 0.0
-                    || *period_steps == 0
-                    || !self.in_bounds(c - reach)
-                    || !self.in_bounds(c + reach)
-                {
-                    return Err(SceneError::OutOfRange(format!(
-                        "goal {} circle (radius {radius} px, period {period_steps} steps) must have radius > 0, \
-                         period ≥ 1 and stay inside the scene",
-                        i + 1
-                    )));
+            if let Some(m) = &g.motion {
+                m.validate(&|| format!("goal {} motion", i + 1))?;
+                if let GoalMotion::Circle { center, radius, .. } = m {
+                    let reach = Vec2::splat(*radius);
+                    if !self.in_bounds(v(*center) - reach) || !self.in_bounds(v(*center) + reach) {
+                        return Err(SceneError::OutOfRange(format!(
+                            "goal {} circle (radius {radius} px) must stay inside the scene",
+                            i + 1
+                        )));
+                    }
                 }
             }
         }
@@ -395,7 +448,7 @@ mod tests {
     #[test]
     fn a_circling_goal_moves_on_its_circle_and_old_scenes_still_load() {
         let mut goal = Goal::fixed([300.0, 150.0], 20.0);
-        goal.motion = Some(GoalMotion::Circle { center: [200.0, 150.0], radius: 100.0, period_steps: 400 });
+        goal.motion = Some(GoalMotion::Circle { center: [200.0, 150.0], radius: 100.0, period_steps: 400.0 });
         assert!(goal.position_at(0).distance(Vec2::new(300.0, 150.0)) < 1e-3);
         assert!(goal.position_at(100).distance(Vec2::new(200.0, 250.0)) < 1e-3);
         assert!(goal.position_at(400).distance(goal.position_at(0)) < 1e-3);
@@ -409,6 +462,28 @@ mod tests {
             *radius = 1000.0;
         }
         assert!(matches!(s.validate(), Err(SceneError::OutOfRange(_))));
+    }
+
+    #[test]
+    fn moving_goals_follow_their_paths() {
+        let line = GoalMotion::Polyline { points: vec![[0.0, 0.0], [10.0, 0.0], [10.0, 10.0]], speed: 2.0 };
+        assert_eq!(line.position_at(Vec2::ZERO, 0), Vec2::new(0.0, 0.0));
+        assert_eq!(line.position_at(Vec2::ZERO, 3), Vec2::new(6.0, 0.0));
+        assert_eq!(line.position_at(Vec2::ZERO, 7), Vec2::new(10.0, 4.0));
+        assert_eq!(line.position_at(Vec2::ZERO, 100), Vec2::new(10.0, 10.0));
+        let circle = GoalMotion::Circle { center: [100.0, 100.0], radius: 10.0, period_steps: 40.0 };
+        assert!(circle.position_at(Vec2::new(110.0, 100.0), 0).distance(Vec2::new(110.0, 100.0)) < 1e-4);
+        assert!(circle.position_at(Vec2::new(110.0, 100.0), 10).distance(Vec2::new(100.0, 110.0)) < 1e-4);
+        assert!(circle.position_at(Vec2::ZERO, 40).distance(circle.position_at(Vec2::ZERO, 0)) < 1e-4);
+        let mut s = scene();
+        s.goals[0].motion = Some(GoalMotion::Polyline { points: vec![], speed: 1.0 });
+        assert!(matches!(s.validate(), Err(SceneError::OutOfRange(m)) if m.contains("goal 1 motion")));
+        s.goals[0].motion = Some(circle);
+        assert_eq!(s.validate(), Ok(()));
+        let json = serde_json::to_string(&s.goals[0]).expect("serialises");
+        assert!(json.contains(r#""kind":"circle""#), "{json}");
+        assert_eq!(serde_json::from_str::<Goal>(&json).expect("parses"), s.goals[0]);
+        assert!(!serde_json::to_string(&Goal::fixed([1.0, 2.0], 3.0)).expect("ok").contains("motion"));
     }
 
     #[test]

@@ -2,6 +2,7 @@
 
 pub mod boids;
 pub mod firefly;
+pub mod forces;
 pub mod pso;
 
 use crate::geometry::Obstacle;
@@ -13,6 +14,7 @@ use std::ops::Range;
 
 pub use boids::{Arbitration, Boids, BoidsParams};
 pub use firefly::{Firefly, FireflyParams};
+pub use forces::{Forces, ForcesParams};
 pub use pso::{Pso, PsoParams};
 
 /// Read-only view of the world at the start of a step: planners read it, never write it,
@@ -68,11 +70,14 @@ pub enum PlannerKind {
     Pso,
     /// Firefly crowd (Zhang, Wei & Chen 2017, DESIGN §3.3).
     Firefly,
+    /// Five GA-tunable virtual forces (DESIGN §3.5).
+    Forces,
 }
 
 impl PlannerKind {
     /// Every planner, in menu order.
-    pub const ALL: &'static [PlannerKind] = &[PlannerKind::Boids, PlannerKind::Pso, PlannerKind::Firefly];
+    pub const ALL: &'static [PlannerKind] =
+        &[PlannerKind::Boids, PlannerKind::Pso, PlannerKind::Firefly, PlannerKind::Forces];
 
     /// The CLI / URL name.
     pub fn name(self) -> &'static str {
@@ -80,6 +85,7 @@ impl PlannerKind {
             PlannerKind::Boids => "boids",
             PlannerKind::Pso => "pso",
             PlannerKind::Firefly => "firefly",
+            PlannerKind::Forces => "forces",
         }
     }
 
@@ -94,6 +100,7 @@ impl PlannerKind {
             PlannerKind::Boids => "Boids steering",
             PlannerKind::Pso => "PSO crowd (Chen & Lin 2009)",
             PlannerKind::Firefly => "Firefly crowd (Zhang et al. 2017)",
+            PlannerKind::Forces => "Virtual forces (GA-tuned)",
         }
     }
 
@@ -103,6 +110,7 @@ impl PlannerKind {
             PlannerKind::Boids => PlannerConfig::Boids(BoidsParams::default()),
             PlannerKind::Pso => PlannerConfig::Pso(PsoParams::default()),
             PlannerKind::Firefly => PlannerConfig::Firefly(FireflyParams::default()),
+            PlannerKind::Forces => PlannerConfig::Forces(ForcesParams::default()),
         }
     }
 
@@ -112,6 +120,7 @@ impl PlannerKind {
             PlannerKind::Boids => BoidsParams::SPECS,
             PlannerKind::Pso => PsoParams::SPECS,
             PlannerKind::Firefly => FireflyParams::SPECS,
+            PlannerKind::Forces => ForcesParams::SPECS,
         }
     }
 }
@@ -126,6 +135,8 @@ pub enum PlannerConfig {
     Pso(PsoParams),
     /// Firefly crowd.
     Firefly(FireflyParams),
+    /// Virtual forces.
+    Forces(ForcesParams),
 }
 
 impl Default for PlannerConfig {
@@ -141,6 +152,7 @@ impl PlannerConfig {
             PlannerConfig::Boids(_) => PlannerKind::Boids,
             PlannerConfig::Pso(_) => PlannerKind::Pso,
             PlannerConfig::Firefly(_) => PlannerKind::Firefly,
+            PlannerConfig::Forces(_) => PlannerKind::Forces,
         }
     }
 
@@ -158,6 +170,7 @@ impl PlannerConfig {
             PlannerConfig::Boids(p) => Box::new(Boids::new(p.clone())),
             PlannerConfig::Pso(p) => Box::new(Pso::new(p.clone(), obstacles)),
             PlannerConfig::Firefly(p) => Box::new(Firefly::new(p.clone())),
+            PlannerConfig::Forces(p) => Box::new(Forces::new(p.clone())),
         }
     }
 

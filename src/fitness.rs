@@ -1,0 +1,527 @@
+//! The five elementary fitness measures of the GA-tuned virtual-force paper (DESIGN §3.5) and the
+//! behaviours (B1–B3) and environments (E1–E3) of its experiment.
+//!
+//! Every measure is in [0, 1], computed per agent over its k = 7 nearest neighbours, averaged
+//! over the agents of a frame, then over the frames:
+//! - Gm, spacing: `min(1, Q_d / |R_j − R_e|)`, `R_j` the mean distance to the k nearest (14.2–14.4);
+//! - Gg, goal distance: the same form with the distance to the goal and a desired distance `R_g`;
+//! - Gc, no collision: the share of agents whose disc overlaps no other agent and no obstacle (14.5);
+//! - Ga, orientation: `1 − mean_i |θ_j − θ_i| / π` over the k nearest (14.6–14.7);
+//! - Gd, distance consistency: `min(1, Q_σ / σ_j)`, `σ_j` the deviation of those k distances (14.8–14.10).
+//!
+//! `Gsum = Sm Gm + Sg Gg + Sc Gc + Sa Ga + Sd Gd` (14.11), S chosen per behaviour.
+
+use crate::geometry::{Aabb, Obstacle};
+use crate::spatial::{ObstacleIndex, SpatialGrid};
+use glam::Vec2;
+use serde::{Deserialize, Serialize};
+
+/// Normalisations and quantisation factors of the measures. Lengths in px.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct FitnessParams {
+    /// Neighbours per agent (paper, after Miller: 7).
+    pub k: u32,
+    /// Neighbours farther than this are not counted among the k nearest (px).
+    pub neighbour_radius: f32,
+    /// `R_e`, the desired mean distance to the k nearest (px).
+    pub desired_spacing: f32,
+    /// `Q_d`: a spacing error up to this scores 1, beyond it `Q_d / error` (px).
+    pub spacing_quantum: f32,
+    /// Desired distance to the goal (px): 0 to follow, the guard radius to surround.
+    pub desired_goal_distance: f32,
+    /// Quantisation of the goal-distance error (px).
+    pub goal_quantum: f32,
+    /// `Q_σ`: a deviation of the k distances up to this scores 1 (px).
+    pub spread_quantum: f32,
+}
+
+impl Default for FitnessParams {
+    fn default() -> Self {
+        Self {
+            k: 7,
+            neighbour_radius: 160.0,
+            desired_spacing: 24.0,
+            spacing_quantum: 4.0,
+            desired_goal_distance: 0.0,
+            goal_quantum: 40.0,
+            spread_quantum: 4.0,
+        }
+    }
+}
+
+/// The designer's weights S of the five measures in Gsum.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct FitnessWeights {
+    /// Sm, inter-agent distance.
+    pub spacing: f64,
+    /// Sg, distance to the goal.
+    pub goal: f64,
+    /// Sc, collision-free share.
+    pub collision: f64,
+    /// Sa, orientation consistency.
+    pub orientation: f64,
+    /// Sd, distance consistency.
+    pub distance: f64,
+}
+
+/// The five measures, each in [0, 1].
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct FitnessMeasures {
+    /// Gm, inter-agent distance.
+    pub gm: f64,
+    /// Gg, distance to the goal.
+    pub gg: f64,
+    /// Gc, share of agents not in collision.
+    pub gc: f64,
+    /// Ga, orientation consistency.
+    pub ga: f64,
+    /// Gd, distance consistency.
+    pub gd: f64,
+}
+
+impl FitnessMeasures {
+    /// `Gsum = Sm Gm + Sg Gg + Sc Gc + Sa Ga + Sd Gd`.
+    pub fn gsum(&self, s: &FitnessWeights) -> f64 {
+        s.spacing * self.gm
+            + s.goal * self.gg
+            + s.collision * self.gc
+            + s.orientation * self.ga
+            + s.distance * self.gd
+    }
+}
+
+/// `min(1, quantum / error)`: the paper's "normalised by the quantisation factor, clipped to (0, 1]".
+#[inline]
+pub fn quantised(quantum: f32, error: f32) -> f64 {
+    if error <= quantum {
+        1.0
+    } else {
+        f64::from(quantum / error)
+    }
+}
+
+/// Absolute difference of two angles, wrapped into [0, π].
+#[inline]
+pub fn angle_difference(a: f32, b: f32) -> f32 {
+    let d = (a - b).abs() % std::f32::consts::TAU;
+    d.min(std::f32::consts::TAU - d)
+}
+
+/// The same as [`SpatialGrid::k_nearest`] (the `k` nearest by `(distance², id)`, `exclude` left
+/// out), but selects before sorting: the neighbour radius holds far more than k agents.
+pub fn k_nearest(
+    grid: &SpatialGrid,
+    p: Vec2,
+    k: usize,
+    radius: f32,
+    exclude: u32,
+    out: &mut Vec<(f32, u32)>,
+) {
+    out.clear();
+    grid.for_each_within(p, radius, |n| {
+        if n.id != exclude {
+            out.push((n.d2, n.id));
+        }
+    });
+    let order = |a: &(f32, u32), b: &(f32, u32)| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1));
+    if out.len() > k && k > 0 {
+        out.select_nth_unstable_by(k - 1, order);
+    }
+    out.truncate(k);
+    out.sort_unstable_by(order);
+}
+
+/// Accumulates the measures frame by frame.
+#[derive(Clone, Debug)]
+pub struct FitnessRecorder {
+    params: FitnessParams,
+    grid: SpatialGrid,
+    /// Last heading of each agent (rad): kept while an agent stands still.
+    headings: Vec<f32>,
+    sums: [f64; 5],
+    goal_frames: u64,
+    frames: u64,
+    near: Vec<(f32, u32)>,
+}
+
+impl FitnessRecorder {
+    /// A recorder for `agents` agents in a `width × height` world.
+    pub fn new(params: FitnessParams, width: f32, height: f32, agents: usize) -> Self {
+        let cell = (0.5 * params.neighbour_radius).max(1.0);
+        Self {
+            grid: SpatialGrid::new(width, height, cell, agents),
+            headings: vec![0.0; agents],
+            params,
+            sums: [0.0; 5],
+            goal_frames: 0,
+            frames: 0,
+            near: Vec::new(),
+        }
+    }
+
+    /// The parameters.
+    pub fn params(&self) -> &FitnessParams {
+        &self.params
+    }
+
+    /// Frames recorded so far.
+    pub fn frames(&self) -> u64 {
+        self.frames
+    }
+
+    /// Records one frame. `goals[i]` is agent `i`'s goal position (agents without one are left
+    /// out of Gg). Degenerate frames (no agents) are skipped.
+    pub fn record(
+        &mut self,
+        pos: &[Vec2],
+        vel: &[Vec2],
+        radius: &[f32],
+        goals: &[Option<Vec2>],
+        obstacles: &ObstacleIndex,
+    ) {
+        let n = pos.len();
+        if n == 0 {
+            return;
+        }
+        self.headings.resize(n, 0.0);
+        for (h, v) in self.headings.iter_mut().zip(vel) {
+            if v.length_squared() > 1e-8 {
+                *h = libm::atan2f(v.y, v.x);
+            }
+        }
+        self.grid.rebuild(pos, vel);
+        let prm = &self.params;
+        let max_radius = radius.iter().copied().fold(0.0f32, f32::max);
+        let (mut gm, mut gg, mut gc, mut ga, mut gd) = (0.0f64, 0.0f64, 0.0f64, 0.0f64, 0.0f64);
+        let mut with_goal = 0u32;
+        for (j, &p) in pos.iter().enumerate() {
+            let r = radius.get(j).copied().unwrap_or(0.0);
+            // The k nearest within the radius; an agent alone scores 0 on Gm, Ga and Gd.
+            k_nearest(&self.grid, p, prm.k as usize, prm.neighbour_radius, j as u32, &mut self.near);
+            if !self.near.is_empty() {
+                let k = self.near.len() as f32;
+                let mean = self.near.iter().map(|(d2, _)| d2.sqrt()).sum::<f32>() / k;
+                let var = self.near.iter().map(|(d2, _)| (d2.sqrt() - mean).powi(2)).sum::<f32>() / k;
+                let orient = self
+                    .near
+                    .iter()
+                    .map(|&(_, i)| angle_difference(self.headings[j], self.headings[i as usize]))
+                    .sum::<f32>()
+                    / k;
+                gm += quantised(prm.spacing_quantum, (mean - prm.desired_spacing).abs());
+                gd += quantised(prm.spread_quantum, var.sqrt());
+                ga += 1.0 - f64::from(orient / std::f32::consts::PI);
+            }
+            if let Some(goal) = goals.get(j).copied().flatten() {
+                with_goal += 1;
+                gg += quantised(prm.goal_quantum, (p.distance(goal) - prm.desired_goal_distance).abs());
+            }
+            let mut hit = false;
+            self.grid.for_each_within(p, r + max_radius, |q| {
+                let rq = radius.get(q.id as usize).copied().unwrap_or(0.0);
+                hit |= q.id != j as u32 && q.d2 < (r + rq) * (r + rq);
+            });
+            if !hit && !obstacles.is_empty() {
+                // The world pushes agents out to `radius + 0.01`: only a real overlap counts.
+                obstacles.for_each_near(Aabb { min: p, max: p }.inflate(r), |_, o: &Obstacle| {
+                    hit |= o.surface(p).signed_distance < r - 1e-3;
+                });
+            }
+            if !hit {
+                gc += 1.0;
+            }
+        }
+        let inv = 1.0 / n as f64;
+        self.sums[0] += gm * inv;
+        self.sums[2] += gc * inv;
+        self.sums[3] += ga * inv;
+        self.sums[4] += gd * inv;
+        if with_goal > 0 {
+            self.sums[1] += gg / f64::from(with_goal);
+            self.goal_frames += 1;
+        }
+        self.frames += 1;
+    }
+
+    /// The measures averaged over the frames recorded (all 0 before the first frame).
+    pub fn measures(&self) -> FitnessMeasures {
+        let per = |sum: f64, frames: u64| if frames == 0 { 0.0 } else { sum / frames as f64 };
+        FitnessMeasures {
+            gm: per(self.sums[0], self.frames),
+            gg: per(self.sums[1], self.goal_frames),
+            gc: per(self.sums[2], self.frames),
+            ga: per(self.sums[3], self.frames),
+            gd: per(self.sums[4], self.frames),
+        }
+    }
+}
+
+/// The behaviours of the paper's experiment.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Behaviour {
+    /// B1: the group moves to a goal keeping a given spacing.
+    GroupMoving,
+    /// B2: the group follows a moving goal as closely as it can.
+    Following,
+    /// B3: the group surrounds (guards) a moving goal.
+    Guarding,
+}
+
+impl Behaviour {
+    /// All three, in the paper's order.
+    pub const ALL: [Behaviour; 3] = [Behaviour::GroupMoving, Behaviour::Following, Behaviour::Guarding];
+
+    /// `b1`, `b2`, `b3`.
+    pub fn code(self) -> &'static str {
+        match self {
+            Behaviour::GroupMoving => "b1",
+            Behaviour::Following => "b2",
+            Behaviour::Guarding => "b3",
+        }
+    }
+
+    /// Looks a behaviour up by `b1`…`b3` (or its name).
+    pub fn from_code(code: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|b| b.code().eq_ignore_ascii_case(code) || b.label() == code)
+    }
+
+    /// Readable name.
+    pub fn label(self) -> &'static str {
+        match self {
+            Behaviour::GroupMoving => "group moving",
+            Behaviour::Following => "following",
+            Behaviour::Guarding => "guarding",
+        }
+    }
+
+    /// The measures' parameters expressing this behaviour.
+    pub fn fitness_params(self) -> FitnessParams {
+        let base = FitnessParams::default();
+        match self {
+            // A loose group (3 body sizes apart) that reaches its goal.
+            Behaviour::GroupMoving => FitnessParams { desired_spacing: 24.0, goal_quantum: 40.0, ..base },
+            // Close to the goal and to each other (1.5 body sizes).
+            Behaviour::Following => {
+                FitnessParams { desired_spacing: 12.0, spacing_quantum: 3.0, goal_quantum: 25.0, ..base }
+            }
+            // On a ring 48 px around the goal.
+            Behaviour::Guarding => FitnessParams {
+                desired_spacing: 20.0,
+                desired_goal_distance: 48.0,
+                goal_quantum: 8.0,
+                ..base
+            },
+        }
+    }
+
+    /// The designer's weights S (they sum to 100, so Gsum is a score out of 100).
+    pub fn weights(self) -> FitnessWeights {
+        match self {
+            Behaviour::GroupMoving => FitnessWeights {
+                spacing: 35.0,
+                goal: 20.0,
+                collision: 20.0,
+                orientation: 15.0,
+                distance: 10.0,
+            },
+            Behaviour::Following => FitnessWeights {
+                spacing: 10.0,
+                goal: 45.0,
+                collision: 25.0,
+                orientation: 10.0,
+                distance: 10.0,
+            },
+            Behaviour::Guarding => FitnessWeights {
+                spacing: 20.0,
+                goal: 40.0,
+                collision: 25.0,
+                orientation: 5.0,
+                distance: 10.0,
+            },
+        }
+    }
+}
+
+/// The environments of the paper's experiment.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Environment {
+    /// E1: open space.
+    Open,
+    /// E2: a wall with a narrow passage.
+    Narrow,
+    /// E3: cluttered with small obstacles.
+    Cluttered,
+}
+
+impl Environment {
+    /// All three, in the paper's order.
+    pub const ALL: [Environment; 3] = [Environment::Open, Environment::Narrow, Environment::Cluttered];
+
+    /// `e1`, `e2`, `e3`.
+    pub fn code(self) -> &'static str {
+        match self {
+            Environment::Open => "e1",
+            Environment::Narrow => "e2",
+            Environment::Cluttered => "e3",
+        }
+    }
+
+    /// Looks an environment up by `e1`…`e3`.
+    pub fn from_code(code: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|e| e.code().eq_ignore_ascii_case(code))
+    }
+
+    /// Readable name.
+    pub fn label(self) -> &'static str {
+        match self {
+            Environment::Open => "open",
+            Environment::Narrow => "narrow passage",
+            Environment::Cluttered => "cluttered",
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn no_obstacles() -> ObstacleIndex {
+        ObstacleIndex::new(vec![], 1000.0, 1000.0)
+    }
+
+    fn params(k: u32) -> FitnessParams {
+        FitnessParams {
+            k,
+            neighbour_radius: 500.0,
+            desired_spacing: 10.0,
+            spacing_quantum: 2.0,
+            desired_goal_distance: 0.0,
+            goal_quantum: 5.0,
+            spread_quantum: 1.0,
+        }
+    }
+
+    #[test]
+    fn quantisation_clips_to_one() {
+        assert_eq!(quantised(2.0, 0.0), 1.0);
+        assert_eq!(quantised(2.0, 2.0), 1.0);
+        assert_eq!(quantised(2.0, 8.0), 0.25);
+        assert_eq!(quantised(0.0, 0.0), 1.0);
+        assert!((angle_difference(3.0, -3.0) - (std::f32::consts::TAU - 6.0)).abs() < 1e-6);
+        assert!((angle_difference(0.5, 0.25) - 0.25).abs() < 1e-6);
+    }
+
+    #[test]
+    fn three_agents_in_a_row_by_hand() {
+        // Agents at x = 0, 10, 30 (y = 100), k = 2, all neighbours of each other.
+        // Mean distances: a 20, b 15, c 25 → errors 10, 5, 15 → Gm = (0.2 + 0.4 + 2/15) / 3.
+        // Deviations: a 10, b 5, c 5 → Gd = (0.1 + 0.2 + 0.2) / 3.
+        // Headings 0, 0, π/2: a and b each see one same and one perpendicular heading (1 − ¼),
+        // c sees two perpendicular ones (1 − ½) → Ga = (0.75 + 0.75 + 0.5) / 3.
+        // Goal at (0, 100): distances 0, 10, 30 → Gg = (1 + 0.5 + 1/6) / 3. No overlap: Gc = 1.
+        let pos = [Vec2::new(100.0, 100.0), Vec2::new(110.0, 100.0), Vec2::new(130.0, 100.0)];
+        let vel = [Vec2::X, Vec2::X, Vec2::Y];
+        let mut rec = FitnessRecorder::new(params(2), 1000.0, 1000.0, 3);
+        let goal = Some(Vec2::new(100.0, 100.0));
+        rec.record(&pos, &vel, &[1.0; 3], &[goal; 3], &no_obstacles());
+        let m = rec.measures();
+        let close = |a: f64, b: f64| (a - b).abs() < 1e-6;
+        assert!(close(m.gm, (0.2 + 0.4 + 2.0 / 15.0) / 3.0), "{m:?}");
+        assert!(close(m.gd, 0.5 / 3.0), "{m:?}");
+        assert!(close(m.ga, (0.75 + 0.75 + 0.5) / 3.0), "{m:?}");
+        assert!(close(m.gg, (1.0 + 0.5 + 1.0 / 6.0) / 3.0), "{m:?}");
+        assert!(close(m.gc, 1.0), "{m:?}");
+    }
+
+    #[test]
+    fn collisions_with_agents_and_obstacles_count_once_per_agent() {
+        // a and b overlap (distance 3 < 2 + 2); c sits in an obstacle; d is free: Gc = 1/4.
+        let pos = [
+            Vec2::new(100.0, 100.0),
+            Vec2::new(103.0, 100.0),
+            Vec2::new(300.0, 300.0),
+            Vec2::new(500.0, 500.0),
+        ];
+        let obstacles = ObstacleIndex::new(
+            vec![Obstacle::Circle { center: [302.0, 300.0], radius: 5.0 }],
+            1000.0,
+            1000.0,
+        );
+        let mut rec = FitnessRecorder::new(params(2), 1000.0, 1000.0, 4);
+        rec.record(&pos, &[Vec2::X; 4], &[2.0; 4], &[None; 4], &obstacles);
+        assert!((rec.measures().gc - 0.25).abs() < 1e-9);
+        // No agent has a goal: Gg stays 0 rather than averaging nothing.
+        assert_eq!(rec.measures().gg, 0.0);
+    }
+
+    #[test]
+    fn frames_average_and_gsum_weighs() {
+        let mut rec = FitnessRecorder::new(params(1), 1000.0, 1000.0, 2);
+        // Frame 1: spacing 10 (exact) → Gm 1; frame 2: spacing 30 → error 20 → 0.1.
+        rec.record(
+            &[Vec2::new(0.0, 0.0), Vec2::new(10.0, 0.0)],
+            &[Vec2::X; 2],
+            &[1.0; 2],
+            &[None; 2],
+            &no_obstacles(),
+        );
+        rec.record(
+            &[Vec2::new(0.0, 0.0), Vec2::new(30.0, 0.0)],
+            &[Vec2::X; 2],
+            &[1.0; 2],
+            &[None; 2],
+            &no_obstacles(),
+        );
+        let m = rec.measures();
+        assert_eq!(rec.frames(), 2);
+        assert!((m.gm - 0.55).abs() < 1e-6, "{m:?}");
+        // One neighbour: no spread, same heading.
+        assert_eq!((m.gd, m.ga, m.gc), (1.0, 1.0, 1.0));
+        let s = FitnessWeights { spacing: 2.0, goal: 100.0, collision: 1.0, orientation: 1.0, distance: 1.0 };
+        assert!((m.gsum(&s) - (1.1 + 3.0)).abs() < 1e-6);
+    }
+
+    #[test]
+    fn a_lone_agent_and_an_empty_frame() {
+        let mut rec = FitnessRecorder::new(params(7), 1000.0, 1000.0, 1);
+        rec.record(&[], &[], &[], &[], &no_obstacles());
+        assert_eq!(rec.frames(), 0);
+        rec.record(&[Vec2::new(5.0, 5.0)], &[Vec2::ZERO], &[1.0], &[None], &no_obstacles());
+        let m = rec.measures();
+        assert_eq!((m.gm, m.ga, m.gd, m.gc), (0.0, 0.0, 0.0, 1.0));
+    }
+
+    #[test]
+    fn selecting_k_nearest_equals_the_grid_query() {
+        let mut rng = crate::rng::Rng::new(4, 0);
+        let points: Vec<Vec2> =
+            (0..300).map(|_| Vec2::new(rng.range(0.0, 200.0), rng.range(0.0, 200.0).floor())).collect();
+        let mut grid = SpatialGrid::new(200.0, 200.0, 20.0, points.len());
+        grid.rebuild(&points, &[]);
+        let (mut ours, mut theirs) = (Vec::new(), Vec::new());
+        for (i, &p) in points.iter().enumerate() {
+            for k in [0, 1, 7, 400] {
+                k_nearest(&grid, p, k, 30.0, i as u32, &mut ours);
+                grid.k_nearest(p, k, 30.0, i as u32, &mut theirs);
+                assert_eq!(ours, theirs, "agent {i}, k {k}");
+            }
+        }
+    }
+
+    #[test]
+    fn codes_round_trip() {
+        for b in Behaviour::ALL {
+            assert_eq!(Behaviour::from_code(b.code()), Some(b));
+            let s = b.weights();
+            let total = s.spacing + s.goal + s.collision + s.orientation + s.distance;
+            assert!((total - 100.0).abs() < 1e-9, "{b:?}");
+        }
+        for e in Environment::ALL {
+            assert_eq!(Environment::from_code(&e.code().to_uppercase()), Some(e));
+        }
+        assert_eq!(Behaviour::from_code("b4"), None);
+    }
+}

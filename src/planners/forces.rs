@@ -1,0 +1,539 @@
+//! Five weighted virtual forces, the model whose weights the genetic algorithm tunes (DESIGN §3.5).
+//!
+//! `F = s1 Fsep + s2 Falign + s3 Fcoh + s4 Ffol + s5 Fcol`, each force normalised to length ≤ 1,
+//! applied as an acceleration of `|F| · max_force`; then the turn per step and the speed are
+//! limited (the paper's translation and rotation speed limits). Agents see other agents in a
+//! 330° cone up to 20 body sizes (body size = diameter).
+
+use super::{limit, GroupView, ParamSpec, Planner, StepContext};
+use crate::geometry::{unit_or, Aabb, Obstacle};
+use crate::rng::Rng;
+use glam::Vec2;
+use serde::{Deserialize, Serialize};
+
+/// Virtual-force parameters. Lengths in px, speeds in px/step, angles in degrees.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct ForcesParams {
+    /// s1, weight of separation (0…1). Default 0.42 (paper, Table 14.1, B1-E1).
+    pub separation_weight: f32,
+    /// s2, weight of alignment (0…1). Default 0.03.
+    pub alignment_weight: f32,
+    /// s3, weight of cohesion (0…1). Default 0.15.
+    pub cohesion_weight: f32,
+    /// s4, weight of following the goal or the leader's trace (0…1). Default 0.84.
+    pub following_weight: f32,
+    /// s5, weight of obstacle (and border) repulsion (0…1). Default 0.44.
+    pub collision_weight: f32,
+    /// Full opening of the view cone. Default 330°.
+    pub view_angle_deg: f32,
+    /// View distance in body sizes (diameters). Default 20.
+    pub view_range_sizes: f32,
+    /// Translation speed limit. Default 2 px/step.
+    pub max_speed: f32,
+    /// Rotation speed limit: largest heading change per step. Default 10°/step.
+    pub max_turn_deg: f32,
+    /// Acceleration of a unit force. Default 0.2 px/step².
+    pub max_force: f32,
+    /// A collision with an obstacle is predicted this many steps ahead. Default 30 steps.
+    pub horizon_steps: f32,
+    /// Distance behind the goal (along the goal's trace) the group heads for; 0 = the goal
+    /// itself. Default 0 px.
+    pub follow_offset: f32,
+    /// Within this distance of the followed point the following force asks for less speed.
+    /// Default 40 px.
+    pub slowing_distance: f32,
+}
+
+impl Default for ForcesParams {
+    fn default() -> Self {
+        Self {
+            separation_weight: 0.42,
+            alignment_weight: 0.03,
+            cohesion_weight: 0.15,
+            following_weight: 0.84,
+            collision_weight: 0.44,
+            view_angle_deg: 330.0,
+            view_range_sizes: 20.0,
+            max_speed: 2.0,
+            max_turn_deg: 10.0,
+            max_force: 0.2,
+            horizon_steps: 30.0,
+            follow_offset: 0.0,
+            slowing_distance: 40.0,
+        }
+    }
+}
+
+impl ForcesParams {
+    /// The parameter table (sliders, range checks, docs).
+    pub const SPECS: &'static [ParamSpec] = &[
+        ParamSpec::number(
+            "separation_weight",
+            "s1 separation",
+            "×",
+            (0.0, 1.0, 0.001),
+            0.42,
+            "Weight of the repulsion from neighbours (paper Table 14.1, B1-E1: 0.42).",
+        ),
+        ParamSpec::number(
+            "alignment_weight",
+            "s2 alignment",
+            "×",
+            (0.0, 1.0, 0.001),
+            0.03,
+            "Weight of matching the neighbours' mean velocity.",
+        ),
+        ParamSpec::number(
+            "cohesion_weight",
+            "s3 cohesion",
+            "×",
+            (0.0, 1.0, 0.001),
+            0.15,
+            "Weight of the pull towards the neighbours' centre.",
+        ),
+        ParamSpec::number(
+            "following_weight",
+            "s4 following",
+            "×",
+            (0.0, 1.0, 0.001),
+            0.84,
+            "Weight of heading for the (possibly moving) goal or a point on its trace.",
+        ),
+        ParamSpec::number(
+            "collision_weight",
+            "s5 collision",
+            "×",
+            (0.0, 1.0, 0.001),
+            0.44,
+            "Weight of the repulsion from obstacles a collision is predicted with.",
+        ),
+        ParamSpec::number(
+            "view_angle_deg",
+            "View angle",
+            "°",
+            (10.0, 360.0, 1.0),
+            330.0,
+            "Opening of the view cone; neighbours behind it are ignored.",
+        ),
+        ParamSpec::number(
+            "view_range_sizes",
+            "View range",
+            "body sizes",
+            (1.0, 50.0, 0.5),
+            20.0,
+            "How far an agent sees, in body diameters (paper: 20).",
+        ),
+        ParamSpec::number(
+            "max_speed",
+            "Max speed",
+            "px/step",
+            (0.1, 20.0, 0.1),
+            2.0,
+            "Translation speed limit; one step is 1/60 s.",
+        ),
+        ParamSpec::number(
+            "max_turn_deg",
+            "Max turn",
+            "°/step",
+            (0.5, 180.0, 0.5),
+            10.0,
+            "Rotation speed limit: largest heading change in one step.",
+        ),
+        ParamSpec::number(
+            "max_force",
+            "Force scale",
+            "px/step²",
+            (0.005, 2.0, 0.005),
+            0.2,
+            "Acceleration produced by a force of length 1.",
+        ),
+        ParamSpec::number(
+            "horizon_steps",
+            "Collision horizon",
+            "steps",
+            (1.0, 300.0, 1.0),
+            30.0,
+            "Obstacles on the course within this many steps repel the agent.",
+        ),
+        ParamSpec::number(
+            "follow_offset",
+            "Follow offset",
+            "px",
+            (0.0, 500.0, 1.0),
+            0.0,
+            "Head for a point this far behind the goal along its trace (0: the goal itself).",
+        ),
+        ParamSpec::number(
+            "slowing_distance",
+            "Slowing distance",
+            "px",
+            (1.0, 500.0, 1.0),
+            40.0,
+            "Within this distance of the followed point the agent slows down.",
+        ),
+    ];
+
+    /// The five weights `[s1, s2, s3, s4, s5]`.
+    pub fn weights(&self) -> [f32; 5] {
+        [
+            self.separation_weight,
+            self.alignment_weight,
+            self.cohesion_weight,
+            self.following_weight,
+            self.collision_weight,
+        ]
+    }
+
+    /// Sets the five weights `[s1, s2, s3, s4, s5]`.
+    pub fn set_weights(&mut self, s: [f32; 5]) {
+        [
+            self.separation_weight,
+            self.alignment_weight,
+            self.cohesion_weight,
+            self.following_weight,
+            self.collision_weight,
+        ] = s;
+    }
+}
+
+/// Steps between two samples of the goal's trace.
+const TRACE_EVERY: u32 = 5;
+/// Samples of the goal's trace kept (newest last).
+const TRACE_LEN: usize = 64;
+/// Older trace points tried when the followed point is out of sight (bounds the ray casts).
+const TRACE_SEARCH: usize = 8;
+/// Below this speed (px/step) an agent has no heading: it sees all round and turns freely.
+const MIN_HEADING_SPEED: f32 = 1e-3;
+
+/// The virtual-force planner for one group.
+#[derive(Clone, Debug)]
+pub struct Forces {
+    params: ForcesParams,
+    /// Recent goal positions (the leader's trace), oldest first.
+    trace: Vec<Vec2>,
+    /// Heading limit as (cos, sin) of the turn per step.
+    max_turn: Vec2,
+    /// Cosine of half the view angle.
+    view_cos: f32,
+}
+
+impl Forces {
+    /// A planner with these parameters.
+    pub fn new(params: ForcesParams) -> Self {
+        let turn = params.max_turn_deg.to_radians();
+        let half_view = (0.5 * params.view_angle_deg).min(180.0).to_radians();
+        Self {
+            max_turn: Vec2::new(libm::cosf(turn), libm::sinf(turn)),
+            view_cos: libm::cosf(half_view),
+            params,
+            trace: Vec::with_capacity(TRACE_LEN),
+        }
+    }
+
+    /// The parameters.
+    pub fn params(&self) -> &ForcesParams {
+        &self.params
+    }
+
+    fn record_trace(&mut self, step: u32, goal: Vec2) {
+        let moved = self.trace.last().is_none_or(|last| last.distance_squared(goal) > 1e-6);
+        if moved && (step.is_multiple_of(TRACE_EVERY) || self.trace.is_empty()) {
+            if self.trace.len() == TRACE_LEN {
+                self.trace.remove(0);
+            }
+            self.trace.push(goal);
+        }
+    }
+
+    /// The point `follow_offset` px behind the goal along its trace, as a trace index range to
+    /// search: returns the point and the trace index it lies before.
+    fn followed_point(&self, goal: Vec2) -> (Vec2, usize) {
+        let mut left = self.params.follow_offset;
+        let mut at = goal;
+        for k in (0..self.trace.len()).rev() {
+            let q = self.trace[k];
+            let d = at.distance(q);
+            if left <= d {
+                let p = if d > 0.0 { at + (q - at) * (left / d) } else { at };
+                return (p, k + 1);
+            }
+            left -= d;
+            at = q;
+        }
+        (at, 0)
+    }
+
+    /// Whether the segment `from → to` passes no obstacle.
+    fn clear_line(ctx: &StepContext, from: Vec2, to: Vec2) -> bool {
+        let query = Aabb { min: from.min(to), max: from.max(to) };
+        let mut clear = true;
+        ctx.obstacles.for_each_near(query, |_, o: &Obstacle| {
+            if clear && o.ray_cast(from, to - from).is_some() {
+                clear = false;
+            }
+        });
+        clear
+    }
+
+    /// Following (after the leader-trace model of the paper's ref. 5): head for the followed
+    /// point if the straight line to it is free, else for the newest older trace point that is
+    /// in sight (among the next 8); steering `desired − velocity` normalised by the speed limit.
+    fn following(&self, ctx: &StepContext, p: Vec2, vel: Vec2, goal: Option<(Vec2, f32)>) -> Vec2 {
+        let Some((goal, _)) = goal else { return Vec2::ZERO };
+        let (mut target, before) = self.followed_point(goal);
+        if !ctx.obstacles.is_empty() && !Self::clear_line(ctx, p, target) {
+            let oldest = before.saturating_sub(TRACE_SEARCH);
+            if let Some(k) = (oldest..before).rev().find(|&k| Self::clear_line(ctx, p, self.trace[k])) {
+                target = self.trace[k];
+            }
+        }
+        let to = target - p;
+        let d = to.length();
+        let speed = self.params.max_speed * (d / self.params.slowing_distance).min(1.0);
+        let desired = if d > 1e-6 { to * (speed / d) } else { Vec2::ZERO };
+        limit((desired - vel) / self.params.max_speed, 1.0)
+    }
+
+    /// Collision: obstacles and borders the agent would reach within the horizon push it away
+    /// (stronger the sooner), plus a push from surfaces closer than one body size.
+    fn collision(&self, ctx: &StepContext, p: Vec2, vel: Vec2, radius: f32, towards: Vec2) -> Vec2 {
+        let size = 2.0 * radius;
+        let speed = vel.length();
+        let heading = unit_or(vel, towards);
+        let reach = speed * self.params.horizon_steps + radius;
+        let mut force = Vec2::ZERO;
+        if !ctx.obstacles.is_empty() {
+            let query = Aabb { min: p, max: p }.inflate(reach.max(size) + radius);
+            let side = heading.perp() * radius;
+            let ray = heading * reach;
+            let mut nearest: Option<(f32, Vec2)> = None;
+            ctx.obstacles.for_each_near(query, |_, o: &Obstacle| {
+                if speed > MIN_HEADING_SPEED {
+                    for from in [p, p + side, p - side] {
+                        if let Some(hit) = o.ray_cast(from, ray) {
+                            if nearest.is_none_or(|(t, _)| hit.t < t) {
+                                nearest = Some((hit.t, hit.normal));
+                            }
+                        }
+                    }
+                }
+                let s = o.surface(p);
+                let gap = s.signed_distance - radius;
+                if gap < size {
+                    force += s.normal * (1.0 - gap.max(0.0) / size);
+                }
+            });
+            if let Some((t, normal)) = nearest {
+                // Turn aside rather than brake: the normal's sideways part, or the side of the
+                // goal for a head-on hit.
+                let mut lateral = normal - heading * normal.dot(heading);
+                if lateral.length_squared() < 1e-4 {
+                    lateral = heading.perp() * if heading.perp().dot(towards) >= 0.0 { 1.0 } else { -1.0 };
+                }
+                force += unit_or(normal + unit_or(lateral, heading.perp()), normal) * (1.0 - t);
+            }
+        }
+        // The world's borders are walls too.
+        let horizon = self.params.horizon_steps;
+        let walls = [
+            (p.x - radius, -vel.x, Vec2::X),
+            (ctx.bounds.x - radius - p.x, vel.x, Vec2::NEG_X),
+            (p.y - radius, -vel.y, Vec2::Y),
+            (ctx.bounds.y - radius - p.y, vel.y, Vec2::NEG_Y),
+        ];
+        for (gap, closing, inward) in walls {
+            if closing > MIN_HEADING_SPEED {
+                let steps = gap.max(0.0) / closing;
+                if steps < horizon {
+                    force += inward * (1.0 - steps / horizon);
+                }
+            }
+        }
+        limit(force, 1.0)
+    }
+
+    /// Turns `next` towards at most `max_turn` away from the heading of `vel`.
+    fn limit_turn(&self, vel: Vec2, next: Vec2) -> Vec2 {
+        let (speed, next_speed) = (vel.length(), next.length());
+        if speed <= MIN_HEADING_SPEED || next_speed <= MIN_HEADING_SPEED {
+            return next;
+        }
+        let (from, to) = (vel / speed, next / next_speed);
+        if from.dot(to) >= self.max_turn.x {
+            return next;
+        }
+        let sign = if from.perp_dot(to) >= 0.0 { 1.0 } else { -1.0 };
+        let turn = Vec2::new(self.max_turn.x, sign * self.max_turn.y);
+        turn.rotate(from) * next_speed
+    }
+}
+
+impl Planner for Forces {
+    fn interaction_radius(&self) -> f32 {
+        // The view range is in body sizes; the grid is sized for the default 4 px radius and
+        // `plan` queries with each agent's own range.
+        self.params.view_range_sizes * 8.0
+    }
+
+    fn max_speed(&self) -> f32 {
+        self.params.max_speed
+    }
+
+    fn plan(&mut self, ctx: &StepContext, group: GroupView, _rng: &mut Rng, new_velocities: &mut [Vec2]) {
+        if let Some((goal, _)) = group.goal {
+            self.record_trace(ctx.step, goal);
+        }
+        let prm = &self.params;
+        let weights = prm.weights();
+        for (k, id) in group.agents.clone().enumerate() {
+            let i = id as usize;
+            let p = ctx.positions[i];
+            let vel = ctx.velocities[i];
+            let radius = ctx.radii[i];
+            let size = 2.0 * radius;
+            let range = prm.view_range_sizes * size;
+            let speed = vel.length();
+            let heading = if speed > MIN_HEADING_SPEED { Some(vel / speed) } else { None };
+
+            let mut sep = Vec2::ZERO;
+            let (mut sum_vel, mut sum_pos, mut n_flock) = (Vec2::ZERO, Vec2::ZERO, 0u32);
+            let view_cos = self.view_cos;
+            ctx.grid.for_each_within(p, range, |n| {
+                if n.id == id || n.d2 <= 0.0 {
+                    return;
+                }
+                let d = n.d2.sqrt();
+                let away = (p - n.pos) / d;
+                if heading.is_some_and(|h| -away.dot(h) < view_cos) {
+                    return;
+                }
+                // A neighbour at contact pushes with 1, at two body sizes with ½, …
+                sep += away * (size / d);
+                if group.agents.contains(&n.id) {
+                    sum_vel += n.vel;
+                    sum_pos += n.pos;
+                    n_flock += 1;
+                }
+            });
+            let separation = limit(sep, 1.0);
+            let (alignment, cohesion) = if n_flock > 0 {
+                let inv = 1.0 / n_flock as f32;
+                (
+                    limit((sum_vel * inv - vel) / prm.max_speed, 1.0),
+                    limit((sum_pos * inv - p) / (0.5 * range), 1.0),
+                )
+            } else {
+                (Vec2::ZERO, Vec2::ZERO)
+            };
+            let following = self.following(ctx, p, vel, group.goal);
+            let towards = group.goal.map_or(Vec2::X, |(g, _)| unit_or(g - p, Vec2::X));
+            let collision = self.collision(ctx, p, vel, radius, towards);
+
+            let forces = [separation, alignment, cohesion, following, collision];
+            let force: Vec2 = forces.iter().zip(weights).map(|(f, s)| *f * s).sum();
+            let next = self.limit_turn(vel, vel + force * prm.max_force);
+            new_velocities[k] = limit(next, prm.max_speed);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::planners::PlannerConfig;
+    use crate::scene::{Goal, GoalMotion, Group, Region, Scene};
+    use crate::World;
+
+    fn scene(obstacles: Vec<Obstacle>, params: ForcesParams) -> Scene {
+        let mut s = Scene::empty(600.0, 400.0);
+        s.obstacles = obstacles;
+        s.goals.push(Goal {
+            position: [100.0, 200.0],
+            radius: 20.0,
+            motion: Some(GoalMotion::Polyline { points: vec![[100.0, 200.0], [550.0, 200.0]], speed: 1.0 }),
+        });
+        s.groups.push(Group {
+            name: "f".into(),
+            color: "#336699".into(),
+            count: 25,
+            spawn: Region { min: [20.0, 150.0], max: [90.0, 250.0] },
+            goal: Some(0),
+            agent_radius: 4.0,
+            planner: PlannerConfig::Forces(params),
+        });
+        s
+    }
+
+    #[test]
+    fn a_run_stays_finite_within_limits_and_out_of_obstacles() {
+        let params = ForcesParams { max_turn_deg: 5.0, ..ForcesParams::default() };
+        let walls = vec![
+            Obstacle::Rect { min: [280.0, 0.0], max: [320.0, 180.0] },
+            Obstacle::Rect { min: [280.0, 220.0], max: [320.0, 400.0] },
+            Obstacle::Circle { center: [450.0, 150.0], radius: 10.0 },
+        ];
+        let mut world = World::new(scene(walls, params.clone())).expect("valid");
+        let mut previous: Vec<Vec2> = world.velocities().to_vec();
+        let cos_turn = libm::cosf(params.max_turn_deg.to_radians()) - 1e-4;
+        for _ in 0..400 {
+            world.step();
+            for (i, (&p, &v)) in world.positions().iter().zip(world.velocities()).enumerate() {
+                assert!(p.is_finite() && v.is_finite(), "agent {i}");
+                assert!(v.length() <= params.max_speed + 1e-4, "agent {i} speed {}", v.length());
+                assert!(!world.obstacles().contains(p), "agent {i} inside an obstacle at {p}");
+                let u = previous[i];
+                // The world may remove the part into a wall; the planner's own turn is limited.
+                if u.length() > 0.1 && v.length() > 0.1 && !near_wall(&world, p) {
+                    assert!(u.normalize().dot(v.normalize()) >= cos_turn, "agent {i} turned too fast");
+                }
+            }
+            previous = world.velocities().to_vec();
+        }
+        // The group followed the goal through the gap.
+        let past_wall = world.positions().iter().filter(|p| p.x > 320.0).count();
+        assert!(past_wall > 12, "only {past_wall} of 25 agents passed the wall");
+    }
+
+    fn near_wall(world: &World, p: Vec2) -> bool {
+        let b = world.scene();
+        let r = 4.5;
+        let mut near = p.x < r || p.y < r || p.x > b.width - r || p.y > b.height - r;
+        world.obstacles().for_each_near(Aabb { min: p, max: p }.inflate(r), |_, o| {
+            near |= o.surface(p).signed_distance < r;
+        });
+        near
+    }
+
+    #[test]
+    fn the_view_cone_hides_agents_right_behind() {
+        let forces = Forces::new(ForcesParams::default());
+        // Half of 330° is 165°: a neighbour 170° off the heading is hidden, one 160° off is seen.
+        let heading = Vec2::X;
+        let at = |deg: f32| Vec2::from_angle(deg.to_radians());
+        assert!(at(170.0).dot(heading) < forces.view_cos);
+        assert!(at(160.0).dot(heading) >= forces.view_cos);
+    }
+
+    #[test]
+    fn zero_weights_keep_the_velocity() {
+        let mut params = ForcesParams::default();
+        params.set_weights([0.0; 5]);
+        let mut world = World::new(scene(vec![], params)).expect("valid");
+        let v0 = world.velocities().to_vec();
+        world.step();
+        // Nothing steers, and spawn speeds are far from walls: the velocities stay.
+        assert_eq!(world.velocities(), &v0[..]);
+    }
+
+    #[test]
+    fn the_followed_point_lies_behind_the_goal_on_its_trace() {
+        let mut forces = Forces::new(ForcesParams { follow_offset: 15.0, ..ForcesParams::default() });
+        for (step, x) in [(0, 0.0), (5, 10.0), (10, 20.0)] {
+            forces.record_trace(step, Vec2::new(x, 0.0));
+        }
+        let (p, before) = forces.followed_point(Vec2::new(20.0, 0.0));
+        assert!(p.distance(Vec2::new(5.0, 0.0)) < 1e-5, "{p}");
+        assert_eq!(before, 1);
+    }
+}
