@@ -185,8 +185,8 @@ fn bad_inputs_fail_with_a_message_naming_the_problem() {
     fails_naming(flockpath(&["run", "--scene", path]), "--steps");
     fails_naming(flockpath(&["run", "--steps", "5"]), "--scene");
     fails_naming(
-        flockpath(&["run", "--scene", path, "--steps", "5", "--maya", "out.mel"]),
-        "not available yet",
+        flockpath(&["run", "--scene", path, "--steps", "5", "--maya", "o.mel", "--fps", "0"]),
+        "frame rate",
     );
     fails_naming(flockpath(&["optimize"]), "not available yet");
     fails_naming(flockpath(&["fly"]), "fly");
