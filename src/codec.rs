@@ -1,14 +1,28 @@
 //! Scene ↔ JSON and scene ↔ URL fragment. Versioned, compact, and never panics on bad input.
 //!
-//! Fragment format `1.<payload>`: the scene's compact JSON, raw-deflated (miniz_oxide) and
-//! URL-safe base64 without padding. The version prefix lets later formats keep old links working.
+//! Fragment formats (`<version>.<payload>`, the payload URL-safe base64 without padding of a raw
+//! deflate stream, miniz_oxide at level 9):
+//! - `2.` (written today): the deflated JSON of a compact form of the scene. Obstacles, goals and
+//!   groups are positional arrays, not keyed objects, and planner parameters equal to their
+//!   defaults are left out, so a scene with 20 obstacles and 4 groups needs about 700 characters
+//!   instead of about 1,100. When a scene holds something the compact form cannot express, the
+//!   payload is the keyed scene JSON instead (the decoder tells them apart by `[` or `{`), so the
+//!   round trip is always exact.
+//! - `1.` (read only): the deflated keyed scene JSON.
+//!
+//! Every released version keeps decoding: fixtures of each live in `tests/data/fragments/`.
 
-use crate::scene::{Scene, SceneError};
+use crate::geometry::Obstacle;
+use crate::planners::{PlannerConfig, PlannerKind};
+use crate::scene::{Goal, Group, Region, Scene, SceneError, ViewOptions};
 use base64::engine::general_purpose::URL_SAFE_NO_PAD;
 use base64::Engine as _;
+use serde::{Deserialize, Serialize};
 
 /// The fragment version written today.
-pub const FRAGMENT_VERSION: &str = "1";
+pub const FRAGMENT_VERSION: &str = "2";
+/// Every version this build reads, oldest first.
+pub const READABLE_VERSIONS: &[&str] = &["1", "2"];
 /// Largest decompressed scene accepted from a URL (bytes): a guard against deflate bombs.
 const MAX_SCENE_BYTES: usize = 4 << 20;
 /// Largest text accepted from a URL or file (bytes).
@@ -16,15 +30,20 @@ const MAX_INPUT_BYTES: usize = 8 << 20;
 
 /// Parses and validates a scene from JSON text.
 pub fn scene_from_json(text: &str) -> Result<Scene, SceneError> {
+    check_input_size(text)?;
+    let scene: Scene = serde_json::from_str(text).map_err(|e| SceneError::Parse(e.to_string()))?;
+    scene.validate()?;
+    Ok(scene)
+}
+
+fn check_input_size(text: &str) -> Result<(), SceneError> {
     if text.len() > MAX_INPUT_BYTES {
         return Err(SceneError::Parse(format!(
             "the scene text is {} bytes, over the 8 MiB limit",
             text.len()
         )));
     }
-    let scene: Scene = serde_json::from_str(text).map_err(|e| SceneError::Parse(e.to_string()))?;
-    scene.validate()?;
-    Ok(scene)
+    Ok(())
 }
 
 /// The scene as pretty JSON.
@@ -32,34 +51,64 @@ pub fn scene_to_json(scene: &Scene) -> String {
     serde_json::to_string_pretty(scene).unwrap_or_default()
 }
 
-/// The URL fragment value (`s=` part) for a scene.
+/// The URL fragment value (`s=` part) for a scene, in the current version.
 pub fn scene_to_fragment(scene: &Scene) -> String {
-    let json = serde_json::to_vec(scene).unwrap_or_default();
-    let packed = miniz_oxide::deflate::compress_to_vec(&json, 9);
-    format!("{FRAGMENT_VERSION}.{}", URL_SAFE_NO_PAD.encode(packed))
+    let compact = CompactScene::from_scene(scene);
+    // The compact form must give back this very scene; otherwise (a field it does not know)
+    // fall back to the keyed JSON, which the same version decodes.
+    let json = match compact.to_scene() {
+        Ok(back) if &back == scene => serde_json::to_vec(&compact),
+        _ => serde_json::to_vec(scene),
+    }
+    .unwrap_or_default();
+    format!("{FRAGMENT_VERSION}.{}", pack(&json))
 }
 
-/// Decodes a fragment value; also accepts a whole URL or a `#s=…` fragment.
+fn pack(bytes: &[u8]) -> String {
+    URL_SAFE_NO_PAD.encode(miniz_oxide::deflate::compress_to_vec(bytes, 9))
+}
+
+/// Base64url-decodes and inflates a payload into text.
+fn unpack(payload: &str) -> Result<String, SceneError> {
+    let packed = URL_SAFE_NO_PAD.decode(payload.trim_end_matches('=')).map_err(|e| {
+        SceneError::Parse(format!("the scene string is not valid base64 ({e}); was it cut short?"))
+    })?;
+    let bytes =
+        miniz_oxide::inflate::decompress_to_vec_with_limit(&packed, MAX_SCENE_BYTES).map_err(|e| {
+            SceneError::Parse(format!("the scene string is damaged or truncated ({:?})", e.status))
+        })?;
+    String::from_utf8(bytes).map_err(|_| SceneError::Parse("the scene string does not hold text".into()))
+}
+
+/// Decodes a fragment value of any readable version; also accepts a whole URL or a `#s=…`
+/// fragment.
 pub fn scene_from_fragment(input: &str) -> Result<Scene, SceneError> {
     let value = fragment_value(input.trim());
+    check_input_size(value)?;
     let (version, payload) = value.split_once('.').ok_or_else(|| {
-        SceneError::Parse("the scene string has no version prefix (expected \"1.…\")".into())
+        SceneError::Parse(format!(
+            "the scene string has no version prefix (expected \"{FRAGMENT_VERSION}.…\")"
+        ))
     })?;
     match version {
-        "1" => {
-            let packed = URL_SAFE_NO_PAD.decode(payload.trim_end_matches('=')).map_err(|e| {
-                SceneError::Parse(format!("the scene string is not valid base64 ({e}); was it cut short?"))
-            })?;
-            let json = miniz_oxide::inflate::decompress_to_vec_with_limit(&packed, MAX_SCENE_BYTES).map_err(
-                |e| SceneError::Parse(format!("the scene string is damaged or truncated ({:?})", e.status)),
-            )?;
-            let text = std::str::from_utf8(&json)
-                .map_err(|_| SceneError::Parse("the scene string does not hold text".into()))?;
-            scene_from_json(text)
+        "1" => scene_from_json(&unpack(payload)?),
+        "2" => {
+            let text = unpack(payload)?;
+            if text.trim_start().starts_with('[') {
+                let compact: CompactScene = serde_json::from_str(&text).map_err(|e| {
+                    SceneError::Parse(format!("the scene string does not hold a version 2 scene ({e})"))
+                })?;
+                let scene = compact.to_scene()?;
+                scene.validate()?;
+                Ok(scene)
+            } else {
+                scene_from_json(&text)
+            }
         }
         other => Err(SceneError::Parse(format!(
-            "unknown scene format version {:?}; this flockpath reads version {FRAGMENT_VERSION}",
-            other.chars().take(12).collect::<String>()
+            "unknown scene format version {:?}; this flockpath reads versions {}",
+            other.chars().take(12).collect::<String>(),
+            READABLE_VERSIONS.join(" and ")
         ))),
     }
 }
@@ -85,6 +134,163 @@ fn fragment_value(input: &str) -> &str {
         }
     }
     after_hash
+}
+
+/// Version 2's compact scene: `[name, width, height, seed, obstacles, goals, groups, view]`.
+#[derive(Debug, Serialize, Deserialize)]
+struct CompactScene(
+    String,
+    f32,
+    f32,
+    u32,
+    Vec<CompactObstacle>,
+    Vec<[f32; 3]>,
+    Vec<CompactGroup>,
+    CompactView,
+);
+
+/// An obstacle by arity: circle `[x, y, r]`, rectangle `[x0, y0, x1, y1]`, polygon `[[x, y], …]`.
+#[derive(Debug, Serialize, Deserialize)]
+#[serde(untagged)]
+enum CompactObstacle {
+    Circle([f32; 3]),
+    Rect([f32; 4]),
+    Polygon(Vec<[f32; 2]>),
+}
+
+/// `[name, colour, count, [x0, y0, x1, y1], goal, agent radius, planner, {non-default params}]`.
+#[derive(Debug, Serialize, Deserialize)]
+struct CompactGroup(
+    String,
+    String,
+    u32,
+    [f32; 4],
+    Option<u32>,
+    f32,
+    String,
+    serde_json::Map<String, serde_json::Value>,
+);
+
+/// `[trails, trail fade]`.
+#[derive(Debug, Serialize, Deserialize)]
+struct CompactView(bool, f32);
+
+impl CompactScene {
+    fn from_scene(s: &Scene) -> Self {
+        let obstacles = s
+            .obstacles
+            .iter()
+            .map(|o| match o {
+                Obstacle::Circle { center, radius } => {
+                    CompactObstacle::Circle([center[0], center[1], *radius])
+                }
+                Obstacle::Rect { min, max } => CompactObstacle::Rect([min[0], min[1], max[0], max[1]]),
+                Obstacle::Polygon { points } => CompactObstacle::Polygon(points.clone()),
+            })
+            .collect();
+        let goals = s.goals.iter().map(|g| [g.position[0], g.position[1], g.radius]).collect();
+        let groups = s
+            .groups
+            .iter()
+            .map(|g| {
+                let (min, max) = (g.spawn.min, g.spawn.max);
+                CompactGroup(
+                    g.name.clone(),
+                    g.color.clone(),
+                    g.count,
+                    [min[0], min[1], max[0], max[1]],
+                    g.goal,
+                    g.agent_radius,
+                    g.planner.kind().name().to_string(),
+                    changed_params(&g.planner),
+                )
+            })
+            .collect();
+        CompactScene(
+            s.name.clone(),
+            s.width,
+            s.height,
+            s.seed,
+            obstacles,
+            goals,
+            groups,
+            CompactView(s.view.trails, s.view.trail_fade),
+        )
+    }
+
+    fn to_scene(&self) -> Result<Scene, SceneError> {
+        let CompactScene(name, width, height, seed, obstacles, goals, groups, view) = self;
+        let obstacles = obstacles
+            .iter()
+            .map(|o| match o {
+                CompactObstacle::Circle([x, y, r]) => Obstacle::Circle { center: [*x, *y], radius: *r },
+                CompactObstacle::Rect([x0, y0, x1, y1]) => {
+                    Obstacle::Rect { min: [*x0, *y0], max: [*x1, *y1] }
+                }
+                CompactObstacle::Polygon(points) => Obstacle::Polygon { points: points.clone() },
+            })
+            .collect();
+        let goals = goals.iter().map(|&[x, y, radius]| Goal { position: [x, y], radius }).collect();
+        let groups = groups
+            .iter()
+            .enumerate()
+            .map(|(i, CompactGroup(name, color, count, [x0, y0, x1, y1], goal, radius, planner, params))| {
+                Ok(Group {
+                    name: name.clone(),
+                    color: color.clone(),
+                    count: *count,
+                    spawn: Region { min: [*x0, *y0], max: [*x1, *y1] },
+                    goal: *goal,
+                    agent_radius: *radius,
+                    planner: planner_with(planner, params)
+                        .map_err(|m| SceneError::OutOfRange(format!("group {} ({name}): {m}", i + 1)))?,
+                })
+            })
+            .collect::<Result<_, SceneError>>()?;
+        Ok(Scene {
+            name: name.clone(),
+            width: *width,
+            height: *height,
+            seed: *seed,
+            obstacles,
+            goals,
+            groups,
+            view: ViewOptions { trails: view.0, trail_fade: view.1 },
+        })
+    }
+}
+
+/// A planner's parameters that differ from its defaults, as a JSON object.
+fn changed_params(config: &PlannerConfig) -> serde_json::Map<String, serde_json::Value> {
+    let params = |c: &PlannerConfig| match serde_json::to_value(c) {
+        Ok(serde_json::Value::Object(mut o)) => match o.remove("params") {
+            Some(serde_json::Value::Object(p)) => p,
+            _ => serde_json::Map::new(),
+        },
+        _ => serde_json::Map::new(),
+    };
+    let defaults = params(&config.kind().default_config());
+    params(config).into_iter().filter(|(k, v)| defaults.get(k) != Some(v)).collect()
+}
+
+/// The planner `name` with its defaults overridden by `params` (range-checked).
+fn planner_with(
+    name: &str,
+    params: &serde_json::Map<String, serde_json::Value>,
+) -> Result<PlannerConfig, String> {
+    let kind = PlannerKind::from_name(name).ok_or_else(|| {
+        let known: Vec<&str> = PlannerKind::ALL.iter().map(|k| k.name()).collect();
+        format!(
+            "unknown planner {:?}; known: {}",
+            name.chars().take(40).collect::<String>(),
+            known.join(", ")
+        )
+    })?;
+    let mut config = kind.default_config();
+    for (key, value) in params {
+        config.set_param(key, value.clone())?;
+    }
+    Ok(config)
 }
 
 #[cfg(test)]

@@ -17,6 +17,20 @@ pub struct ExportOptions {
     pub scale: f32,
 }
 
+impl ExportOptions {
+    /// Options from user input: `fps` in 1…240 and `scale` finite and > 0, else a message
+    /// naming the value.
+    pub fn checked(fps: f32, scale: f32) -> Result<Self, String> {
+        if !(fps.is_finite() && (1.0..=240.0).contains(&fps)) {
+            return Err(format!("the frame rate must be 1…240 fps, not {fps}"));
+        }
+        if !(scale.is_finite() && scale > 0.0) {
+            return Err(format!("the scale must be a number > 0, not {scale}"));
+        }
+        Ok(Self { fps, scale })
+    }
+}
+
 impl Default for ExportOptions {
     fn default() -> Self {
         Self { fps: 24.0, scale: 0.01 }

@@ -40,5 +40,5 @@ pub use codec::{scene_from_any, scene_from_fragment, scene_from_json, scene_to_f
 pub use geometry::Obstacle;
 pub use metrics::{GroupMetrics, Metrics};
 pub use planners::{Planner, PlannerConfig, PlannerKind};
-pub use scene::{Goal, Group, Region, Scene, SceneError};
+pub use scene::{Goal, Group, Region, Scene, SceneError, ViewOptions};
 pub use world::{World, DT};

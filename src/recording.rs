@@ -4,6 +4,7 @@
 //! records half as often from then on (thinning), and says so in [`Recording::thinned`], so
 //! nothing is dropped silently.
 
+use crate::world::World;
 use glam::Vec2;
 
 /// Bytes one agent takes in one recorded step (x, y, vx, vy as `f32`).
@@ -27,6 +28,18 @@ impl Recording {
     /// An empty recording of `agents` agents, capturing every step, within `budget_bytes`.
     pub fn new(agents: usize, budget_bytes: usize) -> Self {
         Self { agents, every: 1, budget_bytes, steps: Vec::new(), samples: Vec::new(), thinned: 0 }
+    }
+
+    /// An empty recording sized for `world`'s agents, holding its current state as the first frame.
+    pub fn of_world(world: &World, budget_bytes: usize) -> Self {
+        let mut recording = Self::new(world.agent_count(), budget_bytes);
+        recording.capture_world(world);
+        recording
+    }
+
+    /// Records `world`'s current state at its current step (see [`Recording::capture`]).
+    pub fn capture_world(&mut self, world: &World) {
+        self.capture(world.step_count(), world.positions(), world.velocities());
     }
 
     /// Records the state after `step` if it falls on the current sampling interval.
@@ -106,6 +119,16 @@ impl Recording {
     /// Bytes held.
     pub fn bytes(&self) -> usize {
         self.samples.len() * BYTES_PER_SAMPLE
+    }
+
+    /// The memory budget in bytes.
+    pub fn budget_bytes(&self) -> usize {
+        self.budget_bytes
+    }
+
+    /// Most steps this recording could hold at one frame per step (for stating the budget).
+    pub fn capacity_steps(&self) -> usize {
+        self.budget_bytes / (self.agents.max(1) * BYTES_PER_SAMPLE)
     }
 }
 

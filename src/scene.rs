@@ -38,6 +38,25 @@ pub struct Scene {
     /// Groups of agents.
     #[serde(default)]
     pub groups: Vec<Group>,
+    /// How the page shows the run (trails); carried in shared links, no effect on the simulation.
+    #[serde(default)]
+    pub view: ViewOptions,
+}
+
+/// Display options saved with a scene so a shared link looks the same. They never change a run.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct ViewOptions {
+    /// Whether agents leave trails. Default on.
+    pub trails: bool,
+    /// Share of a trail's visibility lost per frame: 0 = permanent, 1 = one frame. Default 0.01.
+    pub trail_fade: f32,
+}
+
+impl Default for ViewOptions {
+    fn default() -> Self {
+        Self { trails: true, trail_fade: 0.01 }
+    }
 }
 
 /// A goal: agents inside its radius count as arrived.
@@ -239,7 +258,16 @@ fn finite(what: impl Fn() -> String, values: &[f32]) -> Result<(), SceneError> {
 impl Scene {
     /// An empty scene of the given size.
     pub fn empty(width: f32, height: f32) -> Self {
-        Self { name: String::new(), width, height, seed: 1, obstacles: vec![], goals: vec![], groups: vec![] }
+        Self {
+            name: String::new(),
+            width,
+            height,
+            seed: 1,
+            obstacles: vec![],
+            goals: vec![],
+            groups: vec![],
+            view: ViewOptions::default(),
+        }
     }
 
     /// Total number of agents over all groups.
@@ -301,6 +329,11 @@ impl Scene {
         }
         for (i, g) in self.groups.iter().enumerate() {
             self.validate_group(i, g)?;
+        }
+        let fade = self.view.trail_fade;
+        finite(|| "view trail fade".into(), &[fade])?;
+        if !(0.0..=1.0).contains(&fade) {
+            return Err(SceneError::OutOfRange(format!("view trail fade {fade} is outside 0…1")));
         }
         Ok(())
     }

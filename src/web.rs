@@ -7,9 +7,12 @@
 
 use crate::codec;
 use crate::edit::{self, Edit, ItemRef};
+use crate::export::{self, ExportOptions};
 use crate::planners::PlannerKind;
 use crate::presets;
+use crate::recording::Recording;
 use crate::render::Renderer;
+use crate::scene::ViewOptions;
 use crate::world::World;
 use glam::Vec2;
 use std::fmt::Display;
@@ -30,11 +33,15 @@ fn to_json<T: serde::Serialize>(value: &T) -> Result<String, JsError> {
     serde_json::to_string(value).map_err(js_error)
 }
 
-/// A running scene with its renderer: the handle the page keeps.
+/// Memory the page's recording of a run may use before it thins (stated on screen).
+const RECORDING_BUDGET_BYTES: usize = 32 << 20;
+
+/// A running scene with its renderer and the recording of its run: the handle the page keeps.
 #[wasm_bindgen]
 pub struct Sim {
     world: World,
     renderer: Renderer,
+    recording: Recording,
 }
 
 #[wasm_bindgen]
@@ -45,7 +52,33 @@ impl Sim {
         console_error_panic_hook::set_once();
         let scene = codec::scene_from_any(scene_text).map_err(js_error)?;
         let world = World::new(scene).map_err(js_error)?;
-        Ok(Sim { world, renderer: Renderer::new(width, height) })
+        let recording = Recording::of_world(&world, RECORDING_BUDGET_BYTES);
+        let mut sim = Sim { world, renderer: Renderer::new(width, height), recording };
+        sim.show_scene_view();
+        Ok(sim)
+    }
+
+    /// Gives the renderer the scene's view options.
+    fn show_scene_view(&mut self) {
+        let view = self.world.scene().view;
+        self.renderer.set_trails(view.trails);
+        self.renderer.set_trail_fade(view.trail_fade);
+    }
+
+    /// Starts a new recording when the run restarted (step 0) or its agents changed.
+    fn restart_recording_if_new_run(&mut self) {
+        if self.world.step_count() == 0 || self.recording.agents() != self.world.agent_count() {
+            self.recording = Recording::of_world(&self.world, RECORDING_BUDGET_BYTES);
+        }
+    }
+
+    /// Stores new view options in the scene (no restart) and shows them.
+    fn set_view(&mut self, view: ViewOptions) -> Result<(), JsError> {
+        let mut scene = self.world.scene().clone();
+        scene.view = view;
+        self.world.edit_scene(scene).map_err(js_error)?;
+        self.show_scene_view();
+        Ok(())
     }
 
     /// Replaces the scene; on error the current scene keeps running unchanged.
@@ -54,6 +87,8 @@ impl Sim {
         self.world = World::new(scene).map_err(js_error)?;
         self.renderer.set_selection(None);
         self.renderer.clear_trails();
+        self.show_scene_view();
+        self.restart_recording_if_new_run();
         Ok(())
     }
 
@@ -61,12 +96,16 @@ impl Sim {
     pub fn reset(&mut self) -> Result<(), JsError> {
         self.world = World::new(self.world.scene().clone()).map_err(js_error)?;
         self.renderer.clear_trails();
+        self.restart_recording_if_new_run();
         Ok(())
     }
 
-    /// Advances `n` fixed steps.
+    /// Advances `n` fixed steps, recording each.
     pub fn step(&mut self, n: u32) {
-        self.world.step_n(n);
+        for _ in 0..n {
+            self.world.step();
+            self.recording.capture_world(&self.world);
+        }
     }
 
     /// Steps simulated since the start.
@@ -142,6 +181,7 @@ impl Sim {
         scene.seed = seed;
         self.world = World::new(scene).map_err(js_error)?;
         self.renderer.clear_trails();
+        self.restart_recording_if_new_run();
         Ok(())
     }
 
@@ -180,6 +220,7 @@ impl Sim {
             // The agents may have been respawned elsewhere: do not draw the jump as a trail.
             self.renderer.clear_trails();
         }
+        self.restart_recording_if_new_run();
         Ok(())
     }
 
@@ -197,14 +238,59 @@ impl Sim {
         Ok(())
     }
 
-    /// Turns trails on or off.
-    pub fn set_trails(&mut self, on: bool) {
-        self.renderer.set_trails(on);
+    /// Turns trails on or off (saved in the scene's view options, so shared links keep it).
+    pub fn set_trails(&mut self, on: bool) -> Result<(), JsError> {
+        self.set_view(ViewOptions { trails: on, ..self.world.scene().view })
     }
 
-    /// Share of a trail's visibility lost per frame (0 = permanent, 1 = one frame).
-    pub fn set_trail_fade(&mut self, fade: f32) {
-        self.renderer.set_trail_fade(fade);
+    /// Share of a trail's visibility lost per frame (0 = permanent, 1 = one frame); saved in the
+    /// scene's view options. Throws outside 0…1.
+    pub fn set_trail_fade(&mut self, fade: f32) -> Result<(), JsError> {
+        self.set_view(ViewOptions { trail_fade: fade, ..self.world.scene().view })
+    }
+
+    /// The recording of the current run as JSON: `{frames, first_step, last_step, every,
+    /// thinned, bytes, budget_bytes, capacity_steps, agents}`.
+    pub fn recording_json(&self) -> Result<String, JsError> {
+        let r = &self.recording;
+        to_json(&serde_json::json!({
+            "frames": r.steps().len(),
+            "first_step": r.steps().first(),
+            "last_step": r.steps().last(),
+            "every": r.every(),
+            "thinned": r.thinned(),
+            "bytes": r.bytes(),
+            "budget_bytes": r.budget_bytes(),
+            "capacity_steps": r.capacity_steps(),
+            "agents": r.agents(),
+        }))
+    }
+
+    /// The recorded paths as CSV `agent,group,step,time,x,y,vx,vy`.
+    pub fn export_paths_csv(&self) -> String {
+        export::paths_csv(self.world.scene(), &self.recording)
+    }
+
+    /// The recorded paths as JSON.
+    pub fn export_paths_json(&self) -> String {
+        export::paths_json(self.world.scene(), &self.recording)
+    }
+
+    /// A Maya MEL script keyframing one locator per agent at `fps`, scene px × `scale`.
+    pub fn export_maya_mel(&self, fps: f32, scale: f32) -> Result<String, JsError> {
+        let options = ExportOptions::checked(fps, scale).map_err(js_error)?;
+        Ok(export::maya_mel(self.world.scene(), &self.recording, options))
+    }
+
+    /// A Blender Python script keyframing one empty per agent at `fps`, scene px × `scale`.
+    pub fn export_blender_py(&self, fps: f32, scale: f32) -> Result<String, JsError> {
+        let options = ExportOptions::checked(fps, scale).map_err(js_error)?;
+        Ok(export::blender_py(self.world.scene(), &self.recording, options))
+    }
+
+    /// The recorded trails as SVG.
+    pub fn export_trails_svg(&self) -> String {
+        export::trails_svg(self.world.scene(), &self.recording)
     }
 
     /// Erases the trails.

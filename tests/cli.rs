@@ -149,7 +149,7 @@ fn url_and_scene_round_trip() {
     let fragment = ok(flockpath(&["url", file.to_str().expect("utf-8 path")]));
     std::fs::remove_file(&file).ok();
     let fragment = fragment.trim();
-    assert!(fragment.starts_with("1."), "{fragment}");
+    assert!(fragment.starts_with("2."), "{fragment}");
     assert!(!fragment.contains(['/', '+', '=', '#', ' ']), "not URL-safe: {fragment}");
 
     let back = ok(flockpath(&["scene", fragment]));
@@ -185,8 +185,8 @@ fn bad_inputs_fail_with_a_message_naming_the_problem() {
     fails_naming(flockpath(&["run", "--scene", path]), "--steps");
     fails_naming(flockpath(&["run", "--steps", "5"]), "--scene");
     fails_naming(
-        flockpath(&["run", "--scene", path, "--steps", "5", "--maya", "out.mel"]),
-        "not available yet",
+        flockpath(&["run", "--scene", path, "--steps", "5", "--maya", "o.mel", "--fps", "0"]),
+        "frame rate",
     );
     fails_naming(flockpath(&["optimize", "--algorithms", "nope"]), "nope");
     fails_naming(flockpath(&["fly"]), "fly");

@@ -46,6 +46,39 @@ fn the_golden_digest_matches_the_native_run() {
 }
 
 #[wasm_bindgen_test]
+fn the_golden_url_replays_the_native_digest() {
+    // The same link the native test `tests/golden_url.rs` runs, loaded as the page would.
+    let url = include_str!("data/golden-url.txt").trim();
+    let mut sim = Sim::new(url, 64, 64).expect("the golden link loads");
+    assert_eq!(sim.seed(), 7);
+    sim.step(300);
+    assert_eq!(sim.digest(), GOLDEN_DIGEST.trim());
+    // Reloading the link the Sim writes itself replays the same run.
+    let mut again = Sim::new(&sim.scene_string(), 64, 64).expect("its own link loads");
+    again.step(300);
+    assert_eq!(again.digest(), sim.digest());
+}
+
+#[wasm_bindgen_test]
+fn the_recording_exports_the_run_and_view_options_travel_in_the_link() {
+    let mut sim = Sim::new(&pillars(), 64, 64).expect("starts");
+    sim.step(10);
+    let csv = sim.export_paths_csv();
+    assert_eq!(csv.lines().count(), 1 + 11 * 80, "header + 80 agents x steps 0..=10");
+    assert!(sim.export_maya_mel(24.0, 0.01).expect("mel").contains("spaceLocator"));
+    assert!(sim.export_blender_py(0.0, 0.01).is_err(), "0 fps is refused");
+    sim.set_trails(false).expect("trails off");
+    sim.set_trail_fade(0.05).expect("fade");
+    assert!(sim.set_trail_fade(2.0).is_err(), "fade outside 0..1 is refused");
+    assert_eq!(sim.steps(), 10, "view changes do not restart the run");
+    let other = Sim::new(&sim.scene_string(), 64, 64).expect("link loads");
+    let view = scene_from_json(&other.scene_json()).expect("valid").view;
+    assert_eq!((view.trails, view.trail_fade), (false, 0.05));
+    sim.reset().expect("resets");
+    assert_eq!(sim.export_paths_csv().lines().count(), 1 + 80, "a reset starts a new recording");
+}
+
+#[wasm_bindgen_test]
 fn obstacles_are_drawn_in_the_obstacle_colour() {
     let mut sim = Sim::new(&pillars(), 450, 280).expect("starts");
     sim.step(5);

@@ -7,6 +7,8 @@
 #[path = "flockpath/bench.rs"]
 mod bench;
 
+use flockpath::export::{self, ExportOptions};
+use flockpath::recording::Recording;
 use flockpath::{presets, scene_from_any, scene_to_fragment, scene_to_json, PlannerKind, Scene, World};
 use std::io::{Read as _, Write as _};
 use std::path::Path;
@@ -18,7 +20,11 @@ const MAX_STEPS: u32 = 1_000_000;
 /// Subcommands the DESIGN names that this build does not have yet.
 const LATER_COMMANDS: &[&str] = &[];
 /// `run` flags the DESIGN names that this build does not have yet.
-const LATER_RUN_FLAGS: &[&str] = &["--paths", "--maya", "--blender"];
+const LATER_RUN_FLAGS: &[&str] = &[];
+/// `run` export flags: flag, what it writes.
+const EXPORT_FLAGS: &[&str] = &["--paths", "--paths-json", "--maya", "--blender", "--svg"];
+/// Memory the CLI's recording of a run may use before it thins (a note goes to stderr).
+const RECORDING_BUDGET_BYTES: usize = 1 << 30;
 
 const HELP: &str = "\
 flockpath — swarm-intelligence crowd planners on the command line
@@ -45,6 +51,8 @@ flockpath run — simulate a scene and report its metrics
 
 USAGE:
     flockpath run --scene SCENE --steps N [--planner NAME] [--seed S] [--metrics FILE|-]
+                  [--paths out.csv] [--paths-json out.json] [--maya out.mel]
+                  [--blender out.py] [--svg out.svg] [--fps F] [--scale S]
 
 OPTIONS:
     --scene SCENE      A scene JSON file, `-` for stdin, a URL fragment value (1.…),
@@ -54,9 +62,18 @@ OPTIONS:
     --seed S           Replace the scene's seed (0…4294967295)
     --metrics FILE|-   Write the metrics JSON to FILE, or to stdout with `-`;
                        without it a one-line summary is printed
+    --paths FILE       Write every agent's path as CSV: agent,group,step,time,x,y,vx,vy
+                       (one row per agent per recorded step, step 0 included)
+    --paths-json FILE  Write the paths as JSON
+    --maya FILE        Write a Maya MEL script: one keyframed locator per agent (x-z plane)
+    --blender FILE     Write a Blender Python script: one keyframed empty per agent
+    --svg FILE         Write the trails as SVG
+    --fps F            Keyframes per second of the MEL/Python exports (1…240, default 24)
+    --scale S          Scene px → 3-D units in the MEL/Python exports (default 0.01)
     -h, --help         Show this help
 
-Not available yet: --paths, --maya, --blender.
+Every step is recorded up to 1 GiB (agents × steps × 16 bytes); beyond that every other
+step is dropped and a note says so on stderr.
 ";
 
 const BENCH_HELP: &str = "\
@@ -328,7 +345,20 @@ fn run(args: &[String]) -> Result<(), CliError> {
     let pairs = flag_pairs(
         "run",
         args,
-        &["--scene", "--planner", "--seed", "--steps", "--metrics"],
+        &[
+            "--scene",
+            "--planner",
+            "--seed",
+            "--steps",
+            "--metrics",
+            "--paths",
+            "--paths-json",
+            "--maya",
+            "--blender",
+            "--svg",
+            "--fps",
+            "--scale",
+        ],
         &[],
         LATER_RUN_FLAGS,
     )?;
@@ -347,6 +377,16 @@ fn run(args: &[String]) -> Result<(), CliError> {
         None => None,
     };
     let seed = get("--seed").map(|s| parse_number::<u32>("--seed", s)).transpose()?;
+    let real = |flag: &str, default: f32| -> Result<f32, CliError> {
+        get(flag).map_or(Ok(default), |text| {
+            text.trim().parse().map_err(|_| usage(format!("{flag} must be a number, got {text:?}")))
+        })
+    };
+    let defaults = ExportOptions::default();
+    let export_options =
+        ExportOptions::checked(real("--fps", defaults.fps)?, real("--scale", defaults.scale)?)
+            .map_err(|m| usage(format!("--fps/--scale: {m}")))?;
+    let recording_wanted = EXPORT_FLAGS.iter().any(|f| get(f).is_some());
 
     let mut scene = load_scene(source)?;
     if let Some(kind) = planner {
@@ -358,7 +398,16 @@ fn run(args: &[String]) -> Result<(), CliError> {
         scene.seed = seed;
     }
     let mut world = World::new(scene).map_err(|e| failed(format!("cannot run the scene: {e}")))?;
-    world.step_n(steps);
+    if recording_wanted {
+        let mut recording = Recording::of_world(&world, RECORDING_BUDGET_BYTES);
+        for _ in 0..steps {
+            world.step();
+            recording.capture_world(&world);
+        }
+        write_exports(&world, &recording, export_options, &get)?;
+    } else {
+        world.step_n(steps);
+    }
     let metrics = world.metrics();
     let json = serde_json::to_string_pretty(&metrics)
         .map_err(|e| failed(format!("cannot write the metrics: {e}")))?;
@@ -371,6 +420,36 @@ fn run(args: &[String]) -> Result<(), CliError> {
         }
         None => out(&summary(&world)),
     }
+}
+
+/// Writes each export file asked for; a thinned recording is reported on stderr.
+fn write_exports<'a>(
+    world: &World,
+    recording: &Recording,
+    options: ExportOptions,
+    get: &dyn Fn(&str) -> Option<&'a str>,
+) -> Result<(), CliError> {
+    let scene = world.scene();
+    if recording.thinned() > 0 {
+        eprintln!(
+            "flockpath: note: the recording outgrew its 1 GiB budget and keeps every {}th step",
+            recording.every()
+        );
+    }
+    let exports: [(&str, &dyn Fn() -> String); 5] = [
+        ("--paths", &|| export::paths_csv(scene, recording)),
+        ("--paths-json", &|| export::paths_json(scene, recording)),
+        ("--maya", &|| export::maya_mel(scene, recording, options)),
+        ("--blender", &|| export::blender_py(scene, recording, options)),
+        ("--svg", &|| export::trails_svg(scene, recording)),
+    ];
+    for (flag, make) in exports {
+        if let Some(file) = get(flag) {
+            std::fs::write(file, make())
+                .map_err(|e| failed(format!("cannot write {flag} file {file:?}: {e}")))?;
+        }
+    }
+    Ok(())
 }
 
 fn summary(world: &World) -> String {

@@ -1,0 +1,211 @@
+//! Codec properties: random scenes round-trip exactly through JSON and the URL fragment, every
+//! preset does, every released fragment version still decodes to the scene it was made from,
+//! and shared links stay well under 1,000 characters.
+//!
+//! Fixtures: `tests/data/fragments/v<N>/<name>.txt` holds a fragment written by the version-N
+//! encoder and `<name>.json` the scene it must decode to. When the format changes, add a new
+//! `v<N+1>/` folder and never edit the old ones: old links must keep loading.
+
+use flockpath::geometry::Obstacle;
+use flockpath::rng::Rng;
+use flockpath::scene::ViewOptions;
+use flockpath::{
+    presets, scene_from_any, scene_from_fragment, scene_from_json, scene_to_fragment, scene_to_json, Goal,
+    Group, PlannerKind, Region, Scene,
+};
+use std::path::Path;
+
+/// A random valid scene: obstacles of every shape, goals, groups with random planners and
+/// parameters drawn within their table ranges, a random view. Values are full-precision `f32`s
+/// (harder for a text codec than the editor's 0.1 px grid).
+fn random_scene(rng: &mut Rng) -> Scene {
+    let width = rng.range(100.0, 3000.0);
+    let height = rng.range(100.0, 3000.0);
+    let mut s = Scene::empty(width, height);
+    s.name = ["", "a scene", "ünïcødé \"quoted\" & <tagged>", "x"][rng.below(4) as usize].to_string();
+    s.seed = rng.next_u32();
+    let point = |rng: &mut Rng| [rng.range(0.0, width), rng.range(0.0, height)];
+    for _ in 0..rng.below(4) {
+        s.goals.push(Goal { position: point(rng), radius: rng.range(1.0, 100.0) });
+    }
+    for _ in 0..rng.below(25) {
+        let [x, y] = point(rng);
+        let obstacle = match rng.below(3) {
+            0 => Obstacle::Circle { center: [x, y], radius: rng.range(0.5, 80.0) },
+            1 => Obstacle::Rect { min: [x, y], max: [x + rng.range(1.0, 200.0), y + rng.range(1.0, 200.0)] },
+            _ => {
+                let n = 3 + rng.below(6);
+                Obstacle::Polygon {
+                    points: (0..n)
+                        .map(|_| [x + rng.range(-60.0, 60.0), y + rng.range(-60.0, 60.0)])
+                        .collect(),
+                }
+            }
+        };
+        if !s.goals.iter().any(|g| obstacle.contains(glam::Vec2::from(g.position))) {
+            s.obstacles.push(obstacle);
+        }
+    }
+    for g in 0..rng.below(5) {
+        let [x0, y0] = point(rng);
+        let [x1, y1] = [rng.range(x0, width), rng.range(y0, height)];
+        let kind = PlannerKind::ALL[rng.below(PlannerKind::ALL.len() as u32) as usize];
+        let mut planner = kind.default_config();
+        for spec in kind.param_specs() {
+            if rng.below(2) == 0 {
+                continue;
+            }
+            let value = if spec.choices.is_empty() {
+                serde_json::json!(spec.min + (spec.max - spec.min) * rng.unit_f64())
+            } else {
+                serde_json::json!(spec.choices[rng.below(spec.choices.len() as u32) as usize])
+            };
+            planner.set_param(spec.key, value).expect("a value inside the table range is accepted");
+        }
+        let goal = if s.goals.is_empty() || rng.below(4) == 0 {
+            None
+        } else {
+            Some(rng.below(s.goals.len() as u32))
+        };
+        s.groups.push(Group {
+            name: format!("group {g}"),
+            color: format!("#{:06x}", rng.next_u32() & 0xff_ffff),
+            count: rng.below(300),
+            spawn: Region { min: [x0, y0], max: [x1, y1] },
+            goal,
+            agent_radius: rng.range(0.5, 100.0),
+            planner,
+        });
+    }
+    s.view = ViewOptions { trails: rng.below(2) == 0, trail_fade: rng.unit() };
+    s
+}
+
+#[test]
+fn random_scenes_round_trip_exactly_through_json_and_fragment() {
+    let mut rng = Rng::new(2024, 0);
+    for case in 0..500 {
+        let scene = random_scene(&mut rng);
+        scene.validate().unwrap_or_else(|e| panic!("case {case}: generator made an invalid scene: {e}"));
+        assert_eq!(scene_from_json(&scene_to_json(&scene)).as_ref(), Ok(&scene), "case {case} (JSON)");
+        let fragment = scene_to_fragment(&scene);
+        assert!(fragment.starts_with("2."), "case {case}: {fragment}");
+        assert!(fragment[2..].bytes().all(|b| b.is_ascii_alphanumeric() || b == b'-' || b == b'_'));
+        assert_eq!(scene_from_fragment(&fragment).as_ref(), Ok(&scene), "case {case} (fragment)");
+        let url = format!("https://example.org/notes/flockpath/index.html#s={fragment}&autoplay=1");
+        assert_eq!(scene_from_any(&url).as_ref(), Ok(&scene), "case {case} (URL)");
+    }
+}
+
+#[test]
+fn every_preset_round_trips_and_its_link_is_short() {
+    for p in presets::ALL {
+        let scene = (p.build)();
+        let fragment = scene_to_fragment(&scene);
+        assert_eq!(scene_from_fragment(&fragment).as_ref(), Ok(&scene), "{}", p.name);
+        assert!(fragment.len() < 400, "{}: {} characters", p.name, fragment.len());
+        println!("preset {:16} fragment {:4} characters", p.name, fragment.len());
+    }
+}
+
+fn read(path: &Path) -> String {
+    std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+}
+
+#[test]
+fn a_scene_with_20_obstacles_and_4_groups_fits_well_under_1000_characters() {
+    let text = read(Path::new("tests/data/scenes/twenty-obstacles-four-groups.json"));
+    let scene = scene_from_json(&text).expect("valid scene");
+    assert_eq!((scene.obstacles.len(), scene.groups.len()), (20, 4));
+    let fragment = scene_to_fragment(&scene);
+    println!("20 obstacles, 4 groups: fragment {} characters", fragment.len());
+    assert!(fragment.len() < 800, "{} characters", fragment.len());
+    assert_eq!(scene_from_fragment(&fragment).as_ref(), Ok(&scene));
+}
+
+#[test]
+fn every_released_fragment_version_still_decodes() {
+    let root = Path::new("tests/data/fragments");
+    let mut versions = 0;
+    let mut checked = 0;
+    let mut dirs: Vec<_> = std::fs::read_dir(root).expect("fixture folder").flatten().collect();
+    dirs.sort_by_key(|d| d.file_name());
+    for dir in dirs {
+        let version = dir.file_name().to_string_lossy().trim_start_matches('v').to_string();
+        versions += 1;
+        for entry in std::fs::read_dir(dir.path()).expect("version folder").flatten() {
+            let path = entry.path();
+            if path.extension().is_none_or(|e| e != "txt") {
+                continue;
+            }
+            let fragment = read(&path);
+            assert!(fragment.starts_with(&format!("{version}.")), "{}: wrong version prefix", path.display());
+            let expected = scene_from_json(&read(&path.with_extension("json")))
+                .unwrap_or_else(|e| panic!("{}: expected scene invalid: {e}", path.display()));
+            let decoded = scene_from_fragment(&fragment)
+                .unwrap_or_else(|e| panic!("{}: no longer decodes: {e}", path.display()));
+            assert_eq!(decoded, expected, "{}", path.display());
+            checked += 1;
+        }
+    }
+    assert!(versions >= 2, "fixtures of v1 and v2 expected, found {versions} folder(s)");
+    assert!(checked >= 10, "only {checked} fixtures checked");
+}
+
+#[test]
+fn the_current_encoder_still_writes_the_latest_fixtures() {
+    // If this fails the format changed: add a new fixture folder instead of editing this one.
+    let dir = Path::new("tests/data/fragments/v2");
+    for entry in std::fs::read_dir(dir).expect("v2 fixtures").flatten() {
+        let path = entry.path();
+        if path.extension().is_some_and(|e| e == "txt") {
+            let scene = scene_from_json(&read(&path.with_extension("json"))).expect("valid");
+            assert_eq!(scene_to_fragment(&scene), read(&path).trim(), "{}", path.display());
+        }
+    }
+}
+
+#[test]
+fn problems_are_named_in_the_message() {
+    let scene = presets::corridor();
+    let good = scene_to_fragment(&scene);
+    let mut far_goal = scene.clone();
+    far_goal.goals[0].position = [5000.0, 5000.0];
+    let mut bad_fade = scene.clone();
+    bad_fade.view.trail_fade = 3.0;
+    let cases: Vec<(String, &[&str])> = vec![
+        (good[..good.len() / 2].to_string(), &["truncated", "cut short"]),
+        (format!("7.{}", &good[2..]), &["version"]),
+        ("2.!!!!".into(), &["base64"]),
+        ("no-prefix".into(), &["version prefix"]),
+        (scene_to_fragment(&far_goal), &["goal 1 lies outside the scene"]),
+        (scene_to_fragment(&bad_fade), &["trail fade 3 is outside"]),
+    ];
+    for (input, expected) in cases {
+        let e = scene_from_any(&input).expect_err(&input).to_string();
+        assert!(
+            expected.iter().any(|x| e.contains(x)),
+            "{input:?}: message {e:?} should mention {expected:?}"
+        );
+    }
+}
+
+#[test]
+fn out_of_range_planner_parameters_in_a_link_are_refused_by_name() {
+    // A hand-edited v2 payload with max_speed far outside its range.
+    let json = r##"["x",400,300,1,[],[[350,150,20]],[["a","#ff0000",5,[10,10,60,60],0,4,"boids",{"max_speed":1e9}]],[true,0.01]]"##;
+    let fragment = fragment_of(json);
+    let e = scene_from_fragment(&fragment).expect_err("out of range").to_string();
+    assert!(e.contains("group 1") && e.contains("Max speed"), "{e}");
+    let unknown = fragment_of(&json.replace("\"boids\"", "\"warp\""));
+    assert!(scene_from_fragment(&unknown)
+        .expect_err("unknown")
+        .to_string()
+        .contains("unknown planner \"warp\""));
+}
+
+fn fragment_of(json: &str) -> String {
+    use base64::Engine as _;
+    let packed = miniz_oxide::deflate::compress_to_vec(json.as_bytes(), 9);
+    format!("2.{}", base64::engine::general_purpose::URL_SAFE_NO_PAD.encode(packed))
+}
