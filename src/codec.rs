@@ -14,7 +14,7 @@
 
 use crate::geometry::Obstacle;
 use crate::planners::{PlannerConfig, PlannerKind};
-use crate::scene::{Goal, Group, Region, Scene, SceneError, ViewOptions};
+use crate::scene::{Goal, GoalMotion, Group, Region, Scene, SceneError, ViewOptions};
 use base64::engine::general_purpose::URL_SAFE_NO_PAD;
 use base64::Engine as _;
 use serde::{Deserialize, Serialize};
@@ -144,7 +144,7 @@ struct CompactScene(
     f32,
     u32,
     Vec<CompactObstacle>,
-    Vec<[f32; 3]>,
+    Vec<CompactGoal>,
     Vec<CompactGroup>,
     CompactView,
 );
@@ -156,6 +156,14 @@ enum CompactObstacle {
     Circle([f32; 3]),
     Rect([f32; 4]),
     Polygon(Vec<[f32; 2]>),
+}
+
+/// A goal: `[x, y, radius]`, or `[x, y, radius, motion]` for a moving one.
+#[derive(Debug, Serialize, Deserialize)]
+#[serde(untagged)]
+enum CompactGoal {
+    Fixed([f32; 3]),
+    Moving(f32, f32, f32, GoalMotion),
 }
 
 /// `[name, colour, count, [x0, y0, x1, y1], goal, agent radius, planner, {non-default params}]`.
@@ -188,7 +196,14 @@ impl CompactScene {
                 Obstacle::Polygon { points } => CompactObstacle::Polygon(points.clone()),
             })
             .collect();
-        let goals = s.goals.iter().map(|g| [g.position[0], g.position[1], g.radius]).collect();
+        let goals = s
+            .goals
+            .iter()
+            .map(|g| match &g.motion {
+                None => CompactGoal::Fixed([g.position[0], g.position[1], g.radius]),
+                Some(m) => CompactGoal::Moving(g.position[0], g.position[1], g.radius, m.clone()),
+            })
+            .collect();
         let groups = s
             .groups
             .iter()
@@ -230,7 +245,15 @@ impl CompactScene {
                 CompactObstacle::Polygon(points) => Obstacle::Polygon { points: points.clone() },
             })
             .collect();
-        let goals = goals.iter().map(|&[x, y, radius]| Goal { position: [x, y], radius }).collect();
+        let goals = goals
+            .iter()
+            .map(|g| match g {
+                CompactGoal::Fixed([x, y, radius]) => Goal::fixed([*x, *y], *radius),
+                CompactGoal::Moving(x, y, radius, motion) => {
+                    Goal { position: [*x, *y], radius: *radius, motion: Some(motion.clone()) }
+                }
+            })
+            .collect();
         let groups = groups
             .iter()
             .enumerate()

@@ -8,7 +8,7 @@
 
 use flockpath::geometry::Obstacle;
 use flockpath::rng::Rng;
-use flockpath::scene::ViewOptions;
+use flockpath::scene::{GoalMotion, ViewOptions};
 use flockpath::{
     presets, scene_from_any, scene_from_fragment, scene_from_json, scene_to_fragment, scene_to_json, Goal,
     Group, PlannerKind, Region, Scene,
@@ -26,7 +26,21 @@ fn random_scene(rng: &mut Rng) -> Scene {
     s.seed = rng.next_u32();
     let point = |rng: &mut Rng| [rng.range(0.0, width), rng.range(0.0, height)];
     for _ in 0..rng.below(4) {
-        s.goals.push(Goal { position: point(rng), radius: rng.range(1.0, 100.0) });
+        let mut goal = Goal::fixed(point(rng), rng.range(1.0, 100.0));
+        goal.motion = match rng.below(3) {
+            0 => {
+                // A circle that stays inside the scene.
+                let radius = rng.range(0.0, 0.25 * width.min(height));
+                let center = [rng.range(radius, width - radius), rng.range(radius, height - radius)];
+                Some(GoalMotion::Circle { center, radius, period_steps: rng.range(1.0, 10_000.0) })
+            }
+            1 => Some(GoalMotion::Polyline {
+                points: (0..1 + rng.below(5)).map(|_| point(rng)).collect(),
+                speed: rng.range(0.0, 5.0),
+            }),
+            _ => None,
+        };
+        s.goals.push(goal);
     }
     for _ in 0..rng.below(25) {
         let [x, y] = point(rng);
@@ -56,7 +70,14 @@ fn random_scene(rng: &mut Rng) -> Scene {
                 continue;
             }
             let value = if spec.choices.is_empty() {
-                serde_json::json!(spec.min + (spec.max - spec.min) * rng.unit_f64())
+                // Snap to the slider's step, as the page does (integer parameters have step 1).
+                let steps = ((spec.max - spec.min) / spec.step).floor();
+                let x = spec.min + (steps * rng.unit_f64()).round() * spec.step;
+                if spec.step.fract() == 0.0 {
+                    serde_json::json!(x as i64)
+                } else {
+                    serde_json::json!(x)
+                }
             } else {
                 serde_json::json!(spec.choices[rng.below(spec.choices.len() as u32) as usize])
             };
@@ -103,7 +124,9 @@ fn every_preset_round_trips_and_its_link_is_short() {
         let scene = (p.build)();
         let fragment = scene_to_fragment(&scene);
         assert_eq!(scene_from_fragment(&fragment).as_ref(), Ok(&scene), "{}", p.name);
-        assert!(fragment.len() < 400, "{}: {} characters", p.name, fragment.len());
+        // Presets with random clutter (forces-e3-cluttered) are the longest; the bar is
+        // 1,000 characters for 20 obstacles and 4 groups, tested below.
+        assert!(fragment.len() < 600, "{}: {} characters", p.name, fragment.len());
         println!("preset {:16} fragment {:4} characters", p.name, fragment.len());
     }
 }
