@@ -229,3 +229,39 @@ export function assertNoUnexpectedErrors(errors, allowed = []) {
     throw new Error(`unexpected errors in the page:\n${unexpected.join('\n')}`);
   }
 }
+
+/**
+ * Like `openPage`, for any page of the folder: opens `SUB_PATH + pathAndHash` and waits until
+ * `ready` (a function evaluated in the page) returns true. Returns the same handles.
+ */
+export async function openPath(pathAndHash, { ready, viewport } = {}) {
+  const server = await startServer();
+  const profile = await mkdtemp(path.join(tmpdir(), 'flockpath-e2e-'));
+  const context = await chromium.launchPersistentContext(profile, {
+    executablePath: '/usr/bin/chromium',
+    headless: true,
+    args: CHROMIUM_ARGS,
+    viewport: viewport ?? { width: 1280, height: 800 },
+    acceptDownloads: true,
+  });
+  const page = context.pages()[0] ?? (await context.newPage());
+  const errors = [];
+  page.on('console', (msg) => {
+    if (msg.type() === 'error') errors.push(`console: ${msg.text()}`);
+  });
+  page.on('pageerror', (error) => errors.push(`page error: ${error.message}`));
+  page.on('requestfailed', (request) => errors.push(`request failed: ${request.url()}`));
+  const close = async () => {
+    await context.close().catch(() => {});
+    await server.close();
+    await rm(profile, { recursive: true, force: true });
+  };
+  try {
+    await page.goto(server.url + pathAndHash);
+    if (ready) await page.waitForFunction(ready, null, { timeout: 30_000 });
+  } catch (error) {
+    await close();
+    throw new Error(`${pathAndHash} did not load: ${error.message}\n${errors.join('\n')}`);
+  }
+  return { page, context, server, errors, close };
+}

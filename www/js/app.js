@@ -83,22 +83,44 @@ export class App extends EventTarget {
     return result;
   }
 
-  /** Re-applies display settings a fresh world may not carry over, and clears stale state. */
-  afterLoad() {
+  /**
+   * Clears stale state after a new scene arrived. A loaded scene brings its own view options
+   * (trails, fade: they travel in shared links); with `keepView` (undo/redo) the current ones
+   * are kept instead.
+   */
+  afterLoad({ keepView = false } = {}) {
     this.guard((sim) => {
-      sim.set_trails(this.trails);
-      sim.set_trail_fade(this.trailFade);
+      if (keepView) {
+        sim.set_trails(this.trails);
+        sim.set_trail_fade(this.trailFade);
+      }
       // A different run with as many agents would otherwise draw jumps from the old positions.
       sim.clear_trails();
     });
     this.sceneChanged();
   }
 
+  /** Changes the view options (saved in the scene, so the link keeps them; not an undo step). */
+  setView({ trails = this.trails, trailFade = this.trailFade } = {}) {
+    const result = this.guard((sim) => {
+      sim.set_trails(trails);
+      sim.set_trail_fade(trailFade);
+    });
+    this.sceneChanged();
+    return result;
+  }
+
   /** Refreshes the cached scene and tells the panels. */
   sceneChanged() {
     if (this.crashed) return;
     const result = this.guard((sim) => JSON.parse(sim.scene_json()));
-    if (result.ok) this.scene = result.value;
+    if (result.ok) {
+      this.scene = result.value;
+      if (this.scene.view) {
+        this.trails = this.scene.view.trails;
+        this.trailFade = this.scene.view.trail_fade;
+      }
+    }
     const groups = this.scene.groups?.length ?? 0;
     if (this.activeGroup >= groups) this.activeGroup = Math.max(0, groups - 1);
     this.dirty = true;
@@ -161,7 +183,7 @@ export class App extends EventTarget {
     const result = this.change((sim) => sim.load(target), { record: false });
     if (result.ok) {
       to.push(current);
-      this.afterLoad();
+      this.afterLoad({ keepView: true });
     } else {
       from.push(target);
     }

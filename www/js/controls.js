@@ -1,7 +1,6 @@
-// Playback, run settings, presets, sharing and keyboard shortcuts.
+// Playback, run settings, presets and keyboard shortcuts.
 
 import { TOOLS } from './editor.js';
-import { writeSceneToLocation } from './url.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -64,25 +63,19 @@ export function setupControls(app, editor) {
   app.addEventListener('scene', showSeed);
   showSeed();
 
-  // Trails are a display setting, not part of the scene.
+  // Trails are a view option saved with the scene (a shared link shows them the same way).
   const trails = $('trails');
-  trails.checked = app.trails;
-  trails.addEventListener('change', () => {
-    app.trails = trails.checked;
-    app.guard((sim) => sim.set_trails(app.trails));
-    app.dirty = true;
-  });
   const fade = $('fade');
   const fadeValue = $('fade-value');
-  fade.value = String(app.trailFade);
-  const applyFade = () => {
-    app.trailFade = Number(fade.value);
+  const showView = () => {
+    trails.checked = app.trails;
+    if (document.activeElement !== fade) fade.value = String(app.trailFade);
     fadeValue.textContent = app.trailFade.toFixed(3);
-    app.guard((sim) => sim.set_trail_fade(app.trailFade));
-    app.dirty = true;
   };
-  fade.addEventListener('input', applyFade);
-  fadeValue.textContent = app.trailFade.toFixed(3);
+  trails.addEventListener('change', () => app.setView({ trails: trails.checked }));
+  fade.addEventListener('input', () => app.setView({ trailFade: Number(fade.value) }));
+  app.addEventListener('scene', showView);
+  showView();
   $('clear-trails').addEventListener('click', () => {
     app.guard((sim) => sim.clear_trails());
     app.dirty = true;
@@ -109,19 +102,6 @@ export function setupControls(app, editor) {
   });
   app.addEventListener('scene', showPreset);
   showPreset();
-
-  $('share').addEventListener('click', async () => {
-    const result = app.guard((sim) => sim.scene_string());
-    if (!result.ok) return;
-    const url = writeSceneToLocation(result.value);
-    try {
-      await navigator.clipboard.writeText(url);
-      $('share').textContent = 'Link copied';
-    } catch {
-      $('share').textContent = 'Link in address bar';
-    }
-    setTimeout(() => ($('share').textContent = 'Copy link'), 2000);
-  });
 
   document.addEventListener('keydown', (e) => {
     if (app.crashed || typingInto(e.target)) return;

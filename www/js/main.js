@@ -11,7 +11,9 @@ import { setupHistoryButtons } from './history.js';
 import { startLoop } from './loop.js';
 import { setupMetrics } from './metrics.js';
 import { Panel } from './panel.js';
-import { sceneFromLocation, watchLocation } from './url.js';
+import { setupExport } from './export.js';
+import { setupShare } from './share.js';
+import { keepLocationInSync, sceneFromLocation, watchLocation } from './url.js';
 import { measure, setupView } from './view.js';
 
 async function boot() {
@@ -64,6 +66,9 @@ async function boot() {
   setupControls(app, editor);
   setupHistoryButtons(app);
   watchLocation(app);
+  keepLocationInSync(app);
+  setupShare(app);
+  setupExport(app, canvas);
   const onFrame = setupMetrics(app);
   startLoop(app, canvas, onFrame);
   document.getElementById('loading').hidden = true;

@@ -1,5 +1,6 @@
 // The scene in the address bar: `index.html#s=<fragment>`. Reading happens at boot and on
-// `hashchange`; writing uses replaceState so sharing does not add history entries.
+// `hashchange`; every change the user makes is written back (debounced, with replaceState, so
+// the address bar always holds a link to what is on screen and Back is not flooded).
 
 import { messageOf, showMessage } from './errors.js';
 
@@ -17,6 +18,16 @@ export function sceneFromLocation(hash = location.hash) {
     }
   }
   return null;
+}
+
+/** How long edits settle before the address bar is rewritten (ms): a slider drag writes once. */
+export const WRITE_DELAY_MS = 300;
+
+/** The page URL that opens `sceneString` (other fragment options dropped). */
+export function shareUrl(sceneString, page = location.href) {
+  const url = new URL(page);
+  url.hash = `s=${sceneString}`;
+  return url.href;
 }
 
 /** Puts a scene string in the address bar; returns the full URL to share. */
@@ -40,5 +51,24 @@ export function watchLocation(app) {
         showMessage(`The scene in the link could not be loaded: ${messageOf(error)}. The previous scene keeps running.`);
       }
     }
+  });
+}
+
+/**
+ * Rewrites the fragment after every scene change (edits, parameters, seed, view options, loads),
+ * at most once per WRITE_DELAY_MS. Call after boot so a broken link stays visible until the user
+ * changes something.
+ */
+export function keepLocationInSync(app) {
+  let timer = null;
+  const write = () => {
+    timer = null;
+    if (app.crashed) return;
+    const result = app.guard((sim) => sim.scene_string());
+    if (result.ok && sceneFromLocation() !== result.value) writeSceneToLocation(result.value);
+  };
+  app.addEventListener('scene', () => {
+    clearTimeout(timer);
+    timer = setTimeout(write, WRITE_DELAY_MS);
   });
 }

@@ -1,0 +1,78 @@
+// The iframe postMessage API: a host page sends { flockpath: 1, id, method, args } to an
+// embed.html iframe and gets { flockpath: 1, id, ok, result | error } back, for load, play,
+// pause, step, reset, metrics, scene and sceneString; bad input and unknown methods are errors
+// with readable messages, and the embedded scene keeps running.
+
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import { assertNoUnexpectedErrors, openPath, simpleScene } from './helpers.mjs';
+
+test('a host page scripts the embed through postMessage', async () => {
+  const { page, errors, close } = await openPath('examples/course-notes.html', {
+    ready: () => document.getElementById('corridor') !== null,
+  });
+  try {
+    // A tiny client in the host page: one promise per request id.
+    await page.evaluate(() => {
+      const frame = document.getElementById('corridor');
+      const pending = new Map();
+      let next = 1;
+      window.addEventListener('message', (event) => {
+        if (event.source !== frame.contentWindow || event.data?.flockpath !== 1) return;
+        const waiting = pending.get(event.data.id);
+        if (waiting) {
+          pending.delete(event.data.id);
+          waiting(event.data);
+        }
+      });
+      window.__call = (method, ...args) =>
+        new Promise((resolve) => {
+          const id = next++;
+          pending.set(id, resolve);
+          frame.contentWindow.postMessage({ flockpath: 1, id, method, args }, '*');
+        });
+    });
+    const call = (method, ...args) => page.evaluate(([m, a]) => window.__call(m, ...a), [method, args]);
+    // Requests sent before the embed has booted wait for it (no need to catch its 'ready').
+    await page.frameLocator('#corridor').locator('flock-path').waitFor();
+
+    let reply = await call('pause');
+    assert.deepEqual(reply, { flockpath: 1, id: 1, ok: true, result: null });
+    reply = await call('load', simpleScene({ name: 'from the host', seed: 5 }));
+    assert.equal(reply.ok, true);
+    assert.equal(reply.result.name, 'from the host');
+    await call('reset');
+    reply = await call('step', 50);
+    assert.deepEqual([reply.ok, reply.result], [true, 50]);
+    const metrics = (await call('metrics')).result;
+    assert.equal(metrics.steps, 50);
+    assert.equal(metrics.agents, 30);
+    const scene = (await call('scene')).result;
+    assert.equal(scene.seed, 5);
+    const sceneString = (await call('sceneString')).result;
+    assert.match(sceneString, /^2\./);
+
+    // Errors: readable, and the scene is unchanged.
+    reply = await call('load', '2.garbled!');
+    assert.equal(reply.ok, false);
+    assert.match(reply.error, /base64|cut short|damaged/);
+    reply = await call('step', -1);
+    assert.equal(reply.ok, false);
+    assert.match(reply.error, /whole number/);
+    reply = await call('teleport');
+    assert.equal(reply.ok, false);
+    assert.match(reply.error, /unknown method "teleport"/);
+    assert.equal((await call('sceneString')).result, sceneString, 'scene unchanged after refused calls');
+
+    await call('play');
+    assert.equal((await call('isPlaying')).result, true);
+    const ids = await page.evaluate(async () => {
+      const replies = await Promise.all([window.__call('metrics'), window.__call('digest')]);
+      return replies.map((r) => r.id);
+    });
+    assert.equal(new Set(ids).size, 2, 'replies carry their own request ids');
+    assertNoUnexpectedErrors(errors);
+  } finally {
+    await close();
+  }
+});

@@ -1,0 +1,96 @@
+// embed.html: one <flock-path> filling the iframe, its scene from the fragment (`#s=…`,
+// `&autoplay=1`, `&controls=0`), an "open in flockpath" link carrying the current scene, and a
+// postMessage API so the host page can script the iframe like the page API:
+//
+//   iframe.contentWindow.postMessage({ flockpath: 1, id: 7, method: 'step', args: [60] }, '*');
+//   // reply to the sender: { flockpath: 1, id: 7, ok: true, result: 60 }
+//   //                   or { flockpath: 1, id: 7, ok: false, error: 'readable message' }
+//
+// Methods: load(scene), play(), pause(), step(n), reset(), metrics(), scene(), sceneString(),
+// digest(), isPlaying(). When it is ready the embed posts { flockpath: 1, event: 'ready' } to
+// its parent.
+
+import './flock-path.js';
+
+/** The methods a host may call, each mirroring the page API of the same name. */
+const METHODS = {
+  load: (el, scene) => el.load(scene),
+  play: (el) => el.play(),
+  pause: (el) => el.pause(),
+  step: (el, n = 1) => el.step(n),
+  reset: (el) => el.reset(),
+  metrics: (el) => el.metrics(),
+  scene: (el) => el.scene(),
+  sceneString: (el) => el.sceneString(),
+  digest: (el) => el.digest(),
+  isPlaying: (el) => el.playing,
+};
+
+/** `key=value` options of the fragment (`s` kept verbatim: fragment values are URL-safe). */
+export function fragmentOptions(hash = location.hash) {
+  const options = {};
+  for (const part of hash.replace(/^#/, '').split('&')) {
+    const eq = part.indexOf('=');
+    if (eq > 0) options[part.slice(0, eq)] = part.slice(eq + 1);
+  }
+  return options;
+}
+
+const el = document.getElementById('embedded');
+const openLink = document.getElementById('open-full');
+const options = fragmentOptions();
+if (options.s) {
+  let scene = options.s;
+  try {
+    scene = decodeURIComponent(scene);
+  } catch {
+    // Not percent-encoded: use it as it is.
+  }
+  el.setAttribute('scene', scene);
+}
+if (options.autoplay === '1' || options.autoplay === 'true') el.setAttribute('autoplay', '');
+if (options.controls === '0' || options.controls === 'false') el.removeAttribute('controls');
+
+/** Points the link at the full page with the scene as it is now (edits via the API included). */
+function refreshOpenLink() {
+  try {
+    const url = new URL('index.html', location.href);
+    url.hash = `s=${el.sceneString()}`;
+    openLink.href = url.href;
+  } catch {
+    // Not ready or crashed: the link keeps its last target.
+  }
+}
+openLink.addEventListener('pointerenter', refreshOpenLink);
+openLink.addEventListener('focus', refreshOpenLink);
+openLink.addEventListener('click', refreshOpenLink);
+
+// Messages that arrive before the simulation is ready wait for it.
+window.addEventListener('message', async (event) => {
+  const data = event.data;
+  if (!data || data.flockpath !== 1 || typeof data.method !== 'string' || !event.source) return;
+  const reply = (body) => {
+    // An opaque origin (a file:// host page) can only be answered with '*'.
+    const target = event.origin && event.origin !== 'null' ? event.origin : '*';
+    event.source.postMessage({ flockpath: 1, id: data.id, ...body }, target);
+  };
+  const method = METHODS[data.method];
+  if (!Object.hasOwn(METHODS, data.method)) {
+    reply({ ok: false, error: `unknown method ${JSON.stringify(data.method)}; known: ${Object.keys(METHODS).join(', ')}` });
+    return;
+  }
+  await el.ready;
+  try {
+    const result = method(el, ...(Array.isArray(data.args) ? data.args : []));
+    if (data.method === 'load') refreshOpenLink();
+    reply({ ok: true, result: result === undefined ? null : result });
+  } catch (error) {
+    reply({ ok: false, error: error instanceof Error ? error.message : String(error) });
+  }
+});
+
+el.ready.then(() => {
+  refreshOpenLink();
+  window.flockpathEmbed = el;
+  if (window.parent !== window) window.parent.postMessage({ flockpath: 1, event: 'ready' }, '*');
+});

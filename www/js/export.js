@@ -1,0 +1,165 @@
+// Exports of the current run: paths (CSV, JSON, Maya MEL, Blender Python) and SVG trails from the
+// Sim's recording, a PNG snapshot of the canvas, and a WebM video (MediaRecorder on the canvas
+// stream) with a recording indicator. The recording's budget and any thinning are stated on screen.
+
+import { messageOf, showMessage } from './errors.js';
+import { download, fileStem } from './share.js';
+
+const $ = (id) => document.getElementById(id);
+
+const MIB = 1024 * 1024;
+/** How often the recording line refreshes while playing (ms, display only). */
+const INFO_REFRESH_MS = 500;
+
+const PATH_EXPORTS = {
+  csv: { ext: 'csv', type: 'text/csv', make: (sim) => sim.export_paths_csv() },
+  json: { ext: 'paths.json', type: 'application/json', make: (sim) => sim.export_paths_json() },
+  mel: { ext: 'mel', type: 'text/plain', make: (sim, o) => sim.export_maya_mel(o.fps, o.scale) },
+  py: { ext: 'py', type: 'text/x-python', make: (sim, o) => sim.export_blender_py(o.fps, o.scale) },
+  svg: { ext: 'svg', type: 'image/svg+xml', make: (sim) => sim.export_trails_svg() },
+};
+
+const ordinal = (n) => (n === 2 ? '2nd' : n === 3 ? '3rd' : `${n}th`);
+
+/** One line about the recording, and the thinning note (null when not thinned). */
+export function describeRecording(info) {
+  const steps = info.last_step ?? 0;
+  const line =
+    `Recorded for export: ${info.frames.toLocaleString('en-US')} frames up to step ` +
+    `${steps.toLocaleString('en-US')} of ${info.agents.toLocaleString('en-US')} agents ` +
+    `(budget ${Math.round(info.budget_bytes / MIB)} MiB ≈ ${info.capacity_steps.toLocaleString('en-US')} steps).`;
+  const note = info.thinned > 0
+    ? `The recording reached its ${Math.round(info.budget_bytes / MIB)} MiB budget and now keeps every ` +
+      `${ordinal(info.every)} step: exports are coarser in time; the run itself is unchanged.`
+    : null;
+  return { line, note };
+}
+
+export function setupExport(app, canvas) {
+  const dialog = $('export-dialog');
+  const status = $('export-status');
+  const info = $('recording-info');
+  const thinned = $('recording-thinned');
+
+  const refreshInfo = () => {
+    const result = app.guard((sim) => JSON.parse(sim.recording_json()));
+    if (!result.ok) return;
+    const { line, note } = describeRecording(result.value);
+    if (info.textContent !== line) info.textContent = line;
+    $('export-recording').textContent = line;
+    thinned.hidden = note === null;
+    if (note !== null && thinned.textContent !== note) thinned.textContent = note;
+  };
+  app.addEventListener('stepped', refreshInfo);
+  app.addEventListener('scene', refreshInfo);
+  setInterval(() => {
+    if (app.playing && !app.crashed) refreshInfo();
+  }, INFO_REFRESH_MS);
+  refreshInfo();
+
+  const options = () => ({ fps: Number($('export-fps').value), scale: Number($('export-scale').value) });
+
+  $('export').addEventListener('click', () => {
+    refreshInfo();
+    status.textContent = '';
+    dialog.showModal();
+  });
+
+  for (const button of dialog.querySelectorAll('[data-export]')) {
+    button.addEventListener('click', () => {
+      const kind = button.dataset.export;
+      const stem = fileStem(app.scene);
+      if (kind === 'png') {
+        const steps = app.guard((sim) => sim.steps()).value ?? 0;
+        const name = `${stem}-step-${steps}.png`;
+        canvas.toBlob((blob) => {
+          if (!blob) {
+            showMessage('the canvas could not be turned into a PNG');
+            return;
+          }
+          download(name, blob);
+          status.textContent = `Downloading ${name}.`;
+        }, 'image/png');
+        return;
+      }
+      const spec = PATH_EXPORTS[kind];
+      const result = app.guard((sim) => spec.make(sim, options()));
+      if (!result.ok) {
+        status.textContent = `Not exported: ${messageOf(result.error)}`;
+        return;
+      }
+      const name = `${stem}.${spec.ext}`;
+      download(name, result.value, spec.type);
+      status.textContent = `Downloading ${name} (${Math.ceil(result.value.length / 1024).toLocaleString('en-US')} KiB).`;
+    });
+  }
+
+  setupVideo(app, canvas, status);
+}
+
+/** WebM capture of the canvas while the simulation runs, with the REC indicator in the top bar. */
+function setupVideo(app, canvas, status) {
+  const button = $('record-webm');
+  const indicator = $('recording-indicator');
+  const clock = $('recording-time');
+  let recorder = null;
+  let timer = null;
+
+  const supported = typeof MediaRecorder !== 'undefined' && typeof canvas.captureStream === 'function';
+  if (!supported) {
+    button.disabled = true;
+    button.title = 'This browser cannot record the canvas (no MediaRecorder)';
+    return;
+  }
+  const mimeType = ['video/webm;codecs=vp9', 'video/webm;codecs=vp8', 'video/webm']
+    .find((t) => MediaRecorder.isTypeSupported(t));
+
+  const stop = () => {
+    if (recorder && recorder.state !== 'inactive') recorder.stop();
+  };
+  const start = () => {
+    let stream;
+    try {
+      stream = canvas.captureStream(30);
+      recorder = new MediaRecorder(stream, mimeType ? { mimeType } : undefined);
+    } catch (error) {
+      status.textContent = `Recording could not start: ${messageOf(error)}`;
+      return;
+    }
+    const chunks = [];
+    const started = performance.now();
+    recorder.addEventListener('dataavailable', (e) => {
+      if (e.data.size > 0) chunks.push(e.data);
+    });
+    recorder.addEventListener('stop', () => {
+      clearInterval(timer);
+      for (const track of stream.getTracks()) track.stop();
+      indicator.hidden = true;
+      button.textContent = 'Record WebM';
+      button.classList.remove('recording');
+      recorder = null;
+      const name = `${fileStem(app.scene)}.webm`;
+      download(name, new Blob(chunks, { type: 'video/webm' }));
+      status.textContent = `Downloading ${name}.`;
+      app.dispatchEvent(new Event('video-saved'));
+    });
+    recorder.start(250);
+    indicator.hidden = false;
+    button.textContent = 'Stop recording';
+    button.classList.add('recording');
+    clock.textContent = '0:00';
+    timer = setInterval(() => {
+      const s = Math.floor((performance.now() - started) / 1000);
+      clock.textContent = `${Math.floor(s / 60)}:${String(s % 60).padStart(2, '0')}`;
+    }, 250);
+    if (!app.playing) app.setPlaying(true);
+    // Close the dialog so the canvas being recorded is in view.
+    $('export-dialog').close();
+  };
+  button.addEventListener('click', () => (recorder ? stop() : start()));
+  // The indicator doubles as the stop button once the dialog is closed.
+  indicator.title = 'Recording the canvas: click to stop and download the WebM';
+  indicator.style.cursor = 'pointer';
+  indicator.addEventListener('click', stop);
+  app.addEventListener('crash', stop);
+}

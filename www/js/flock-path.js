@@ -1,0 +1,369 @@
+// <flock-path>: a live flockpath scene for course notes, in one ES module.
+//
+//   <script type="module" src="flockpath/js/flock-path.js"></script>
+//   <flock-path scene="2.ZZHd…" autoplay controls height="360px"></flock-path>
+//
+// Attributes: `scene` (a link's fragment value, a whole link, scene JSON, or a preset name),
+// `autoplay`, `controls` (play/pause, step, reset, planner name), `width` / `height` (CSS lengths;
+// by default the element is as wide as its container and as tall as the scene's aspect ratio),
+// `fill` (fill the element's box instead, as embed.html does). Several elements on one page run
+// independently: each owns its own simulation; the wasm module is loaded once and shared. Every
+// URL is resolved against this module's own URL, so the folder works under any sub-path, offline.
+//
+// Methods mirror the page API: load(text), play(), pause(), step(n), reset(), metrics(), scene(),
+// sceneString(), digest(); property `playing`, `steps`. Events: `flockpath-ready`,
+// `flockpath-error` (detail: message).
+
+const PKG_URL = new URL('../pkg/flockpath.js', import.meta.url).href;
+/** Largest canvas backing store per element (px): many embeds on one page stay cheap. */
+const MAX_PIXELS = 1920 * 1200;
+const DEFAULT_STEPS_PER_FRAME = 2;
+
+let shared = null;
+
+/** Loads and initialises the wasm module once for every element on the page. */
+function loadModule() {
+  shared ??= import(PKG_URL).then(async (module) => {
+    const wasm = await module.default();
+    return { module, wasm, presets: JSON.parse(module.presets_json()), planners: JSON.parse(module.planners_json()) };
+  });
+  return shared;
+}
+
+const STYLE = `
+:host { display: block; position: relative; font: 14px/1.3 system-ui, -apple-system, "Segoe UI", Roboto, sans-serif;
+  color: #17202c; background: #f7f7f4; border: 1px solid #d5dbe3; border-radius: 8px; overflow: hidden; }
+:host([hidden]) { display: none; }
+.frame { display: flex; flex-direction: column; width: 100%; height: 100%; }
+.stage { position: relative; width: 100%; min-height: 80px; }
+:host([fill]) .stage, :host([height]) .stage { flex: 1; min-height: 0; }
+canvas { position: absolute; inset: 0; width: 100%; height: 100%; display: block; }
+.bar { display: flex; align-items: center; gap: 6px; padding: 4px 6px; border-top: 1px solid #d5dbe3; background: #fff; flex-wrap: wrap; }
+.bar[hidden] { display: none; }
+button { font: inherit; padding: 3px 10px; border: 1px solid #c5cdd8; border-radius: 6px; background: #fff; cursor: pointer; min-height: 28px; }
+button:hover { border-color: #2f6fdf; }
+button:focus-visible { outline: 3px solid #8db6ff; outline-offset: 1px; }
+button.play { background: #2f6fdf; border-color: #2f6fdf; color: #fff; min-width: 64px; font-weight: 600; }
+.planner { color: #5a6676; }
+.steps { margin-left: auto; color: #5a6676; font-variant-numeric: tabular-nums; }
+.message { position: absolute; left: 8px; right: 8px; top: 8px; margin: 0; padding: 6px 10px; background: #fdecea;
+  border-left: 5px solid #b3261e; border-radius: 6px; color: #17202c; }
+.message[hidden] { display: none; }
+.loading { position: absolute; inset: 0; display: flex; align-items: center; justify-content: center; color: #5a6676; }
+.loading[hidden] { display: none; }
+::slotted(a) { color: #2f6fdf; }
+`;
+
+/** A readable message from anything thrown. */
+const messageOf = (error) => (error instanceof Error ? error.message : String(error));
+const isPanic = (error) => typeof WebAssembly !== 'undefined' && error instanceof WebAssembly.RuntimeError;
+
+export class FlockPathElement extends HTMLElement {
+  static get observedAttributes() {
+    return ['scene', 'controls', 'width', 'height', 'autoplay'];
+  }
+
+  constructor() {
+    super();
+    const root = this.attachShadow({ mode: 'open' });
+    root.innerHTML = `<style>${STYLE}</style>
+      <div class="frame" part="frame">
+        <div class="stage" part="stage">
+          <canvas part="canvas" role="img" aria-label="Simulated crowd"></canvas>
+          <div class="loading">Loading…</div>
+          <p class="message" role="alert" hidden></p>
+        </div>
+        <div class="bar" part="controls" hidden>
+          <button type="button" class="play" title="Play / pause">Play</button>
+          <button type="button" class="step" title="Advance one step">Step</button>
+          <button type="button" class="reset" title="Restart from the seed">Reset</button>
+          <span class="planner"></span>
+          <span class="steps" aria-live="off"></span>
+          <slot name="actions"></slot>
+        </div>
+      </div>`;
+    this.$ = (selector) => root.querySelector(selector);
+    this.sim = null;
+    this.wasm = null;
+    this.module = null;
+    this.playing = false;
+    this.stepsPerFrame = DEFAULT_STEPS_PER_FRAME;
+    this.frameRequest = 0;
+    this.dirty = true;
+    this.crashed = false;
+    this.ready = new Promise((resolve) => (this.resolveReady = resolve));
+    this.$('.play').addEventListener('click', () => (this.playing ? this.pause() : this.play()));
+    this.$('.step').addEventListener('click', () => {
+      this.pause();
+      this.step(1);
+    });
+    this.$('.reset').addEventListener('click', () => this.reset());
+    this.$('.message').title = 'Click to dismiss';
+    this.$('.message').addEventListener('click', () => this.hideMessage());
+  }
+
+  connectedCallback() {
+    this.applyLayout();
+    if (!this.booting) this.booting = this.boot();
+    else if (this.sim) this.startLoop();
+  }
+
+  disconnectedCallback() {
+    cancelAnimationFrame(this.frameRequest);
+    this.frameRequest = 0;
+    this.observer?.disconnect();
+    // Free the simulation only if the element is really gone (not just moved in the DOM).
+    queueMicrotask(() => {
+      if (!this.isConnected && this.sim) {
+        this.sim.free();
+        this.sim = null;
+        this.booting = null;
+      }
+    });
+  }
+
+  attributeChangedCallback(name, old, value) {
+    if (old === value) return;
+    if (name === 'scene' && this.sim) this.tryLoad(value ?? '', { fallback: false });
+    else this.applyLayout();
+  }
+
+  applyLayout() {
+    this.$('.bar').hidden = !this.hasAttribute('controls');
+    this.style.width = this.getAttribute('width') ?? '';
+    this.style.height = this.getAttribute('height') ?? '';
+    const stage = this.$('.stage');
+    const scene = this.cachedScene;
+    const sized = this.hasAttribute('fill') || this.hasAttribute('height');
+    stage.style.aspectRatio = !sized && scene ? `${scene.width} / ${scene.height}` : '';
+  }
+
+  async boot() {
+    let shared;
+    try {
+      shared = await loadModule();
+    } catch (error) {
+      this.showMessage(`the simulation module could not be loaded (${PKG_URL}): ${messageOf(error)}`);
+      this.$('.loading').hidden = true;
+      return;
+    }
+    if (!this.isConnected) return;
+    ({ module: this.module, wasm: this.wasm } = shared);
+    this.presets = shared.presets;
+    this.planners = shared.planners;
+    const canvas = this.$('canvas');
+    const { width, height } = this.backingSize();
+    canvas.width = width;
+    canvas.height = height;
+    const first = this.module.preset_scene_json(this.presets[0].name);
+    try {
+      this.sim = new this.module.Sim(first, width, height);
+    } catch (error) {
+      this.showMessage(messageOf(error));
+      return;
+    }
+    this.tryLoad(this.getAttribute('scene') ?? '', { fallback: true });
+    this.$('.loading').hidden = true;
+    this.ctx = canvas.getContext('2d', { alpha: false });
+    this.observer = new ResizeObserver(() => this.fitCanvas());
+    this.observer.observe(canvas);
+    if (this.hasAttribute('autoplay')) this.playing = true;
+    this.refreshBar();
+    this.startLoop();
+    this.resolveReady(this);
+    this.dispatchEvent(new CustomEvent('flockpath-ready', { bubbles: true, composed: true }));
+  }
+
+  /** Resolves a scene attribute: a preset name, else JSON / fragment / URL text. */
+  sceneText(text) {
+    const trimmed = text.trim();
+    const preset = this.presets.find((p) => p.name === trimmed);
+    return preset ? this.module.preset_scene_json(preset.name) : trimmed;
+  }
+
+  /** Loads from an attribute: on failure shows the message and keeps (or falls back to) a scene. */
+  tryLoad(text, { fallback }) {
+    if (!text.trim()) {
+      this.afterLoad();
+      return;
+    }
+    try {
+      this.call((sim) => sim.load(this.sceneText(text)));
+      this.hideMessage();
+    } catch (error) {
+      const keep = fallback ? `showing “${this.presets[0].name}” instead` : 'the previous scene keeps running';
+      const reason = messageOf(error).replace(/[.?!]$/, '');
+      this.showMessage(`The scene could not be loaded: ${reason}. ${keep[0].toUpperCase()}${keep.slice(1)}.`);
+    }
+    this.afterLoad();
+  }
+
+  afterLoad() {
+    if (!this.sim) return;
+    this.cachedScene = JSON.parse(this.call((sim) => sim.scene_json()));
+    this.applyLayout();
+    this.dirty = true;
+    this.refreshBar();
+  }
+
+  /** Every wasm call goes through here: a panic stops this element and says so. */
+  call(fn) {
+    if (this.crashed || !this.sim) throw new Error(this.crashed ? 'the simulation crashed' : 'flock-path is still loading');
+    try {
+      return fn(this.sim);
+    } catch (error) {
+      if (isPanic(error)) {
+        this.crashed = true;
+        this.pause();
+        this.showMessage(`The simulation crashed (a bug in flockpath): ${messageOf(error)}`);
+      }
+      this.dispatchEvent(new CustomEvent('flockpath-error', { detail: messageOf(error), bubbles: true, composed: true }));
+      throw error;
+    }
+  }
+
+  showMessage(text) {
+    const el = this.$('.message');
+    el.textContent = text;
+    el.hidden = false;
+  }
+
+  hideMessage() {
+    this.$('.message').hidden = true;
+  }
+
+  backingSize() {
+    const rect = this.$('canvas').getBoundingClientRect();
+    const ratio = window.devicePixelRatio || 1;
+    let width = Math.max(1, Math.round(rect.width * ratio));
+    let height = Math.max(1, Math.round(rect.height * ratio));
+    if (width * height > MAX_PIXELS) {
+      const shrink = Math.sqrt(MAX_PIXELS / (width * height));
+      width = Math.max(1, Math.floor(width * shrink));
+      height = Math.max(1, Math.floor(height * shrink));
+    }
+    return { width, height };
+  }
+
+  fitCanvas() {
+    if (!this.sim || this.crashed) return;
+    const canvas = this.$('canvas');
+    const { width, height } = this.backingSize();
+    if (canvas.width === width && canvas.height === height) return;
+    canvas.width = width;
+    canvas.height = height;
+    this.call((sim) => sim.resize(width, height));
+    this.dirty = true;
+  }
+
+  startLoop() {
+    if (this.frameRequest || !this.sim) return;
+    const frame = () => {
+      this.frameRequest = 0;
+      if (!this.isConnected || this.crashed || !this.sim) return;
+      try {
+        if (this.playing) {
+          this.call((sim) => sim.step(this.stepsPerFrame));
+          this.dirty = true;
+        }
+        if (this.dirty) {
+          this.dirty = false;
+          this.call((sim) => sim.render());
+          this.blit();
+          this.refreshSteps();
+        }
+      } catch {
+        this.playing = false;
+        this.refreshBar();
+      }
+      this.frameRequest = requestAnimationFrame(frame);
+    };
+    this.frameRequest = requestAnimationFrame(frame);
+  }
+
+  /** Copies the frame from wasm memory (a fresh view each time: memory may have grown). */
+  blit() {
+    const sim = this.sim;
+    const width = sim.width();
+    const height = sim.height();
+    const pixels = new Uint8ClampedArray(this.wasm.memory.buffer, sim.frame_ptr(), sim.frame_len());
+    const canvas = this.$('canvas');
+    if (pixels.length !== width * height * 4 || canvas.width !== width || canvas.height !== height) return;
+    this.ctx.putImageData(new ImageData(pixels, width, height), 0, 0);
+  }
+
+  refreshBar() {
+    this.$('.play').textContent = this.playing ? 'Pause' : 'Play';
+    this.$('.play').setAttribute('aria-pressed', String(this.playing));
+    const names = [...new Set((this.cachedScene?.groups ?? []).map((g) => g.planner.kind))];
+    const label = (name) => this.planners?.find((p) => p.name === name)?.label ?? name;
+    this.$('.planner').textContent = names.map(label).join(', ');
+    this.refreshSteps();
+  }
+
+  refreshSteps() {
+    if (!this.sim || this.crashed) return;
+    this.$('.steps').textContent = `step ${this.sim.steps().toLocaleString('en-US')}`;
+  }
+
+  // ---- the page API, per element ----
+
+  /** Loads a scene (JSON text or object, fragment value, URL, preset name); throws and keeps the current one. */
+  load(scene) {
+    const text = scene !== null && typeof scene === 'object' ? JSON.stringify(scene) : String(scene);
+    this.call((sim) => sim.load(this.sceneText(text)));
+    this.hideMessage();
+    this.afterLoad();
+    return this.scene();
+  }
+
+  play() {
+    this.playing = true;
+    this.refreshBar();
+  }
+
+  pause() {
+    this.playing = false;
+    this.refreshBar();
+  }
+
+  /** Advances `n` steps now; returns the step count. */
+  step(n = 1) {
+    const count = Number(n);
+    if (!Number.isInteger(count) || count < 0 || count > 0xffffffff) {
+      throw new RangeError(`step(n) takes a whole number of steps ≥ 0, not ${n}`);
+    }
+    this.call((sim) => sim.step(count));
+    this.dirty = true;
+    this.refreshSteps();
+    return this.steps;
+  }
+
+  reset() {
+    this.call((sim) => sim.reset());
+    this.dirty = true;
+    this.refreshSteps();
+  }
+
+  get steps() {
+    return this.call((sim) => sim.steps());
+  }
+
+  metrics() {
+    return JSON.parse(this.call((sim) => sim.metrics_json()));
+  }
+
+  scene() {
+    return JSON.parse(this.call((sim) => sim.scene_json()));
+  }
+
+  sceneString() {
+    return this.call((sim) => sim.scene_string());
+  }
+
+  digest() {
+    return String(this.call((sim) => sim.digest()));
+  }
+}
+
+if (!customElements.get('flock-path')) customElements.define('flock-path', FlockPathElement);

@@ -1,0 +1,135 @@
+// The share dialog: the link, an iframe snippet (embed.html), a `<flock-path>` snippet, scene JSON
+// download, and loading a scene JSON by file picker or by dropping it on the canvas.
+
+import { messageOf, showMessage } from './errors.js';
+import { shareUrl, writeSceneToLocation } from './url.js';
+
+const $ = (id) => document.getElementById(id);
+
+/** Offers `data` (text or Blob) as a file download named `filename`. */
+export function download(filename, data, type = 'text/plain') {
+  const blob = data instanceof Blob ? data : new Blob([data], { type });
+  const url = URL.createObjectURL(blob);
+  const a = Object.assign(document.createElement('a'), { href: url, download: filename });
+  document.body.append(a);
+  a.click();
+  a.remove();
+  // The download has started from the object URL; free it once the click has been handled.
+  setTimeout(() => URL.revokeObjectURL(url), 10_000);
+}
+
+/** A file name from the scene's name: letters, digits and dashes. */
+export function fileStem(scene) {
+  const stem = String(scene.name ?? '').toLowerCase().replace(/[^a-z0-9]+/g, '-').replace(/^-|-$/g, '');
+  return stem || 'scene';
+}
+
+/** HTML-attribute escaping for the snippets. */
+const attr = (text) => text.replace(/&/g, '&amp;').replace(/"/g, '&quot;').replace(/</g, '&lt;');
+
+/** The snippets for the current scene string (absolute URLs: they are pasted into other sites). */
+export function snippets(sceneString, { autoplay = true, page = location.href } = {}) {
+  const link = shareUrl(sceneString, page);
+  const embed = new URL('embed.html', page);
+  embed.hash = `s=${sceneString}${autoplay ? '&autoplay=1' : ''}`;
+  const module = new URL('js/flock-path.js', page);
+  const iframe =
+    `<iframe src="${attr(embed.href)}" width="720" height="480" style="border:0;max-width:100%" ` +
+    'title="flockpath simulation" allowfullscreen loading="lazy"></iframe>';
+  const component =
+    `<script type="module" src="${attr(module.href)}"></script>\n` +
+    `<flock-path scene="${attr(sceneString)}"${autoplay ? ' autoplay' : ''} controls height="400px"></flock-path>`;
+  return { link, iframe, component };
+}
+
+async function copy(text, status, what) {
+  try {
+    await navigator.clipboard.writeText(text);
+    status.textContent = `${what} copied to the clipboard.`;
+  } catch {
+    status.textContent = `${what}: the browser refused clipboard access; select the text and copy it.`;
+  }
+}
+
+/** Reads a dropped or picked file and loads it as a scene (undoable; errors go to the banner). */
+async function loadFile(app, file) {
+  let text;
+  try {
+    text = await file.text();
+  } catch (error) {
+    showMessage(`cannot read ${file.name}: ${messageOf(error)}`);
+    return false;
+  }
+  const result = app.load(text);
+  if (!result.ok) showMessage(`${file.name} was not loaded: ${messageOf(result.error)}. The previous scene keeps running.`);
+  return result.ok;
+}
+
+export function setupShare(app) {
+  const dialog = $('share-dialog');
+  const status = $('share-status');
+  const autoplay = $('share-autoplay');
+  const fill = () => {
+    const result = app.guard((sim) => sim.scene_string());
+    if (!result.ok) return null;
+    const s = snippets(result.value, { autoplay: autoplay.checked });
+    $('share-link').value = s.link;
+    $('share-link-size').textContent = `(${s.link.length} characters)`;
+    $('share-iframe').value = s.iframe;
+    $('share-component').value = s.component;
+    return result.value;
+  };
+  $('share').addEventListener('click', () => {
+    const value = fill();
+    if (value === null) return;
+    writeSceneToLocation(value);
+    status.textContent = '';
+    dialog.showModal();
+    $('share-link').select();
+  });
+  autoplay.addEventListener('change', fill);
+  app.addEventListener('scene', () => {
+    if (dialog.open) fill();
+  });
+  $('copy-link').addEventListener('click', () => copy($('share-link').value, status, 'Link'));
+  $('copy-iframe').addEventListener('click', () => copy($('share-iframe').value, status, 'Iframe snippet'));
+  $('copy-component').addEventListener('click', () => copy($('share-component').value, status, 'Web-component snippet'));
+  $('download-scene').addEventListener('click', () => {
+    const result = app.guard((sim) => sim.scene_json());
+    if (!result.ok) return;
+    const name = `${fileStem(app.scene)}.json`;
+    download(name, `${result.value}\n`, 'application/json');
+    status.textContent = `Downloading ${name}.`;
+  });
+  const picker = $('scene-file');
+  $('open-scene').addEventListener('click', () => picker.click());
+  picker.addEventListener('change', async () => {
+    const file = picker.files?.[0];
+    picker.value = '';
+    if (file && (await loadFile(app, file))) {
+      status.textContent = `Loaded ${file.name}.`;
+      dialog.close();
+    }
+  });
+
+  // Drag and drop a scene file onto the canvas.
+  const stage = $('stage');
+  const hint = $('drop-hint');
+  const hasFiles = (e) => [...(e.dataTransfer?.types ?? [])].includes('Files');
+  stage.addEventListener('dragover', (e) => {
+    if (!hasFiles(e)) return;
+    e.preventDefault();
+    e.dataTransfer.dropEffect = 'copy';
+    hint.hidden = false;
+  });
+  stage.addEventListener('dragleave', (e) => {
+    if (!stage.contains(e.relatedTarget)) hint.hidden = true;
+  });
+  stage.addEventListener('drop', async (e) => {
+    if (!hasFiles(e)) return;
+    e.preventDefault();
+    hint.hidden = true;
+    const file = e.dataTransfer.files[0];
+    if (file) await loadFile(app, file);
+  });
+}
