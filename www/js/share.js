@@ -57,11 +57,11 @@ async function loadFile(app, file) {
   try {
     text = await file.text();
   } catch (error) {
-    showMessage(`cannot read ${file.name}: ${messageOf(error)}`);
+    showMessage(`the file ${file.name} could not be read: ${messageOf(error)}`);
     return false;
   }
   const result = app.load(text);
-  if (!result.ok) showMessage(`${file.name} was not loaded: ${messageOf(result.error)}. The previous scene keeps running.`);
+  if (!result.ok) showMessage(`the file ${file.name} was not loaded: ${messageOf(result.error)}. The previous scene keeps running.`);
   return result.ok;
 }
 

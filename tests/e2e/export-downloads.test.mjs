@@ -1,0 +1,114 @@
+// The export and share dialogs produce real files: paths CSV with one row per agent per recorded
+// step, a Blender script Python compiles, a PNG, a WebM recorded with the REC indicator showing,
+// the scene JSON; a scene file loads by file picker and by dropping it on the canvas; the
+// recording's budget is stated and its thinning announced.
+
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import { execFileSync } from 'node:child_process';
+import { readFile } from 'node:fs/promises';
+import { assertNoUnexpectedErrors, openPage, screenshot, simpleScene } from './helpers.mjs';
+
+/** Clicks `selector` and returns the downloaded file's name and bytes. */
+async function downloadVia(page, selector) {
+  const [download] = await Promise.all([page.waitForEvent('download'), page.click(selector)]);
+  const file = await download.path();
+  return { name: download.suggestedFilename(), bytes: await readFile(file), file };
+}
+
+test('exports download real files and scenes load from files', async () => {
+  const { page, errors, close } = await openPage();
+  try {
+    await page.evaluate((scene) => {
+      window.flockpath.load(scene);
+      window.flockpath.pause();
+      window.flockpath.reset();
+      window.flockpath.step(30);
+    }, simpleScene({ name: 'export me' }));
+    assert.match(await page.textContent('#recording-info'), /31 frames up to step 30 of 30 agents \(budget 32 MiB/);
+
+    await page.click('#export');
+    const csv = await downloadVia(page, '[data-export="csv"]');
+    assert.equal(csv.name, 'export-me.csv');
+    const rows = csv.bytes.toString('utf8').trim().split('\n');
+    assert.equal(rows[0], 'agent,group,step,time,x,y,vx,vy');
+    assert.equal(rows.length - 1, 30 * 31, 'one row per agent per recorded step (0..=30)');
+    const last = rows.at(-1).split(',').map(Number);
+    const positions = await page.evaluate(() => window.flockpath.positions());
+    // The CSV holds the shortest text of each f32: it parses back to the same f32.
+    assert.deepEqual(
+      [last[0], last[2], Math.fround(last[4]), Math.fround(last[5])],
+      [29, 30, Math.fround(positions[29][0]), Math.fround(positions[29][1])],
+    );
+
+    await page.fill('#export-fps', '30');
+    const py = await downloadVia(page, '[data-export="py"]');
+    assert.match(py.bytes.toString('utf8'), /scene\.render\.fps = 30/);
+    execFileSync('python3', ['-m', 'py_compile', py.file]);
+    const mel = await downloadVia(page, '[data-export="mel"]');
+    assert.equal((mel.bytes.toString('utf8').match(/spaceLocator/g) ?? []).length, 30);
+    await page.fill('#export-fps', '0');
+    await page.click('[data-export="mel"]');
+    assert.match(await page.textContent('#export-status'), /frame rate must be 1…240/);
+    await page.fill('#export-fps', '24');
+    const svg = await downloadVia(page, '[data-export="svg"]');
+    assert.equal((svg.bytes.toString('utf8').match(/<polyline/g) ?? []).length, 30);
+    const png = await downloadVia(page, '[data-export="png"]');
+    assert.deepEqual([...png.bytes.subarray(0, 4)], [0x89, 0x50, 0x4e, 0x47], 'PNG signature');
+
+    // WebM: the indicator shows while recording; stopping downloads the video.
+    await page.click('#record-webm');
+    await page.waitForSelector('#recording-indicator:not([hidden])');
+    await page.waitForTimeout(1200);
+    await screenshot(page, 'export-recording');
+    const webm = await downloadVia(page, '#recording-indicator');
+    assert.equal(webm.name, 'export-me.webm');
+    assert.deepEqual([...webm.bytes.subarray(0, 4)], [0x1a, 0x45, 0xdf, 0xa3], 'WebM (EBML) header');
+    assert.ok(await page.isHidden('#recording-indicator'), 'the indicator goes away');
+
+    // Share dialog: the scene JSON downloads, and loads back by picker and by drop.
+    await page.click('#share');
+    const json = await downloadVia(page, '#download-scene');
+    assert.equal(JSON.parse(json.bytes.toString('utf8')).name, 'export me');
+    const other = JSON.stringify(simpleScene({ name: 'picked from a file', seed: 3 }));
+    await page.setInputFiles('#scene-file', { name: 'picked.json', mimeType: 'application/json', buffer: Buffer.from(other) });
+    await page.waitForFunction(() => window.flockpath.scene().name === 'picked from a file');
+    assert.equal(await page.isVisible('#share-dialog'), false, 'the dialog closes after loading');
+
+    const dropped = JSON.stringify(simpleScene({ name: 'dropped on the canvas' }));
+    const transfer = await page.evaluateHandle((text) => {
+      const dt = new DataTransfer();
+      dt.items.add(new File([text], 'dropped.json', { type: 'application/json' }));
+      return dt;
+    }, dropped);
+    await page.dispatchEvent('#stage', 'dragover', { dataTransfer: transfer });
+    assert.equal(await page.isVisible('#drop-hint'), true, 'the drop hint shows');
+    await page.dispatchEvent('#stage', 'drop', { dataTransfer: transfer });
+    await page.waitForFunction(() => window.flockpath.scene().name === 'dropped on the canvas');
+    assert.equal(await page.isVisible('#drop-hint'), false);
+
+    // A file that is not a scene: a message, and the scene stays.
+    const bad = await page.evaluateHandle(() => {
+      const dt = new DataTransfer();
+      dt.items.add(new File(['{"width": "wide"}'], 'broken.json', { type: 'application/json' }));
+      return dt;
+    });
+    await page.dispatchEvent('#stage', 'drop', { dataTransfer: bad });
+    await page.waitForFunction(() => !document.getElementById('banner').hidden);
+    assert.match(await page.textContent('#banner-text'), /The file broken\.json was not loaded: .*expected f32/);
+    assert.equal((await page.evaluate(() => window.flockpath.scene())).name, 'dropped on the canvas');
+
+    // Thinning is announced: 20,000 agents fill the 32 MiB budget in about 100 steps.
+    await page.evaluate((scene) => {
+      window.flockpath.load(scene);
+      window.flockpath.pause();
+      window.flockpath.step(220);
+    }, simpleScene({ name: 'crowd', width: 4000, height: 4000, goals: [], groups: [{ ...simpleScene().groups[0], count: 20000, goal: null, spawn: { min: [0, 0], max: [4000, 4000] } }] }));
+    await page.waitForSelector('#recording-thinned:not([hidden])');
+    assert.match(await page.textContent('#recording-thinned'), /reached its 32 MiB budget and now keeps every 4th step/);
+    await screenshot(page, 'export-thinned');
+    assertNoUnexpectedErrors(errors);
+  } finally {
+    await close();
+  }
+});
