@@ -3,9 +3,9 @@
 //! Fragment formats (`<version>.<payload>`, the payload URL-safe base64 without padding of a raw
 //! deflate stream, miniz_oxide at level 9):
 //! - `2.` (written today): the deflated JSON of a compact form of the scene. Obstacles, goals and
-//!   groups are positional arrays, not keyed objects, and planner parameters equal to their
-//!   defaults are left out, so a scene with 20 obstacles and 4 groups needs about 700 characters
-//!   instead of about 1,100. When a scene holds something the compact form cannot express, the
+//!   groups are positional arrays, not keyed objects, so a scene with 20 obstacles and 4 groups
+//!   needs about 750 characters instead of about 1,100. Every planner parameter is written, even
+//!   when it equals today's default: a link must replay the same run after a default changes. When a scene holds something the compact form cannot express, the
 //!   payload is the keyed scene JSON instead (the decoder tells them apart by `[` or `{`), so the
 //!   round trip is always exact.
 //! - `1.` (read only): the deflated keyed scene JSON.
@@ -166,18 +166,11 @@ enum CompactGoal {
     Moving(f32, f32, f32, GoalMotion),
 }
 
-/// `[name, colour, count, [x0, y0, x1, y1], goal, agent radius, planner, {non-default params}]`.
+/// `[name, colour, count, [x0, y0, x1, y1], goal, agent radius, planner, [params]]`, the
+/// parameters in the order of the planner's parameter table. Tables only ever grow at the end
+/// (with a default that keeps the old behaviour), so older links missing trailing values load.
 #[derive(Debug, Serialize, Deserialize)]
-struct CompactGroup(
-    String,
-    String,
-    u32,
-    [f32; 4],
-    Option<u32>,
-    f32,
-    String,
-    serde_json::Map<String, serde_json::Value>,
-);
+struct CompactGroup(String, String, u32, [f32; 4], Option<u32>, f32, String, Vec<serde_json::Value>);
 
 /// `[trails, trail fade]`.
 #[derive(Debug, Serialize, Deserialize)]
@@ -217,7 +210,7 @@ impl CompactScene {
                     g.goal,
                     g.agent_radius,
                     g.planner.kind().name().to_string(),
-                    changed_params(&g.planner),
+                    planner_params(&g.planner),
                 )
             })
             .collect();
@@ -283,24 +276,16 @@ impl CompactScene {
     }
 }
 
-/// A planner's parameters that differ from its defaults, as a JSON object.
-fn changed_params(config: &PlannerConfig) -> serde_json::Map<String, serde_json::Value> {
-    let params = |c: &PlannerConfig| match serde_json::to_value(c) {
-        Ok(serde_json::Value::Object(mut o)) => match o.remove("params") {
-            Some(serde_json::Value::Object(p)) => p,
-            _ => serde_json::Map::new(),
-        },
-        _ => serde_json::Map::new(),
-    };
-    let defaults = params(&config.kind().default_config());
-    params(config).into_iter().filter(|(k, v)| defaults.get(k) != Some(v)).collect()
+/// A planner's parameter values in the order of its parameter table.
+fn planner_params(config: &PlannerConfig) -> Vec<serde_json::Value> {
+    let params = serde_json::to_value(config).ok().and_then(|mut v| v.get_mut("params").map(std::mem::take));
+    let params = params.unwrap_or_default();
+    config.kind().param_specs().iter().map(|spec| params.get(spec.key).cloned().unwrap_or_default()).collect()
 }
 
-/// The planner `name` with its defaults overridden by `params` (range-checked).
-fn planner_with(
-    name: &str,
-    params: &serde_json::Map<String, serde_json::Value>,
-) -> Result<PlannerConfig, String> {
+/// The planner `name` with the table's first `values.len()` parameters set (range-checked) and
+/// the rest at their defaults.
+fn planner_with(name: &str, values: &[serde_json::Value]) -> Result<PlannerConfig, String> {
     let kind = PlannerKind::from_name(name).ok_or_else(|| {
         let known: Vec<&str> = PlannerKind::ALL.iter().map(|k| k.name()).collect();
         format!(
@@ -309,10 +294,28 @@ fn planner_with(
             known.join(", ")
         )
     })?;
-    let mut config = kind.default_config();
-    for (key, value) in params {
-        config.set_param(key, value.clone())?;
+    let specs = kind.param_specs();
+    if values.len() > specs.len() {
+        return Err(format!(
+            "{} takes {} parameters, the link has {}",
+            kind.label(),
+            specs.len(),
+            values.len()
+        ));
     }
+    let mut params = serde_json::to_value(kind.default_config())
+        .ok()
+        .and_then(|mut v| v.get_mut("params").map(std::mem::take))
+        .unwrap_or_default();
+    for (spec, value) in specs.iter().zip(values) {
+        if let Some(object) = params.as_object_mut() {
+            object.insert(spec.key.to_string(), value.clone());
+        }
+    }
+    let config: PlannerConfig =
+        serde_json::from_value(serde_json::json!({ "kind": kind.name(), "params": params }))
+            .map_err(|e| format!("{}: {e}", kind.label()))?;
+    config.validate()?;
     Ok(config)
 }
 
@@ -320,6 +323,21 @@ fn planner_with(
 mod tests {
     use super::*;
     use crate::presets;
+
+    #[test]
+    fn every_planner_serialises_exactly_its_table_keys() {
+        // The compact form writes parameters by table position: a field outside the table would
+        // be lost from links.
+        for &kind in PlannerKind::ALL {
+            let json = serde_json::to_value(kind.default_config()).expect("serialises");
+            let mut keys: Vec<&str> =
+                json["params"].as_object().expect("object").keys().map(String::as_str).collect();
+            let mut specs: Vec<&str> = kind.param_specs().iter().map(|s| s.key).collect();
+            keys.sort_unstable();
+            specs.sort_unstable();
+            assert_eq!(keys, specs, "{}", kind.name());
+        }
+    }
 
     #[test]
     fn every_preset_round_trips_through_json_and_fragment() {

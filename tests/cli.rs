@@ -55,9 +55,12 @@ fn fails_naming(o: Output, needle: &str) {
     assert!(o.stdout.is_empty(), "stdout should be empty on failure: {}", stdout(&o));
 }
 
-/// A scratch file path unique to this test process and `name`.
+/// A scratch file path unique to this call (tests run in parallel threads of one process and
+/// may use the same `name`: a shared path let one test delete another's file).
 fn temp_path(name: &str) -> PathBuf {
-    std::env::temp_dir().join(format!("flockpath-cli-{}-{name}", std::process::id()))
+    static NEXT: std::sync::atomic::AtomicU32 = std::sync::atomic::AtomicU32::new(0);
+    let n = NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    std::env::temp_dir().join(format!("flockpath-cli-{}-{n}-{name}", std::process::id()))
 }
 
 fn preset_json(name: &str) -> String {

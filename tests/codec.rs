@@ -215,8 +215,8 @@ fn problems_are_named_in_the_message() {
 
 #[test]
 fn out_of_range_planner_parameters_in_a_link_are_refused_by_name() {
-    // A hand-edited v2 payload with max_speed far outside its range.
-    let json = r##"["x",400,300,1,[],[[350,150,20]],[["a","#ff0000",5,[10,10,60,60],0,4,"boids",{"max_speed":1e9}]],[true,0.01]]"##;
+    // A hand-edited v2 payload with max_speed (the third Boids parameter) far outside its range.
+    let json = r##"["x",400,300,1,[],[[350,150,20]],[["a","#ff0000",5,[10,10,60,60],0,4,"boids",[50,20,1e9]]],[true,0.01]]"##;
     let fragment = fragment_of(json);
     let e = scene_from_fragment(&fragment).expect_err("out of range").to_string();
     assert!(e.contains("group 1") && e.contains("Max speed"), "{e}");
