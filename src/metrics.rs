@@ -14,8 +14,9 @@ use serde::Serialize;
 pub const STUCK_WINDOW: u32 = 300;
 /// Distance from an obstacle surface (px) within which an agent is "near" it.
 pub const NEAR_OBSTACLE: f32 = 30.0;
-/// Below this speed (px/step) a heading is undefined and no turn is measured.
-const MIN_TURN_SPEED: f32 = 1e-3;
+/// Below this speed (px/step) no turn is measured: a parked agent's heading jitters without
+/// meaning (a twentieth of the Boids default max speed).
+const MIN_TURN_SPEED: f32 = 0.1;
 /// Queue order: brighter neighbours (nearer the goal) farther than this (px) are not looked for;
 /// about a firefly's feeler reach (h + r_safe = 110 px).
 pub const QUEUE_RADIUS: f32 = 120.0;

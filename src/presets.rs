@@ -120,7 +120,7 @@ fn base(name: &str, width: f32, height: f32) -> Scene {
 /// One group crosses an empty field.
 pub fn open_field() -> Scene {
     let mut s = base("open-field", 800.0, 500.0);
-    s.goals.push(Goal::fixed([700.0, 250.0], 40.0));
+    s.goals.push(Goal::fixed([700.0, 250.0], 60.0));
     s.groups.push(group("flock", "#2f6fdf", 60, ([40.0, 150.0], [160.0, 350.0]), 0));
     s
 }
@@ -135,7 +135,7 @@ pub fn pillars() -> Scene {
             s.obstacles.push(Obstacle::Circle { center: [x, y], radius: 22.0 });
         }
     }
-    s.goals.push(Goal::fixed([830.0, 280.0], 40.0));
+    s.goals.push(Goal::fixed([820.0, 280.0], 70.0));
     s.groups.push(group("flock", "#2f6fdf", 80, ([30.0, 170.0], [170.0, 390.0]), 0));
     s
 }
@@ -143,8 +143,8 @@ pub fn pillars() -> Scene {
 /// Two groups swap sides.
 pub fn two_groups_swap() -> Scene {
     let mut s = base("two-groups-swap", 900.0, 500.0);
-    s.goals.push(Goal::fixed([820.0, 250.0], 40.0));
-    s.goals.push(Goal::fixed([80.0, 250.0], 40.0));
+    s.goals.push(Goal::fixed([820.0, 250.0], 60.0));
+    s.goals.push(Goal::fixed([80.0, 250.0], 60.0));
     s.groups.push(group("left", "#2f6fdf", 50, ([30.0, 150.0], [150.0, 350.0]), 0));
     s.groups.push(group("right", "#df4f2f", 50, ([750.0, 150.0], [870.0, 350.0]), 1));
     s
@@ -155,7 +155,7 @@ pub fn corridor() -> Scene {
     let mut s = base("corridor", 900.0, 500.0);
     s.obstacles.push(Obstacle::Rect { min: [350.0, 0.0], max: [550.0, 205.0] });
     s.obstacles.push(Obstacle::Rect { min: [350.0, 295.0], max: [550.0, 500.0] });
-    s.goals.push(Goal::fixed([820.0, 250.0], 40.0));
+    s.goals.push(Goal::fixed([820.0, 250.0], 60.0));
     s.groups.push(group("flock", "#2f9f5f", 60, ([30.0, 100.0], [200.0, 400.0]), 0));
     s
 }

@@ -189,8 +189,8 @@ fn every_preset_reaches_its_goal_with_weighted_arbitration() {
 #[test]
 fn every_preset_heads_for_its_goal_with_priority_arbitration() {
     // Priority allocation spends the force budget on separation first, so agents keep their
-    // spacing and only part of a group fits inside the goal disc: the test asks that the group
-    // gets there (some arrive, the mean distance shrinks), not that everyone is inside.
+    // spacing and fill the goal disc more slowly than with the weighted sum (which lets them
+    // overlap): most, not all, arrive in the time given.
     for preset in boids_presets() {
         let scene = with_arbitration((preset.build)(), Arbitration::Priority);
         let mut world = World::new(scene).expect("preset is valid");
@@ -198,7 +198,7 @@ fn every_preset_heads_for_its_goal_with_priority_arbitration() {
         world.step_n(1200);
         let end = mean_goal_distance(&world);
         let m = world.metrics();
-        assert!(m.overall.arrived_share >= 0.15, "{}: arrived {}", preset.name, m.overall.arrived_share);
+        assert!(m.overall.arrived_share >= 0.75, "{}: arrived {}", preset.name, m.overall.arrived_share);
         assert!(end < 0.3 * start, "{}: mean goal distance {start:.0} → {end:.0} px", preset.name);
         assert_eq!(m.overall.penetrations_agent_obstacle, 0, "{}", preset.name);
     }

@@ -27,7 +27,8 @@ pub enum Arbitration {
 pub struct BoidsParams {
     /// Neighbours within this distance are seen (alignment, cohesion). Default 50 px.
     pub perception_radius: f32,
-    /// Neighbours closer than this push away (separation). Default 20 px.
+    /// Neighbours closer than this push away (separation). Default 14 px: 3.5 body radii, so a
+    /// group fits a goal of 60 px radius without piling up.
     pub separation_radius: f32,
     /// Speed limit. Default 2 px/step (120 px/s at 60 steps/s).
     pub max_speed: f32,
@@ -56,7 +57,7 @@ impl Default for BoidsParams {
     fn default() -> Self {
         Self {
             perception_radius: 50.0,
-            separation_radius: 20.0,
+            separation_radius: 14.0,
             max_speed: 2.0,
             max_force: 0.15,
             separation_weight: 1.5,
@@ -87,7 +88,7 @@ impl BoidsParams {
             "Separation radius",
             "px",
             (1.0, 200.0, 1.0),
-            20.0,
+            14.0,
             "Neighbours closer than this push the agent away.",
         ),
         ParamSpec::number(
