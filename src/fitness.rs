@@ -104,12 +104,17 @@ pub fn quantised(quantum: f32, error: f32) -> f64 {
 /// Absolute difference of two angles, wrapped into [0, π].
 #[inline]
 pub fn angle_difference(a: f32, b: f32) -> f32 {
-    let d = (a - b).abs() % std::f32::consts::TAU;
-    d.min(std::f32::consts::TAU - d)
+    use std::f32::consts::TAU;
+    let d = (a - b).abs();
+    // Headings come from atan2 (within ±π), so d ≤ 2π and the remainder is rarely needed: `%`
+    // is a library call that cost a third of a fitness sample. Below 2π it returns d unchanged,
+    // and at exactly 2π both ways give 0.
+    let d = if d > TAU { d % TAU } else { d };
+    d.min(TAU - d)
 }
 
 /// The same as [`SpatialGrid::k_nearest`] (the `k` nearest by `(distance², id)`, `exclude` left
-/// out), but selects before sorting: the neighbour radius holds far more than k agents.
+/// out), but cheaper in a crowd: see [`k_nearest_from`], starting with a disc of one grid cell.
 pub fn k_nearest(
     grid: &SpatialGrid,
     p: Vec2,
@@ -118,12 +123,35 @@ pub fn k_nearest(
     exclude: u32,
     out: &mut Vec<(f32, u32)>,
 ) {
-    out.clear();
-    grid.for_each_within(p, radius, |n| {
-        if n.id != exclude {
-            out.push((n.d2, n.id));
+    k_nearest_from(grid, p, k, radius, exclude, grid.cell_size(), out);
+}
+
+/// [`k_nearest`] searching a disc of `start` px first and doubling it until the disc holds k
+/// agents or reaches `radius`. Agents outside a disc that holds k are all farther than the k-th,
+/// so the result does not depend on `start` (only the cost does); then it selects before sorting.
+pub fn k_nearest_from(
+    grid: &SpatialGrid,
+    p: Vec2,
+    k: usize,
+    radius: f32,
+    exclude: u32,
+    start: f32,
+    out: &mut Vec<(f32, u32)>,
+) {
+    let mut reach = start.max(1.0);
+    loop {
+        let disc = reach.min(radius);
+        out.clear();
+        grid.for_each_within(p, disc, |n| {
+            if n.id != exclude {
+                out.push((n.d2, n.id));
+            }
+        });
+        if out.len() >= k || disc >= radius {
+            break;
         }
-    });
+        reach *= 2.0;
+    }
     let order = |a: &(f32, u32), b: &(f32, u32)| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1));
     if out.len() > k && k > 0 {
         out.select_nth_unstable_by(k - 1, order);
@@ -143,12 +171,43 @@ pub struct FitnessRecorder {
     goal_frames: u64,
     frames: u64,
     near: Vec<(f32, u32)>,
+    /// Per-group sums over frames, filled by [`FitnessRecorder::record_grouped`].
+    groups: Vec<GroupSums>,
+    /// This frame's per-group sums over agents (reused buffer).
+    frame_groups: Vec<GroupFrame>,
+}
+
+/// One group's measures summed over frames (each frame's value a mean over the group's agents).
+#[derive(Clone, Copy, Debug, Default)]
+struct GroupSums {
+    sums: [f64; 5],
+    goal_frames: u64,
+    frames: u64,
+}
+
+/// One group's measures summed over its agents within a frame.
+#[derive(Clone, Copy, Debug, Default)]
+struct GroupFrame {
+    sums: [f64; 5],
+    agents: u32,
+    with_goal: u32,
+}
+
+/// Mean of `sum` over `frames` (0 when there are none).
+fn per_frame(sum: f64, frames: u64) -> f64 {
+    if frames == 0 {
+        0.0
+    } else {
+        sum / frames as f64
+    }
 }
 
 impl FitnessRecorder {
     /// A recorder for `agents` agents in a `width × height` world.
     pub fn new(params: FitnessParams, width: f32, height: f32, agents: usize) -> Self {
-        let cell = (0.5 * params.neighbour_radius).max(1.0);
+        // A quarter of the neighbour radius: the k nearest usually lie in the first disc
+        // [`k_nearest`] searches (one cell), which then scans few cells.
+        let cell = (0.25 * params.neighbour_radius).max(1.0);
         Self {
             grid: SpatialGrid::new(width, height, cell, agents),
             headings: vec![0.0; agents],
@@ -157,6 +216,8 @@ impl FitnessRecorder {
             goal_frames: 0,
             frames: 0,
             near: Vec::new(),
+            groups: Vec::new(),
+            frame_groups: Vec::new(),
         }
     }
 
@@ -180,7 +241,29 @@ impl FitnessRecorder {
         goals: &[Option<Vec2>],
         obstacles: &ObstacleIndex,
     ) {
+        self.record_grouped(pos, vel, radius, goals, obstacles, &[]);
+    }
+
+    /// Records one frame like [`FitnessRecorder::record`] and also per group: `group_of[i]` is
+    /// agent `i`'s group (empty: no per-group measures). A group's measures average its own
+    /// agents; their k nearest neighbours come from any group (the crowd an agent is in), so the
+    /// overall measures are unchanged by grouping.
+    pub fn record_grouped(
+        &mut self,
+        pos: &[Vec2],
+        vel: &[Vec2],
+        radius: &[f32],
+        goals: &[Option<Vec2>],
+        obstacles: &ObstacleIndex,
+        group_of: &[u32],
+    ) {
         let n = pos.len();
+        let groups = group_of.iter().map(|&g| g as usize + 1).max().unwrap_or(0);
+        if self.groups.len() < groups {
+            self.groups.resize(groups, GroupSums::default());
+        }
+        self.frame_groups.clear();
+        self.frame_groups.resize(groups, GroupFrame::default());
         if n == 0 {
             return;
         }
@@ -195,10 +278,23 @@ impl FitnessRecorder {
         let max_radius = radius.iter().copied().fold(0.0f32, f32::max);
         let (mut gm, mut gg, mut gc, mut ga, mut gd) = (0.0f64, 0.0f64, 0.0f64, 0.0f64, 0.0f64);
         let mut with_goal = 0u32;
+        let mut reach = self.grid.cell_size();
         for (j, &p) in pos.iter().enumerate() {
             let r = radius.get(j).copied().unwrap_or(0.0);
             // The k nearest within the radius; an agent alone scores 0 on Gm, Ga and Gd.
-            k_nearest(&self.grid, p, prm.k as usize, prm.neighbour_radius, j as u32, &mut self.near);
+            // The previous agent's k-th distance is a good first disc in an even crowd.
+            k_nearest_from(
+                &self.grid,
+                p,
+                prm.k as usize,
+                prm.neighbour_radius,
+                j as u32,
+                reach,
+                &mut self.near,
+            );
+            reach = self.near.last().map_or(reach, |(d2, _)| d2.sqrt() * 1.05);
+            // This agent's values: [Gm, Gg, Gc, Ga, Gd] (Gc below).
+            let mut mine = [0.0f64; 5];
             if !self.near.is_empty() {
                 let k = self.near.len() as f32;
                 let mean = self.near.iter().map(|(d2, _)| d2.sqrt()).sum::<f32>() / k;
@@ -209,14 +305,21 @@ impl FitnessRecorder {
                     .map(|&(_, i)| angle_difference(self.headings[j], self.headings[i as usize]))
                     .sum::<f32>()
                     / k;
-                gm += quantised(prm.spacing_quantum, (mean - prm.desired_spacing).abs());
-                gd += quantised(prm.spread_quantum, var.sqrt());
-                ga += 1.0 - f64::from(orient / std::f32::consts::PI);
+                mine[0] = quantised(prm.spacing_quantum, (mean - prm.desired_spacing).abs());
+                mine[4] = quantised(prm.spread_quantum, var.sqrt());
+                mine[3] = 1.0 - f64::from(orient / std::f32::consts::PI);
+                gm += mine[0];
+                gd += mine[4];
+                ga += mine[3];
             }
-            if let Some(goal) = goals.get(j).copied().flatten() {
+            let has_goal = if let Some(goal) = goals.get(j).copied().flatten() {
                 with_goal += 1;
-                gg += quantised(prm.goal_quantum, (p.distance(goal) - prm.desired_goal_distance).abs());
-            }
+                mine[1] = quantised(prm.goal_quantum, (p.distance(goal) - prm.desired_goal_distance).abs());
+                gg += mine[1];
+                true
+            } else {
+                false
+            };
             let mut hit = false;
             self.grid.for_each_within(p, r + max_radius, |q| {
                 let rq = radius.get(q.id as usize).copied().unwrap_or(0.0);
@@ -230,7 +333,29 @@ impl FitnessRecorder {
             }
             if !hit {
                 gc += 1.0;
+                mine[2] = 1.0;
             }
+            if let Some(frame) = group_of.get(j).and_then(|&g| self.frame_groups.get_mut(g as usize)) {
+                for (sum, value) in frame.sums.iter_mut().zip(mine) {
+                    *sum += value;
+                }
+                frame.agents += 1;
+                frame.with_goal += u32::from(has_goal);
+            }
+        }
+        for (total, frame) in self.groups.iter_mut().zip(&self.frame_groups) {
+            if frame.agents == 0 {
+                continue;
+            }
+            let inv = 1.0 / f64::from(frame.agents);
+            for i in [0, 2, 3, 4] {
+                total.sums[i] += frame.sums[i] * inv;
+            }
+            if frame.with_goal > 0 {
+                total.sums[1] += frame.sums[1] / f64::from(frame.with_goal);
+                total.goal_frames += 1;
+            }
+            total.frames += 1;
         }
         let inv = 1.0 / n as f64;
         self.sums[0] += gm * inv;
@@ -246,14 +371,25 @@ impl FitnessRecorder {
 
     /// The measures averaged over the frames recorded (all 0 before the first frame).
     pub fn measures(&self) -> FitnessMeasures {
-        let per = |sum: f64, frames: u64| if frames == 0 { 0.0 } else { sum / frames as f64 };
-        FitnessMeasures {
-            gm: per(self.sums[0], self.frames),
-            gg: per(self.sums[1], self.goal_frames),
-            gc: per(self.sums[2], self.frames),
-            ga: per(self.sums[3], self.frames),
-            gd: per(self.sums[4], self.frames),
-        }
+        measures_of(&self.sums, self.frames, self.goal_frames)
+    }
+
+    /// Group `g`'s measures averaged over the frames recorded with
+    /// [`FitnessRecorder::record_grouped`] in which it had agents; `None` before the first.
+    pub fn group_measures(&self, g: usize) -> Option<FitnessMeasures> {
+        let group = self.groups.get(g).filter(|group| group.frames > 0)?;
+        Some(measures_of(&group.sums, group.frames, group.goal_frames))
+    }
+}
+
+/// Sums over frames → means; Gg over the frames that had an agent with a goal.
+fn measures_of(sums: &[f64; 5], frames: u64, goal_frames: u64) -> FitnessMeasures {
+    FitnessMeasures {
+        gm: per_frame(sums[0], frames),
+        gg: per_frame(sums[1], goal_frames),
+        gc: per_frame(sums[2], frames),
+        ga: per_frame(sums[3], frames),
+        gd: per_frame(sums[4], frames),
     }
 }
 
@@ -485,6 +621,52 @@ mod tests {
     }
 
     #[test]
+    fn groups_average_their_own_agents_and_leave_the_overall_unchanged() {
+        // Group 0: a at 100, b at 110 (y = 100); group 1: c at 130. k = 2, neighbours from any
+        // group, so every agent's values are those of `three_agents_in_a_row_by_hand`:
+        // Gm a 0.2, b 0.4, c 2/15; Gd 0.1, 0.2, 0.2; Ga 0.75, 0.75, 0.5; Gg 1, 0.5, 1/6.
+        let pos = [Vec2::new(100.0, 100.0), Vec2::new(110.0, 100.0), Vec2::new(130.0, 100.0)];
+        let vel = [Vec2::X, Vec2::X, Vec2::Y];
+        let goals = [Some(Vec2::new(100.0, 100.0)); 3];
+        let mut grouped = FitnessRecorder::new(params(2), 1000.0, 1000.0, 3);
+        grouped.record_grouped(&pos, &vel, &[1.0; 3], &goals, &no_obstacles(), &[0, 0, 1]);
+        let mut plain = FitnessRecorder::new(params(2), 1000.0, 1000.0, 3);
+        plain.record(&pos, &vel, &[1.0; 3], &goals, &no_obstacles());
+        assert_eq!(grouped.measures(), plain.measures());
+        assert_eq!(plain.group_measures(0), None, "record alone keeps no groups");
+
+        let close = |a: f64, b: f64| (a - b).abs() < 1e-6;
+        let first = grouped.group_measures(0).expect("group 0 sampled");
+        assert!(close(first.gm, 0.3) && close(first.gd, 0.15), "{first:?}");
+        assert!(close(first.ga, 0.75) && close(first.gg, 0.75) && close(first.gc, 1.0), "{first:?}");
+        let second = grouped.group_measures(1).expect("group 1 sampled");
+        assert!(close(second.gm, 2.0 / 15.0) && close(second.gg, 1.0 / 6.0), "{second:?}");
+        assert!(close(second.ga, 0.5) && close(second.gd, 0.2), "{second:?}");
+        assert_eq!(grouped.group_measures(2), None);
+
+        // A second frame where group 1 has no goal: its Gg averages the first frame only.
+        grouped.record_grouped(
+            &pos,
+            &vel,
+            &[1.0; 3],
+            &[goals[0], goals[1], None],
+            &no_obstacles(),
+            &[0, 0, 1],
+        );
+        let second = grouped.group_measures(1).expect("group 1 sampled");
+        assert!(close(second.gg, 1.0 / 6.0) && close(second.gm, 2.0 / 15.0), "{second:?}");
+    }
+
+    #[test]
+    fn angle_difference_is_the_shorter_way_round() {
+        use std::f32::consts::{PI, TAU};
+        assert_eq!(angle_difference(PI, -PI), 0.0);
+        assert!((angle_difference(0.1, TAU + 0.3) - 0.2).abs() < 1e-5, "beyond a full turn");
+        assert!((angle_difference(-3.0, 3.0) - (TAU - 6.0)).abs() < 1e-6);
+        assert!((angle_difference(-PI / 2.0, PI / 2.0) - PI).abs() < 1e-6);
+    }
+
+    #[test]
     fn a_lone_agent_and_an_empty_frame() {
         let mut rec = FitnessRecorder::new(params(7), 1000.0, 1000.0, 1);
         rec.record(&[], &[], &[], &[], &no_obstacles());
@@ -507,6 +689,11 @@ mod tests {
                 k_nearest(&grid, p, k, 30.0, i as u32, &mut ours);
                 grid.k_nearest(p, k, 30.0, i as u32, &mut theirs);
                 assert_eq!(ours, theirs, "agent {i}, k {k}");
+                // The first disc searched changes the cost, never the answer.
+                for start in [0.5, 3.0, 11.0, 100.0] {
+                    k_nearest_from(&grid, p, k, 30.0, i as u32, start, &mut ours);
+                    assert_eq!(ours, theirs, "agent {i}, k {k}, start {start}");
+                }
             }
         }
     }

@@ -3,7 +3,13 @@
 //! Counting rules: a collision is a pair of agents whose discs overlap at the end of a step,
 //! counted once per pair per step; a penetration is an agent whose centre is inside an obstacle
 //! at the end of a step. Key names are a stable contract: add keys, never rename.
+//!
+//! `fitness` holds the five measures of the GA-tuned virtual-force paper (DESIGN §3.5,
+//! [`crate::fitness`]) for any planner, with behaviour B1's parameters and weights (a group moving
+//! at 24 px spacing towards its goal). They cost a k = 7 nearest-neighbour query per agent, so they
+//! are sampled on steps 1, 1 + [`FITNESS_SAMPLE_EVERY`], 1 + 2·[`FITNESS_SAMPLE_EVERY`], … only.
 
+use crate::fitness::{Behaviour, FitnessMeasures, FitnessRecorder};
 use crate::geometry::Aabb;
 use crate::scene::Scene;
 use crate::spatial::{ObstacleIndex, SpatialGrid};
@@ -23,6 +29,45 @@ pub const QUEUE_RADIUS: f32 = 120.0;
 /// Queue order: largest angle (degrees) between an agent's heading and its nearest brighter
 /// neighbour for the agent to count as queued behind it.
 pub const QUEUE_HALF_ANGLE_DEG: f32 = 30.0;
+
+/// The fitness measures are taken every this many steps (on steps 1, 1 + this, …; 3 samples per
+/// simulated second). One sample costs about 2.7 Boids steps at 10k agents (`flockpath bench
+/// --only step` with every step sampled: 717 against 195 CPU ns per agent-step), so sampling
+/// every step would more than triple a step; every 20th adds about 13 %.
+pub const FITNESS_SAMPLE_EVERY: u32 = 20;
+
+/// The five fitness measures (each 0…1) and their weighted sum, averaged over the sampled steps.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+pub struct FitnessMetrics {
+    /// Gm, inter-agent distance (mean distance to the 7 nearest vs 24 px, quantum 4 px).
+    pub gm: f64,
+    /// Gg, distance to the goal (quantum 40 px; 0 for a group without a goal).
+    pub gg: f64,
+    /// Gc, share of agents overlapping no other agent and no obstacle.
+    pub gc: f64,
+    /// Ga, orientation consistency with the 7 nearest.
+    pub ga: f64,
+    /// Gd, distance consistency (deviation of the 7 distances, quantum 4 px).
+    pub gd: f64,
+    /// `Gsum` with B1's weights S (35, 20, 20, 15, 10): a score out of 100.
+    pub gsum: f64,
+    /// Steps sampled so far.
+    pub sampled_steps: u64,
+}
+
+impl FitnessMetrics {
+    fn new(m: FitnessMeasures, sampled_steps: u64) -> Self {
+        Self {
+            gm: m.gm,
+            gg: m.gg,
+            gc: m.gc,
+            ga: m.ga,
+            gd: m.gd,
+            gsum: m.gsum(&Behaviour::GroupMoving.weights()),
+            sampled_steps,
+        }
+    }
+}
 
 /// Metrics of one group, or of the whole run.
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
@@ -63,6 +108,10 @@ pub struct GroupMetrics {
     /// nearest such neighbour lies within ±30° of their heading (0…1; null if no agent qualifies).
     /// Random headings give about 1/6; single-file queues approach 1.
     pub queue_order: Option<f64>,
+    /// The five fitness measures and Gsum (DESIGN §3.5), sampled every
+    /// [`FITNESS_SAMPLE_EVERY`] steps; null before the first sample (step 0). A group's measures
+    /// average its own agents, whose nearest neighbours may belong to any group.
+    pub fitness: Option<FitnessMetrics>,
 }
 
 /// Metrics of a run: overall keys at the top level, per-group under `groups`.
@@ -94,6 +143,11 @@ pub struct MetricsRecorder {
     collisions_last_step: u32,
     collisions_total: u64,
     pairs: Vec<(u32, u32)>,
+    fitness: FitnessRecorder,
+    /// Steps between fitness samples (0 = none).
+    fitness_every: u32,
+    /// Each agent's goal position at the sampled step (reused buffer).
+    fitness_goals: Vec<Option<Vec2>>,
 }
 
 #[derive(Clone, Debug, Default)]
@@ -126,7 +180,20 @@ impl MetricsRecorder {
             collisions_last_step: 0,
             collisions_total: 0,
             pairs: Vec::new(),
+            fitness: FitnessRecorder::new(
+                Behaviour::GroupMoving.fitness_params(),
+                scene.width,
+                scene.height,
+                n,
+            ),
+            fitness_every: FITNESS_SAMPLE_EVERY,
+            fitness_goals: vec![None; n],
         }
+    }
+
+    /// Takes the fitness measures on steps 1, 1 + `every`, … from now on (0 = never).
+    pub fn set_fitness_sample_every(&mut self, every: u32) {
+        self.fitness_every = every;
     }
 
     /// Records the state at the end of step `step`.
@@ -213,6 +280,13 @@ impl MetricsRecorder {
             self.prev_pos[i] = p;
             self.prev_vel[i] = v;
         }
+
+        if self.fitness_every > 0 && step % self.fitness_every == 1 % self.fitness_every {
+            self.fitness_goals.clear();
+            self.fitness_goals
+                .extend(group_of.iter().map(|&g| goals.get(g as usize).copied().flatten().map(|(p, _)| p)));
+            self.fitness.record_grouped(pos, vel, radius, &self.fitness_goals, obstacles, group_of);
+        }
     }
 
     /// The metrics so far; `planners` names each group's planner.
@@ -243,11 +317,15 @@ impl MetricsRecorder {
             m.planner = planners.get(gi).map(|s| s.to_string());
             let (q, c) = queue.get(gi).copied().unwrap_or_default();
             m.queue_order = (c > 0).then(|| f64::from(q) / f64::from(c));
+            m.fitness =
+                self.fitness.group_measures(gi).map(|f| FitnessMetrics::new(f, self.fitness.frames()));
             (queued, queue_candidates) = (queued + q, queue_candidates + c);
             groups.push(m);
         }
         let mut overall = to_metrics(&overall, &all, self.collisions_total, dt);
         overall.queue_order = (queue_candidates > 0).then(|| f64::from(queued) / f64::from(queue_candidates));
+        let sampled = self.fitness.frames();
+        overall.fitness = (sampled > 0).then(|| FitnessMetrics::new(self.fitness.measures(), sampled));
         Metrics {
             steps,
             time_s: f64::from(steps) * dt,
@@ -363,5 +441,6 @@ fn to_metrics(acc: &GroupAcc, s: &Stats, collisions: u64, dt: f64) -> GroupMetri
         max_turn_deg: acc.max_turn,
         stuck_agents: s.stuck,
         queue_order: None,
+        fitness: None,
     }
 }

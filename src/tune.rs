@@ -245,6 +245,95 @@ impl TuneTask {
     }
 }
 
+/// A tuning run as the Tune page (and its tests) describe it: a behaviour, an environment or a
+/// scene of one's own, a seed, and the genetic algorithm's size. JSON with every field optional.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct TuneSetup {
+    /// `b1`, `b2` or `b3`: whose measures and weights S score a run.
+    pub behaviour: String,
+    /// `e1`, `e2` or `e3`: the paper's scene to tune in (ignored when `scene` is given).
+    pub environment: String,
+    /// A scene of one's own (JSON, a fragment value or a link) instead of the environment; every
+    /// group is steered by the virtual forces while tuning.
+    pub scene: Option<String>,
+    /// Seed of the genetic algorithm.
+    pub seed: u32,
+    /// Chromosomes per generation (paper: 200).
+    pub population: u32,
+    /// Generation limit (generation 0 included).
+    pub generations: u32,
+    /// Steps simulated per evaluation.
+    pub frames: u32,
+}
+
+impl Default for TuneSetup {
+    fn default() -> Self {
+        let ga = GaParams::default();
+        Self {
+            behaviour: "b1".into(),
+            environment: "e1".into(),
+            scene: None,
+            seed: 1,
+            population: ga.population,
+            generations: ga.max_generations,
+            frames: DEFAULT_FRAMES,
+        }
+    }
+}
+
+/// Largest frame count per evaluation a setup may ask for (a minute of scene time).
+pub const MAX_FRAMES: u32 = 3_600;
+
+impl TuneSetup {
+    /// Reads a setup from JSON.
+    pub fn from_json(text: &str) -> Result<Self, SceneError> {
+        serde_json::from_str(text).map_err(|e| SceneError::Parse(format!("tuning settings: {e}")))
+    }
+
+    /// The task it describes: the environment's scene or its own, scored by the behaviour.
+    pub fn task(&self) -> Result<TuneTask, SceneError> {
+        let behaviour = Behaviour::from_code(&self.behaviour).ok_or_else(|| {
+            SceneError::BadReference(format!("unknown behaviour {:?}; known: b1, b2, b3", self.behaviour))
+        })?;
+        if !(1..=MAX_FRAMES).contains(&self.frames) {
+            return Err(SceneError::OutOfRange(format!("frames {} is outside 1…{MAX_FRAMES}", self.frames)));
+        }
+        let task = match &self.scene {
+            Some(text) => TuneTask::on_scene(crate::codec::scene_from_any(text)?, behaviour, self.frames),
+            None => {
+                let environment = Environment::from_code(&self.environment).ok_or_else(|| {
+                    SceneError::BadReference(format!(
+                        "unknown environment {:?}; known: e1, e2, e3",
+                        self.environment
+                    ))
+                })?;
+                TuneTask { frames: self.frames, ..TuneTask::new(behaviour, environment) }
+            }
+        };
+        if task.scene.agent_count() == 0 {
+            return Err(SceneError::OutOfRange("the scene has no agents to tune".into()));
+        }
+        Ok(task)
+    }
+
+    /// The genetic algorithm's settings: the paper's, with this population and generation limit.
+    pub fn ga(&self) -> GaParams {
+        GaParams { population: self.population, max_generations: self.generations, ..GaParams::default() }
+    }
+
+    /// A tuner ready for its first generation.
+    pub fn tuner(&self) -> Result<Tuner, SceneError> {
+        if !(1..=1_000).contains(&self.generations) {
+            return Err(SceneError::OutOfRange(format!(
+                "generations {} is outside 1…1000",
+                self.generations
+            )));
+        }
+        Tuner::new(self.task()?, self.ga(), self.seed)
+    }
+}
+
 /// Progress after one generation.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct GenerationStats {

@@ -175,6 +175,13 @@ impl World {
         Ok(())
     }
 
+    /// Takes the fitness measures of the metrics every `every` steps from now on (0 = never;
+    /// default [`crate::metrics::FITNESS_SAMPLE_EVERY`]): benchmarks compare their cost.
+    #[doc(hidden)]
+    pub fn set_fitness_sample_every(&mut self, every: u32) {
+        self.recorder.set_fitness_sample_every(every);
+    }
+
     /// Replaces the neighbour grid by one cell, so every query scans every agent: the O(N²)
     /// baseline of `flockpath bench`. Same neighbours, only the float summation order differs.
     #[doc(hidden)]

@@ -1,0 +1,277 @@
+// The Tune page: pick a behaviour and an environment (or the playground's scene, passed as
+// `tune.html#s=<fragment>`), press Tune. A Web Worker (tune-worker.js, the same wasm module) runs
+// the genetic algorithm one generation per message; this page only shows its reports: progress
+// bar, live plot, best weights, and a preview of the scene with those weights. Cancel terminates
+// the worker. Apply opens `index.html#s=<scene with the best weights>`, so the link keeps them.
+//
+// Query parameters preset the fields: ?behaviour=b2&environment=e3&seed=4&population=20
+// &generations=5&frames=120&autostart=1. The state is readable as `window.flocktune.state()`.
+
+import { capturePanicReports, isPanic, messageOf, setupBanner, showMessage, showPanic } from './errors.js';
+import { FitnessPlot } from './tune-plot.js';
+import { Preview } from './tune-preview.js';
+import { sceneFromLocation, shareUrl } from './url.js';
+
+const $ = (id) => document.getElementById(id);
+const FIELDS = ['behaviour', 'environment', 'seed', 'population', 'generations', 'frames'];
+const WEIGHTS = ['s1 separation', 's2 alignment', 's3 cohesion', 's4 following', 's5 collision'];
+const MEASURES = [['gm', 'Gm spacing'], ['gg', 'Gg goal'], ['gc', 'Gc no collision'], ['ga', 'Ga orientation'], ['gd', 'Gd distance']];
+const CURRENT_SCENE = 'scene';
+
+/** Everything the page knows about the run; a copy is published for tests and scripts. */
+const state = {
+  running: false,
+  finished: false,
+  cancelled: false,
+  error: null,
+  setup: null,
+  population: 0,
+  agents: 0,
+  frames: 0,
+  history: [],
+  best: null,
+  bestScene: null,
+  evaluations: 0,
+  workerMs: 0,
+};
+
+let worker = null;
+let preview = null;
+let plot = null;
+
+/** The fields' values as a TuneSetup (see src/tune.rs). */
+function readSetup(linkedScene) {
+  const number = (id) => Number.parseInt($(id).value, 10);
+  const environment = $('environment').value;
+  return {
+    behaviour: $('behaviour').value,
+    environment: environment === CURRENT_SCENE ? 'e1' : environment,
+    scene: environment === CURRENT_SCENE ? linkedScene : null,
+    seed: number('seed'),
+    population: number('population'),
+    generations: number('generations'),
+    frames: number('frames'),
+  };
+}
+
+function setRunning(running) {
+  state.running = running;
+  $('tune').disabled = running;
+  $('cancel').disabled = !running;
+  for (const id of FIELDS) $(id).disabled = running;
+}
+
+function status(text) {
+  $('status').textContent = text;
+}
+
+function showBest(best) {
+  const list = $('best');
+  list.replaceChildren();
+  if (!best) return;
+  const row = (label, value) => {
+    const dt = document.createElement('dt');
+    dt.textContent = label;
+    const dd = document.createElement('dd');
+    dd.textContent = value;
+    list.append(dt, dd);
+  };
+  best.weights.forEach((w, i) => row(WEIGHTS[i], w.toFixed(3)));
+  for (const [key, label] of MEASURES) row(label, best.measures[key].toFixed(3));
+  row('Gsum', best.gsum.toFixed(2));
+}
+
+function showPreview(sceneString, label) {
+  try {
+    preview.show(sceneString, state.frames || undefined);
+    $('preview-label').textContent = label;
+  } catch (error) {
+    showMessage(`The preview could not start: ${messageOf(error)}`);
+  }
+}
+
+function fail(message, panic) {
+  state.error = message;
+  stopWorker();
+  setRunning(false);
+  status(`Stopped: ${message}`);
+  if (panic) showPanic(message);
+  else showMessage(message);
+}
+
+function stopWorker() {
+  worker?.terminate();
+  worker = null;
+}
+
+function onWorkerMessage(event) {
+  const message = event.data;
+  if (message.type === 'error') {
+    fail(message.message, message.panic);
+  } else if (message.type === 'started') {
+    Object.assign(state, { population: message.population, agents: message.agents, frames: message.frames });
+    status(`Generation 0 of up to ${state.setup.generations}: scoring ${message.population} weight sets ` +
+      `(${message.agents} agents × ${message.frames} frames each)…`);
+    showPreview(message.scene, 'Preview: the scene before tuning');
+    worker.postMessage({ type: 'next' });
+  } else if (message.type === 'generation') {
+    const stats = message.stats;
+    if (stats === null) return;
+    state.history.push({ generation: stats.generation, best_gsum: stats.best_gsum, mean_gsum: stats.mean_gsum });
+    const improved = state.best === null || stats.best.gsum !== state.best.gsum;
+    state.best = stats.best;
+    state.bestScene = message.scene;
+    state.workerMs += message.ms;
+    const newEvaluations = stats.evaluations - state.evaluations;
+    state.evaluations = stats.evaluations;
+    plot.add(stats);
+    const total = state.setup.generations;
+    $('progress').max = total;
+    $('progress').value = stats.finished ? total : stats.generation + 1;
+    $('generation').textContent = `${stats.generation + 1} of ≤ ${total}`;
+    $('best-gsum').textContent = stats.best.gsum.toFixed(2);
+    $('evaluations').textContent = stats.evaluations.toLocaleString('en-US');
+    $('rate').textContent = message.ms > 0 ? `${((1000 * newEvaluations) / message.ms).toFixed(0)} /s` : '–';
+    showBest(stats.best);
+    $('apply').disabled = false;
+    if (improved) showPreview(message.scene, `Preview: best weights of generation ${stats.generation} (Gsum ${stats.best.gsum.toFixed(2)})`);
+    if (stats.finished) {
+      state.finished = true;
+      setRunning(false);
+      stopWorker();
+      const why = stats.generation + 1 >= total ? 'generation limit' : `best unchanged for ${stats.unchanged} generations`;
+      status(`Done after ${stats.generation + 1} generations (${why}), ${stats.evaluations} evaluations in ` +
+        `${(state.workerMs / 1000).toFixed(1)} s.`);
+    } else {
+      status(`Generation ${stats.generation + 1} of up to ${total}…`);
+      worker.postMessage({ type: 'next' });
+    }
+  }
+}
+
+function start(linkedScene) {
+  stopWorker();
+  const setup = readSetup(linkedScene);
+  Object.assign(state, {
+    running: true, finished: false, cancelled: false, error: null, setup, history: [], best: null,
+    bestScene: null, evaluations: 0, workerMs: 0,
+  });
+  plot.reset(setup.generations);
+  $('progress').value = 0;
+  for (const id of ['generation', 'best-gsum', 'evaluations', 'rate']) $(id).textContent = '–';
+  showBest(null);
+  $('apply').disabled = true;
+  setRunning(true);
+  status('Starting the worker…');
+  worker = new Worker(new URL('./tune-worker.js', import.meta.url), { type: 'module' });
+  worker.addEventListener('message', onWorkerMessage);
+  worker.addEventListener('error', (event) => fail(event.message || 'the tuning worker failed to load', false));
+  worker.postMessage({ type: 'start', setup });
+}
+
+function cancel() {
+  if (!state.running) return;
+  stopWorker();
+  state.cancelled = true;
+  setRunning(false);
+  const done = state.history.length;
+  status(done ? `Cancelled after ${done} generation${done === 1 ? '' : 's'}; the best so far can still be applied.` : 'Cancelled.');
+}
+
+function apply() {
+  if (state.bestScene === null) return;
+  location.href = shareUrl(state.bestScene, new URL('index.html', location.href).href);
+}
+
+/** Fills the fields from the query string (`?population=20&…`). */
+function readQuery(linkedScene) {
+  const query = new URLSearchParams(location.search);
+  for (const id of FIELDS) {
+    const value = query.get(id);
+    if (value === null) continue;
+    const field = $(id);
+    if (field.tagName === 'SELECT' && ![...field.options].some((o) => o.value === value)) {
+      showMessage(`Unknown ${id} “${value}” in the address; keeping ${field.value}.`);
+      continue;
+    }
+    field.value = value;
+  }
+  if (linkedScene !== null && query.get('environment') === null) $('environment').value = CURRENT_SCENE;
+  return query.get('autostart') === '1';
+}
+
+async function boot() {
+  setupBanner();
+  capturePanicReports();
+  let module;
+  try {
+    module = await import('../pkg/flockpath.js');
+  } catch (error) {
+    throw new Error(`the simulation module (pkg/flockpath.js) could not be loaded: ${messageOf(error)}. ` +
+      'Build it with: bash scripts/build-wasm.sh');
+  }
+  const wasm = await module.default();
+
+  const linkedScene = sceneFromLocation();
+  if (linkedScene !== null) {
+    try {
+      module.scene_from_text(linkedScene);
+      const option = document.createElement('option');
+      option.value = CURRENT_SCENE;
+      option.textContent = 'The playground’s scene';
+      $('environment').append(option);
+      $('playground-link').href = shareUrl(linkedScene, new URL('index.html', location.href).href);
+    } catch (error) {
+      showMessage(`The scene in the link could not be loaded: ${messageOf(error)}. Pick an environment instead.`);
+    }
+  }
+  const autostart = readQuery(linkedScene);
+
+  preview = new Preview(module, wasm, $('preview-canvas'));
+  preview.onError = (error) => {
+    if (isPanic(error)) showPanic(messageOf(error));
+    else showMessage(`The preview stopped: ${messageOf(error)}`);
+  };
+  plot = new FitnessPlot($('plot'));
+  plot.reset(Number.parseInt($('generations').value, 10) || 1);
+
+  // Before a run, preview what would be tuned: the scene a run with these settings starts from.
+  const previewSetup = () => {
+    if (state.running || state.best !== null) return;
+    try {
+      const run = new module.TuneRun(JSON.stringify({ ...readSetup(linkedScene), population: 2, generations: 1 }));
+      const scene = run.best_scene_string();
+      const frames = run.frames();
+      run.free();
+      state.frames = frames;
+      showPreview(scene, 'Preview: the scene before tuning');
+    } catch (error) {
+      showMessage(messageOf(error));
+    }
+  };
+  for (const id of ['environment', 'behaviour', 'frames']) $(id).addEventListener('change', previewSetup);
+  previewSetup();
+
+  $('tune').addEventListener('click', () => start(linkedScene));
+  $('cancel').addEventListener('click', cancel);
+  $('apply').addEventListener('click', apply);
+  $('loading').hidden = true;
+
+  window.flocktune = {
+    /** A copy of the run's state: {running, finished, cancelled, error, setup, history, best, …}. */
+    state: () => structuredClone({ ...state, previewFrames: preview.painted, previewSteps: preview.steps() }),
+    /** Starts a run with the fields' values (like pressing Tune). */
+    start: () => start(linkedScene),
+    /** Cancels the run (like pressing Cancel). */
+    cancel,
+  };
+  window.dispatchEvent(new Event('flocktune-ready'));
+  if (autostart) start(linkedScene);
+}
+
+boot().catch((error) => {
+  $('loading')?.setAttribute('hidden', '');
+  if (isPanic(error)) showPanic(messageOf(error));
+  else showMessage(`The Tune page could not start: ${messageOf(error)}`);
+  console.error(error);
+});
