@@ -118,3 +118,32 @@ fn picking_returns_the_nearest_agent_within_reach() {
     assert!(hits > 0, "no random point hit an agent");
     assert_eq!(agent_at(&world, Vec2::new(f32::NAN, 0.0), 5.0), None);
 }
+
+#[test]
+fn the_cli_writes_the_metrics_history_as_csv() {
+    let dir = std::env::temp_dir().join(format!("flockpath-history-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let file = dir.join("history.csv");
+    let status = std::process::Command::new(env!("CARGO_BIN_EXE_flockpath"))
+        .args(["run", "--scene", "-", "--steps", "300", "--metrics-history"])
+        .arg(&file)
+        .stdin(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::null())
+        .spawn()
+        .and_then(|mut child| {
+            use std::io::Write as _;
+            let scene = flockpath::scene_to_json(&presets::two_groups_swap());
+            child.stdin.take().expect("stdin").write_all(scene.as_bytes())?;
+            child.wait()
+        })
+        .expect("runs");
+    assert!(status.success());
+    let csv = std::fs::read_to_string(&file).expect("written");
+    let lines: Vec<&str> = csv.lines().collect();
+    // 300 steps sampled every 5: 60 samples × (overall + 2 groups), plus the header.
+    assert_eq!(lines.len(), 1 + 60 * 3, "{}", &csv[..200.min(csv.len())]);
+    assert!(lines[0].starts_with("step,time_s,group,arrived_share,mean_time_to_goal_s,collisions_per_step"));
+    let last = lines.last().expect("rows");
+    assert!(last.starts_with("300,5.0000,right,"), "{last}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
