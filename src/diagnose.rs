@@ -77,8 +77,9 @@ pub struct Explanation {
     /// What the step applies: the acceleration (Boids, forces, firefly) or the chosen velocity
     /// (PSO).
     pub applied: Vec2,
-    /// Canvas px per unit of the force arrows, chosen by the planner so its arrows are visible
-    /// (forces of 0.15 px/step² drawn as 30 px arrows need 200).
+    /// Scene px per unit of the force arrows, chosen by the planner so its arrows are visible
+    /// (forces of 0.15 px/step² drawn as 30 px arrows need 200); 0 lets [`explain`] choose one
+    /// that draws the longest arrow [`AUTO_ARROW_LENGTH`] px long.
     pub scale: f32,
     /// Extra named numbers (brightness, cost, mass, …).
     pub values: Vec<(String, f32)>,
@@ -107,6 +108,9 @@ impl Explanation {
         })
     }
 }
+
+/// Length (scene px) of the longest force arrow when the planner sets no scale.
+pub const AUTO_ARROW_LENGTH: f32 = 40.0;
 
 /// The agent nearest to `p` whose body lies within `tolerance` px of it, ties broken by the
 /// smaller id; `None` when there is none (or for a non-finite point). Uses the world's grid.
@@ -142,7 +146,16 @@ pub fn explain(world: &World, agent: u32) -> Option<Explanation> {
     e.velocity = world.velocities()[i];
     e.stuck = world.metrics_recorder().is_stuck(i, view.goal.is_some(), world.step_count());
     if e.scale <= 0.0 {
-        e.scale = 1.0;
+        // No scale from the planner: the longest force arrow is drawn 40 px long.
+        let longest = e
+            .vectors
+            .iter()
+            .filter(|v| !v.in_px)
+            .map(|v| v.vector.length())
+            .chain([e.applied.length()])
+            .filter(|l| l.is_finite())
+            .fold(0.0f32, f32::max);
+        e.scale = if longest > 1e-9 { AUTO_ARROW_LENGTH / longest } else { 1.0 };
     }
     if e.stuck {
         e.state = format!("stuck: no progress towards the goal for {STUCK_WINDOW}+ steps; {}", e.state);
