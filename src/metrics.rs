@@ -31,9 +31,9 @@ pub const QUEUE_RADIUS: f32 = 120.0;
 pub const QUEUE_HALF_ANGLE_DEG: f32 = 30.0;
 
 /// The fitness measures are taken every this many steps (on steps 1, 1 + this, …; 3 samples per
-/// simulated second). One sample costs about 2.7 Boids steps at 10k agents (`flockpath bench
-/// --only step` with every step sampled: 717 against 195 CPU ns per agent-step), so sampling
-/// every step would more than triple a step; every 20th adds about 13 %.
+/// simulated second). One sample costs about 2.2 Boids steps at 10k agents (`cargo run --release
+/// --example fitness_cost`: 744 against 236 on-CPU ns per agent-step with every step sampled), so
+/// sampling every step would triple a step; every 20th adds about 11 %.
 pub const FITNESS_SAMPLE_EVERY: u32 = 20;
 
 /// The five fitness measures (each 0…1) and their weighted sum, averaged over the sampled steps.

@@ -33,6 +33,7 @@ const GROUP_COLUMNS = [
   ['penetrations_agent_obstacle', 'Pen.', (v) => v.toLocaleString('en-US'), 'Agent–obstacle penetrations (agent-steps)'],
   ['stuck_agents', 'Stuck', (v) => String(v), 'Agents without progress for 300 steps'],
   ['queue_order', 'Queue', (v) => (v === null ? '–' : v.toFixed(2)), 'Queue order (firefly): share queued behind a brighter neighbour'],
+  ['fitness', 'Gsum', (v) => (v ? v.gsum.toFixed(1) : '–'), 'Fitness Gsum out of 100 (DESIGN §3.5, B1 weights 35/20/20/15/10 on Gm spacing, Gg goal, Gc no collision, Ga orientation, Gd distance), sampled every 20 steps'],
 ];
 
 /** Colour of the whole-run line in the plots. */
