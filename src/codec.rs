@@ -276,11 +276,26 @@ impl CompactScene {
     }
 }
 
-/// A planner's parameter values in the order of its parameter table.
+/// A planner's parameter values in the order of its parameter table, then, only when the
+/// planner holds any, one object with the values that are not sliders (an IGSA group's edited
+/// waypoints). Links without that object decode as before.
 fn planner_params(config: &PlannerConfig) -> Vec<serde_json::Value> {
     let params = serde_json::to_value(config).ok().and_then(|mut v| v.get_mut("params").map(std::mem::take));
     let params = params.unwrap_or_default();
-    config.kind().param_specs().iter().map(|spec| params.get(spec.key).cloned().unwrap_or_default()).collect()
+    let specs = config.kind().param_specs();
+    let mut values: Vec<serde_json::Value> =
+        specs.iter().map(|spec| params.get(spec.key).cloned().unwrap_or_default()).collect();
+    if let Some(object) = params.as_object() {
+        let extras: serde_json::Map<String, serde_json::Value> = object
+            .iter()
+            .filter(|(key, _)| !specs.iter().any(|s| s.key == key.as_str()))
+            .map(|(key, value)| (key.clone(), value.clone()))
+            .collect();
+        if !extras.is_empty() {
+            values.push(serde_json::Value::Object(extras));
+        }
+    }
+    values
 }
 
 /// The planner `name` with the table's first `values.len()` parameters set (range-checked) and
@@ -295,6 +310,12 @@ fn planner_with(name: &str, values: &[serde_json::Value]) -> Result<PlannerConfi
         )
     })?;
     let specs = kind.param_specs();
+    let (values, extras) = match values.split_last() {
+        Some((serde_json::Value::Object(extras), table)) if values.len() == specs.len() + 1 => {
+            (table, Some(extras))
+        }
+        _ => (values, None),
+    };
     if values.len() > specs.len() {
         return Err(format!(
             "{} takes {} parameters, the link has {}",
@@ -310,6 +331,11 @@ fn planner_with(name: &str, values: &[serde_json::Value]) -> Result<PlannerConfi
     for (spec, value) in specs.iter().zip(values) {
         if let Some(object) = params.as_object_mut() {
             object.insert(spec.key.to_string(), value.clone());
+        }
+    }
+    for (key, value) in extras.into_iter().flatten() {
+        if let Some(object) = params.as_object_mut() {
+            object.insert(key.clone(), value.clone());
         }
     }
     let config: PlannerConfig =
@@ -349,6 +375,33 @@ mod tests {
             let url = format!("http://localhost/index.html#s={frag}");
             assert_eq!(scene_from_any(&url).as_ref(), Ok(&scene), "{}", p.name);
         }
+    }
+
+    #[test]
+    fn edited_igsa_waypoints_travel_in_the_compact_link() {
+        let mut scene = presets::igsa_path_2();
+        let before = scene_to_fragment(&scene);
+        if let PlannerConfig::Igsa(p) = &mut scene.groups[0].planner {
+            p.waypoints = vec![[200.0, 100.0], [400.0, 90.0], [520.0, 160.5]];
+        } else {
+            panic!("igsa-path-2 runs the igsa planner");
+        }
+        let fragment = scene_to_fragment(&scene);
+        assert_eq!(scene_from_fragment(&fragment).as_ref(), Ok(&scene));
+        // Compact (positional) form, not the keyed fallback: the waypoints ride after the table.
+        let text = unpack(fragment.split_once('.').expect("version").1).expect("unpacks");
+        assert!(text.starts_with('['), "{text}");
+        assert!(text.contains(r#"{"waypoints":[[200.0,100.0],[400.0,90.0],[520.0,160.5]]}"#), "{text}");
+        // Scenes without edited waypoints encode exactly as before (no trailing object).
+        assert!(!unpack(before.split_once('.').expect("version").1).expect("unpacks").contains("waypoints"));
+        // A link from before the waypoints existed (table values only) still decodes.
+        let old = CompactScene::from_scene(&presets::igsa_path_2());
+        let json = serde_json::to_vec(&old).expect("json");
+        let decoded = scene_from_fragment(&format!("2.{}", pack(&json))).expect("decodes");
+        assert_eq!(decoded, presets::igsa_path_2());
+        // Bad waypoints are refused with a message.
+        let bad = text.replace("[200.0,100.0]", "[200.0]");
+        assert!(scene_from_fragment(&format!("2.{}", pack(bad.as_bytes()))).is_err());
     }
 
     #[test]

@@ -2,7 +2,7 @@
 
 use crate::fitness::{Behaviour, Environment};
 use crate::geometry::Obstacle;
-use crate::planners::{FireflyParams, PlannerConfig, PsoParams};
+use crate::planners::{FireflyParams, IgsaParams, PlannerConfig, PsoParams};
 use crate::rng::Rng;
 use crate::scene::{Goal, GoalMotion, Group, Region, Scene};
 
@@ -93,6 +93,21 @@ pub const ALL: &[Preset] = &[
         name: "forces-e3-cluttered",
         description: "Virtual forces, E3: a group follows a moving goal among small obstacles.",
         build: forces_e3_cluttered,
+    },
+    Preset {
+        name: "igsa-path-1",
+        description: "IGSA group path (Liu & Liu, Figs. 8–9): 40 agents follow one planned path between four pillars; drag its waypoints.",
+        build: igsa_path_1,
+    },
+    Preset {
+        name: "igsa-path-2",
+        description: "IGSA group path (Figs. 10–11): a wall, a triangle and a disc; the planned path goes over the wall.",
+        build: igsa_path_2,
+    },
+    Preset {
+        name: "igsa-crowd-1000",
+        description: "IGSA group path (Table 4): 1000 agents follow one path past a large obstacle, avoiding each other.",
+        build: igsa_crowd_1000,
     },
 ];
 
@@ -355,9 +370,11 @@ pub fn firefly_migration_with_seed(seed: u32) -> Scene {
     s
 }
 
+fn igsa_group(name: &str, color: &str, count: u32, spawn: ([f32; 2], [f32; 2]), goal: u32) -> Group {
+    Group { planner: PlannerConfig::Igsa(IgsaParams::default()), ..group(name, color, count, spawn, goal) }
+}
+
 /// Path 1 of the IGSA experiments: pillars block the straight line from start to goal.
-/// (Not in [`ALL`] until the `igsa` crowd planner lands: Boids, the groups' default planner,
-/// is not meant to find these detours, and every listed preset must be reachable by Boids.)
 pub fn igsa_path_1() -> Scene {
     let mut s = base("igsa-path-1", 800.0, 500.0);
     for (c, r) in
@@ -365,8 +382,8 @@ pub fn igsa_path_1() -> Scene {
     {
         s.obstacles.push(Obstacle::Circle { center: c, radius: r });
     }
-    s.goals.push(Goal::fixed([745.0, 250.0], 30.0));
-    s.groups.push(group("group", "#2f6fdf", 40, ([30.0, 215.0], [100.0, 285.0]), 0));
+    s.goals.push(Goal::fixed([745.0, 250.0], 50.0));
+    s.groups.push(igsa_group("group", "#2f6fdf", 40, ([20.0, 190.0], [110.0, 310.0]), 0));
     s
 }
 
@@ -377,7 +394,25 @@ pub fn igsa_path_2() -> Scene {
     s.obstacles.push(Obstacle::Rect { min: [380.0, 150.0], max: [425.0, 500.0] });
     s.obstacles.push(Obstacle::Polygon { points: vec![[170.0, 250.0], [255.0, 160.0], [265.0, 330.0]] });
     s.obstacles.push(Obstacle::Circle { center: [590.0, 250.0], radius: 60.0 });
-    s.goals.push(Goal::fixed([745.0, 330.0], 30.0));
-    s.groups.push(group("group", "#df4f2f", 40, ([30.0, 380.0], [110.0, 460.0]), 0));
+    s.goals.push(Goal::fixed([745.0, 330.0], 50.0));
+    s.groups.push(igsa_group("group", "#df4f2f", 40, ([20.0, 370.0], [120.0, 470.0]), 0));
+    s
+}
+
+/// The crowd of the IGSA experiment III with 1000 agents; see [`igsa_crowd`].
+pub fn igsa_crowd_1000() -> Scene {
+    igsa_crowd(1000)
+}
+
+/// IGSA experiment III (Table 4): `count` agents follow one planned path from the left, around a
+/// large disc (the "obstacle point"), to a goal on the right big enough to park 1000 of them
+/// (their parking lattice fills a disc of about 180 px; the goal counts arrivals within 230 px).
+/// The spawn region, the obstacle and the goal do not depend on `count`, so the planned path
+/// does not either.
+pub fn igsa_crowd(count: u32) -> Scene {
+    let mut s = base(if count == 1000 { "igsa-crowd-1000" } else { "igsa-crowd" }, 1300.0, 700.0);
+    s.obstacles.push(Obstacle::Circle { center: [640.0, 350.0], radius: 100.0 });
+    s.goals.push(Goal::fixed([1060.0, 350.0], 230.0));
+    s.groups.push(igsa_group("crowd", "#2f6fdf", count, ([40.0, 100.0], [440.0, 600.0]), 0));
     s
 }

@@ -3,10 +3,12 @@
 pub mod boids;
 pub mod firefly;
 pub mod forces;
+pub mod igsa;
 pub mod pso;
 
 use crate::geometry::Obstacle;
 use crate::rng::Rng;
+use crate::scene::Scene;
 use crate::spatial::{ObstacleIndex, SpatialGrid};
 use glam::Vec2;
 use serde::{Deserialize, Serialize};
@@ -15,6 +17,7 @@ use std::ops::Range;
 pub use boids::{Arbitration, Boids, BoidsParams};
 pub use firefly::{Firefly, FireflyParams};
 pub use forces::{Forces, ForcesParams};
+pub use igsa::{GroupPath, IgsaParams, IgsaPlanner};
 pub use pso::{Pso, PsoParams};
 
 /// Read-only view of the world at the start of a step: planners read it, never write it,
@@ -58,6 +61,15 @@ pub trait Planner {
     fn passes_through_obstacles(&self) -> bool {
         false
     }
+    /// The path the group follows, for planners that plan one (IGSA group path control).
+    fn planned_path(&self) -> Option<&GroupPath> {
+        None
+    }
+    /// Whether the world must rebuild this planner when obstacles or goals are edited during a
+    /// run (a planner that planned on the old geometry).
+    fn replans_on_edit(&self) -> bool {
+        false
+    }
 }
 
 /// The closed set of planners, for the URL, the UI and the CLI.
@@ -72,12 +84,14 @@ pub enum PlannerKind {
     Firefly,
     /// Five GA-tunable virtual forces (DESIGN §3.5).
     Forces,
+    /// IGSA group path control (Liu & Liu 2022, DESIGN §3.4).
+    Igsa,
 }
 
 impl PlannerKind {
     /// Every planner, in menu order.
     pub const ALL: &'static [PlannerKind] =
-        &[PlannerKind::Boids, PlannerKind::Pso, PlannerKind::Firefly, PlannerKind::Forces];
+        &[PlannerKind::Boids, PlannerKind::Pso, PlannerKind::Firefly, PlannerKind::Forces, PlannerKind::Igsa];
 
     /// The CLI / URL name.
     pub fn name(self) -> &'static str {
@@ -86,6 +100,7 @@ impl PlannerKind {
             PlannerKind::Pso => "pso",
             PlannerKind::Firefly => "firefly",
             PlannerKind::Forces => "forces",
+            PlannerKind::Igsa => "igsa",
         }
     }
 
@@ -101,6 +116,7 @@ impl PlannerKind {
             PlannerKind::Pso => "PSO crowd (Chen & Lin 2009)",
             PlannerKind::Firefly => "Firefly crowd (Zhang et al. 2017)",
             PlannerKind::Forces => "Virtual forces (GA-tuned)",
+            PlannerKind::Igsa => "IGSA group path (Liu & Liu 2022)",
         }
     }
 
@@ -111,6 +127,7 @@ impl PlannerKind {
             PlannerKind::Pso => PlannerConfig::Pso(PsoParams::default()),
             PlannerKind::Firefly => PlannerConfig::Firefly(FireflyParams::default()),
             PlannerKind::Forces => PlannerConfig::Forces(ForcesParams::default()),
+            PlannerKind::Igsa => PlannerConfig::Igsa(IgsaParams::default()),
         }
     }
 
@@ -121,6 +138,7 @@ impl PlannerKind {
             PlannerKind::Pso => PsoParams::SPECS,
             PlannerKind::Firefly => FireflyParams::SPECS,
             PlannerKind::Forces => ForcesParams::SPECS,
+            PlannerKind::Igsa => IgsaParams::SPECS,
         }
     }
 }
@@ -137,6 +155,8 @@ pub enum PlannerConfig {
     Firefly(FireflyParams),
     /// Virtual forces.
     Forces(ForcesParams),
+    /// IGSA group path control.
+    Igsa(IgsaParams),
 }
 
 impl Default for PlannerConfig {
@@ -153,6 +173,7 @@ impl PlannerConfig {
             PlannerConfig::Pso(_) => PlannerKind::Pso,
             PlannerConfig::Firefly(_) => PlannerKind::Firefly,
             PlannerConfig::Forces(_) => PlannerKind::Forces,
+            PlannerConfig::Igsa(_) => PlannerKind::Igsa,
         }
     }
 
@@ -160,7 +181,11 @@ impl PlannerConfig {
     pub fn validate(&self) -> Result<(), String> {
         let value = serde_json::to_value(self).map_err(|e| e.to_string())?;
         let params = value.get("params").cloned().unwrap_or_default();
-        check_params(self.kind().param_specs(), &params)
+        check_params(self.kind().param_specs(), &params)?;
+        match self {
+            PlannerConfig::Igsa(p) => p.check_waypoints(),
+            _ => Ok(()),
+        }
     }
 
     /// A fresh planner for a group of `count` agents.
@@ -171,6 +196,20 @@ impl PlannerConfig {
             PlannerConfig::Pso(p) => Box::new(Pso::new(p.clone(), obstacles)),
             PlannerConfig::Firefly(p) => Box::new(Firefly::new(p.clone())),
             PlannerConfig::Forces(p) => Box::new(Forces::new(p.clone())),
+            // Without its scene the IGSA planner has no path to plan: use `build_for_group`.
+            PlannerConfig::Igsa(p) => Box::new(IgsaPlanner::new(p.clone(), &Scene::empty(10.0, 10.0), 0)),
+        }
+    }
+
+    /// A fresh planner for group `group` of `scene`. Planners that plan ahead (IGSA) read the
+    /// scene's geometry and seed here; the others are [`PlannerConfig::build`].
+    pub fn build_for_group(&self, scene: &Scene, group: usize) -> Box<dyn Planner> {
+        match self {
+            PlannerConfig::Igsa(p) => Box::new(IgsaPlanner::new(p.clone(), scene, group)),
+            _ => {
+                let count = scene.groups.get(group).map_or(0, |g| g.count as usize);
+                self.build(count, &scene.obstacles)
+            }
         }
     }
 
