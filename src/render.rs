@@ -33,6 +33,10 @@ pub const LETTERBOX_COLOR: [u8; 3] = [0xd8, 0xd8, 0xd3];
 pub const GRID_COLOR: [u8; 3] = [0xe4, 0xe2, 0xda];
 /// Goals no group heads for (RGB); goals in use take their first group's colour.
 pub const GOAL_COLOR: [u8; 3] = [0x3a, 0x8a, 0x4f];
+/// Path segments that cross an obstacle (RGB): an edited IGSA path the user should fix.
+pub const CROSSING_COLOR: [u8; 3] = [0xe0, 0x1a, 0x1a];
+/// Radius of a draggable waypoint handle (device px).
+pub const WAYPOINT_HANDLE_PX: f32 = 5.0;
 /// Outline of the selected item (RGB).
 pub const SELECTION_COLOR: [u8; 3] = [0xff, 0x8c, 0x00];
 /// Default share of a trail's visibility lost per frame.
@@ -320,6 +324,7 @@ impl Renderer {
         if let Some(mut pixmap) = PixmapMut::from_bytes(&mut self.frame, self.width, self.height) {
             draw_spawn_regions(&mut pixmap, scene, view);
             draw_goals(&mut pixmap, scene, view);
+            draw_planned_paths(&mut pixmap, world, view);
         }
         self.update_sprites(scene);
         self.draw_agents(world);
@@ -764,6 +769,40 @@ fn draw_goals(pixmap: &mut PixmapMut, scene: &Scene, view: ViewTransform) {
     }
 }
 
+/// The path each IGSA group follows: a dashed line in the group's colour, segments that cross an
+/// obstacle solid red, and a handle (white disc, coloured ring) on every draggable waypoint.
+fn draw_planned_paths(pixmap: &mut PixmapMut, world: &World, view: ViewTransform) {
+    for (g, group) in world.scene().groups.iter().enumerate() {
+        let Some(path) = world.planned_path(g) else { continue };
+        let rgb = parse_color(&group.color);
+        for (k, w) in path.points.windows(2).enumerate() {
+            let mut pb = PathBuilder::new();
+            pb.move_to(w[0][0], w[0][1]);
+            pb.line_to(w[1][0], w[1][1]);
+            if path.crossing.get(k).copied().unwrap_or(false) {
+                stroke_scene_path(pixmap, pb, view, CROSSING_COLOR, 255, 3.0, None);
+            } else {
+                stroke_scene_path(pixmap, pb, view, rgb, 220, 2.0, Some([7.0, 4.0]));
+            }
+        }
+        let inner = path.points.len().saturating_sub(1);
+        for p in path.points.iter().take(inner).skip(1) {
+            let c = view.to_canvas(Vec2::new(p[0], p[1]));
+            if let Some(dot) = PathBuilder::from_circle(c.x, c.y, WAYPOINT_HANDLE_PX) {
+                pixmap.fill_path(
+                    &dot,
+                    &paint([255, 255, 255], 255),
+                    FillRule::Winding,
+                    Transform::identity(),
+                    None,
+                );
+                let stroke = Stroke { width: 2.0, ..Stroke::default() };
+                pixmap.stroke_path(&dot, &paint(rgb, 255), &stroke, Transform::identity(), None);
+            }
+        }
+    }
+}
+
 /// An orange outline around the selected item; a stale index draws nothing.
 fn draw_selection(pixmap: &mut PixmapMut, scene: &Scene, view: ViewTransform, item: ItemRef) {
     let mut pb = PathBuilder::new();
@@ -975,6 +1014,24 @@ mod tests {
         draw_segment(&mut layer, w, h, Vec2::new(5.5, 9.5), Vec2::new(5.5, 0.5), [0, 0, 0], 255);
         assert_eq!(at(&layer, 5, 9), 0, "a steep segment going up covers its start");
         assert_eq!(at(&layer, 5, 0), 255, "and leaves its end");
+    }
+
+    #[test]
+    fn an_igsa_path_is_drawn_with_handles_and_its_crossing_segment_in_red() {
+        let mut scene = presets::igsa_path_2();
+        if let PlannerConfig::Igsa(p) = &mut scene.groups[0].planner {
+            // Through the wall (x 380…425 from y 150 down), then to the goal.
+            p.waypoints = vec![[300.0, 420.0], [500.0, 420.0]];
+        }
+        let world = World::new(scene).expect("valid");
+        let mut r = Renderer::new(800, 500);
+        r.render(&world);
+        let (hx, hy) = canvas_of(&r, Vec2::new(300.0, 420.0));
+        assert_eq!(pixel(&r, hx, hy), [255, 255, 255, 255], "handle centre");
+        // Middle of the crossing segment, left of the wall (inside it the wall is drawn first).
+        let (cx, cy) = canvas_of(&r, Vec2::new(350.0, 420.0));
+        let p = pixel(&r, cx, cy);
+        assert!(p[0] > 200 && p[1] < 80 && p[2] < 80, "crossing segment is red: {p:?}");
     }
 
     #[test]

@@ -347,6 +347,24 @@ pub fn segment_crossings(points: &[Vec2], obstacles: &ObstacleIndex) -> Vec<bool
         .collect()
 }
 
+/// The draggable waypoint (interior point of an IGSA group's path) nearest to `p` within
+/// `tolerance` px, as `(group, waypoint index among the interior points)`; later groups win
+/// ties, as they are drawn on top.
+pub fn pick_waypoint(world: &crate::World, p: Vec2, tolerance: f32) -> Option<(u32, u32)> {
+    let mut best: Option<(f32, u32, u32)> = None;
+    for g in 0..world.scene().groups.len() {
+        let Some(path) = world.planned_path(g) else { continue };
+        let inner = path.points.len().saturating_sub(1);
+        for (k, q) in path.points.iter().enumerate().take(inner).skip(1) {
+            let d = p.distance(v(*q));
+            if d <= tolerance && best.is_none_or(|(bd, _, _)| d <= bd) {
+                best = Some((d, g as u32, (k - 1) as u32));
+            }
+        }
+    }
+    best.map(|(_, g, k)| (g, k))
+}
+
 /// A polyline with its cumulative arc length.
 #[derive(Clone, Debug, Default)]
 struct Polyline {

@@ -18,6 +18,9 @@ use glam::Vec2;
 use std::fmt::Display;
 use wasm_bindgen::prelude::*;
 
+pub mod lab;
+mod paths;
+
 /// Installs the panic hook so a Rust panic shows its message in the console (runs on load).
 #[wasm_bindgen(start)]
 pub fn init() {
