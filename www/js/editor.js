@@ -3,6 +3,7 @@
 // The overlay only shows rubber-band previews of gestures in progress.
 
 import { clientToScene, sceneUnitsPerCssPixel, viewTransform } from './view.js';
+import { PathEditor } from './path-edit.js';
 
 /** Tool names in number-key order (1…6). */
 export const TOOLS = ['select', 'circle', 'rect', 'polygon', 'goal', 'group'];
@@ -33,6 +34,7 @@ export class Editor {
     /** Polygon vertices placed so far (scene coordinates). */
     this.polygon = [];
     this.hover = null;
+    this.paths = new PathEditor(app, this, overlay, canvas);
     overlay.addEventListener('pointerdown', (e) => this.pointerDown(e));
     overlay.addEventListener('pointermove', (e) => this.pointerMove(e));
     overlay.addEventListener('pointerup', (e) => this.pointerUp(e));
