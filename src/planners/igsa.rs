@@ -313,8 +313,7 @@ pub fn plan_group_path(scene: &Scene, group: usize, params: &IgsaParams) -> Opti
         let mut pts = vec![to64(start)];
         pts.extend(params.waypoints.iter().map(|&p| to64(p)));
         pts.push(to64(goal.position));
-        let fitness = None;
-        (pts, PathSource::Edited, fitness, 0)
+        (pts, PathSource::Edited, None, 0)
     };
     let measures = problem.measure(&points);
     let crossing = points.windows(2).map(|w| problem.segment_crosses(w[0], w[1])).collect();
