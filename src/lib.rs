@@ -17,10 +17,13 @@
 //! ```
 
 pub mod codec;
+pub mod diagnose;
 pub mod edit;
 pub mod export;
 pub mod fitness;
+pub mod flow_field;
 pub mod geometry;
+pub mod history;
 pub mod metrics;
 pub mod optim;
 pub mod planners;

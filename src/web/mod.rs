@@ -5,9 +5,12 @@
 //! [`Sim::frame_len`]); JS wraps it in a `Uint8ClampedArray` after every call, because the view
 //! dies when memory grows.
 
+mod diagnose;
+
 use crate::codec;
 use crate::edit::{self, Edit, ItemRef};
 use crate::export::{self, ExportOptions};
+use crate::history::MetricsHistory;
 use crate::planners::PlannerKind;
 use crate::presets;
 use crate::recording::Recording;
@@ -45,6 +48,8 @@ pub struct Sim {
     world: World,
     renderer: Renderer,
     recording: Recording,
+    /// The metrics over time for the plots (a run that restarts starts a new one).
+    history: MetricsHistory,
 }
 
 #[wasm_bindgen]
@@ -56,7 +61,12 @@ impl Sim {
         let scene = codec::scene_from_any(scene_text).map_err(js_error)?;
         let world = World::new(scene).map_err(js_error)?;
         let recording = Recording::of_world(&world, RECORDING_BUDGET_BYTES);
-        let mut sim = Sim { world, renderer: Renderer::new(width, height), recording };
+        let mut sim = Sim {
+            world,
+            renderer: Renderer::new(width, height),
+            recording,
+            history: MetricsHistory::default(),
+        };
         sim.show_scene_view();
         Ok(sim)
     }
@@ -108,6 +118,7 @@ impl Sim {
         for _ in 0..n {
             self.world.step();
             self.recording.capture_world(&self.world);
+            self.history.sample(&self.world);
         }
     }
 
