@@ -102,7 +102,6 @@ fn same_seed_same_result_and_different_seed_differs() {
 }
 
 /// The table (every run's curve included) is bit-identical on one thread and on four.
-#[cfg(not(target_arch = "wasm32"))]
 #[test]
 #[cfg(not(target_arch = "wasm32"))] // rayon is native-only
 fn thread_count_does_not_change_results() {
