@@ -1,17 +1,21 @@
-//! The run's history for the timeline: compact positions per step, a digest per recorded step,
-//! and whole-world checkpoints, so the page can jump to any step and play on from there.
+//! The run's history for the timeline: compact positions per step and whole-world checkpoints,
+//! so the page can jump to any step and play on from there.
 //!
-//! Memory is bounded and the bounds are stated:
+//! Memory and time are bounded and the bounds are stated:
 //! - positions are quantised to `u16` per axis relative to the scene bounds (4 bytes per agent
 //!   per step; 0.31 px resolution on a 20,000 px scene). The default budget,
 //!   [`DEFAULT_FRAME_BUDGET_BYTES`], holds 10,000 agents × 2,000 steps at every step. Over budget,
 //!   every other recorded step is dropped and recording goes on at half the rate (thinning);
 //!   [`ReplayInfo::frames_thinned`] says so, so the page can put a note on screen.
-//! - every [`DEFAULT_CHECKPOINT_EVERY`] steps the whole [`World`] is cloned (positions,
-//!   velocities, planner state, generator state, metric accumulators). A jump to step k restores
-//!   the nearest checkpoint at or before k and re-simulates at most `checkpoint_every − 1` steps:
-//!   the result is bit-identical to the original run at k. Over [`DEFAULT_CHECKPOINT_BUDGET_BYTES`]
-//!   every other checkpoint is dropped and the interval doubles (also stated in the info).
+//! - every `checkpoint_every` steps the whole [`World`] is cloned (positions, velocities,
+//!   planner state, generator state, metric accumulators). A jump to step k restores the nearest
+//!   checkpoint at or before k and re-simulates at most `checkpoint_every − 1` steps: the result
+//!   is bit-identical to the original run at k. The interval is chosen so a jump re-simulates
+//!   about [`JUMP_AGENT_STEPS`] agent-steps (32 steps of 1,000 agents, 200 of 160 or fewer), and
+//!   over [`DEFAULT_CHECKPOINT_BUDGET_BYTES`] every other checkpoint is dropped and the interval
+//!   doubles (stated in the info).
+//! - the digest of each checkpoint is the check that a re-simulated run is the recorded one: a
+//!   replayed step that reaches a checkpoint with another digest counts as a divergence.
 //!
 //! Edits during a run (a planner parameter changed at step s) are part of the history: the world
 //! after the edit is checkpointed at s, so jumping to any step replays the edit where it happened.
@@ -26,8 +30,10 @@ pub const DEFAULT_FRAME_BUDGET_BYTES: usize = 80_000_000;
 /// Checkpoint budget (estimated world sizes, see [`checkpoint_bytes_estimate`]): 48 MiB, enough
 /// for 10,000 agents × 2,000 steps at the default interval.
 pub const DEFAULT_CHECKPOINT_BUDGET_BYTES: usize = 48 << 20;
-/// Steps between checkpoints: a jump re-simulates at most this many steps minus one.
-pub const DEFAULT_CHECKPOINT_EVERY: u32 = 100;
+/// Agent-steps a jump may re-simulate: sets the checkpoint interval from the agent count.
+pub const JUMP_AGENT_STEPS: u32 = 32_000;
+/// Shortest and longest automatic checkpoint interval (steps).
+pub const CHECKPOINT_EVERY_RANGE: (u32, u32) = (20, 200);
 /// Bytes one agent takes in one recorded step (x and y as `u16`).
 const BYTES_PER_AGENT_STEP: usize = 4;
 /// Estimated bytes per agent of a cloned world: state arrays (pos, vel, next_vel, group, radius:
@@ -44,7 +50,8 @@ pub struct ReplayBudget {
     pub frame_bytes: usize,
     /// Estimated bytes the checkpoints may take before thinning.
     pub checkpoint_bytes: usize,
-    /// Steps between checkpoints at the start (doubles when thinned).
+    /// Steps between checkpoints at the start (doubles when thinned); 0 chooses it from the
+    /// agent count (see [`auto_checkpoint_every`]).
     pub checkpoint_every: u32,
 }
 
@@ -53,7 +60,7 @@ impl Default for ReplayBudget {
         Self {
             frame_bytes: DEFAULT_FRAME_BUDGET_BYTES,
             checkpoint_bytes: DEFAULT_CHECKPOINT_BUDGET_BYTES,
-            checkpoint_every: DEFAULT_CHECKPOINT_EVERY,
+            checkpoint_every: 0,
         }
     }
 }
@@ -109,8 +116,6 @@ pub struct Replay {
     frame_steps: Vec<u32>,
     /// `frames[f * agents + i]` = quantised (x, y) of agent `i` at step `frame_steps[f]`.
     frames: Vec<[u16; 2]>,
-    /// `World::digest()` at each step of `frame_steps`.
-    digests: Vec<u64>,
     frames_thinned: u32,
     checkpoint_every: u32,
     /// Snapshots in increasing step order; always holds the first step's.
@@ -118,6 +123,12 @@ pub struct Replay {
     checkpoints_thinned: u32,
     edits: Vec<u32>,
     diverged: u32,
+}
+
+/// The automatic checkpoint interval for `agents` agents: about [`JUMP_AGENT_STEPS`] agent-steps.
+pub fn auto_checkpoint_every(agents: usize) -> u32 {
+    let agents = u32::try_from(agents.max(1)).unwrap_or(u32::MAX);
+    (JUMP_AGENT_STEPS / agents).clamp(CHECKPOINT_EVERY_RANGE.0, CHECKPOINT_EVERY_RANGE.1)
 }
 
 /// Estimated bytes of one checkpoint of `world`.
@@ -135,19 +146,22 @@ impl Replay {
     pub fn with_budget(world: &World, budget: ReplayBudget) -> Self {
         let scene = world.scene();
         let step = world.step_count();
+        let checkpoint_every = match budget.checkpoint_every {
+            0 => auto_checkpoint_every(world.agent_count()),
+            n => n,
+        };
         let mut replay = Self {
             width: scene.width.max(f32::MIN_POSITIVE),
             height: scene.height.max(f32::MIN_POSITIVE),
             agents: world.agent_count(),
-            budget: ReplayBudget { checkpoint_every: budget.checkpoint_every.max(1), ..budget },
+            budget: ReplayBudget { checkpoint_every, ..budget },
             first_step: step,
             end_step: step,
             frame_every: 1,
             frame_steps: Vec::new(),
             frames: Vec::new(),
-            digests: Vec::new(),
             frames_thinned: 0,
-            checkpoint_every: budget.checkpoint_every.max(1),
+            checkpoint_every,
             checkpoints: vec![world.clone()],
             checkpoints_thinned: 0,
             edits: Vec::new(),
@@ -174,7 +188,7 @@ impl Replay {
 
     /// Records `world` after it stepped. Returns `true` when the step extended the history (the
     /// caller's other recordings should capture it too) and `false` when it re-played a recorded
-    /// step (the recorded frame is kept; its digest is checked).
+    /// step (the recorded frame is kept; at a checkpoint the digest is checked).
     pub fn record(&mut self, world: &World) -> bool {
         let step = world.step_count();
         if world.agent_count() != self.agents || step <= self.first_step {
@@ -185,7 +199,8 @@ impl Replay {
             if self.edits.iter().any(|&e| e >= step) {
                 self.truncate_after(step - 1);
             } else {
-                match self.digest_at(step) {
+                let checkpoint = self.checkpoints.iter().find(|c| c.step_count() == step);
+                match checkpoint.map(World::digest) {
                     Some(recorded) if recorded != world.digest() => {
                         self.diverged += 1;
                         self.truncate_after(step - 1);
@@ -228,7 +243,6 @@ impl Replay {
     pub fn truncate_after(&mut self, step: u32) {
         let keep = self.frame_steps.partition_point(|&s| s <= step);
         self.frame_steps.truncate(keep);
-        self.digests.truncate(keep);
         self.frames.truncate(keep * self.agents);
         self.checkpoints.retain(|c| c.step_count() <= step);
         self.edits.retain(|&e| e <= step);
@@ -253,10 +267,9 @@ impl Replay {
         steps
     }
 
-    /// The recorded digest at `step`, if that step has a frame.
+    /// The recorded digest at `step`, if that step has a checkpoint.
     pub fn digest_at(&self, step: u32) -> Option<u64> {
-        let f = self.frame_steps.binary_search(&step).ok()?;
-        self.digests.get(f).copied()
+        self.checkpoints.iter().find(|c| c.step_count() == step).map(World::digest)
     }
 
     /// The recorded positions at `step` (within the quantisation step), if that step has a frame.
@@ -358,8 +371,15 @@ impl Replay {
             return;
         }
         let (sx, sy) = (QUANT_MAX / self.width, QUANT_MAX / self.height);
+        let (len, agents) = (self.frames.len(), self.agents);
+        if self.frames.capacity() < len + agents {
+            // Grow by doubling but never past the budget: plain `Vec` growth could reserve
+            // twice the budget.
+            let most = (self.budget.frame_bytes / BYTES_PER_AGENT_STEP).max(len + agents);
+            let want = (2 * len).max(64 * agents).min(most).max(len + agents);
+            self.frames.reserve_exact(want - len);
+        }
         self.frame_steps.push(step);
-        self.digests.push(world.digest());
         self.frames.extend(world.positions().iter().map(|p| {
             // Agents are kept inside the bounds; the clamp only guards the conversion.
             let qx = (p.x * sx + 0.5).clamp(0.0, QUANT_MAX) as u16;
@@ -382,13 +402,11 @@ impl Replay {
             let s = self.frame_steps[f];
             if s.is_multiple_of(self.frame_every) || s == self.first_step {
                 self.frame_steps[w] = s;
-                self.digests[w] = self.digests[f];
                 self.frames.copy_within(f * agents..(f + 1) * agents, w * agents);
                 w += 1;
             }
         }
         self.frame_steps.truncate(w);
-        self.digests.truncate(w);
         self.frames.truncate(w * agents);
         true
     }
@@ -481,7 +499,6 @@ mod tests {
         };
         r.seek(220, &mut w);
         assert_eq!(w.digest(), at_220);
-        assert_eq!(Some(w.digest()), r.digest_at(220));
         assert_eq!(r.info().edits, vec![150]);
         // Back before the edit, then step on: the future after the edit is gone.
         r.seek(120, &mut w);

@@ -7,6 +7,8 @@
 // Every call goes through the same guarded path as the UI: a refused input throws an `Error` with
 // a readable message (also shown in the page's banner) and the current scene keeps running.
 
+import { seekTo } from './timeline.js';
+
 let app = null;
 let resolveReady;
 
@@ -109,6 +111,26 @@ export function view() {
   }, { rethrow: true }).value;
 }
 
+/**
+ * Jumps to recorded step `k` (clamped to the run's history): the nearest checkpoint is restored
+ * and re-simulated, so the state is bit-identical to the original run at `k`; play goes on from
+ * there. Returns the step count afterwards.
+ */
+export function seek(k) {
+  const target = Number(k);
+  if (!Number.isInteger(target) || target < 0 || target > 0xffffffff) {
+    throw new RangeError(`seek(k) takes a whole step number ≥ 0, not ${k}`);
+  }
+  const a = booted();
+  seekTo(a, target, { rethrow: true });
+  return a.guard((sim) => sim.steps(), { rethrow: true }).value;
+}
+
+/** The timeline's state: `{step, first_step, end_step, frame_every, checkpoint_every, note, …}`. */
+export function timeline() {
+  return booted().guard((sim) => JSON.parse(sim.timeline_json()), { rethrow: true }).value;
+}
+
 /** The API object: `window.flockpath` and this module's default export. */
 export const flockpath = Object.freeze({
   ready,
@@ -122,6 +144,8 @@ export const flockpath = Object.freeze({
   scene,
   sceneString,
   digest,
+  seek,
+  timeline,
   positions,
   view,
 });

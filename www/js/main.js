@@ -13,6 +13,8 @@ import { setupMetrics } from './metrics.js';
 import { Panel } from './panel.js';
 import { setupExport } from './export.js';
 import { setupShare } from './share.js';
+import { setupCompareLink } from './compare-link.js';
+import { setupTimeline } from './timeline.js';
 import { keepLocationInSync, sceneFromLocation, watchLocation } from './url.js';
 import { measure, setupView } from './view.js';
 
@@ -69,6 +71,8 @@ async function boot() {
   keepLocationInSync(app);
   setupShare(app);
   setupExport(app, canvas);
+  setupTimeline(app);
+  setupCompareLink(app);
   const onFrame = setupMetrics(app);
   startLoop(app, canvas, onFrame);
   document.getElementById('loading').hidden = true;
