@@ -11,9 +11,9 @@
 //!   planner state, generator state, metric accumulators). A jump to step k restores the nearest
 //!   checkpoint at or before k and re-simulates at most `checkpoint_every − 1` steps: the result
 //!   is bit-identical to the original run at k. The interval is chosen so a jump re-simulates
-//!   about [`JUMP_AGENT_STEPS`] agent-steps (32 steps of 1,000 agents, 200 of 160 or fewer), and
-//!   over [`DEFAULT_CHECKPOINT_BUDGET_BYTES`] every other checkpoint is dropped and the interval
-//!   doubles (stated in the info).
+//!   about [`JUMP_AGENT_STEPS`] agent-steps (20 steps of 1,000 agents or more, 200 of 100 or
+//!   fewer), and over [`DEFAULT_CHECKPOINT_BUDGET_BYTES`] every other checkpoint is dropped and
+//!   the interval doubles (stated in the info).
 //! - the digest of each checkpoint is the check that a re-simulated run is the recorded one: a
 //!   replayed step that reaches a checkpoint with another digest counts as a divergence.
 //!
@@ -31,7 +31,7 @@ pub const DEFAULT_FRAME_BUDGET_BYTES: usize = 80_000_000;
 /// for 10,000 agents × 2,000 steps at the default interval.
 pub const DEFAULT_CHECKPOINT_BUDGET_BYTES: usize = 48 << 20;
 /// Agent-steps a jump may re-simulate: sets the checkpoint interval from the agent count.
-pub const JUMP_AGENT_STEPS: u32 = 32_000;
+pub const JUMP_AGENT_STEPS: u32 = 20_000;
 /// Shortest and longest automatic checkpoint interval (steps).
 pub const CHECKPOINT_EVERY_RANGE: (u32, u32) = (20, 200);
 /// Bytes one agent takes in one recorded step (x and y as `u16`).
