@@ -18,10 +18,12 @@
 
 pub mod codec;
 pub mod compare;
+pub mod diagnose;
 pub mod edit;
 pub mod export;
 pub mod fitness;
 pub mod geometry;
+pub mod history;
 pub mod metrics;
 pub mod optim;
 pub mod planners;

@@ -300,6 +300,20 @@ impl MetricsRecorder {
         counts
     }
 
+    /// Whether agent `i` (of a group with a goal if `has_goal`) is stuck after `steps` steps: not
+    /// arrived and no progress towards the goal in the last [`STUCK_WINDOW`] steps. False for an
+    /// id out of range.
+    pub fn is_stuck(&self, i: usize, has_goal: bool, steps: u32) -> bool {
+        let (Some(&arrived), Some(&progress)) = (self.arrived_step.get(i), self.last_progress_step.get(i))
+        else {
+            return false;
+        };
+        arrived == NOT_ARRIVED
+            && has_goal
+            && steps >= STUCK_WINDOW
+            && steps.saturating_sub(progress) >= STUCK_WINDOW
+    }
+
     fn agent_stats(&self, agents: std::ops::Range<usize>, has_goal: bool, steps: u32) -> Stats {
         let mut s = Stats::default();
         for i in agents {
@@ -308,8 +322,7 @@ impl MetricsRecorder {
             if self.arrived_step[i] != NOT_ARRIVED {
                 s.arrived += 1;
                 s.arrival_steps_sum += f64::from(self.arrived_step[i]);
-            } else if has_goal && steps >= STUCK_WINDOW && steps - self.last_progress_step[i] >= STUCK_WINDOW
-            {
+            } else if self.is_stuck(i, has_goal, steps) {
                 s.stuck += 1;
             }
         }

@@ -80,6 +80,11 @@ pub const ALL: &[Preset] = &[
         build: firefly_migration,
     },
     Preset {
+        name: "u-trap",
+        description: "A U-shaped wall opens towards three groups (PSO, firefly, Boids): local minima, stuck agents flagged.",
+        build: u_trap,
+    },
+    Preset {
         name: "forces-e1-open",
         description: "Virtual forces, E1: a group follows a moving goal across open space.",
         build: forces_e1_open,
@@ -157,6 +162,25 @@ pub fn corridor() -> Scene {
     s.obstacles.push(Obstacle::Rect { min: [350.0, 295.0], max: [550.0, 500.0] });
     s.goals.push(Goal::fixed([820.0, 250.0], 60.0));
     s.groups.push(group("flock", "#2f9f5f", 60, ([30.0, 100.0], [200.0, 400.0]), 0));
+    s
+}
+
+/// A U-shaped wall between three groups and their goal, opening towards them: the straight way
+/// leads into the cup, a local minimum of every cost that only looks at the distance to the goal.
+/// PSO (blue), firefly (orange) and Boids (green) groups start side by side on the left.
+pub fn u_trap() -> Scene {
+    let mut s = base("u-trap", 900.0, 600.0);
+    s.obstacles.push(Obstacle::Rect { min: [520.0, 160.0], max: [550.0, 440.0] });
+    s.obstacles.push(Obstacle::Rect { min: [360.0, 160.0], max: [550.0, 190.0] });
+    s.obstacles.push(Obstacle::Rect { min: [360.0, 410.0], max: [550.0, 440.0] });
+    s.goals.push(Goal::fixed([800.0, 300.0], 50.0));
+    s.groups.push(pso_group("pso", "#2f6fdf", 15, ([60.0, 230.0], [160.0, 290.0]), 0));
+    let firefly = PlannerConfig::Firefly(FireflyParams::default());
+    s.groups.push(Group {
+        planner: firefly,
+        ..group("firefly", "#df7f1f", 15, ([60.0, 310.0], [160.0, 370.0]), 0)
+    });
+    s.groups.push(group("boids", "#2f9f5f", 15, ([60.0, 390.0], [160.0, 450.0]), 0));
     s
 }
 

@@ -11,6 +11,10 @@
 //! (a byte loop over a stripe of rows). Every layer is opaque, so the premultiplied bytes are
 //! also the straight-alpha bytes `ImageData` wants.
 
+mod overlay;
+
+pub use overlay::{Overlays, ARROW_COLORS};
+
 use crate::edit::ItemRef;
 use crate::geometry::Obstacle;
 use crate::scene::{parse_color, Scene};
@@ -174,6 +178,9 @@ pub struct Renderer {
     fade_phase: u32,
     sprites: Vec<GroupSprites>,
     selection: Option<ItemRef>,
+    /// Diagnosis overlays that are on, and the agent being inspected.
+    overlays: Overlays,
+    inspected: Option<u32>,
     /// Reused per frame: agents placed on the canvas, their drawing order, band counts.
     placed: Vec<Placed>,
     drawing_order: Vec<u32>,
@@ -200,6 +207,8 @@ impl Renderer {
             fade_phase: 0,
             sprites: Vec::new(),
             selection: None,
+            overlays: Overlays::default(),
+            inspected: None,
             placed: Vec::new(),
             drawing_order: Vec::new(),
             band_counts: Vec::new(),
@@ -287,6 +296,27 @@ impl Renderer {
         self.selection = item;
     }
 
+    /// Chooses the diagnosis overlays (see [`Overlays`]).
+    pub fn set_overlays(&mut self, overlays: Overlays) {
+        self.overlays = overlays;
+    }
+
+    /// The diagnosis overlays that are on.
+    pub fn overlays(&self) -> Overlays {
+        self.overlays
+    }
+
+    /// Inspects an agent (its explanation and cost landscape are drawn) or none. An id that does
+    /// not exist draws nothing.
+    pub fn set_inspected(&mut self, agent: Option<u32>) {
+        self.inspected = agent;
+    }
+
+    /// The inspected agent.
+    pub fn inspected(&self) -> Option<u32> {
+        self.inspected
+    }
+
     /// Draws `world` into the frame.
     pub fn render(&mut self, world: &World) {
         let scene = world.scene();
@@ -323,6 +353,13 @@ impl Renderer {
         }
         self.update_sprites(scene);
         self.draw_agents(world);
+        let target = overlay::Target {
+            frame: &mut self.frame,
+            width: self.width,
+            height: self.height,
+            view: self.view,
+        };
+        overlay::draw(target, world, self.overlays, self.inspected);
         if let Some(item) = self.selection {
             if let Some(mut pixmap) = PixmapMut::from_bytes(&mut self.frame, self.width, self.height) {
                 draw_selection(&mut pixmap, scene, view, item);

@@ -541,6 +541,7 @@ mod tests {
     }
 
     #[test]
+    #[cfg(not(target_arch = "wasm32"))] // rayon is native-only
     fn same_seed_same_run_and_threads_do_not_matter() {
         let (task, ga) = small();
         let ga = GaParams { max_generations: 3, ..ga };

@@ -151,6 +151,41 @@ impl World {
         &self.obstacles
     }
 
+    /// The neighbour grid as of the end of the last step (for picking and diagnosis).
+    pub fn grid(&self) -> &SpatialGrid {
+        &self.grid
+    }
+
+    /// The read-only context the planners see at the start of the next step: diagnosis
+    /// ([`crate::diagnose`]) recomputes a planner's terms from it.
+    pub fn step_context(&self) -> StepContext<'_> {
+        StepContext {
+            positions: &self.pos,
+            velocities: &self.vel,
+            radii: &self.radius,
+            grid: &self.grid,
+            obstacles: &self.obstacles,
+            bounds: Vec2::new(self.scene.width, self.scene.height),
+            step: self.step,
+        }
+    }
+
+    /// The planner steering group `g`.
+    pub fn planner_of_group(&self, g: usize) -> Option<&dyn Planner> {
+        self.groups.get(g).map(|r| r.planner.as_ref())
+    }
+
+    /// What the planner of group `g` is told about its group at the next step.
+    pub fn group_view(&self, g: usize) -> Option<GroupView> {
+        let agents = self.groups.get(g)?.agents.clone();
+        Some(GroupView { agents, goal: self.goal_of_group(g) })
+    }
+
+    /// The per-agent metrics accumulators (stuck flags for diagnosis).
+    pub fn metrics_recorder(&self) -> &MetricsRecorder {
+        &self.recorder
+    }
+
     /// Current goal position of group `g`, if it has one.
     pub fn goal_of_group(&self, g: usize) -> Option<(Vec2, f32)> {
         let goal = self.scene.groups.get(g)?.goal?;

@@ -103,6 +103,7 @@ fn same_seed_same_result_and_different_seed_differs() {
 
 /// The table (every run's curve included) is bit-identical on one thread and on four.
 #[test]
+#[cfg(not(target_arch = "wasm32"))] // rayon is native-only
 fn thread_count_does_not_change_results() {
     let args = OptimizeArgs {
         functions: vec![Function::Rastrigin, Function::Griewank],

@@ -8,12 +8,15 @@
 mod bench;
 
 use flockpath::export::{self, ExportOptions};
+use flockpath::history::{self, MetricsHistory};
 use flockpath::recording::Recording;
 use flockpath::{presets, scene_from_any, scene_to_fragment, scene_to_json, PlannerKind, Scene, World};
 use std::io::{Read as _, Write as _};
 use std::path::Path;
 use std::process::ExitCode;
 
+/// Most samples `run --metrics-history` keeps before halving its sampling rate.
+const HISTORY_CAP: usize = 4096;
 /// Most steps one `run` may ask for (about 4.6 hours of simulated time at 60 steps/s).
 const MAX_STEPS: u32 = 1_000_000;
 
@@ -53,6 +56,7 @@ USAGE:
     flockpath run --scene SCENE --steps N [--planner NAME] [--seed S] [--metrics FILE|-]
                   [--paths out.csv] [--paths-json out.json] [--maya out.mel]
                   [--blender out.py] [--svg out.svg] [--fps F] [--scale S]
+                  [--metrics-history out.csv]
 
 OPTIONS:
     --scene SCENE      A scene JSON file, `-` for stdin, a URL fragment value (1.…),
@@ -62,6 +66,10 @@ OPTIONS:
     --seed S           Replace the scene's seed (0…4294967295)
     --metrics FILE|-   Write the metrics JSON to FILE, or to stdout with `-`;
                        without it a one-line summary is printed
+    --metrics-history FILE
+                       Write the metrics over time as CSV: step,time_s,group,<series…>,
+                       a row per sample (every 5 steps, halved beyond 4096 samples) for
+                       the whole run (group `all`) and per group
     --paths FILE       Write every agent's path as CSV: agent,group,step,time,x,y,vx,vy
                        (one row per agent per recorded step, step 0 included)
     --paths-json FILE  Write the paths as JSON
@@ -351,6 +359,7 @@ fn run(args: &[String]) -> Result<(), CliError> {
             "--seed",
             "--steps",
             "--metrics",
+            "--metrics-history",
             "--paths",
             "--paths-json",
             "--maya",
@@ -398,15 +407,29 @@ fn run(args: &[String]) -> Result<(), CliError> {
         scene.seed = seed;
     }
     let mut world = World::new(scene).map_err(|e| failed(format!("cannot run the scene: {e}")))?;
-    if recording_wanted {
-        let mut recording = Recording::of_world(&world, RECORDING_BUDGET_BYTES);
+    let mut recording = recording_wanted.then(|| Recording::of_world(&world, RECORDING_BUDGET_BYTES));
+    let history_file = get("--metrics-history");
+    let mut history = history_file.map(|_| MetricsHistory::new(history::DEFAULT_EVERY, HISTORY_CAP));
+    if recording.is_none() && history.is_none() {
+        world.step_n(steps);
+    } else {
         for _ in 0..steps {
             world.step();
-            recording.capture_world(&world);
+            if let Some(r) = recording.as_mut() {
+                r.capture_world(&world);
+            }
+            if let Some(h) = history.as_mut() {
+                h.sample(&world);
+            }
         }
-        write_exports(&world, &recording, export_options, &get)?;
-    } else {
-        world.step_n(steps);
+    }
+    if let Some(recording) = &recording {
+        write_exports(&world, recording, export_options, &get)?;
+    }
+    if let (Some(h), Some(file)) = (&history, history_file) {
+        let names: Vec<String> = world.scene().groups.iter().map(|g| g.name.clone()).collect();
+        std::fs::write(file, h.to_csv(&names))
+            .map_err(|e| failed(format!("cannot write metrics history file {file:?}: {e}")))?;
     }
     let metrics = world.metrics();
     let json = serde_json::to_string_pretty(&metrics)

@@ -5,6 +5,7 @@
 //! ("Arbitration"), then `v += a; v = limit(v, max_speed); p += v` (lecture, `Boid::update`).
 
 use super::{limit, GroupView, ParamSpec, Planner, StepContext};
+use crate::diagnose::{Explanation, NamedVector};
 use crate::geometry::{unit_or, Aabb, Obstacle};
 use crate::rng::Rng;
 use glam::Vec2;
@@ -288,108 +289,154 @@ impl Planner for Boids {
     }
 
     fn plan(&mut self, ctx: &StepContext, group: GroupView, _rng: &mut Rng, new_velocities: &mut [Vec2]) {
+        let mut near = std::mem::take(&mut self.near);
+        for (k, id) in group.agents.clone().enumerate() {
+            let forces = self.agent_forces(ctx, &group, id, &mut near);
+            new_velocities[k] =
+                limit(ctx.velocities[id as usize] + forces.acceleration, self.params.max_speed);
+        }
+        self.near = near;
+    }
+
+    fn explain(&self, ctx: &StepContext, group: &GroupView, agent: u32) -> Explanation {
+        let mut near = Vec::new();
+        let forces = self.agent_forces(ctx, group, agent, &mut near);
+        let mut e = Explanation::default();
+        for (name, force) in RULE_NAMES.iter().zip(forces.weighted) {
+            e.vectors.push(NamedVector::new(name, force));
+        }
+        e.applied = forces.acceleration;
+        e.neighbours =
+            near[..forces.neighbours].iter().filter(|n| n.id != agent && n.d2 > 0.0).map(|n| n.id).collect();
+        e.state = if forces.parked { "parked in the goal".into() } else { "steering".into() };
+        e
+    }
+}
+
+/// The rule forces of one agent in one step.
+struct AgentForces {
+    /// Weighted forces in [`RULE_NAMES`] order.
+    weighted: [Vec2; 5],
+    /// The acceleration the arbitration makes of them.
+    acceleration: Vec2,
+    /// Inside the goal: braking, only keeping its distance.
+    parked: bool,
+    /// How many entries of the scratch list are the agent's neighbours (itself included).
+    neighbours: usize,
+}
+
+/// Names of the weighted rule forces, in arbitration order (the explanation's arrows).
+const RULE_NAMES: [&str; 5] = ["obstacle avoidance", "separation", "seek", "alignment", "cohesion"];
+
+impl Boids {
+    /// Every rule force of agent `id` from the step's state; `near` is scratch for its neighbours.
+    /// `plan` and `explain` both call it, so an explanation is exactly what the step applies.
+    fn agent_forces(
+        &self,
+        ctx: &StepContext,
+        group: &GroupView,
+        id: u32,
+        near: &mut Vec<NearAgent>,
+    ) -> AgentForces {
         let prm = &self.params;
         let sep_r2 = prm.separation_radius * prm.separation_radius;
         let look = self.interaction_radius();
         let look2 = look * look;
         let (first, end) = (group.agents.start, group.agents.end);
-        for (k, id) in group.agents.clone().enumerate() {
-            let i = id as usize;
-            let p = ctx.positions[i];
-            let vel = ctx.velocities[i];
+        let i = id as usize;
+        let p = ctx.positions[i];
+        let vel = ctx.velocities[i];
 
-            let (mut sep, mut n_sep) = (Vec2::ZERO, 0u32);
-            let (mut sum_vel, mut sum_pos, mut n_flock) = (Vec2::ZERO, Vec2::ZERO, 0u32);
-            // Pass 1 gathers the neighbours without a branch per candidate (whether a candidate of
-            // the nearby cells is within reach is a coin flip the CPU cannot predict); pass 2 sums
-            // over them in the same order, so the sums are those of a plain loop, bit for bit.
-            // `near` only grows; `count` is how much of it holds this agent's neighbours.
-            let near = &mut self.near;
-            let mut count = 0usize;
-            ctx.grid.for_each_candidate_run(p, look, |ids, positions, velocities| {
-                if near.len() <= count + ids.len() {
-                    near.resize(count + ids.len() + 1, NearAgent::default());
-                }
-                for ((&nid, &q), &nv) in ids.iter().zip(positions).zip(velocities) {
-                    let d2 = p.distance_squared(q);
-                    if let Some(slot) = near.get_mut(count) {
-                        *slot = NearAgent { id: nid, d2, pos: q, vel: nv };
-                    }
-                    count += usize::from(d2 <= look2);
-                }
-            });
-            for n in &near[..count] {
-                if n.id == id || n.d2 <= 0.0 {
-                    continue;
-                }
-                // (p − q)/|p − q|²: the lecture's normalised difference over the distance. Masked,
-                // not branched: the test is unpredictable, and adding +0 leaves the sum exact.
-                let close = n.d2 < sep_r2;
-                sep += keep_if(close, (p - n.pos) / n.d2);
-                n_sep += u32::from(close);
-                // Alignment and cohesion only with the agent's own group.
-                if n.id >= first && n.id < end {
-                    sum_vel += n.vel;
-                    sum_pos += n.pos;
-                    n_flock += 1;
-                }
+        let (mut sep, mut n_sep) = (Vec2::ZERO, 0u32);
+        let (mut sum_vel, mut sum_pos, mut n_flock) = (Vec2::ZERO, Vec2::ZERO, 0u32);
+        // Pass 1 gathers the neighbours without a branch per candidate (whether a candidate of
+        // the nearby cells is within reach is a coin flip the CPU cannot predict); pass 2 sums
+        // over them in the same order, so the sums are those of a plain loop, bit for bit.
+        // `near` only grows; `count` is how much of it holds this agent's neighbours.
+        let mut count = 0usize;
+        ctx.grid.for_each_candidate_run(p, look, |ids, positions, velocities| {
+            if near.len() <= count + ids.len() {
+                near.resize(count + ids.len() + 1, NearAgent::default());
             }
-
-            let separation = if n_sep > 0 { self.steer_towards(sep, vel) } else { Vec2::ZERO };
-            let (alignment, cohesion) = if n_flock > 0 {
-                let inv = 1.0 / n_flock as f32;
-                (self.steer_towards(sum_vel * inv, vel), self.steer_towards(sum_pos * inv - p, vel))
-            } else {
-                (Vec2::ZERO, Vec2::ZERO)
-            };
-            let mut parked = false;
-            let (seek, to_goal) = match group.goal {
-                Some((goal, goal_radius)) => {
-                    let to = goal - p;
-                    let d = to.length();
-                    // Inside the goal the agent parks: it brakes and only keeps its distance, so
-                    // an arrived group spreads over the goal instead of piling onto its centre.
-                    parked = d <= goal_radius;
-                    // Arrival: slow down over `arrival_radius` before the goal's edge, and creep
-                    // (a tenth of max speed) the rest of the way so the group keeps filling in.
-                    let ramp = ((d - goal_radius) / prm.arrival_radius).clamp(0.1, 1.0);
-                    let speed = if parked { 0.0 } else { prm.max_speed * ramp };
-                    let desired = if d > 1e-6 { to * (speed / d) } else { Vec2::ZERO };
-                    (limit(desired - vel, prm.max_force), to)
+            for ((&nid, &q), &nv) in ids.iter().zip(positions).zip(velocities) {
+                let d2 = p.distance_squared(q);
+                if let Some(slot) = near.get_mut(count) {
+                    *slot = NearAgent { id: nid, d2, pos: q, vel: nv };
                 }
-                None => (Vec2::ZERO, Vec2::X),
-            };
-            let (alignment, cohesion) = if parked { (Vec2::ZERO, Vec2::ZERO) } else { (alignment, cohesion) };
-            let avoid = self.avoid_obstacles(ctx, p, vel, ctx.radii[i], unit_or(to_goal, Vec2::X))
-                + self.contain(ctx, p, vel);
-
-            let weighted = [
-                avoid * prm.avoid_weight,
-                separation * prm.separation_weight,
-                seek * prm.seek_weight,
-                alignment * prm.alignment_weight,
-                cohesion * prm.cohesion_weight,
-            ];
-            let acceleration = match prm.arbitration {
-                Arbitration::Weighted => limit(weighted.iter().sum(), prm.max_force),
-                Arbitration::Priority => {
-                    let mut acc = Vec2::ZERO;
-                    let mut budget = prm.max_force;
-                    for f in weighted {
-                        let len = f.length();
-                        if len <= budget {
-                            acc += f;
-                            budget -= len;
-                        } else {
-                            acc += f * (budget / len);
-                            break;
-                        }
-                    }
-                    acc
-                }
-            };
-            new_velocities[k] = limit(vel + acceleration, prm.max_speed);
+                count += usize::from(d2 <= look2);
+            }
+        });
+        for n in &near[..count] {
+            if n.id == id || n.d2 <= 0.0 {
+                continue;
+            }
+            // (p − q)/|p − q|²: the lecture's normalised difference over the distance. Masked,
+            // not branched: the test is unpredictable, and adding +0 leaves the sum exact.
+            let close = n.d2 < sep_r2;
+            sep += keep_if(close, (p - n.pos) / n.d2);
+            n_sep += u32::from(close);
+            // Alignment and cohesion only with the agent's own group.
+            if n.id >= first && n.id < end {
+                sum_vel += n.vel;
+                sum_pos += n.pos;
+                n_flock += 1;
+            }
         }
+
+        let separation = if n_sep > 0 { self.steer_towards(sep, vel) } else { Vec2::ZERO };
+        let (alignment, cohesion) = if n_flock > 0 {
+            let inv = 1.0 / n_flock as f32;
+            (self.steer_towards(sum_vel * inv, vel), self.steer_towards(sum_pos * inv - p, vel))
+        } else {
+            (Vec2::ZERO, Vec2::ZERO)
+        };
+        let mut parked = false;
+        let (seek, to_goal) = match group.goal {
+            Some((goal, goal_radius)) => {
+                let to = goal - p;
+                let d = to.length();
+                // Inside the goal the agent parks: it brakes and only keeps its distance, so
+                // an arrived group spreads over the goal instead of piling onto its centre.
+                parked = d <= goal_radius;
+                // Arrival: slow down over `arrival_radius` before the goal's edge, and creep
+                // (a tenth of max speed) the rest of the way so the group keeps filling in.
+                let ramp = ((d - goal_radius) / prm.arrival_radius).clamp(0.1, 1.0);
+                let speed = if parked { 0.0 } else { prm.max_speed * ramp };
+                let desired = if d > 1e-6 { to * (speed / d) } else { Vec2::ZERO };
+                (limit(desired - vel, prm.max_force), to)
+            }
+            None => (Vec2::ZERO, Vec2::X),
+        };
+        let (alignment, cohesion) = if parked { (Vec2::ZERO, Vec2::ZERO) } else { (alignment, cohesion) };
+        let avoid = self.avoid_obstacles(ctx, p, vel, ctx.radii[i], unit_or(to_goal, Vec2::X))
+            + self.contain(ctx, p, vel);
+
+        let weighted = [
+            avoid * prm.avoid_weight,
+            separation * prm.separation_weight,
+            seek * prm.seek_weight,
+            alignment * prm.alignment_weight,
+            cohesion * prm.cohesion_weight,
+        ];
+        let acceleration = match prm.arbitration {
+            Arbitration::Weighted => limit(weighted.iter().sum(), prm.max_force),
+            Arbitration::Priority => {
+                let mut acc = Vec2::ZERO;
+                let mut budget = prm.max_force;
+                for f in weighted {
+                    let len = f.length();
+                    if len <= budget {
+                        acc += f;
+                        budget -= len;
+                    } else {
+                        acc += f * (budget / len);
+                        break;
+                    }
+                }
+                acc
+            }
+        };
+        AgentForces { weighted, acceleration, parked, neighbours: count }
     }
 }
 

@@ -36,6 +36,7 @@
 //!   surface normal nearest the position, which equals it for circles and works for any shape.
 
 use super::{limit, GroupView, ParamSpec, Planner, StepContext};
+use crate::diagnose::{Explanation, NamedPoint, NamedVector};
 use crate::geometry::{unit_or, Aabb};
 use crate::rng::Rng;
 use glam::Vec2;
@@ -210,6 +211,81 @@ impl Planner for Firefly {
 
     fn max_speed(&self) -> f32 {
         self.params.max_velocity
+    }
+
+    /// The same terms as `plan` without the random step (its expectation is zero): the brighter
+    /// firefly followed, the feeler and whether a brighter one blocks its tip, the avoidance.
+    fn explain(&self, ctx: &StepContext, group: &GroupView, agent: u32) -> Explanation {
+        let prm = &self.params;
+        let mut e = Explanation { scale: 15.0, ..Explanation::default() };
+        let k = agent.wrapping_sub(group.agents.start) as usize;
+        let i = agent as usize;
+        let (Some(&p), Some(&vel)) = (ctx.positions.get(i), ctx.velocities.get(i)) else { return e };
+        let mass = self.mass.get(k).copied().unwrap_or(0.5 * (prm.mass_min + prm.mass_max)).max(1e-3);
+        e.values.push(("mass".into(), mass));
+        let Some((target, _)) = group.goal else {
+            e.state = "no target: every firefly equally bright, drifting".into();
+            return e;
+        };
+        let my2 = p.distance_squared(target);
+        e.values.push(("brightness 1/|x − target|".into(), 1.0 / my2.sqrt().max(1e-3)));
+        let heading = unit_or(vel, unit_or(target - p, Vec2::X));
+        let tip = p + heading * prm.feeler_length;
+        let (view2, safe2) = (prm.view_radius * prm.view_radius, prm.safe_distance * prm.safe_distance);
+        let mut nearest: Option<(f32, u32, Vec2)> = None;
+        let mut blocker: Option<(f32, u32, Vec2)> = None;
+        ctx.grid.for_each_within(p, self.interaction_radius(), |nb| {
+            if nb.id == agent || !group.agents.contains(&nb.id) || nb.pos.distance_squared(target) >= my2 {
+                return;
+            }
+            let at_tip = nb.pos.distance_squared(tip);
+            if at_tip < safe2 && blocker.is_none_or(|(d2, j, _)| (at_tip, nb.id) < (d2, j)) {
+                blocker = Some((at_tip, nb.id, nb.pos));
+            }
+            if nb.d2 <= view2 {
+                e.neighbours.push(nb.id);
+                if nearest.is_none_or(|(d2, j, _)| (nb.d2, nb.id) < (d2, j)) {
+                    nearest = Some((nb.d2, nb.id, nb.pos));
+                }
+            }
+        });
+        e.vectors.push(NamedVector::px("feeler", heading * prm.feeler_length));
+        let acceleration = match nearest {
+            Some((d2, j, q)) => {
+                let beta = self.attractiveness(d2.sqrt());
+                e.values.push(("attractiveness β".into(), beta));
+                e.values.push(("followed firefly".into(), j as f32));
+                e.points.push(NamedPoint::new("brighter firefly followed", q));
+                let a = (q - p) * beta / mass;
+                e.vectors.push(NamedVector::new("attraction β(xj − xi)/m", a));
+                a
+            }
+            None => {
+                let a = unit_or(target - p, heading) * prm.max_velocity;
+                e.vectors.push(NamedVector::new("max-speed force to the target", a));
+                a
+            }
+        };
+        if let Some((_, _, q)) = blocker {
+            e.points.push(NamedPoint::new("brighter firefly at the feeler tip", q));
+        }
+        let forced = limit(vel + acceleration, prm.max_velocity);
+        let v = if blocker.is_some() {
+            unit_or(forced, heading) * (prm.max_velocity * prm.brake)
+        } else {
+            forced
+        };
+        let avoid = self.avoid(ctx, p, unit_or(v, heading));
+        if avoid != Vec2::ZERO {
+            e.vectors.push(NamedVector::new("obstacle avoidance", avoid));
+        }
+        e.applied = limit(v + avoid, prm.max_velocity) - vel;
+        e.state = match (blocker.is_some(), nearest.is_some()) {
+            (true, _) => "queued: a brighter firefly is at the feeler tip (braking)".into(),
+            (false, true) => "attracted by the nearest brighter firefly".into(),
+            (false, false) => "brightest in view: max-speed force to the target".into(),
+        };
+        e
     }
 
     fn plan(&mut self, ctx: &StepContext, group: GroupView, rng: &mut Rng, new_velocities: &mut [Vec2]) {

@@ -6,6 +6,7 @@
 //! 330° cone up to 20 body sizes (body size = diameter).
 
 use super::{limit, GroupView, ParamSpec, Planner, StepContext};
+use crate::diagnose::{Explanation, NamedVector};
 use crate::geometry::{unit_or, Aabb, Obstacle};
 use crate::rng::Rng;
 use glam::Vec2;
@@ -380,61 +381,97 @@ impl Planner for Forces {
         self.params.max_speed
     }
 
+    fn explain(&self, ctx: &StepContext, group: &GroupView, agent: u32) -> Explanation {
+        let prm = &self.params;
+        let mut e = Explanation { scale: 150.0, ..Explanation::default() };
+        if agent as usize >= ctx.positions.len() {
+            return e;
+        }
+        let mut neighbours = Vec::new();
+        let forces = self.agent_forces(ctx, group, agent, |id| neighbours.push(id));
+        for ((name, f), s) in FORCE_NAMES.iter().zip(forces).zip(prm.weights()) {
+            e.vectors.push(NamedVector::new(name, f * (s * prm.max_force)));
+        }
+        e.applied = e.vectors.iter().map(|v| v.vector).sum();
+        e.neighbours = neighbours;
+        e.state = "five weighted forces; the turn per step is limited after the sum".into();
+        e
+    }
+
     fn plan(&mut self, ctx: &StepContext, group: GroupView, _rng: &mut Rng, new_velocities: &mut [Vec2]) {
         if let Some((goal, _)) = group.goal {
             self.record_trace(ctx.step, goal);
         }
-        let prm = &self.params;
-        let weights = prm.weights();
         for (k, id) in group.agents.clone().enumerate() {
-            let i = id as usize;
-            let p = ctx.positions[i];
-            let vel = ctx.velocities[i];
-            let radius = ctx.radii[i];
-            let size = 2.0 * radius;
-            let range = prm.view_range_sizes * size;
-            let speed = vel.length();
-            let heading = if speed > MIN_HEADING_SPEED { Some(vel / speed) } else { None };
-
-            let mut sep = Vec2::ZERO;
-            let (mut sum_vel, mut sum_pos, mut n_flock) = (Vec2::ZERO, Vec2::ZERO, 0u32);
-            let view_cos = self.view_cos;
-            ctx.grid.for_each_within(p, range, |n| {
-                if n.id == id || n.d2 <= 0.0 {
-                    return;
-                }
-                let d = n.d2.sqrt();
-                let away = (p - n.pos) / d;
-                if heading.is_some_and(|h| -away.dot(h) < view_cos) {
-                    return;
-                }
-                // A neighbour at contact pushes with 1, at two body sizes with ½, …
-                sep += away * (size / d);
-                if group.agents.contains(&n.id) {
-                    sum_vel += n.vel;
-                    sum_pos += n.pos;
-                    n_flock += 1;
-                }
-            });
-            let separation = limit(sep, 1.0);
-            let (alignment, cohesion) = if n_flock > 0 {
-                let inv = 1.0 / n_flock as f32;
-                (
-                    limit((sum_vel * inv - vel) / prm.max_speed, 1.0),
-                    limit((sum_pos * inv - p) / (0.5 * range), 1.0),
-                )
-            } else {
-                (Vec2::ZERO, Vec2::ZERO)
-            };
-            let following = self.following(ctx, p, vel, group.goal);
-            let towards = group.goal.map_or(Vec2::X, |(g, _)| unit_or(g - p, Vec2::X));
-            let collision = self.collision(ctx, p, vel, radius, towards);
-
-            let forces = [separation, alignment, cohesion, following, collision];
-            let force: Vec2 = forces.iter().zip(weights).map(|(f, s)| *f * s).sum();
-            let next = self.limit_turn(vel, vel + force * prm.max_force);
-            new_velocities[k] = limit(next, prm.max_speed);
+            let forces = self.agent_forces(ctx, &group, id, |_| {});
+            let vel = ctx.velocities[id as usize];
+            let force: Vec2 = forces.iter().zip(self.params.weights()).map(|(f, s)| *f * s).sum();
+            let next = self.limit_turn(vel, vel + force * self.params.max_force);
+            new_velocities[k] = limit(next, self.params.max_speed);
         }
+    }
+}
+
+/// Names of the five forces, in weight order (the explanation's arrows).
+const FORCE_NAMES: [&str; 5] =
+    ["s1 separation", "s2 alignment", "s3 cohesion", "s4 following", "s5 collision"];
+
+impl Forces {
+    /// The five normalised forces on agent `id` from the step's state, in [`FORCE_NAMES`] order;
+    /// `seen` is called with every neighbour in view. `plan` and `explain` both use it.
+    fn agent_forces(
+        &self,
+        ctx: &StepContext,
+        group: &GroupView,
+        id: u32,
+        mut seen: impl FnMut(u32),
+    ) -> [Vec2; 5] {
+        let prm = &self.params;
+        let i = id as usize;
+        let p = ctx.positions[i];
+        let vel = ctx.velocities[i];
+        let radius = ctx.radii[i];
+        let size = 2.0 * radius;
+        let range = prm.view_range_sizes * size;
+        let speed = vel.length();
+        let heading = if speed > MIN_HEADING_SPEED { Some(vel / speed) } else { None };
+
+        let mut sep = Vec2::ZERO;
+        let (mut sum_vel, mut sum_pos, mut n_flock) = (Vec2::ZERO, Vec2::ZERO, 0u32);
+        let view_cos = self.view_cos;
+        ctx.grid.for_each_within(p, range, |n| {
+            if n.id == id || n.d2 <= 0.0 {
+                return;
+            }
+            let d = n.d2.sqrt();
+            let away = (p - n.pos) / d;
+            if heading.is_some_and(|h| -away.dot(h) < view_cos) {
+                return;
+            }
+            // A neighbour at contact pushes with 1, at two body sizes with ½, …
+            seen(n.id);
+            sep += away * (size / d);
+            if group.agents.contains(&n.id) {
+                sum_vel += n.vel;
+                sum_pos += n.pos;
+                n_flock += 1;
+            }
+        });
+        let separation = limit(sep, 1.0);
+        let (alignment, cohesion) = if n_flock > 0 {
+            let inv = 1.0 / n_flock as f32;
+            (
+                limit((sum_vel * inv - vel) / prm.max_speed, 1.0),
+                limit((sum_pos * inv - p) / (0.5 * range), 1.0),
+            )
+        } else {
+            (Vec2::ZERO, Vec2::ZERO)
+        };
+        let following = self.following(ctx, p, vel, group.goal);
+        let towards = group.goal.map_or(Vec2::X, |(g, _)| unit_or(g - p, Vec2::X));
+        let collision = self.collision(ctx, p, vel, radius, towards);
+
+        [separation, alignment, cohesion, following, collision]
     }
 }
 

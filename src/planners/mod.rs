@@ -5,6 +5,7 @@ pub mod firefly;
 pub mod forces;
 pub mod pso;
 
+use crate::diagnose::Explanation;
 use crate::geometry::Obstacle;
 use crate::rng::Rng;
 use crate::spatial::{ObstacleIndex, SpatialGrid};
@@ -76,6 +77,19 @@ pub trait Planner: PlannerClone {
     /// them out. Only for showing a planner's own failure (the original PSO penetrating).
     fn passes_through_obstacles(&self) -> bool {
         false
+    }
+    /// Why `agent` would move as it does at the next step: the terms of its step recomputed from
+    /// `ctx` (forces per component, points looked at, neighbours). Called only for a selected
+    /// agent, so it costs nothing per step. The default explains nothing.
+    fn explain(&self, ctx: &StepContext, group: &GroupView, agent: u32) -> Explanation {
+        let _ = (ctx, group, agent);
+        Explanation::default()
+    }
+    /// The objective `agent` minimises at point `p`, for planners that have one (PSO's cost
+    /// landscape); `None` otherwise.
+    fn cost_at(&self, ctx: &StepContext, group: &GroupView, agent: u32, p: Vec2) -> Option<f32> {
+        let _ = (ctx, group, agent, p);
+        None
     }
 }
 

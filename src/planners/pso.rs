@@ -43,6 +43,7 @@
 //!   through obstacles: the original PSO of the paper's Fig. 5(b).
 
 use super::{GroupView, ParamSpec, Planner, StepContext};
+use crate::diagnose::{Explanation, NamedPoint, NamedVector};
 use crate::geometry::{unit_or, Aabb, Obstacle};
 use crate::rng::Rng;
 use glam::Vec2;
@@ -368,6 +369,42 @@ impl Pso {
     }
 }
 
+/// Agent `k`'s bests re-evaluated on the current landscape (phase 1 of a step).
+struct Reevaluated {
+    /// The evaluation at the agent's position.
+    here: Evaluation,
+    /// Its best position after the update.
+    pbest: Vec2,
+    /// That position's cost now.
+    pbest_cost: f32,
+    /// Its sight point towards the target and that point's cost, a gbest candidate.
+    sight: Option<(f32, Vec2)>,
+}
+
+/// Makes `(cost, p)` the best if it is cheaper (ties keep the earlier one).
+fn offer_best(best: &mut Option<(f32, Vec2)>, cost: f32, p: Vec2) {
+    if best.is_none_or(|(c, _)| cost < c) {
+        *best = Some((cost, p));
+    }
+}
+
+impl Pso {
+    /// Phase 1 for one agent: the cost here, the updated pbest and the sight point.
+    fn reevaluate(&self, ctx: &StepContext, k: usize, id: u32, goal: Option<Vec2>) -> Reevaluated {
+        let p = ctx.positions[id as usize];
+        let here = self.evaluate(ctx, id, p, goal);
+        let old_best = self.pbest.get(k).copied().unwrap_or(p);
+        let best = self.evaluate(ctx, id, old_best, goal).objective;
+        let (pbest, pbest_cost) = if here.objective <= best { (p, here.objective) } else { (old_best, best) };
+        let sight = goal.filter(|_| self.params.sight > 0.0).map(|g| {
+            let to = g - p;
+            let sight = p + to * (self.params.sight / to.length().max(self.params.sight));
+            (self.evaluate(ctx, id, sight, goal).objective, sight)
+        });
+        Reevaluated { here, pbest, pbest_cost, sight }
+    }
+}
+
 /// The scope `R` of an obstacle (px): its radius, or half the shorter side of its (bounding) box.
 fn obstacle_scope(o: &Obstacle) -> f32 {
     match o {
@@ -393,6 +430,104 @@ impl Planner for Pso {
         !self.params.acceptance
     }
 
+    fn cost_at(&self, ctx: &StepContext, group: &GroupView, agent: u32, p: Vec2) -> Option<f32> {
+        Some(self.evaluate(ctx, agent, p, group.goal.map(|(g, _)| g)).objective)
+    }
+
+    /// Recomputes phase 1 for the whole group (gbest needs it) and the agent's expected move:
+    /// the pull terms with r1 = r2 = ½, the speed its cost allows, and the first candidate and
+    /// evenly spaced retries with their acceptance probability (the step draws the retry angles
+    /// at random; a probability of 0 is a certain refusal).
+    fn explain(&self, ctx: &StepContext, group: &GroupView, agent: u32) -> Explanation {
+        let prm = &self.params;
+        let goal = group.goal.map(|(g, _)| g);
+        let start = group.agents.start;
+        let mut e = Explanation { scale: 20.0, ..Explanation::default() };
+        let Some(k) = agent.checked_sub(start).map(|k| k as usize).filter(|&k| k < group.agents.len()) else {
+            return e;
+        };
+        let mut gbest: Option<(f32, Vec2)> = None;
+        let mut mine = None;
+        for j in 0..group.agents.len() {
+            let r = self.reevaluate(ctx, j, start + j as u32, goal);
+            offer_best(&mut gbest, r.pbest_cost, r.pbest);
+            if let Some((cost, sight)) = r.sight {
+                offer_best(&mut gbest, cost, sight);
+            }
+            if j == k {
+                mine = Some(r);
+            }
+        }
+        let (Some(mine), Some((_, gbest))) = (mine, gbest) else { return e };
+        let p = ctx.positions[agent as usize];
+        let old = self
+            .direction
+            .get(k)
+            .copied()
+            .unwrap_or_else(|| unit_or(ctx.velocities[agent as usize], Vec2::X));
+        let inertia = old * prm.inertia;
+        let cognitive = unit_or(mine.pbest - p, Vec2::ZERO) * (prm.cognitive * 0.5);
+        let social = unit_or(gbest - p, Vec2::ZERO) * (prm.social * 0.5);
+        e.vectors.push(NamedVector::new("inertia ωD", inertia));
+        e.vectors.push(NamedVector::new("cognitive (to pbest)", cognitive));
+        e.vectors.push(NamedVector::new("social (to gbest)", social));
+        let direction = unit_or(inertia + cognitive + social, old);
+        let speed = prm.max_speed / mine.here.objective.max(1.0);
+        e.points.push(NamedPoint::new("pbest", mine.pbest));
+        e.points.push(NamedPoint::new("gbest", gbest));
+        let max_angle = prm.retry_angle_deg.to_radians();
+        let tries = 1 + prm.retries;
+        let mut accepted = 0;
+        for t in 0..tries {
+            let angle = if t == 0 || tries < 2 {
+                0.0
+            } else {
+                -max_angle + 2.0 * max_angle * (t - 1) as f32 / (tries - 2).max(1) as f32
+            };
+            let candidate = p + Vec2::from_angle(angle).rotate(direction) * speed;
+            let ev = self.evaluate(ctx, agent, candidate, goal);
+            let r = Vec2::splat(ctx.radii[agent as usize]);
+            let inside = candidate.cmpge(r).all() && candidate.cmple(ctx.bounds - r).all();
+            let escaping = mine.here.scaled2 <= prm.k && ev.scaled2 > mine.here.scaled2;
+            let probability = if !prm.acceptance || escaping {
+                1.0
+            } else if inside {
+                self.acceptance_probability(ev.scaled2)
+            } else {
+                0.0
+            };
+            if probability > 0.0 {
+                accepted += 1;
+            }
+            let name = if probability > 0.0 { "candidate" } else { "rejected candidate" };
+            e.points.push(NamedPoint::new(name, candidate));
+            if t == 0 {
+                e.values.push(("acceptance of the first candidate".into(), probability));
+                if probability > 0.0 {
+                    break;
+                }
+            }
+        }
+        e.applied = direction * speed;
+        e.values.push(("cost F here".into(), mine.here.objective));
+        e.values.push(("obstacle cost".into(), Self::obstacle_cost(mine.here.scaled2)));
+        e.values.push(("speed allowed".into(), speed));
+        let pair = 2.0 * prm.agent_sigma;
+        ctx.grid.for_each_within(p, CUTOFF_SCALED * pair, |n| {
+            if n.id != agent {
+                e.neighbours.push(n.id);
+            }
+        });
+        e.state = if accepted == 0 {
+            "every candidate refused: stays this step".into()
+        } else if mine.here.objective > 1.5 {
+            "slowed by the cost landscape".into()
+        } else {
+            "walking towards gbest".into()
+        };
+        e
+    }
+
     fn plan(&mut self, ctx: &StepContext, group: GroupView, rng: &mut Rng, new_velocities: &mut [Vec2]) {
         let n = group.agents.len();
         let goal = group.goal.map(|(g, _)| g);
@@ -416,28 +551,14 @@ impl Planner for Pso {
         let mut gbest: Option<(f32, Vec2)> = None;
         for k in 0..n {
             let id = start + k as u32;
-            let p = ctx.positions[id as usize];
-            let now = self.evaluate(ctx, id, p, goal);
-            let here = now.objective;
-            let best = self.evaluate(ctx, id, self.pbest[k], goal).objective;
-            self.here_cost[k] = here;
-            self.here_scaled2[k] = now.scaled2;
-            if here <= best {
-                self.pbest[k] = p;
-                self.pbest_cost[k] = here;
-            } else {
-                self.pbest_cost[k] = best;
-            }
-            if gbest.is_none_or(|(c, _)| self.pbest_cost[k] < c) {
-                gbest = Some((self.pbest_cost[k], self.pbest[k]));
-            }
-            if let Some(g) = goal.filter(|_| self.params.sight > 0.0) {
-                let to = g - p;
-                let sight = p + to * (self.params.sight / to.length().max(self.params.sight));
-                let cost = self.evaluate(ctx, id, sight, goal).objective;
-                if gbest.is_none_or(|(c, _)| cost < c) {
-                    gbest = Some((cost, sight));
-                }
+            let r = self.reevaluate(ctx, k, id, goal);
+            self.here_cost[k] = r.here.objective;
+            self.here_scaled2[k] = r.here.scaled2;
+            self.pbest[k] = r.pbest;
+            self.pbest_cost[k] = r.pbest_cost;
+            offer_best(&mut gbest, r.pbest_cost, r.pbest);
+            if let Some((cost, sight)) = r.sight {
+                offer_best(&mut gbest, cost, sight);
             }
         }
         let Some((_, gbest)) = gbest else { return };

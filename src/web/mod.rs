@@ -5,9 +5,12 @@
 //! [`Sim::frame_len`]); JS wraps it in a `Uint8ClampedArray` after every call, because the view
 //! dies when memory grows.
 
+mod diagnose;
+
 use crate::codec;
 use crate::edit::{self, Edit, ItemRef};
 use crate::export::{self, ExportOptions};
+use crate::history::MetricsHistory;
 use crate::planners::PlannerKind;
 use crate::presets;
 use crate::recording::Recording;
@@ -48,6 +51,8 @@ pub struct Sim {
     recording: Recording,
     /// The run's history for the timeline (see `timeline.rs`).
     replay: Replay,
+    /// The metrics over time for the plots (a run that restarts starts a new one).
+    history: MetricsHistory,
 }
 
 #[wasm_bindgen]
@@ -60,7 +65,13 @@ impl Sim {
         let world = World::new(scene).map_err(js_error)?;
         let recording = Recording::of_world(&world, RECORDING_BUDGET_BYTES);
         let replay = Replay::new(&world);
-        let mut sim = Sim { world, renderer: Renderer::new(width, height), recording, replay };
+        let mut sim = Sim {
+            world,
+            renderer: Renderer::new(width, height),
+            recording,
+            replay,
+            history: MetricsHistory::default(),
+        };
         sim.show_scene_view();
         Ok(sim)
     }
@@ -115,10 +126,11 @@ impl Sim {
         for _ in 0..n {
             self.world.step();
             if self.replay.record(&self.world) {
-                // A new step (not one replayed after a jump back): the export recording keeps
-                // the same history as the timeline.
+                // A new step (not one replayed after a jump back): the export recording and the
+                // metrics history keep the same history as the timeline.
                 self.recording.truncate_after(self.world.step_count().saturating_sub(1));
                 self.recording.capture_world(&self.world);
+                self.history.sample(&self.world);
             }
         }
     }

@@ -131,6 +131,71 @@ export function timeline() {
   return booted().guard((sim) => JSON.parse(sim.timeline_json()), { rethrow: true }).value;
 }
 
+/**
+ * The agent at scene point (x, y) within `tolerance` px of its body (the nearest), or null.
+ */
+export function agentAt(x, y, tolerance = 0) {
+  const id = booted().guard((sim) => sim.agent_at(Number(x), Number(y), Number(tolerance)), { rethrow: true }).value;
+  return id < 0 ? null : id;
+}
+
+/** Inspects agent `id` (null: nobody): the inspector opens and its forces are drawn. */
+export function inspect(id) {
+  const a = booted();
+  a.guard((sim) => sim.inspect(id === null || id === undefined ? -1 : Number(id)), { rethrow: true });
+  a.dirty = true;
+  a.dispatchEvent(new Event('inspection'));
+}
+
+/**
+ * Why the inspected agent moves as it does (null if nobody is inspected): `{agent, group,
+ * planner, position, velocity, speed, state, stuck, neighbours, vectors, points, applied, values}`.
+ */
+export function explanation() {
+  return booted().guard((sim) => JSON.parse(sim.explanation_json()), { rethrow: true }).value;
+}
+
+/** Ids of the agents stuck now (no progress towards their goal for 300 steps). */
+export function stuckAgents() {
+  return Array.from(booted().guard((sim) => sim.stuck_agents(), { rethrow: true }).value);
+}
+
+/**
+ * Switches overlays: `{stuck, explanation, landscape, fireflies}` (missing keys keep their
+ * state); returns the overlays now on.
+ */
+export function overlays(changes = {}) {
+  const a = booted();
+  return a.guard((sim) => {
+    const on = { ...JSON.parse(sim.overlays_json()), ...changes };
+    sim.set_overlays(Boolean(on.stuck), Boolean(on.explanation), Boolean(on.landscape), Boolean(on.fireflies));
+    a.dirty = true;
+    a.dispatchEvent(new Event('overlays'));
+    return JSON.parse(sim.overlays_json());
+  }, { rethrow: true }).value;
+}
+
+/**
+ * The metrics over time from the core: `{steps, every, thinned, series: {key: {label, unit,
+ * overall: [...], groups: [[...], ...]}}}`; missing values are null.
+ */
+export function metricsHistory() {
+  return booted().guard((sim) => {
+    const meta = JSON.parse(sim.history_json());
+    const list = (values) => Array.from(values, (v) => (Number.isFinite(v) ? v : null));
+    const series = {};
+    for (const s of meta.series) {
+      series[s.key] = {
+        label: s.label,
+        unit: s.unit,
+        overall: list(sim.history_series(s.key, -1)),
+        groups: meta.groups.map((_, i) => list(sim.history_series(s.key, i))),
+      };
+    }
+    return { steps: Array.from(sim.history_steps()), every: meta.every, thinned: meta.thinned, series };
+  }, { rethrow: true }).value;
+}
+
 /** The API object: `window.flockpath` and this module's default export. */
 export const flockpath = Object.freeze({
   ready,
@@ -148,6 +213,12 @@ export const flockpath = Object.freeze({
   timeline,
   positions,
   view,
+  agentAt,
+  inspect,
+  explanation,
+  stuckAgents,
+  overlays,
+  metricsHistory,
 });
 
 export default flockpath;

@@ -139,6 +139,11 @@ export class Editor {
         if (item && moved) {
           this.edit({ op: 'move', item, dx: x1 - x0, dy: y1 - y0 }, { clearSelection: false });
         }
+        // A plain click also inspects the agent under it (inspector.js listens).
+        if (!moved) {
+          const detail = { x: x0, y: y0, tolerance: this.units(PICK_TOLERANCE_CSS) };
+          this.app.dispatchEvent(new CustomEvent('canvas-click', { detail }));
+        }
         break;
       case 'circle':
         if (moved) {

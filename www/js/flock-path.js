@@ -36,7 +36,8 @@ const STYLE = `
 :host([hidden]) { display: none; }
 .frame { display: flex; flex-direction: column; width: 100%; height: 100%; }
 .stage { position: relative; width: 100%; min-height: 80px; }
-:host([fill]) .stage, :host([height]) .stage { flex: 1; min-height: 0; }
+:host([fill]) .stage, :host([height]) .stage, :host(:fullscreen) .stage { flex: 1; min-height: 0; aspect-ratio: auto !important; }
+:host(:fullscreen) { width: 100%; height: 100%; border: 0; border-radius: 0; }
 canvas { position: absolute; inset: 0; width: 100%; height: 100%; display: block; }
 .bar { display: flex; align-items: center; gap: 6px; padding: 4px 6px; border-top: 1px solid #d5dbe3; background: #fff; flex-wrap: wrap; }
 .bar[hidden] { display: none; }
@@ -79,6 +80,7 @@ export class FlockPathElement extends HTMLElement {
           <button type="button" class="reset" title="Restart from the seed">Reset</button>
           <span class="planner"></span>
           <span class="steps" aria-live="off"></span>
+          <button type="button" class="fullscreen" title="Full screen" aria-label="Full screen" hidden><svg width="14" height="14" viewBox="0 0 14 14" aria-hidden="true" fill="none" stroke="currentColor" stroke-width="2"><path d="M1 5V1h4M9 1h4v4M13 9v4H9M5 13H1V9"/></svg></button>
           <slot name="actions"></slot>
         </div>
       </div>`;
@@ -98,6 +100,12 @@ export class FlockPathElement extends HTMLElement {
       this.step(1);
     });
     this.$('.reset').addEventListener('click', () => this.reset());
+    const fullscreen = this.$('.fullscreen');
+    fullscreen.hidden = !document.fullscreenEnabled;
+    fullscreen.addEventListener('click', () => {
+      if (document.fullscreenElement === this) document.exitFullscreen();
+      else this.requestFullscreen?.().catch(() => {});
+    });
     this.$('.message').title = 'Click to dismiss';
     this.$('.message').addEventListener('click', () => this.hideMessage());
   }

@@ -10,6 +10,7 @@ import { capturePanicReports, isPanic, messageOf, setupBanner, showMessage, show
 import { setupHistoryButtons } from './history.js';
 import { startLoop } from './loop.js';
 import { setupMetrics } from './metrics.js';
+import { setupInspector } from './inspector.js';
 import { Panel } from './panel.js';
 import { setupExport } from './export.js';
 import { setupShare } from './share.js';
@@ -74,6 +75,7 @@ async function boot() {
   setupTimeline(app);
   setupCompareLink(app);
   const onFrame = setupMetrics(app);
+  setupInspector(app);
   startLoop(app, canvas, onFrame);
   document.getElementById('loading').hidden = true;
   if (linkError !== null) {

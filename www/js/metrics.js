@@ -1,5 +1,8 @@
-// The live metrics readout and the FPS counter. Values come from `metrics_json()` (DESIGN §4
-// keys); wall-clock time is used only to throttle the readout and to count frames.
+// The live metrics readout, the per-group table, the time-series plots and the FPS counter.
+// Values come from `metrics_json()` (DESIGN §4 keys) and the core's metrics history
+// (`history_series`); wall-clock time is used only to throttle the readout and to count frames.
+
+import { drawPlot } from './plots.js';
 
 /** [key, label, format, shown in red when above zero]; tooltips explain the counting rules. */
 const ROWS = [
@@ -23,6 +26,18 @@ const TIPS = {
 /** How often the readout refreshes (ms): fast enough to feel live, slow enough to read. */
 const REFRESH_MS = 250;
 
+/** Per-group table columns: [key, heading, format, tooltip]. */
+const GROUP_COLUMNS = [
+  ['arrived_share', 'Arr.', (v) => `${Math.round(100 * v)}%`, 'Share arrived'],
+  ['collisions_agent_agent', 'Coll.', (v) => v.toLocaleString('en-US'), 'Agent–agent collisions (pair-steps)'],
+  ['penetrations_agent_obstacle', 'Pen.', (v) => v.toLocaleString('en-US'), 'Agent–obstacle penetrations (agent-steps)'],
+  ['stuck_agents', 'Stuck', (v) => String(v), 'Agents without progress for 300 steps'],
+  ['queue_order', 'Queue', (v) => (v === null ? '–' : v.toFixed(2)), 'Queue order (firefly): share queued behind a brighter neighbour'],
+];
+
+/** Colour of the whole-run line in the plots. */
+const OVERALL_COLOR = '#17202c';
+
 export function setupMetrics(app) {
   const list = document.getElementById('metrics');
   const fps = document.getElementById('fps');
@@ -45,10 +60,85 @@ export function setupMetrics(app) {
   app.addEventListener('stepped', force);
   app.addEventListener('scene', force);
 
+  const groupTable = document.getElementById('metrics-groups');
+  const plotBox = document.getElementById('plots');
+  let plots = [];
+  let plotGroups = [];
+  const buildPlots = () => {
+    const meta = app.guard((sim) => JSON.parse(sim.history_json()));
+    if (!meta.ok || !plotBox) return;
+    plotGroups = meta.value.groups;
+    const keys = meta.value.series.map((s) => s.key).join();
+    if (plots.map((p) => p.key).join() === keys) return;
+    plotBox.replaceChildren();
+    plots = meta.value.series.map((series) => {
+      const canvas = document.createElement('canvas');
+      canvas.className = 'plot';
+      canvas.dataset.key = series.key;
+      canvas.title = `${series.label} (${series.unit}) over steps: one line per group, dark = whole run`;
+      plotBox.append(canvas);
+      return { ...series, canvas };
+    });
+  };
+  const drawPlots = () => {
+    if (!plotBox || plotBox.closest('details')?.open === false) return;
+    const result = app.guard((sim) => {
+      const steps = sim.history_steps();
+      return plots.map((p) => {
+        const lines = plotGroups.map((g, i) => ({ values: sim.history_series(p.key, i), color: g.color }));
+        if (plotGroups.length > 1) lines.push({ values: sim.history_series(p.key, -1), color: OVERALL_COLOR, width: 1 });
+        return { plot: p, steps, lines };
+      });
+    });
+    if (!result.ok) return;
+    for (const { plot, steps, lines } of result.value) {
+      drawPlot(plot.canvas, { steps, lines, label: plot.label, unit: plot.unit });
+    }
+  };
+  const fillGroups = (m) => {
+    if (!groupTable) return;
+    const body = groupTable.tBodies[0] ?? groupTable.createTBody();
+    if (!groupTable.tHead) {
+      const head = groupTable.createTHead().insertRow();
+      for (const text of ['Group', ...GROUP_COLUMNS.map((c) => c[1])]) {
+        const th = document.createElement('th');
+        th.textContent = text;
+        th.title = GROUP_COLUMNS.find((c) => c[1] === text)?.[3] ?? '';
+        head.append(th);
+      }
+    }
+    while (body.rows.length > m.groups.length) body.deleteRow(-1);
+    while (body.rows.length < m.groups.length) {
+      const row = body.insertRow();
+      for (let c = 0; c <= GROUP_COLUMNS.length; c += 1) row.insertCell();
+    }
+    m.groups.forEach((g, i) => {
+      const row = body.rows[i];
+      row.dataset.group = String(i);
+      const color = app.scene.groups?.[i]?.color ?? '#888';
+      const name = row.cells[0];
+      name.replaceChildren();
+      const swatch = document.createElement('span');
+      swatch.className = 'swatch';
+      swatch.style.background = color;
+      name.append(swatch, `${g.name ?? i + 1} (${g.planner ?? ''})`);
+      GROUP_COLUMNS.forEach(([key, , format], c) => {
+        const value = g[key];
+        row.cells[c + 1].textContent = value === undefined ? '–' : format(value);
+        row.cells[c + 1].classList.toggle('bad', (key === 'stuck_agents' || key === 'penetrations_agent_obstacle') && value > 0);
+      });
+    });
+  };
+  // Groups (names, colours) change with the scene; the series list never does.
+  app.addEventListener('scene', buildPlots);
+  buildPlots();
+
   const refresh = () => {
     const result = app.guard((sim) => JSON.parse(sim.metrics_json()));
     if (!result.ok) return;
     const m = result.value;
+    fillGroups(m);
+    drawPlots();
     for (const [key, , format, badWhenPositive] of ROWS) {
       const cell = cells.get(key);
       if (typeof m[key] !== 'number') {

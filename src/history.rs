@@ -1,0 +1,302 @@
+//! A bounded time series of a run's metrics, overall and per group, for the page's plots and
+//! `flockpath run --metrics-history`.
+//!
+//! A sample is taken every `every` steps. When the history holds its cap of samples it keeps
+//! every other one and samples half as often from then on (thinning, as in
+//! [`crate::recording`]), so a long run always fits and always spans its whole length. Counts
+//! that accumulate (collisions, penetrations) are stored as totals and turned into per-step rates
+//! between neighbouring kept samples when read, so thinning loses no events.
+
+use crate::metrics::{GroupMetrics, Metrics};
+use crate::world::World;
+
+/// One plotted series: key, label, unit.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SeriesSpec {
+    /// Stable key (page API, CSV column).
+    pub key: &'static str,
+    /// Label shown above the plot.
+    pub label: &'static str,
+    /// Unit shown after values.
+    pub unit: &'static str,
+}
+
+const fn spec(key: &'static str, label: &'static str, unit: &'static str) -> SeriesSpec {
+    SeriesSpec { key, label, unit }
+}
+
+/// Every series, in plot order. Values that do not exist yet (time to goal before the first
+/// arrival, queue order without a goal) are NaN: a gap in the plot.
+pub const SERIES: &[SeriesSpec] = &[
+    spec("arrived_share", "Arrived", "share"),
+    spec("mean_time_to_goal_s", "Time to goal", "s"),
+    spec("collisions_per_step", "Agent–agent collisions", "pairs/step"),
+    spec("penetrations_per_step", "Obstacle penetrations", "agents/step"),
+    spec("mean_path_length", "Mean path length", "px"),
+    spec("mean_turn_deg", "Mean turn", "°/step"),
+    spec("max_turn_deg", "Max turn", "°/step"),
+    spec("mean_speed_near_obstacles", "Speed near obstacles", "px/step"),
+    spec("queue_order", "Queue order", "share"),
+    spec("stuck_agents", "Stuck agents", "agents"),
+    spec("mean_speed", "Mean speed", "px/step"),
+];
+
+/// Raw values stored per sample and row: the series, with the two rates stored as totals.
+const RAW: usize = 11;
+const COLLISIONS: usize = 2;
+const PENETRATIONS: usize = 3;
+
+/// Default steps between samples at the start of a run.
+pub const DEFAULT_EVERY: u32 = 5;
+/// Default most samples kept (then thinned to half).
+pub const DEFAULT_CAP: usize = 512;
+
+/// The sampled metrics of one run.
+#[derive(Clone, Debug)]
+pub struct MetricsHistory {
+    every: u32,
+    cap: usize,
+    thinned: u32,
+    /// Rows per sample: overall, then one per group.
+    rows: usize,
+    steps: Vec<u32>,
+    /// `values[(s * rows + r) * RAW + k]`.
+    values: Vec<f32>,
+}
+
+impl Default for MetricsHistory {
+    fn default() -> Self {
+        Self::new(DEFAULT_EVERY, DEFAULT_CAP)
+    }
+}
+
+impl MetricsHistory {
+    /// An empty history sampling every `every` steps (at least 1), keeping at most `cap` samples
+    /// (at least 2).
+    pub fn new(every: u32, cap: usize) -> Self {
+        Self {
+            every: every.max(1),
+            cap: cap.max(2),
+            thinned: 0,
+            rows: 0,
+            steps: Vec::new(),
+            values: Vec::new(),
+        }
+    }
+
+    /// Forgets every sample (a new run); the sampling interval returns to `every`.
+    pub fn clear(&mut self, every: u32) {
+        *self = Self::new(every, self.cap);
+    }
+
+    /// Samples `world` if its step count falls on the sampling interval (call after every step;
+    /// a run that restarted from an earlier step starts a new history).
+    pub fn sample(&mut self, world: &World) {
+        let step = world.step_count();
+        if self.steps.last().is_some_and(|&last| step <= last) {
+            let every = if step == 0 { DEFAULT_EVERY } else { self.every };
+            self.clear(every.min(DEFAULT_EVERY));
+        }
+        if !step.is_multiple_of(self.every) {
+            return;
+        }
+        self.push(&world.metrics());
+    }
+
+    /// Appends the metrics of one step (thinning first when full).
+    pub fn push(&mut self, m: &Metrics) {
+        let rows = 1 + m.groups.len();
+        if rows != self.rows {
+            self.steps.clear();
+            self.values.clear();
+            self.rows = rows;
+        }
+        if self.steps.len() >= self.cap {
+            self.thin();
+            if !m.steps.is_multiple_of(self.every) {
+                return;
+            }
+        }
+        self.steps.push(m.steps);
+        push_row(&mut self.values, &m.overall);
+        for g in &m.groups {
+            push_row(&mut self.values, g);
+        }
+    }
+
+    fn thin(&mut self) {
+        self.every = self.every.saturating_mul(2);
+        self.thinned += 1;
+        let width = self.rows * RAW;
+        let mut steps = Vec::with_capacity(self.cap / 2 + 1);
+        let mut values = Vec::with_capacity(self.values.len() / 2 + width);
+        for (s, &step) in self.steps.iter().enumerate() {
+            if step.is_multiple_of(self.every) {
+                steps.push(step);
+                values.extend_from_slice(&self.values[s * width..(s + 1) * width]);
+            }
+        }
+        self.steps = steps;
+        self.values = values;
+    }
+
+    /// The sampled step numbers, increasing.
+    pub fn steps(&self) -> &[u32] {
+        &self.steps
+    }
+
+    /// Steps between samples now.
+    pub fn every(&self) -> u32 {
+        self.every
+    }
+
+    /// How many times the history was thinned.
+    pub fn thinned(&self) -> u32 {
+        self.thinned
+    }
+
+    /// Number of groups the samples have rows for.
+    pub fn groups(&self) -> usize {
+        self.rows.saturating_sub(1)
+    }
+
+    /// The series `key` (see [`SERIES`]) for `group` (`None`: overall), one value per sample;
+    /// `None` for an unknown key or group. Rates are per step between neighbouring samples; the
+    /// first sample's rate covers the steps since the start.
+    pub fn series(&self, key: &str, group: Option<usize>) -> Option<Vec<f32>> {
+        let k = SERIES.iter().position(|s| s.key == key)?;
+        let row = match group {
+            None => 0,
+            Some(g) if g + 1 < self.rows => g + 1,
+            Some(_) => return None,
+        };
+        let at = |s: usize| self.values[(s * self.rows + row) * RAW + k];
+        let mut out = Vec::with_capacity(self.steps.len());
+        for s in 0..self.steps.len() {
+            if k == COLLISIONS || k == PENETRATIONS {
+                let (before, since) = if s == 0 { (0.0, 0) } else { (at(s - 1), self.steps[s - 1]) };
+                let span = self.steps[s].saturating_sub(since).max(1) as f32;
+                out.push((at(s) - before) / span);
+            } else {
+                out.push(at(s));
+            }
+        }
+        Some(out)
+    }
+
+    /// The history as CSV: `step,time_s,group,<series…>`, one row per sample for the whole run
+    /// (group `all`) and one per group (its index from 1), empty cells for missing values.
+    pub fn to_csv(&self, group_names: &[String]) -> String {
+        let mut out = String::from("step,time_s,group");
+        for s in SERIES {
+            out.push(',');
+            out.push_str(s.key);
+        }
+        out.push('\n');
+        let columns: Vec<Vec<Vec<f32>>> = (0..self.rows)
+            .map(|row| {
+                let group = row.checked_sub(1);
+                SERIES.iter().map(|s| self.series(s.key, group).unwrap_or_default()).collect()
+            })
+            .collect();
+        let dt = f64::from(crate::world::DT);
+        for (i, &step) in self.steps.iter().enumerate() {
+            for (row, series) in columns.iter().enumerate() {
+                let name = match row {
+                    0 => "all".to_string(),
+                    r => group_names.get(r - 1).cloned().unwrap_or_else(|| r.to_string()),
+                };
+                out.push_str(&format!("{step},{:.4},{}", f64::from(step) * dt, csv_field(&name)));
+                for values in series {
+                    out.push(',');
+                    if let Some(v) = values.get(i).filter(|v| v.is_finite()) {
+                        out.push_str(&format!("{v}"));
+                    }
+                }
+                out.push('\n');
+            }
+        }
+        out
+    }
+}
+
+fn csv_field(s: &str) -> String {
+    if s.contains([',', '"', '\n']) {
+        format!("\"{}\"", s.replace('"', "\"\""))
+    } else {
+        s.to_string()
+    }
+}
+
+fn push_row(values: &mut Vec<f32>, g: &GroupMetrics) {
+    let opt = |x: Option<f64>| x.map_or(f32::NAN, |v| v as f32);
+    let row: [f32; RAW] = [
+        g.arrived_share as f32,
+        opt(g.mean_time_to_goal_s),
+        g.collisions_agent_agent as f32,
+        g.penetrations_agent_obstacle as f32,
+        g.mean_path_length as f32,
+        g.mean_turn_deg as f32,
+        g.max_turn_deg as f32,
+        opt(g.mean_speed_near_obstacles),
+        opt(g.queue_order),
+        g.stuck_agents as f32,
+        g.mean_speed as f32,
+    ];
+    values.extend_from_slice(&row);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::presets;
+
+    #[test]
+    fn thinning_keeps_the_cap_spans_the_run_and_keeps_rates_exact() {
+        let mut world = World::new(presets::two_groups_swap()).expect("valid");
+        let mut h = MetricsHistory::new(1, 20);
+        for _ in 0..200 {
+            world.step();
+            h.sample(&world);
+            assert!(h.steps().len() <= 20);
+        }
+        assert!(h.thinned() >= 3, "thinned {}", h.thinned());
+        assert!(h.steps().windows(2).all(|w| w[1] - w[0] == h.every()));
+        assert!(*h.steps().last().expect("samples") > 180);
+        assert_eq!(h.groups(), 2);
+        // Per-step rates times the spans add up to the last total.
+        let rates = h.series("collisions_per_step", None).expect("series");
+        let mut total = 0.0f64;
+        let mut since = 0;
+        for (r, &s) in rates.iter().zip(h.steps()) {
+            total += f64::from(*r) * f64::from(s - since);
+            since = s;
+        }
+        // …to the total at the last sample, replayed in a fresh run of the same scene.
+        let last = *h.steps().last().expect("samples");
+        let mut replay = World::new(presets::two_groups_swap()).expect("valid");
+        replay.step_n(last);
+        let expected = replay.metrics().overall.collisions_agent_agent as f64;
+        assert!((total - expected).abs() <= 1e-3 * expected.max(1.0), "{total} vs {expected}");
+        assert!(h.series("nope", None).is_none());
+        assert!(h.series("arrived_share", Some(2)).is_none());
+    }
+
+    #[test]
+    fn a_reset_run_starts_a_new_history_and_csv_has_a_row_per_group() {
+        let mut world = World::new(presets::open_field()).expect("valid");
+        let mut h = MetricsHistory::default();
+        world.step_n(20);
+        h.sample(&world);
+        world = World::new(presets::open_field()).expect("valid");
+        world.step_n(DEFAULT_EVERY);
+        h.sample(&world);
+        assert_eq!(h.steps(), &[DEFAULT_EVERY]);
+        let csv = h.to_csv(&["flock".to_string()]);
+        let lines: Vec<&str> = csv.lines().collect();
+        assert_eq!(lines.len(), 3, "{csv}");
+        assert!(lines[0].starts_with("step,time_s,group,arrived_share"));
+        assert!(lines[2].contains(",flock,"));
+        assert_eq!(lines[1].split(',').count(), 3 + SERIES.len());
+    }
+}

@@ -1,0 +1,53 @@
+// The metrics panel: a row per group with its planner, and time-series plots drawn from the
+// core's metrics history (canvas pixels beyond the white background).
+
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import { assertNoUnexpectedErrors, frames, openPage, screenshot } from './helpers.mjs';
+
+/** Non-white pixels of a plot canvas below its label line. */
+async function inkedPixels(page, key) {
+  return page.evaluate((k) => {
+    const canvas = document.querySelector(`#plots canvas[data-key="${k}"]`);
+    const ctx = canvas.getContext('2d');
+    const top = Math.round(16 * (window.devicePixelRatio || 1));
+    const { data } = ctx.getImageData(0, top, canvas.width, canvas.height - top);
+    let inked = 0;
+    for (let i = 0; i < data.length; i += 4) {
+      if (data[i] < 200 || data[i + 1] < 200 || data[i + 2] < 200) inked += 1;
+    }
+    return inked;
+  }, key);
+}
+
+test('the metrics panel shows per-group rows and plots over time', async () => {
+  const { page, errors, close } = await openPage({ viewport: { width: 1280, height: 1400 } });
+  try {
+    await page.selectOption('#preset', 'two-groups-swap');
+    await page.evaluate(() => {
+      window.flockpath.pause();
+      window.flockpath.reset();
+      window.flockpath.step(400);
+    });
+    await frames(page, 3);
+    const rows = await page.$$eval('#metrics-groups tbody tr', (trs) => trs.map((tr) => tr.cells[0].textContent));
+    assert.deepEqual(rows, ['left (boids)', 'right (boids)']);
+    const history = await page.evaluate(() => window.flockpath.metricsHistory());
+    assert.equal(history.steps.at(-1), 400);
+    assert.equal(history.series.arrived_share.groups.length, 2);
+    assert.equal(history.series.mean_path_length.overall.length, history.steps.length);
+    assert.ok(history.series.mean_path_length.overall.at(-1) > 100, 'agents walked');
+    for (const key of ['arrived_share', 'mean_path_length', 'mean_turn_deg']) {
+      const inked = await inkedPixels(page, key);
+      assert.ok(inked > 40, `plot ${key} has ${inked} inked pixels`);
+    }
+    const empty = await page.$$eval('#plots canvas', (list) => list.length);
+    assert.equal(empty, Object.keys(history.series).length, 'one plot per series');
+    const card = await page.$('#metrics-title');
+    await card.scrollIntoViewIfNeeded();
+    await screenshot(page, 'metrics-panel');
+    assertNoUnexpectedErrors(errors);
+  } finally {
+    await close();
+  }
+});
