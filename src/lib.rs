@@ -22,6 +22,7 @@ pub mod diagnose;
 pub mod edit;
 pub mod export;
 pub mod fitness;
+pub mod flow_field;
 pub mod geometry;
 pub mod history;
 pub mod metrics;

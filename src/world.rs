@@ -167,6 +167,8 @@ impl World {
             obstacles: &self.obstacles,
             bounds: Vec2::new(self.scene.width, self.scene.height),
             step: self.step,
+            scene: &self.scene,
+            group_of: &self.group_of,
         }
     }
 
@@ -264,6 +266,8 @@ impl World {
             obstacles: &self.obstacles,
             bounds,
             step: self.step,
+            scene: &self.scene,
+            group_of: &self.group_of,
         };
         let step = self.step;
         for (gi, group) in self.groups.iter_mut().enumerate() {

@@ -8,6 +8,7 @@ pub mod pso;
 use crate::diagnose::Explanation;
 use crate::geometry::Obstacle;
 use crate::rng::Rng;
+use crate::scene::Scene;
 use crate::spatial::{ObstacleIndex, SpatialGrid};
 use glam::Vec2;
 use serde::{Deserialize, Serialize};
@@ -35,6 +36,10 @@ pub struct StepContext<'a> {
     pub bounds: Vec2,
     /// Steps simulated so far.
     pub step: u32,
+    /// The scene being run: its paths, hills and every group's planner settings (roles).
+    pub scene: &'a Scene,
+    /// Group index of every agent.
+    pub group_of: &'a [u32],
 }
 
 /// What a planner knows about the group it steers.
@@ -250,6 +255,9 @@ pub struct ParamSpec {
     pub choices: &'static [&'static str],
     /// One-line help.
     pub help: &'static str,
+    /// Links may leave this parameter out while it and every later one hold their defaults (see
+    /// [`ParamSpec::omitted_at_default`]).
+    pub omit_default: bool,
 }
 
 impl ParamSpec {
@@ -262,7 +270,18 @@ impl ParamSpec {
         default: f64,
         help: &'static str,
     ) -> Self {
-        Self { key, label, unit, min: range.0, max: range.1, step: range.2, default, choices: &[], help }
+        Self {
+            key,
+            label,
+            unit,
+            min: range.0,
+            max: range.1,
+            step: range.2,
+            default,
+            choices: &[],
+            help,
+            omit_default: false,
+        }
     }
 
     /// A choice among named options; `default` indexes `choices`.
@@ -273,7 +292,36 @@ impl ParamSpec {
         default: usize,
         help: &'static str,
     ) -> Self {
-        Self { key, label, unit: "", min: 0.0, max: 0.0, step: 0.0, default: default as f64, choices, help }
+        Self {
+            key,
+            label,
+            unit: "",
+            min: 0.0,
+            max: 0.0,
+            step: 0.0,
+            default: default as f64,
+            choices,
+            help,
+            omit_default: false,
+        }
+    }
+
+    /// Marks a parameter appended after links existed: while it and every later parameter hold
+    /// their defaults, links leave them out, so older links and their fixtures keep their exact
+    /// text. Only for parameters whose feature is off by default and sits before its switch in
+    /// the table (a feature's settings first, its on/off choice last), so a value left out never
+    /// changes a run: when the switch is on, it and everything before it is written.
+    pub const fn omitted_at_default(self) -> Self {
+        Self { omit_default: true, ..self }
+    }
+
+    /// Whether `value` (as the params JSON holds it) is this parameter's default.
+    pub fn is_default(&self, value: &serde_json::Value) -> bool {
+        if self.choices.is_empty() {
+            value.as_f64().is_some_and(|x| x as f32 == self.default as f32)
+        } else {
+            value.as_str().is_some_and(|s| self.choices.get(self.default as usize) == Some(&s))
+        }
     }
 }
 
