@@ -102,7 +102,11 @@ fn bad_specs_give_messages() {
         ("1.pso(abc)", "number"),
         ("1.pso(1e99)", "outside"),
         ("1.boids(50,14,2,0.15,1.5,1,1,1,3,50,60,sideways)", "one of"),
-        ("1.boids(50,14,2,0.15,1.5,1,1,1,3,50,60,weighted,9)", "parameters"),
+        // More values than any planner's table has (tables grow at the end).
+        (
+            "1.pso(1,1,1,1,1,1,1,1,1,1,1,1,1,1,1,1,1,1,1,1,1,1,1,1,1,1,1,1,1,1,1,1,1,1,1,1,1,1,1,1)",
+            "parameters",
+        ),
         ("1.scene~scene~scene~scene~scene", "at most"),
         ("1.0=pso", "from 1"),
         ("1.x=pso", "group number"),
