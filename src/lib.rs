@@ -17,6 +17,7 @@
 //! ```
 
 pub mod codec;
+pub mod compare;
 pub mod diagnose;
 pub mod edit;
 pub mod export;
@@ -30,6 +31,7 @@ pub mod planners;
 pub mod presets;
 pub mod recording;
 pub mod render;
+pub mod replay;
 pub mod rng;
 pub mod scene;
 pub mod spatial;

@@ -21,12 +21,15 @@ const SPAWN_TRIES: u32 = 200;
 const PUSH_EPSILON: f32 = 0.01;
 
 /// One group at run time.
+#[derive(Clone)]
 struct GroupRuntime {
     agents: Range<u32>,
     planner: Box<dyn Planner>,
 }
 
-/// A scene being simulated.
+/// A scene being simulated. A clone is a complete snapshot (planner state, generator, metric
+/// accumulators): stepping a clone gives bit-identical results to stepping the original.
+#[derive(Clone)]
 pub struct World {
     scene: Scene,
     step: u32,

@@ -445,6 +445,7 @@ fn clearance_at(obstacles: &ObstacleIndex, p: Vec2, reach: f32) -> (f32, Vec2) {
 }
 
 /// The IGSA path-following planner of one group.
+#[derive(Clone)]
 pub struct IgsaPlanner {
     params: IgsaParams,
     /// The group's path as planned or edited (what the page shows).

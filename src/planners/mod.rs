@@ -53,8 +53,27 @@ pub struct GroupView {
     pub goal: Option<(Vec2, f32)>,
 }
 
+/// Copies a boxed planner with all its internal state (replay checkpoints clone the world).
+/// Implemented for every `Clone` planner, so a planner only has to derive `Clone`.
+pub trait PlannerClone {
+    /// A boxed deep copy of this planner.
+    fn clone_box(&self) -> Box<dyn Planner>;
+}
+
+impl<T: Planner + Clone + 'static> PlannerClone for T {
+    fn clone_box(&self) -> Box<dyn Planner> {
+        Box::new(self.clone())
+    }
+}
+
+impl Clone for Box<dyn Planner> {
+    fn clone(&self) -> Self {
+        self.clone_box()
+    }
+}
+
 /// A crowd planner: computes every new velocity of its group from the old state.
-pub trait Planner {
+pub trait Planner: PlannerClone {
     /// Largest radius (px) the planner queries neighbours in; sizes the spatial grid.
     fn interaction_radius(&self) -> f32;
     /// Speed limit (px/step); the world checks it after every step.
