@@ -551,10 +551,10 @@ pub fn boids_predator() -> Scene {
 }
 
 /// The paper's hills (§5.6): 300 people on the left cross to a wide target on the right over
-/// three Gaussian hills of heights 100, 45 and 20 px, with the PSO climb limit at 60 px.
+/// three Gaussian hills of heights 120, 45 and 20 px, with the PSO climb limit at 60 px (half the highest).
 pub fn pso_hills() -> Scene {
     let mut s = base("pso-hills", 1000.0, 700.0);
-    s.hills.push(Hill { center: [450.0, 350.0], radius: 90.0, height: 100.0 });
+    s.hills.push(Hill { center: [450.0, 350.0], radius: 90.0, height: 120.0 });
     s.hills.push(Hill { center: [650.0, 220.0], radius: 80.0, height: 45.0 });
     s.hills.push(Hill { center: [650.0, 480.0], radius: 80.0, height: 20.0 });
     s.goals.push(Goal::fixed([920.0, 350.0], 150.0));
