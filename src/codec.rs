@@ -5,7 +5,10 @@
 //! - `2.` (written today): the deflated JSON of a compact form of the scene. Obstacles, goals and
 //!   groups are positional arrays, not keyed objects, so a scene with 20 obstacles and 4 groups
 //!   needs about 750 characters instead of about 1,100. Every planner parameter is written, even
-//!   when it equals today's default: a link must replay the same run after a default changes. When a scene holds something the compact form cannot express, the
+//!   when it equals today's default: a link must replay the same run after a default changes.
+//!   The one exception: parameters appended later for a feature that is off by default (marked
+//!   `omitted_at_default` in their table) are left out at the end while they hold their
+//!   defaults, so links written before they existed keep their exact text. When a scene holds something the compact form cannot express, the
 //!   payload is the keyed scene JSON instead (the decoder tells them apart by `[` or `{`), so the
 //!   round trip is always exact.
 //! - `1.` (read only): the deflated keyed scene JSON.
@@ -14,7 +17,7 @@
 
 use crate::geometry::Obstacle;
 use crate::planners::{PlannerConfig, PlannerKind};
-use crate::scene::{Goal, GoalMotion, Group, Region, Scene, SceneError, ViewOptions};
+use crate::scene::{Goal, GoalMotion, Group, Hill, PathSpec, Region, Scene, SceneError, ViewOptions};
 use base64::engine::general_purpose::URL_SAFE_NO_PAD;
 use base64::Engine as _;
 use serde::{Deserialize, Serialize};
@@ -136,7 +139,9 @@ fn fragment_value(input: &str) -> &str {
     after_hash
 }
 
-/// Version 2's compact scene: `[name, width, height, seed, obstacles, goals, groups, view]`.
+/// Version 2's compact scene: `[name, width, height, seed, obstacles, goals, groups, view]`, and
+/// a ninth element `terrain` only when the scene has paths or hills: links made before those
+/// existed have eight elements and still decode, to a scene without them.
 #[derive(Debug, Serialize, Deserialize)]
 struct CompactScene(
     String,
@@ -147,7 +152,18 @@ struct CompactScene(
     Vec<CompactGoal>,
     Vec<CompactGroup>,
     CompactView,
+    #[serde(default, skip_serializing_if = "CompactTerrain::is_empty")] CompactTerrain,
 );
+
+/// `[paths, hills]`: a path is `[radius, [[x, y], …]]`, a hill `[x, y, radius, height]`.
+#[derive(Debug, Default, Serialize, Deserialize)]
+struct CompactTerrain(Vec<(f32, Vec<[f32; 2]>)>, Vec<[f32; 4]>);
+
+impl CompactTerrain {
+    fn is_empty(&self) -> bool {
+        self.0.is_empty() && self.1.is_empty()
+    }
+}
 
 /// An obstacle by arity: circle `[x, y, r]`, rectangle `[x0, y0, x1, y1]`, polygon `[[x, y], …]`.
 #[derive(Debug, Serialize, Deserialize)]
@@ -223,11 +239,15 @@ impl CompactScene {
             goals,
             groups,
             CompactView(s.view.trails, s.view.trail_fade),
+            CompactTerrain(
+                s.paths.iter().map(|p| (p.radius, p.points.clone())).collect(),
+                s.hills.iter().map(|h| [h.center[0], h.center[1], h.radius, h.height]).collect(),
+            ),
         )
     }
 
     fn to_scene(&self) -> Result<Scene, SceneError> {
-        let CompactScene(name, width, height, seed, obstacles, goals, groups, view) = self;
+        let CompactScene(name, width, height, seed, obstacles, goals, groups, view, terrain) = self;
         let obstacles = obstacles
             .iter()
             .map(|o| match o {
@@ -272,15 +292,48 @@ impl CompactScene {
             goals,
             groups,
             view: ViewOptions { trails: view.0, trail_fade: view.1 },
+            paths: terrain
+                .0
+                .iter()
+                .map(|(radius, points)| PathSpec { points: points.clone(), radius: *radius })
+                .collect(),
+            hills: terrain
+                .1
+                .iter()
+                .map(|&[x, y, radius, height]| Hill { center: [x, y], radius, height })
+                .collect(),
         })
     }
 }
 
-/// A planner's parameter values in the order of its parameter table.
+/// A planner's parameter values in the order of its parameter table (trailing extension values
+/// at their defaults left out), then, only when the planner holds any, one object with the
+/// values that are not sliders (an IGSA group's edited waypoints). Links without that object
+/// decode as before.
 fn planner_params(config: &PlannerConfig) -> Vec<serde_json::Value> {
     let params = serde_json::to_value(config).ok().and_then(|mut v| v.get_mut("params").map(std::mem::take));
     let params = params.unwrap_or_default();
-    config.kind().param_specs().iter().map(|spec| params.get(spec.key).cloned().unwrap_or_default()).collect()
+    let specs = config.kind().param_specs();
+    let mut values: Vec<serde_json::Value> =
+        specs.iter().map(|spec| params.get(spec.key).cloned().unwrap_or_default()).collect();
+    // Extension parameters at their defaults at the end are left out (ParamSpec::omitted_at_default).
+    while let (Some(value), Some(spec)) = (values.last(), specs.get(values.len().wrapping_sub(1))) {
+        if !(spec.omit_default && spec.is_default(value)) {
+            break;
+        }
+        values.pop();
+    }
+    if let Some(object) = params.as_object() {
+        let extras: serde_json::Map<String, serde_json::Value> = object
+            .iter()
+            .filter(|(key, _)| !specs.iter().any(|s| s.key == key.as_str()))
+            .map(|(key, value)| (key.clone(), value.clone()))
+            .collect();
+        if !extras.is_empty() {
+            values.push(serde_json::Value::Object(extras));
+        }
+    }
+    values
 }
 
 /// The planner `name` with the table's first `values.len()` parameters set (range-checked) and
@@ -295,6 +348,11 @@ fn planner_with(name: &str, values: &[serde_json::Value]) -> Result<PlannerConfi
         )
     })?;
     let specs = kind.param_specs();
+    let (values, extras) = match values.split_last() {
+        // No table parameter is an object: a trailing object holds the non-slider values.
+        Some((serde_json::Value::Object(extras), table)) => (table, Some(extras)),
+        _ => (values, None),
+    };
     if values.len() > specs.len() {
         return Err(format!(
             "{} takes {} parameters, the link has {}",
@@ -310,6 +368,11 @@ fn planner_with(name: &str, values: &[serde_json::Value]) -> Result<PlannerConfi
     for (spec, value) in specs.iter().zip(values) {
         if let Some(object) = params.as_object_mut() {
             object.insert(spec.key.to_string(), value.clone());
+        }
+    }
+    for (key, value) in extras.into_iter().flatten() {
+        if let Some(object) = params.as_object_mut() {
+            object.insert(key.clone(), value.clone());
         }
     }
     let config: PlannerConfig =
@@ -349,6 +412,56 @@ mod tests {
             let url = format!("http://localhost/index.html#s={frag}");
             assert_eq!(scene_from_any(&url).as_ref(), Ok(&scene), "{}", p.name);
         }
+    }
+
+    #[test]
+    fn edited_igsa_waypoints_travel_in_the_compact_link() {
+        let mut scene = presets::igsa_path_2();
+        let before = scene_to_fragment(&scene);
+        if let PlannerConfig::Igsa(p) = &mut scene.groups[0].planner {
+            p.waypoints = vec![[200.0, 100.0], [400.0, 90.0], [520.0, 160.5]];
+        } else {
+            panic!("igsa-path-2 runs the igsa planner");
+        }
+        let fragment = scene_to_fragment(&scene);
+        assert_eq!(scene_from_fragment(&fragment).as_ref(), Ok(&scene));
+        // Compact (positional) form, not the keyed fallback: the waypoints ride after the table.
+        let text = unpack(fragment.split_once('.').expect("version").1).expect("unpacks");
+        assert!(text.starts_with('['), "{text}");
+        assert!(text.contains(r#"{"waypoints":[[200.0,100.0],[400.0,90.0],[520.0,160.5]]}"#), "{text}");
+        // Scenes without edited waypoints encode exactly as before (no trailing object).
+        assert!(!unpack(before.split_once('.').expect("version").1).expect("unpacks").contains("waypoints"));
+        // A link from before the waypoints existed (table values only) still decodes.
+        let old = CompactScene::from_scene(&presets::igsa_path_2());
+        let json = serde_json::to_vec(&old).expect("json");
+        let decoded = scene_from_fragment(&format!("2.{}", pack(&json))).expect("decodes");
+        assert_eq!(decoded, presets::igsa_path_2());
+        // Bad waypoints are refused with a message.
+        let bad = text.replace("[200.0,100.0]", "[200.0]");
+        assert!(scene_from_fragment(&format!("2.{}", pack(bad.as_bytes()))).is_err());
+    }
+
+    #[test]
+    fn paths_and_hills_ride_in_the_compact_form_and_old_links_lack_them() {
+        let mut scene = presets::open_field();
+        scene
+            .paths
+            .push(PathSpec { points: vec![[50.0, 60.0], [300.0, 80.5], [500.0, 400.0]], radius: 25.0 });
+        scene.hills.push(Hill { center: [400.0, 250.0], radius: 80.0, height: 120.0 });
+        let frag = scene_to_fragment(&scene);
+        let text = unpack(frag.split_once('.').expect("version").1).expect("inflates");
+        assert!(text.starts_with('['), "compact form expected: {text}");
+        assert_eq!(scene_from_fragment(&frag), Ok(scene.clone()));
+        // Only hills: the path list is written empty so the hills keep their position.
+        scene.paths.clear();
+        assert_eq!(scene_from_fragment(&scene_to_fragment(&scene)), Ok(scene.clone()));
+        // A scene without either writes the eight elements of every older link.
+        scene.hills.clear();
+        let frag = scene_to_fragment(&scene);
+        let text = unpack(frag.split_once('.').expect("version").1).expect("inflates");
+        let elements = serde_json::from_str::<Vec<serde_json::Value>>(&text).expect("array").len();
+        assert_eq!(elements, 8, "{text}");
+        assert_eq!(scene_from_fragment(&frag), Ok(scene));
     }
 
     #[test]

@@ -2,7 +2,11 @@
 //! the pointer. Every edit yields a new validated scene or an error; the old scene is untouched.
 
 use crate::geometry::{v, Obstacle};
-use crate::scene::{Goal, Group, Scene, SceneError};
+use crate::planners::PlannerConfig;
+use crate::scene::{Goal, Group, PathSpec, Scene, SceneError, DEFAULT_PATH_RADIUS};
+
+/// A path is picked within this many px of its polyline (or the pick tolerance, if larger).
+const PATH_PICK_PX: f32 = 6.0;
 use glam::Vec2;
 use serde::{Deserialize, Serialize};
 
@@ -16,6 +20,8 @@ pub enum ItemRef {
     Goal(u32),
     /// `scene.groups[i]` (picked by its spawn region).
     Group(u32),
+    /// `scene.paths[i]` (picked near its polyline).
+    Path(u32),
 }
 
 /// One editing operation, as sent by the page.
@@ -57,6 +63,17 @@ pub enum Edit {
         /// What to remove.
         item: ItemRef,
     },
+    /// Adds a path; with `group` (a Boids group), that group now follows it.
+    AddPath {
+        /// Vertices in px, in travel order (at least two).
+        points: Vec<[f32; 2]>,
+        /// Corridor half-width in px (default 30).
+        #[serde(default)]
+        radius: Option<f32>,
+        /// Group that follows it.
+        #[serde(default)]
+        group: Option<u32>,
+    },
     /// Replaces a group's settings (count, colour, goal, radius, planner, …).
     SetGroup {
         /// Which group.
@@ -71,6 +88,7 @@ fn missing(item: ItemRef) -> SceneError {
         ItemRef::Obstacle(i) => ("obstacle", i),
         ItemRef::Goal(i) => ("goal", i),
         ItemRef::Group(i) => ("group", i),
+        ItemRef::Path(i) => ("path", i),
     };
     SceneError::BadReference(format!("there is no {what} {}", u64::from(i) + 1))
 }
@@ -103,6 +121,23 @@ pub fn apply(scene: &Scene, edit: &Edit) -> Result<Scene, SceneError> {
             }
         }
         Edit::AddGroup { group } => s.groups.push(group.clone()),
+        Edit::AddPath { points, radius, group } => {
+            s.paths.push(PathSpec { points: points.clone(), radius: radius.unwrap_or(DEFAULT_PATH_RADIUS) });
+            if let Some(g) = group {
+                let number = s.paths.len() as u32;
+                let target = s.groups.get_mut(*g as usize).ok_or_else(|| missing(ItemRef::Group(*g)))?;
+                match &mut target.planner {
+                    PlannerConfig::Boids(p) => p.path = number,
+                    other => {
+                        return Err(SceneError::OutOfRange(format!(
+                            "group {} uses {}; path following is part of Boids steering",
+                            g + 1,
+                            other.kind().label()
+                        )))
+                    }
+                }
+            }
+        }
         Edit::Move { item, dx, dy } => {
             if !dx.is_finite() || !dy.is_finite() {
                 return Err(SceneError::NotFinite("the move distance".into()));
@@ -120,6 +155,12 @@ pub fn apply(scene: &Scene, edit: &Edit) -> Result<Scene, SceneError> {
                     let g = s.groups.get_mut(i as usize).ok_or_else(|| missing(*item))?;
                     g.spawn.min = [g.spawn.min[0] + d.x, g.spawn.min[1] + d.y];
                     g.spawn.max = [g.spawn.max[0] + d.x, g.spawn.max[1] + d.y];
+                }
+                ItemRef::Path(i) => {
+                    let path = s.paths.get_mut(i as usize).ok_or_else(|| missing(*item))?;
+                    for p in &mut path.points {
+                        *p = [p[0] + d.x, p[1] + d.y];
+                    }
                 }
             }
         }
@@ -149,6 +190,24 @@ pub fn apply(scene: &Scene, edit: &Edit) -> Result<Scene, SceneError> {
                 }
                 s.groups.remove(i as usize);
             }
+            ItemRef::Path(i) => {
+                if i as usize >= s.paths.len() {
+                    return Err(missing(*item));
+                }
+                s.paths.remove(i as usize);
+                // Groups name paths by 1-based number: the followers of the removed one stop
+                // following, later numbers shift down.
+                let number = i + 1;
+                for g in &mut s.groups {
+                    if let PlannerConfig::Boids(p) = &mut g.planner {
+                        p.path = match p.path {
+                            k if k == number => 0,
+                            k if k > number => k - 1,
+                            k => k,
+                        };
+                    }
+                }
+            }
         },
         Edit::SetGroup { index, group } => {
             *s.groups.get_mut(*index as usize).ok_or_else(|| missing(ItemRef::Group(*index)))? =
@@ -160,7 +219,7 @@ pub fn apply(scene: &Scene, edit: &Edit) -> Result<Scene, SceneError> {
 }
 
 /// The topmost item at `p` (scene px), within `tolerance` px: goals first, then obstacles
-/// (last drawn on top), then group spawn regions.
+/// (last drawn on top), then paths (near their polyline), then group spawn regions.
 pub fn pick(scene: &Scene, p: Vec2, tolerance: f32) -> Option<ItemRef> {
     let tolerance = if tolerance.is_finite() { tolerance.max(0.0) } else { 0.0 };
     if !p.is_finite() {
@@ -179,6 +238,12 @@ pub fn pick(scene: &Scene, p: Vec2, tolerance: f32) -> Option<ItemRef> {
         scene.obstacles.iter().enumerate().rev().find(|(_, o)| o.surface(p).signed_distance <= tolerance);
     if let Some((i, _)) = obstacle {
         return Some(ItemRef::Obstacle(i as u32));
+    }
+    let path = scene.paths.iter().enumerate().rev().find(|(_, path)| {
+        path.closest_point(p).is_some_and(|q| q.point.distance(p) <= tolerance.max(PATH_PICK_PX))
+    });
+    if let Some((i, _)) = path {
+        return Some(ItemRef::Path(i as u32));
     }
     scene
         .groups
@@ -220,6 +285,40 @@ mod tests {
         let s2 = apply(&s1, &Edit::Delete { item: ItemRef::Goal(0) }).expect("deletes");
         assert_eq!(s2.groups[0].goal, Some(0));
         assert_eq!(s2.goals[0].position, [400.0, 400.0]);
+    }
+
+    #[test]
+    fn a_drawn_path_is_followed_moved_and_deleted_with_its_followers_renumbered() {
+        let mut s = presets::two_groups_swap();
+        let first =
+            Edit::AddPath { points: vec![[100.0, 100.0], [300.0, 120.0]], radius: None, group: Some(0) };
+        s = apply(&s, &first).expect("adds");
+        let second = Edit::AddPath {
+            points: vec![[100.0, 400.0], [300.0, 420.0]],
+            radius: Some(20.0),
+            group: Some(1),
+        };
+        s = apply(&s, &second).expect("adds");
+        let path_of = |s: &Scene, g: usize| match &s.groups[g].planner {
+            PlannerConfig::Boids(p) => p.path,
+            _ => u32::MAX,
+        };
+        assert_eq!((path_of(&s, 0), path_of(&s, 1)), (1, 2));
+        assert_eq!(s.paths[0].radius, DEFAULT_PATH_RADIUS);
+        assert_eq!(pick(&s, Vec2::new(200.0, 112.0), 0.0), Some(ItemRef::Path(0)));
+        let moved = apply(&s, &Edit::Move { item: ItemRef::Path(1), dx: 5.0, dy: -5.0 }).expect("moves");
+        assert_eq!(moved.paths[1].points[0], [105.0, 395.0]);
+        let deleted = apply(&s, &Edit::Delete { item: ItemRef::Path(0) }).expect("deletes");
+        assert_eq!((path_of(&deleted, 0), path_of(&deleted, 1)), (0, 1));
+        assert_eq!(deleted.paths.len(), 1);
+        let one_point = Edit::AddPath { points: vec![[1.0, 1.0]], radius: None, group: None };
+        assert!(matches!(apply(&s, &one_point), Err(SceneError::OutOfRange(_))));
+        let mut pso = s.clone();
+        pso.groups[0].planner = crate::planners::PlannerKind::Pso.default_config();
+        let e = apply(&pso, &first).expect_err("PSO does not follow paths");
+        assert!(e.to_string().contains("Boids"), "{e}");
+        let json = r#"{"op":"add_path","points":[[10,10],[50,50]],"group":0}"#;
+        assert!(apply(&presets::open_field(), &serde_json::from_str(json).expect("parses")).is_ok());
     }
 
     #[test]

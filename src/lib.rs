@@ -17,10 +17,12 @@
 //! ```
 
 pub mod codec;
+pub mod compare;
 pub mod diagnose;
 pub mod edit;
 pub mod export;
 pub mod fitness;
+pub mod flow_field;
 pub mod geometry;
 pub mod history;
 pub mod metrics;
@@ -29,6 +31,7 @@ pub mod planners;
 pub mod presets;
 pub mod recording;
 pub mod render;
+pub mod replay;
 pub mod rng;
 pub mod scene;
 pub mod spatial;

@@ -291,12 +291,25 @@ impl MetricsRecorder {
 
     /// The metrics so far; `planners` names each group's planner.
     pub fn summary(&self, scene: &Scene, planners: &[&str], steps: u32) -> Metrics {
+        self.summary_with_queue(scene, planners, steps, |_| true)
+    }
+
+    /// [`Self::summary`] with the queue order measured only for the groups `queue_for(g)` picks
+    /// (the others get none). The queue order costs a neighbour query of 120 px per agent, more
+    /// than a Boids step in a dense crowd: the plots measure it for firefly groups only.
+    pub fn summary_with_queue(
+        &self,
+        scene: &Scene,
+        planners: &[&str],
+        steps: u32,
+        queue_for: impl Fn(usize) -> bool,
+    ) -> Metrics {
         let dt = f64::from(crate::world::DT);
         let mut overall = GroupAcc::default();
         let mut groups = Vec::with_capacity(scene.groups.len());
         let mut start = 0usize;
         let mut all = Stats::default();
-        let queue = self.queue_order(scene, steps);
+        let queue = self.queue_order(scene, steps, queue_for);
         let (mut queued, mut queue_candidates) = (0u32, 0u32);
         for (gi, g) in scene.groups.iter().enumerate() {
             let agents = start..start + g.count as usize;
@@ -337,8 +350,11 @@ impl MetricsRecorder {
 
     /// Per group `(queued, candidates)` for [`GroupMetrics::queue_order`], from the state at the
     /// end of step `steps`. Builds a grid over the last positions: O(N), never O(N²).
-    fn queue_order(&self, scene: &Scene, steps: u32) -> Vec<(u32, u32)> {
+    fn queue_order(&self, scene: &Scene, steps: u32, queue_for: impl Fn(usize) -> bool) -> Vec<(u32, u32)> {
         let mut counts = vec![(0u32, 0u32); scene.groups.len()];
+        if !(0..scene.groups.len()).any(&queue_for) {
+            return counts;
+        }
         let pos = &self.prev_pos;
         let mut grid = SpatialGrid::new(scene.width, scene.height, QUEUE_RADIUS, pos.len());
         grid.rebuild(pos, &self.prev_vel);
@@ -347,6 +363,9 @@ impl MetricsRecorder {
         for (gi, g) in scene.groups.iter().enumerate() {
             let agents = start as u32..(start + g.count as usize) as u32;
             start += g.count as usize;
+            if !queue_for(gi) {
+                continue;
+            }
             let Some(goal) = g.goal.and_then(|k| scene.goals.get(k as usize)) else { continue };
             let target = goal.position_at(steps);
             for id in agents.clone() {

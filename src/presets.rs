@@ -2,9 +2,10 @@
 
 use crate::fitness::{Behaviour, Environment};
 use crate::geometry::Obstacle;
-use crate::planners::{FireflyParams, PlannerConfig, PsoParams};
+use crate::planners::boids::{Arbitration, FlowGuide, Leader, Role};
+use crate::planners::{BoidsParams, FireflyParams, IgsaParams, PlannerConfig, PsoParams};
 use crate::rng::Rng;
-use crate::scene::{Goal, GoalMotion, Group, Region, Scene};
+use crate::scene::{Goal, GoalMotion, Group, Hill, PathSpec, Region, Scene};
 
 /// A named scene builder.
 #[derive(Clone, Copy, Debug)]
@@ -98,6 +99,46 @@ pub const ALL: &[Preset] = &[
         name: "forces-e3-cluttered",
         description: "Virtual forces, E3: a group follows a moving goal among small obstacles.",
         build: forces_e3_cluttered,
+    },
+    Preset {
+        name: "boids-leader",
+        description: "Boids leader following: the first agent leads to the goal, the flock follows behind it without overtaking.",
+        build: boids_leader,
+    },
+    Preset {
+        name: "boids-path",
+        description: "Boids path following: a flock walks a winding drawn path (radius 30 px) to the goal at its end.",
+        build: boids_path,
+    },
+    Preset {
+        name: "boids-flow-field",
+        description: "Boids flow field: a maze whose straight way ends in a U-shaped trap; the goal's flow field leads around it.",
+        build: boids_flow_field,
+    },
+    Preset {
+        name: "boids-predator",
+        description: "Boids predator/prey: two predators chase a grazing flock, which flees and closes ranks when it sees them.",
+        build: boids_predator,
+    },
+    Preset {
+        name: "pso-hills",
+        description: "PSO (§5.6): 300 people cross hills of three heights; the highest is never climbed, the lowest is walked over.",
+        build: pso_hills,
+    },
+    Preset {
+        name: "igsa-path-1",
+        description: "IGSA group path (Liu & Liu, Figs. 8–9): 40 agents follow one planned path between four pillars; drag its waypoints.",
+        build: igsa_path_1,
+    },
+    Preset {
+        name: "igsa-path-2",
+        description: "IGSA group path (Figs. 10–11): a wall, a triangle and a disc; the planned path goes over the wall.",
+        build: igsa_path_2,
+    },
+    Preset {
+        name: "igsa-crowd-1000",
+        description: "IGSA group path (Table 4): 1000 agents follow one path past a large obstacle, avoiding each other.",
+        build: igsa_crowd_1000,
     },
 ];
 
@@ -379,9 +420,11 @@ pub fn firefly_migration_with_seed(seed: u32) -> Scene {
     s
 }
 
+fn igsa_group(name: &str, color: &str, count: u32, spawn: ([f32; 2], [f32; 2]), goal: u32) -> Group {
+    Group { planner: PlannerConfig::Igsa(IgsaParams::default()), ..group(name, color, count, spawn, goal) }
+}
+
 /// Path 1 of the IGSA experiments: pillars block the straight line from start to goal.
-/// (Not in [`ALL`] until the `igsa` crowd planner lands: Boids, the groups' default planner,
-/// is not meant to find these detours, and every listed preset must be reachable by Boids.)
 pub fn igsa_path_1() -> Scene {
     let mut s = base("igsa-path-1", 800.0, 500.0);
     for (c, r) in
@@ -389,8 +432,8 @@ pub fn igsa_path_1() -> Scene {
     {
         s.obstacles.push(Obstacle::Circle { center: c, radius: r });
     }
-    s.goals.push(Goal::fixed([745.0, 250.0], 30.0));
-    s.groups.push(group("group", "#2f6fdf", 40, ([30.0, 215.0], [100.0, 285.0]), 0));
+    s.goals.push(Goal::fixed([745.0, 250.0], 50.0));
+    s.groups.push(igsa_group("group", "#2f6fdf", 40, ([20.0, 190.0], [110.0, 310.0]), 0));
     s
 }
 
@@ -401,7 +444,120 @@ pub fn igsa_path_2() -> Scene {
     s.obstacles.push(Obstacle::Rect { min: [380.0, 150.0], max: [425.0, 500.0] });
     s.obstacles.push(Obstacle::Polygon { points: vec![[170.0, 250.0], [255.0, 160.0], [265.0, 330.0]] });
     s.obstacles.push(Obstacle::Circle { center: [590.0, 250.0], radius: 60.0 });
-    s.goals.push(Goal::fixed([745.0, 330.0], 30.0));
-    s.groups.push(group("group", "#df4f2f", 40, ([30.0, 380.0], [110.0, 460.0]), 0));
+    s.goals.push(Goal::fixed([745.0, 330.0], 50.0));
+    s.groups.push(igsa_group("group", "#df4f2f", 40, ([20.0, 370.0], [120.0, 470.0]), 0));
+    s
+}
+
+/// The crowd of the IGSA experiment III with 1000 agents; see [`igsa_crowd`].
+pub fn igsa_crowd_1000() -> Scene {
+    igsa_crowd(1000)
+}
+
+/// IGSA experiment III (Table 4): `count` agents follow one planned path from the left, around a
+/// large disc (the "obstacle point"), to a goal on the right big enough to park 1000 of them
+/// (their parking lattice fills a disc of about 180 px; the goal counts arrivals within 230 px).
+/// The spawn region, the obstacle and the goal do not depend on `count`, so the planned path
+/// does not either.
+pub fn igsa_crowd(count: u32) -> Scene {
+    let mut s = base(if count == 1000 { "igsa-crowd-1000" } else { "igsa-crowd" }, 1300.0, 700.0);
+    s.obstacles.push(Obstacle::Circle { center: [640.0, 350.0], radius: 100.0 });
+    s.goals.push(Goal::fixed([1060.0, 350.0], 230.0));
+    s.groups.push(igsa_group("crowd", "#2f6fdf", count, ([40.0, 100.0], [440.0, 600.0]), 0));
+    s
+}
+
+fn boids_group(name: &str, color: &str, count: u32, spawn: ([f32; 2], [f32; 2]), goal: Option<u32>) -> Group {
+    Group { goal, ..group(name, color, count, spawn, 0) }
+}
+
+/// A group with Boids under priority arbitration (the lecture's "more robust method"): with
+/// guidance that funnels agents onto one line (a point behind a leader, a path, the shortest way
+/// round a corner) the weighted sum lets them overlap (measured on these presets: 10–600 times
+/// the overlapping pairs of priority allocation, which gives separation the force first).
+fn with_boids(mut g: Group, edit: impl FnOnce(&mut BoidsParams)) -> Group {
+    let mut params = BoidsParams { arbitration: Arbitration::Priority, ..BoidsParams::default() };
+    edit(&mut params);
+    g.planner = PlannerConfig::Boids(params);
+    g
+}
+
+/// Leader following: the group's first agent leads 25 agents across an open field to the goal.
+pub fn boids_leader() -> Scene {
+    let mut s = base("boids-leader", 900.0, 500.0);
+    s.goals.push(Goal::fixed([800.0, 250.0], 60.0));
+    let flock = boids_group("flock", "#2f6fdf", 25, ([40.0, 170.0], [180.0, 330.0]), Some(0));
+    s.groups.push(with_boids(flock, |p| p.leader = Leader::First));
+    s
+}
+
+/// Path following: 30 agents walk a winding path (radius 30 px) to the goal at its end.
+pub fn boids_path() -> Scene {
+    let mut s = base("boids-path", 900.0, 600.0);
+    let points = [
+        [90.0, 520.0],
+        [300.0, 490.0],
+        [420.0, 330.0],
+        [300.0, 170.0],
+        [480.0, 80.0],
+        [760.0, 110.0],
+        [820.0, 300.0],
+        [790.0, 480.0],
+    ];
+    s.paths.push(PathSpec { points: points.to_vec(), radius: 30.0 });
+    s.goals.push(Goal::fixed([790.0, 500.0], 50.0));
+    let flock = boids_group("walkers", "#2f9f5f", 30, ([40.0, 480.0], [140.0, 570.0]), Some(0));
+    s.groups.push(with_boids(flock, |p| p.path = 1));
+    s
+}
+
+/// The flow-field maze: the straight way from the start to the goal runs into a U-shaped cup
+/// that opens towards the start (plain seeking piles up inside it), and a second wall past the
+/// cup leaves only a gap at the bottom.
+pub fn boids_flow_field() -> Scene {
+    let mut s = boids_flow_field_maze();
+    let flock = boids_group("flock", "#8f3fbf", 40, ([40.0, 230.0], [170.0, 370.0]), Some(0));
+    s.groups.push(with_boids(flock, |p| p.flow_field = FlowGuide::Goal));
+    s
+}
+
+/// The walls and goal of [`boids_flow_field`], without a group.
+pub fn boids_flow_field_maze() -> Scene {
+    let mut s = base("boids-flow-field", 900.0, 600.0);
+    s.obstacles.push(Obstacle::Rect { min: [480.0, 140.0], max: [510.0, 460.0] });
+    s.obstacles.push(Obstacle::Rect { min: [300.0, 140.0], max: [510.0, 170.0] });
+    s.obstacles.push(Obstacle::Rect { min: [300.0, 430.0], max: [510.0, 460.0] });
+    s.obstacles.push(Obstacle::Rect { min: [650.0, 0.0], max: [680.0, 430.0] });
+    s.goals.push(Goal::fixed([810.0, 250.0], 50.0));
+    s
+}
+
+/// Predator/prey: 40 prey graze on a pasture (their goal); two faster predators start in the
+/// corners and chase the nearest prey.
+pub fn boids_predator() -> Scene {
+    let mut s = base("boids-predator", 900.0, 600.0);
+    s.goals.push(Goal::fixed([450.0, 300.0], 80.0));
+    let prey = boids_group("prey", "#2f9f5f", 40, ([380.0, 230.0], [520.0, 370.0]), Some(0));
+    s.groups.push(with_boids(prey, |p| p.role = Role::Prey));
+    let predators = boids_group("predators", "#c0392b", 2, ([20.0, 20.0], [80.0, 80.0]), None);
+    s.groups.push(with_boids(predators, |p| {
+        p.role = Role::Predator;
+        p.max_speed = 2.4;
+        p.chase_radius = 1000.0;
+        p.alignment_weight = 0.0;
+        p.cohesion_weight = 0.0;
+    }));
+    s
+}
+
+/// The paper's hills (§5.6): 300 people on the left cross to a wide target on the right over
+/// three Gaussian hills of heights 120, 45 and 20 px, with the PSO climb limit at 60 px (half the highest).
+pub fn pso_hills() -> Scene {
+    let mut s = base("pso-hills", 1000.0, 700.0);
+    s.hills.push(Hill { center: [450.0, 350.0], radius: 90.0, height: 120.0 });
+    s.hills.push(Hill { center: [650.0, 220.0], radius: 80.0, height: 45.0 });
+    s.hills.push(Hill { center: [650.0, 480.0], radius: 80.0, height: 20.0 });
+    s.goals.push(Goal::fixed([920.0, 350.0], 150.0));
+    s.groups.push(pso_group("crowd", "#2f6fdf", 300, ([20.0, 60.0], [200.0, 640.0]), 0));
     s
 }

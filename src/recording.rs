@@ -73,6 +73,13 @@ impl Recording {
         self.samples = kept;
     }
 
+    /// Drops the frames after `step` (the run went back in time and took another course).
+    pub fn truncate_after(&mut self, step: u32) {
+        let keep = self.steps.partition_point(|&s| s <= step);
+        self.steps.truncate(keep);
+        self.samples.truncate(keep * self.agents);
+    }
+
     /// Number of agents per frame.
     pub fn agents(&self) -> usize {
         self.agents

@@ -17,7 +17,8 @@ pub use overlay::{Overlays, ARROW_COLORS};
 
 use crate::edit::ItemRef;
 use crate::geometry::Obstacle;
-use crate::scene::{parse_color, Scene};
+use crate::planners::PlannerConfig;
+use crate::scene::{parse_color, Hill, Scene};
 use crate::world::World;
 use glam::Vec2;
 use std::f32::consts::TAU;
@@ -37,8 +38,14 @@ pub const LETTERBOX_COLOR: [u8; 3] = [0xd8, 0xd8, 0xd3];
 pub const GRID_COLOR: [u8; 3] = [0xe4, 0xe2, 0xda];
 /// Goals no group heads for (RGB); goals in use take their first group's colour.
 pub const GOAL_COLOR: [u8; 3] = [0x3a, 0x8a, 0x4f];
+/// Path segments that cross an obstacle (RGB): an edited IGSA path the user should fix.
+pub const CROSSING_COLOR: [u8; 3] = [0xe0, 0x1a, 0x1a];
+/// Radius of a draggable waypoint handle (device px).
+pub const WAYPOINT_HANDLE_PX: f32 = 5.0;
 /// Outline of the selected item (RGB).
 pub const SELECTION_COLOR: [u8; 3] = [0xff, 0x8c, 0x00];
+/// Colour of hill shading (earth brown).
+pub const HILL_COLOR: [u8; 3] = [0x8a, 0x6a, 0x3c];
 /// Default share of a trail's visibility lost per frame.
 pub const DEFAULT_TRAIL_FADE: f32 = 0.01;
 /// Number of pre-rendered headings per group: 32 steps of 11.25°.
@@ -113,11 +120,15 @@ struct BaseKey {
     width: f32,
     height: f32,
     obstacles: Vec<Obstacle>,
+    hills: Vec<Hill>,
 }
 
 impl BaseKey {
     fn matches(&self, scene: &Scene) -> bool {
-        self.width == scene.width && self.height == scene.height && self.obstacles == scene.obstacles
+        self.width == scene.width
+            && self.height == scene.height
+            && self.obstacles == scene.obstacles
+            && self.hills == scene.hills
     }
 }
 
@@ -327,6 +338,7 @@ impl Renderer {
                 width: scene.width,
                 height: scene.height,
                 obstacles: scene.obstacles.clone(),
+                hills: scene.hills.clone(),
             });
             self.trails_stale = true;
         }
@@ -349,7 +361,9 @@ impl Renderer {
         let view = self.view;
         if let Some(mut pixmap) = PixmapMut::from_bytes(&mut self.frame, self.width, self.height) {
             draw_spawn_regions(&mut pixmap, scene, view);
+            draw_paths(&mut pixmap, scene, view);
             draw_goals(&mut pixmap, scene, view);
+            draw_planned_paths(&mut pixmap, world, view);
         }
         self.update_sprites(scene);
         self.draw_agents(world);
@@ -393,6 +407,7 @@ impl Renderer {
             }
             stroke_scene_path(&mut pixmap, pb, view, GRID_COLOR, 255, 0.0, None);
         }
+        draw_hills(&mut pixmap, scene, view);
         let fill = paint(OBSTACLE_COLOR, 255);
         let outline_width = (1.5 * view.scale).clamp(1.0, 3.0);
         for obstacle in &scene.obstacles {
@@ -782,6 +797,66 @@ fn draw_spawn_regions(pixmap: &mut PixmapMut, scene: &Scene, view: ViewTransform
     }
 }
 
+/// Hills as shading: nested discs at the contours of 20, 40, 60 and 80 % of each top, darker
+/// for higher hills (the tallest hill of the scene at full strength).
+fn draw_hills(pixmap: &mut PixmapMut, scene: &Scene, view: ViewTransform) {
+    let tallest = scene.hills.iter().map(|h| h.height).fold(0.0f32, f32::max);
+    if tallest <= 0.0 {
+        return;
+    }
+    for hill in &scene.hills {
+        let strength = hill.height / tallest;
+        for level in [0.2f32, 0.4, 0.6, 0.8] {
+            // exp(−d²/r²) = level at d = r·√(ln 1/level).
+            let d = hill.radius * libm::sqrtf(libm::logf(1.0 / level));
+            let mut pb = PathBuilder::new();
+            pb.push_circle(hill.center[0], hill.center[1], d);
+            let Some(path) = pb.finish().and_then(|p| p.transform(view.transform())) else { continue };
+            let alpha = (strength * 34.0) as u8;
+            pixmap.fill_path(
+                &path,
+                &paint(HILL_COLOR, alpha),
+                FillRule::Winding,
+                Transform::identity(),
+                None,
+            );
+        }
+    }
+}
+
+fn push_polyline(pb: &mut PathBuilder, points: &[[f32; 2]]) {
+    if let Some((first, rest)) = points.split_first() {
+        pb.move_to(first[0], first[1]);
+        for p in rest {
+            pb.line_to(p[0], p[1]);
+        }
+    }
+}
+
+/// Each path as a faint corridor (its radius) with a dashed centre line in the colour of the
+/// first group following it (grey if none).
+fn draw_paths(pixmap: &mut PixmapMut, scene: &Scene, view: ViewTransform) {
+    for (i, path) in scene.paths.iter().enumerate() {
+        let number = i as u32 + 1;
+        let follower =
+            scene.groups.iter().find(|g| matches!(&g.planner, PlannerConfig::Boids(p) if p.path == number));
+        let rgb = follower.map_or(OBSTACLE_COLOR, |g| parse_color(&g.color));
+        let mut corridor = PathBuilder::new();
+        push_polyline(&mut corridor, &path.points);
+        let Some(line) = corridor.finish().and_then(|p| p.transform(view.transform())) else { continue };
+        let wide = Stroke {
+            width: 2.0 * path.radius * view.scale,
+            line_cap: tiny_skia::LineCap::Round,
+            line_join: tiny_skia::LineJoin::Round,
+            ..Stroke::default()
+        };
+        pixmap.stroke_path(&line, &paint(rgb, 28), &wide, Transform::identity(), None);
+        let mut centre = PathBuilder::new();
+        push_polyline(&mut centre, &path.points);
+        stroke_scene_path(pixmap, centre, view, rgb, 200, 1.5, Some([8.0, 5.0]));
+    }
+}
+
 /// Each goal as a ring (its arrival radius) and a centre dot; goals no group uses are dimmer.
 fn draw_goals(pixmap: &mut PixmapMut, scene: &Scene, view: ViewTransform) {
     for (i, goal) in scene.goals.iter().enumerate() {
@@ -801,6 +876,40 @@ fn draw_goals(pixmap: &mut PixmapMut, scene: &Scene, view: ViewTransform) {
     }
 }
 
+/// The path each IGSA group follows: a dashed line in the group's colour, segments that cross an
+/// obstacle solid red, and a handle (white disc, coloured ring) on every draggable waypoint.
+fn draw_planned_paths(pixmap: &mut PixmapMut, world: &World, view: ViewTransform) {
+    for (g, group) in world.scene().groups.iter().enumerate() {
+        let Some(path) = world.planned_path(g) else { continue };
+        let rgb = parse_color(&group.color);
+        for (k, w) in path.points.windows(2).enumerate() {
+            let mut pb = PathBuilder::new();
+            pb.move_to(w[0][0], w[0][1]);
+            pb.line_to(w[1][0], w[1][1]);
+            if path.crossing.get(k).copied().unwrap_or(false) {
+                stroke_scene_path(pixmap, pb, view, CROSSING_COLOR, 255, 3.0, None);
+            } else {
+                stroke_scene_path(pixmap, pb, view, rgb, 220, 2.0, Some([7.0, 4.0]));
+            }
+        }
+        let inner = path.points.len().saturating_sub(1);
+        for p in path.points.iter().take(inner).skip(1) {
+            let c = view.to_canvas(Vec2::new(p[0], p[1]));
+            if let Some(dot) = PathBuilder::from_circle(c.x, c.y, WAYPOINT_HANDLE_PX) {
+                pixmap.fill_path(
+                    &dot,
+                    &paint([255, 255, 255], 255),
+                    FillRule::Winding,
+                    Transform::identity(),
+                    None,
+                );
+                let stroke = Stroke { width: 2.0, ..Stroke::default() };
+                pixmap.stroke_path(&dot, &paint(rgb, 255), &stroke, Transform::identity(), None);
+            }
+        }
+    }
+}
+
 /// An orange outline around the selected item; a stale index draws nothing.
 fn draw_selection(pixmap: &mut PixmapMut, scene: &Scene, view: ViewTransform, item: ItemRef) {
     let mut pb = PathBuilder::new();
@@ -816,6 +925,10 @@ fn draw_selection(pixmap: &mut PixmapMut, scene: &Scene, view: ViewTransform, it
         ItemRef::Group(i) => {
             let Some(group) = scene.groups.get(i as usize) else { return };
             push_rect(&mut pb, group.spawn.min, group.spawn.max);
+        }
+        ItemRef::Path(i) => {
+            let Some(path) = scene.paths.get(i as usize) else { return };
+            push_polyline(&mut pb, &path.points);
         }
     }
     stroke_scene_path(pixmap, pb, view, SELECTION_COLOR, 255, 2.5, None);
@@ -870,6 +983,29 @@ mod tests {
         r.render(&corridor);
         let (x, y) = canvas_of(&r, Vec2::new(450.0, 100.0));
         assert_eq!(pixel(&r, x, y)[..3], OBSTACLE_COLOR, "rectangle wall");
+    }
+
+    #[test]
+    fn hills_shade_the_ground_darker_towards_the_top_and_paths_show_their_followers_colour() {
+        let mut world = World::new(presets::pso_hills()).expect("valid");
+        let mut r = Renderer::new(1000, 700);
+        r.render(&world);
+        let brightness = |r: &Renderer, p: Vec2| {
+            let (x, y) = canvas_of(r, p);
+            pixel(r, x, y)[..3].iter().map(|&c| u32::from(c)).sum::<u32>()
+        };
+        let open = brightness(&r, Vec2::new(450.0, 40.0));
+        let flank = brightness(&r, Vec2::new(450.0, 350.0 + 80.0));
+        let top = brightness(&r, Vec2::new(450.0, 350.0));
+        assert!(top < flank && flank < open, "top {top}, flank {flank}, open {open}");
+        let mut scene = presets::boids_path();
+        scene.groups[0].count = 1;
+        world = World::new(scene).expect("valid");
+        r.render(&world);
+        // Halfway along the first segment, on the dashed centre line or its faint corridor.
+        let (x, y) = canvas_of(&r, Vec2::new(195.0, 505.0));
+        let [pr, pg, pb, _] = pixel(&r, x, y);
+        assert!(pg > pr && pg > pb, "path pixel {:?} is not the group's green", (pr, pg, pb));
     }
 
     #[test]
@@ -1012,6 +1148,24 @@ mod tests {
         draw_segment(&mut layer, w, h, Vec2::new(5.5, 9.5), Vec2::new(5.5, 0.5), [0, 0, 0], 255);
         assert_eq!(at(&layer, 5, 9), 0, "a steep segment going up covers its start");
         assert_eq!(at(&layer, 5, 0), 255, "and leaves its end");
+    }
+
+    #[test]
+    fn an_igsa_path_is_drawn_with_handles_and_its_crossing_segment_in_red() {
+        let mut scene = presets::igsa_path_2();
+        if let PlannerConfig::Igsa(p) = &mut scene.groups[0].planner {
+            // Through the wall (x 380…425 from y 150 down), then to the goal.
+            p.waypoints = vec![[300.0, 420.0], [500.0, 420.0]];
+        }
+        let world = World::new(scene).expect("valid");
+        let mut r = Renderer::new(800, 500);
+        r.render(&world);
+        let (hx, hy) = canvas_of(&r, Vec2::new(300.0, 420.0));
+        assert_eq!(pixel(&r, hx, hy), [255, 255, 255, 255], "handle centre");
+        // Middle of the crossing segment, left of the wall (inside it the wall is drawn first).
+        let (cx, cy) = canvas_of(&r, Vec2::new(350.0, 420.0));
+        let p = pixel(&r, cx, cy);
+        assert!(p[0] > 200 && p[1] < 80 && p[2] < 80, "crossing segment is red: {p:?}");
     }
 
     #[test]

@@ -41,6 +41,141 @@ pub struct Scene {
     /// How the page shows the run (trails); carried in shared links, no effect on the simulation.
     #[serde(default)]
     pub view: ViewOptions,
+    /// Drawn paths that groups may follow (Boids path following, parameter `path`).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub paths: Vec<PathSpec>,
+    /// Hills of the ground (a height field of Gaussian bumps): drawn as shading, a cost for PSO.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub hills: Vec<Hill>,
+}
+
+/// Most paths a scene may hold.
+pub const MAX_PATHS: usize = 64;
+/// Most hills a scene may hold.
+pub const MAX_HILLS: usize = 256;
+/// Highest hill allowed (px: heights share the unit of the ground plane, as the 3-D exports do).
+pub const MAX_HILL_HEIGHT: f32 = 10_000.0;
+
+/// A polyline path with a radius: Reynolds' path following keeps agents within `radius` of it
+/// while they travel from its first point to its last.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PathSpec {
+    /// Vertices `[x, y]` in px, in travel order (at least two).
+    pub points: Vec<[f32; 2]>,
+    /// Half-width of the corridor around the polyline, px. Default 30.
+    #[serde(default = "default_path_radius")]
+    pub radius: f32,
+}
+
+/// Default corridor half-width of a drawn path (px).
+pub const DEFAULT_PATH_RADIUS: f32 = 30.0;
+
+fn default_path_radius() -> f32 {
+    DEFAULT_PATH_RADIUS
+}
+
+impl PathSpec {
+    /// The closest point of the polyline to `p`, with the index of its segment and its
+    /// distance along the whole path (px). `None` for a path without points.
+    pub fn closest_point(&self, p: Vec2) -> Option<PathPoint> {
+        self.closest_point_in(p, 0..self.points.len().saturating_sub(1))
+    }
+
+    /// [`Self::closest_point`] over segments `segments` only (segment `k` joins points `k` and
+    /// `k + 1`); a single-point path yields that point.
+    pub fn closest_point_in(&self, p: Vec2, segments: std::ops::Range<usize>) -> Option<PathPoint> {
+        let first = v(*self.points.first()?);
+        if self.points.len() == 1 {
+            return Some(PathPoint { point: first, segment: 0, along: 0.0, direction: Vec2::ZERO });
+        }
+        let mut along_start = 0.0f32;
+        let mut best: Option<(f32, PathPoint)> = None;
+        for (k, pair) in self.points.windows(2).enumerate() {
+            let (a, b) = (v(pair[0]), v(pair[1]));
+            let ab = b - a;
+            let length = ab.length();
+            if segments.contains(&k) {
+                let t =
+                    if length > 0.0 { ((p - a).dot(ab) / (length * length)).clamp(0.0, 1.0) } else { 0.0 };
+                let q = a + ab * t;
+                let d2 = p.distance_squared(q);
+                if best.as_ref().is_none_or(|(bd, _)| d2 < *bd) {
+                    let direction = if length > 0.0 { ab / length } else { Vec2::ZERO };
+                    best = Some((
+                        d2,
+                        PathPoint { point: q, segment: k, along: along_start + t * length, direction },
+                    ));
+                }
+            }
+            along_start += length;
+        }
+        best.map(|(_, q)| q)
+    }
+
+    /// Total length of the polyline (px).
+    pub fn length(&self) -> f32 {
+        self.points.windows(2).map(|w| v(w[0]).distance(v(w[1]))).sum()
+    }
+
+    /// The point at distance `along` from the start, clamped to the path's ends.
+    pub fn point_at(&self, along: f32) -> Vec2 {
+        let Some(first) = self.points.first() else { return Vec2::ZERO };
+        let mut left = along.max(0.0);
+        let mut at = v(*first);
+        for next in self.points.iter().skip(1).map(|q| v(*q)) {
+            let length = at.distance(next);
+            if left <= length {
+                return if length > 0.0 { at + (next - at) * (left / length) } else { at };
+            }
+            left -= length;
+            at = next;
+        }
+        at
+    }
+}
+
+/// A point on a path, as found by [`PathSpec::closest_point`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PathPoint {
+    /// The point (px).
+    pub point: Vec2,
+    /// Index of its segment.
+    pub segment: usize,
+    /// Distance from the path's start along the polyline (px).
+    pub along: f32,
+    /// Unit direction of its segment (zero for a degenerate one).
+    pub direction: Vec2,
+}
+
+/// A hill: a Gaussian bump `height · exp(−|p − center|² / radius²)` of the ground.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Hill {
+    /// Top of the hill `[x, y]` in px.
+    pub center: [f32; 2],
+    /// Distance (px) at which the height has fallen to 1/e of the top.
+    pub radius: f32,
+    /// Height of the top (px, the unit of the ground plane), ≥ 0.
+    pub height: f32,
+}
+
+impl Hill {
+    /// Height of this hill's ground at `p` (px); zero beyond four radii, where it is below
+    /// 10⁻⁷ of the top.
+    pub fn height_at(&self, p: Vec2) -> f32 {
+        let d2 = p.distance_squared(v(self.center));
+        let r2 = self.radius * self.radius;
+        if d2 >= 16.0 * r2 {
+            return 0.0;
+        }
+        self.height * libm::expf(-d2 / r2)
+    }
+}
+
+/// Height of the ground at `p`: the sum of the hills (px).
+pub fn ground_height(hills: &[Hill], p: Vec2) -> f32 {
+    hills.iter().map(|h| h.height_at(p)).sum()
 }
 
 /// Display options saved with a scene so a shared link looks the same. They never change a run.
@@ -267,6 +402,8 @@ impl Scene {
             goals: vec![],
             groups: vec![],
             view: ViewOptions::default(),
+            paths: vec![],
+            hills: vec![],
         }
     }
 
@@ -329,6 +466,52 @@ impl Scene {
         }
         for (i, g) in self.groups.iter().enumerate() {
             self.validate_group(i, g)?;
+        }
+        if self.paths.len() > MAX_PATHS {
+            return Err(SceneError::OutOfRange(format!(
+                "{} paths is more than the {MAX_PATHS} allowed",
+                self.paths.len()
+            )));
+        }
+        for (i, path) in self.paths.iter().enumerate() {
+            let flat: Vec<f32> = path.points.iter().flat_map(|p| [p[0], p[1]]).chain([path.radius]).collect();
+            finite(|| format!("path {}", i + 1), &flat)?;
+            if path.points.len() < 2 || path.points.len() > MAX_PATH_POINTS {
+                return Err(SceneError::OutOfRange(format!(
+                    "path {} needs 2…{MAX_PATH_POINTS} points, has {}",
+                    i + 1,
+                    path.points.len()
+                )));
+            }
+            if path.radius <= 0.0 || path.radius > MAX_SIDE {
+                return Err(SceneError::OutOfRange(format!(
+                    "path {} radius {} must be > 0",
+                    i + 1,
+                    path.radius
+                )));
+            }
+            if let Some(k) = path.points.iter().position(|&p| !self.in_bounds(v(p))) {
+                return Err(SceneError::OutOfRange(format!(
+                    "path {} point {} lies outside the scene",
+                    i + 1,
+                    k + 1
+                )));
+            }
+        }
+        if self.hills.len() > MAX_HILLS {
+            return Err(SceneError::OutOfRange(format!(
+                "{} hills is more than the {MAX_HILLS} allowed",
+                self.hills.len()
+            )));
+        }
+        for (i, h) in self.hills.iter().enumerate() {
+            finite(|| format!("hill {}", i + 1), &[h.center[0], h.center[1], h.radius, h.height])?;
+            if h.radius <= 0.0 || h.radius > MAX_SIDE || !(0.0..=MAX_HILL_HEIGHT).contains(&h.height) {
+                return Err(SceneError::OutOfRange(format!(
+                    "hill {} needs a radius in 0…{MAX_SIDE} px and a height in 0…{MAX_HILL_HEIGHT} px",
+                    i + 1
+                )));
+            }
         }
         let fade = self.view.trail_fade;
         finite(|| "view trail fade".into(), &[fade])?;

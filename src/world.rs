@@ -21,12 +21,15 @@ const SPAWN_TRIES: u32 = 200;
 const PUSH_EPSILON: f32 = 0.01;
 
 /// One group at run time.
+#[derive(Clone)]
 struct GroupRuntime {
     agents: Range<u32>,
     planner: Box<dyn Planner>,
 }
 
-/// A scene being simulated.
+/// A scene being simulated. A clone is a complete snapshot (planner state, generator, metric
+/// accumulators): stepping a clone gives bit-identical results to stepping the original.
+#[derive(Clone)]
 pub struct World {
     scene: Scene,
     step: u32,
@@ -62,7 +65,7 @@ impl World {
         let mut max_radius = 0.0f32;
         for (gi, g) in scene.groups.iter().enumerate() {
             let start = pos.len() as u32;
-            let planner = g.planner.build(g.count as usize, &scene.obstacles);
+            let planner = g.planner.build_for_group(&scene, gi);
             let speed = planner.max_speed() * 0.25;
             for a in 0..g.count {
                 let p =
@@ -164,6 +167,8 @@ impl World {
             obstacles: &self.obstacles,
             bounds: Vec2::new(self.scene.width, self.scene.height),
             step: self.step,
+            scene: &self.scene,
+            group_of: &self.group_of,
         }
     }
 
@@ -190,6 +195,11 @@ impl World {
         Some((goal.position_at(self.step), goal.radius))
     }
 
+    /// The path group `g` follows, if its planner plans one (IGSA group path control).
+    pub fn planned_path(&self, g: usize) -> Option<&crate::planners::GroupPath> {
+        self.groups.get(g)?.planner.planned_path()
+    }
+
     /// Replaces the planner parameters of group `g` without restarting the run.
     pub fn set_group_planner(&mut self, g: usize, config: PlannerConfig) -> Result<(), SceneError> {
         let group = self
@@ -198,9 +208,8 @@ impl World {
             .get_mut(g)
             .ok_or_else(|| SceneError::BadReference(format!("there is no group {}", g + 1)))?;
         config.validate().map_err(SceneError::OutOfRange)?;
-        let count = group.count as usize;
         group.planner = config;
-        let planner = group.planner.build(count, &self.scene.obstacles);
+        let planner = self.scene.groups[g].planner.build_for_group(&self.scene, g);
         let cell = planner.interaction_radius().max(self.grid.cell_size());
         if cell > self.grid.cell_size() {
             self.grid = SpatialGrid::new(self.scene.width, self.scene.height, cell, self.pos.len());
@@ -244,8 +253,14 @@ impl World {
             *self = World::new(scene)?;
             return Ok(());
         }
+        let geometry_changed = scene.obstacles != self.scene.obstacles || scene.goals != self.scene.goals;
         self.obstacles = ObstacleIndex::new(scene.obstacles.clone(), scene.width, scene.height);
         self.scene = scene;
+        for (gi, group) in self.groups.iter_mut().enumerate() {
+            if geometry_changed && group.planner.replans_on_edit() {
+                group.planner = self.scene.groups[gi].planner.build_for_group(&self.scene, gi);
+            }
+        }
         Ok(())
     }
 
@@ -268,6 +283,8 @@ impl World {
             obstacles: &self.obstacles,
             bounds,
             step: self.step,
+            scene: &self.scene,
+            group_of: &self.group_of,
         };
         let step = self.step;
         for (gi, group) in self.groups.iter_mut().enumerate() {

@@ -25,6 +25,7 @@ pub mod functions;
 pub mod ga;
 pub mod gsa;
 pub mod igsa;
+pub mod lab;
 pub mod path;
 pub mod pso;
 pub mod report;

@@ -37,6 +37,10 @@ OPTIONS:
                        PATH ending in .csv is one file, otherwise a directory of one file
                        per function
     --bench-force      Time the O(N²) GSA force step at N = 50 and 1000 (d = 30) and exit
+    --table4           IGSA group path control, the paper's Table 4: the igsa-crowd scene
+                       with 100, 500 and 1000 agents, path planned by IGSA and by GSA
+                       (planning time, path length, speed near the obstacle, collisions);
+                       --steps N sets the run length (default 6000)
     --paths            Plan the igsa-path-1 and igsa-path-2 scenes with the chosen
                        algorithms for seeds 0..R and print length / deflection / turning
                        (e.g. --paths --algorithms gsa,igsa --runs 20 --iters 500)
@@ -68,6 +72,10 @@ pub struct OptimizeArgs {
     pub bench_force: bool,
     /// Run the GSA-vs-IGSA path experiment (`igsa-path-1`, `igsa-path-2`) instead.
     pub paths: bool,
+    /// Run the crowd experiment (Table 4) instead.
+    pub table4: bool,
+    /// Steps of each Table 4 run.
+    pub steps: u32,
 }
 
 impl Default for OptimizeArgs {
@@ -83,6 +91,8 @@ impl Default for OptimizeArgs {
             curves: None,
             bench_force: false,
             paths: false,
+            table4: false,
+            steps: 6000,
         }
     }
 }
@@ -137,6 +147,10 @@ impl OptimizeArgs {
                 a.paths = true;
                 continue;
             }
+            if flag == "--table4" {
+                a.table4 = true;
+                continue;
+            }
             let value = match inline {
                 Some(v) => v,
                 None => {
@@ -166,6 +180,7 @@ impl OptimizeArgs {
                 "--alpha" => a.settings.alpha = Some(number(&flag, &value, 0.0, 1e6)?),
                 "--json" => a.json = Some(PathBuf::from(value)),
                 "--curves" => a.curves = Some(PathBuf::from(value)),
+                "--steps" => a.steps = number(&flag, &value, 1, 1_000_000)?,
                 other => return Err(format!("optimize: unknown option {other:?}")),
             }
         }
@@ -455,6 +470,134 @@ pub fn bench_force(clock: &dyn Fn() -> f64) -> String {
     s
 }
 
+/// One row of Table 4: a crowd of `agents` following a path planned by `optimizer`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct CrowdRow {
+    /// Group size.
+    pub agents: u32,
+    /// Path optimizer (`igsa` or `gsa`).
+    pub optimizer: &'static str,
+    /// Planning time (ms, median of three plans; the caller's clock).
+    pub planning_ms: f64,
+    /// Path length (px).
+    pub path_length: f64,
+    /// Largest deflection of the path (degrees).
+    pub max_turn_deg: f64,
+    /// Segments of the path that cross an obstacle.
+    pub crossing_segments: usize,
+    /// Mean speed of agents within 30 px of the obstacle (px/step).
+    pub speed_near_obstacle: Option<f64>,
+    /// Mean speed over all agents and steps (px/step).
+    pub mean_speed: f64,
+    /// Share of agents that reached the goal.
+    pub arrived_share: f64,
+    /// Mean steps to the goal over arrived agents.
+    pub mean_time_to_goal: Option<f64>,
+    /// Overlapping pairs summed over steps (the metric).
+    pub collisions: u64,
+    /// The part of it from the random spawn: counted until the first step with no overlap.
+    pub spawn_collisions: u64,
+    /// Penetrations of obstacles.
+    pub penetrations: u64,
+}
+
+/// The paper's Table 4, measured: the `igsa-crowd` scene with each group size, the path
+/// planned by IGSA and by GSA, `steps` steps each. Planning is timed alone (it never sees the
+/// agents); the path is the same for every size.
+pub fn table4_rows(
+    sizes: &[u32],
+    steps: u32,
+    clock: &dyn Fn() -> f64,
+    progress: &mut dyn FnMut(usize, usize),
+) -> Vec<CrowdRow> {
+    use crate::planners::igsa::{plan_group_path, PathOptimizer};
+    use crate::planners::{IgsaParams, PlannerConfig};
+    let mut rows = Vec::new();
+    let total = sizes.len() * 2;
+    for (k, (&agents, optimizer)) in
+        sizes.iter().flat_map(|n| [(n, PathOptimizer::Igsa), (n, PathOptimizer::Gsa)]).enumerate()
+    {
+        let mut scene = crate::presets::igsa_crowd(agents);
+        let params = IgsaParams { optimizer, ..IgsaParams::default() };
+        scene.groups[0].planner = PlannerConfig::Igsa(params.clone());
+        let mut times = Vec::new();
+        let mut path = None;
+        for _ in 0..3 {
+            let start = clock();
+            path = plan_group_path(&scene, 0, &params);
+            times.push(clock() - start);
+        }
+        times.sort_by(f64::total_cmp);
+        let Some(path) = path else { continue };
+        let Ok(mut world) = crate::World::new(scene) else { continue };
+        let mut spawn_collisions = None;
+        for _ in 0..steps {
+            world.step();
+            if spawn_collisions.is_none() {
+                let m = world.metrics();
+                if m.collisions_last_step == 0 {
+                    spawn_collisions = Some(m.overall.collisions_agent_agent);
+                }
+            }
+        }
+        let m = world.metrics();
+        rows.push(CrowdRow {
+            agents,
+            optimizer: match optimizer {
+                PathOptimizer::Igsa => "igsa",
+                PathOptimizer::Gsa => "gsa",
+            },
+            planning_ms: times[1] * 1e3,
+            path_length: path.length,
+            max_turn_deg: path.max_turn_deg,
+            crossing_segments: path.crossing.iter().filter(|&&c| c).count(),
+            speed_near_obstacle: m.overall.mean_speed_near_obstacles,
+            mean_speed: m.overall.mean_speed,
+            arrived_share: m.overall.arrived_share,
+            mean_time_to_goal: m.overall.mean_time_to_goal,
+            collisions: m.overall.collisions_agent_agent,
+            spawn_collisions: spawn_collisions.unwrap_or(m.overall.collisions_agent_agent),
+            penetrations: m.overall.penetrations_agent_obstacle,
+        });
+        progress(k + 1, total);
+    }
+    rows
+}
+
+/// [`table4_rows`] as text.
+pub fn table4(
+    sizes: &[u32],
+    steps: u32,
+    clock: &dyn Fn() -> f64,
+    progress: &mut dyn FnMut(usize, usize),
+) -> String {
+    let rows = table4_rows(sizes, steps, clock, progress);
+    let mut s = format!(
+        "igsa-crowd, {steps} steps (1 step = 1/60 s), path planner N = 30, T = 300, seed 1\n{:>6} {:>6} {:>9} {:>8} {:>6} {:>6} {:>10} {:>8} {:>8} {:>9} {:>10} {:>8} {:>6}\n",
+        "agents", "path", "plan ms", "length", "turn°", "cross", "v@obst", "v mean", "arrived", "t goal", "collisions", "spawn", "penetr"
+    );
+    for r in &rows {
+        let _ = writeln!(
+            s,
+            "{:>6} {:>6} {:>9.1} {:>8.1} {:>6.1} {:>6} {:>10} {:>8.3} {:>7.1}% {:>9} {:>10} {:>8} {:>6}",
+            r.agents,
+            r.optimizer,
+            r.planning_ms,
+            r.path_length,
+            r.max_turn_deg,
+            r.crossing_segments,
+            r.speed_near_obstacle.map_or("-".into(), |v| format!("{v:.3}")),
+            r.mean_speed,
+            100.0 * r.arrived_share,
+            r.mean_time_to_goal.map_or("-".into(), |t| format!("{t:.0}")),
+            r.collisions,
+            r.spawn_collisions,
+            r.penetrations
+        );
+    }
+    s
+}
+
 /// A one-line progress bar for stderr: `[#####.....] done/total`.
 pub fn progress_line(done: usize, total: usize) -> String {
     let width = 30;
@@ -483,6 +626,9 @@ pub fn execute(
 ) -> Result<String, String> {
     if parsed.bench_force {
         return Ok(bench_force(clock));
+    }
+    if parsed.table4 {
+        return Ok(table4(&[100, 500, 1000], parsed.steps, clock, progress));
     }
     if parsed.paths {
         let scenes = [crate::presets::igsa_path_1(), crate::presets::igsa_path_2()];

@@ -6,8 +6,11 @@
 
 use super::{limit, GroupView, ParamSpec, Planner, StepContext};
 use crate::diagnose::{Explanation, NamedVector};
+use crate::flow_field::{self, FlowField};
 use crate::geometry::{unit_or, Aabb, Obstacle};
 use crate::rng::Rng;
+use crate::scene::PathSpec;
+use crate::spatial::Neighbour;
 use glam::Vec2;
 use serde::{Deserialize, Serialize};
 
@@ -52,6 +55,69 @@ pub struct BoidsParams {
     pub arrival_radius: f32,
     /// How the forces are combined.
     pub arbitration: Arbitration,
+    /// Followers aim at the point this far behind the leader (px). Default 30.
+    pub leader_distance: f32,
+    /// The leader's speed as a share of max speed, so followers can keep up. Default 0.75.
+    pub leader_speed: f32,
+    /// Leader following: `first` makes the group's first agent the leader; the others follow it.
+    pub leader: Leader,
+    /// Path following looks this far ahead of the agent (px) for its predicted position. Default 30.
+    pub path_lookahead: f32,
+    /// The scene path this group follows, 1-based; 0 (the default) follows none, and so does a
+    /// number beyond the scene's paths (a documented no-op: deleting a path never breaks a scene).
+    pub path: u32,
+    /// Flow field guidance: `goal` replaces straight seeking by the goal-derived flow field.
+    pub flow_field: FlowGuide,
+    /// Predators see prey within this distance (px). Default 400.
+    pub chase_radius: f32,
+    /// Prey see predators within this distance (px). Default 100.
+    pub flee_radius: f32,
+    /// Weight of fleeing from predators. Default 3.
+    pub flee_weight: f32,
+    /// Separation weight while fleeing (replaces `separation_weight`). Default 0.8: a threatened
+    /// school closes up.
+    pub fleeing_separation_weight: f32,
+    /// Alignment weight while fleeing. Default 2.
+    pub fleeing_alignment_weight: f32,
+    /// Cohesion weight while fleeing. Default 2.
+    pub fleeing_cohesion_weight: f32,
+    /// Predator/prey role of the group's agents.
+    pub role: Role,
+}
+
+/// Leader following (lecture, "Leader Following").
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Leader {
+    /// Every agent steers for itself.
+    None,
+    /// The group's first agent seeks the goal; the others arrive at a point behind it, leave its
+    /// path when in front of it, and never overtake it.
+    First,
+}
+
+/// Top-down guidance (lecture, "Flow Field").
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum FlowGuide {
+    /// Seek the goal in a straight line.
+    Off,
+    /// Follow the flow field of the shortest obstacle-free ways to the goal
+    /// ([`crate::flow_field`]), combined with the local rules.
+    Goal,
+}
+
+/// Predator/prey role (lecture, "more complex behaviours").
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Role {
+    /// Neither chases nor flees.
+    None,
+    /// Pursues the nearest prey within `chase_radius`, aiming at its predicted position.
+    Predator,
+    /// Flees predators within `flee_radius` (evading their predicted positions), with the
+    /// fleeing weights of separation, alignment and cohesion while it sees one.
+    Prey,
 }
 
 impl Default for BoidsParams {
@@ -69,6 +135,19 @@ impl Default for BoidsParams {
             whisker_length: 50.0,
             arrival_radius: 60.0,
             arbitration: Arbitration::Weighted,
+            leader_distance: 30.0,
+            leader_speed: 0.75,
+            leader: Leader::None,
+            path_lookahead: 30.0,
+            path: 0,
+            flow_field: FlowGuide::Off,
+            chase_radius: 400.0,
+            flee_radius: 100.0,
+            flee_weight: 3.0,
+            fleeing_separation_weight: 0.8,
+            fleeing_alignment_weight: 2.0,
+            fleeing_cohesion_weight: 2.0,
+            role: Role::None,
         }
     }
 }
@@ -171,6 +250,122 @@ impl BoidsParams {
             0,
             "Weighted sum of all rules, or priority allocation of the force budget.",
         ),
+        // Extensions, appended (links store parameters by position); each feature's settings
+        // come before its switch, see `ParamSpec::omitted_at_default`.
+        ParamSpec::number(
+            "leader_distance",
+            "Follow distance",
+            "px",
+            (5.0, 200.0, 1.0),
+            30.0,
+            "Leader following: followers aim this far behind the leader.",
+        )
+        .omitted_at_default(),
+        ParamSpec::number(
+            "leader_speed",
+            "Leader speed",
+            "× max",
+            (0.1, 1.0, 0.05),
+            0.75,
+            "Leader following: the leader walks at this share of max speed so followers keep up.",
+        )
+        .omitted_at_default(),
+        ParamSpec::choice(
+            "leader",
+            "Leader",
+            &["none", "first"],
+            0,
+            "first: the group's first agent leads to the goal; the others follow behind it.",
+        )
+        .omitted_at_default(),
+        ParamSpec::number(
+            "path_lookahead",
+            "Path look-ahead",
+            "px",
+            (0.0, 200.0, 1.0),
+            30.0,
+            "Path following: how far ahead the agent predicts its position.",
+        )
+        .omitted_at_default(),
+        ParamSpec::number(
+            "path",
+            "Follow path",
+            "#",
+            (0.0, 64.0, 1.0),
+            0.0,
+            "Number of the scene path the group follows (0 = none).",
+        )
+        .omitted_at_default(),
+        ParamSpec::choice(
+            "flow_field",
+            "Flow field",
+            &["off", "goal"],
+            0,
+            "goal: follow the shortest obstacle-free way to the goal instead of a straight line.",
+        )
+        .omitted_at_default(),
+        ParamSpec::number(
+            "chase_radius",
+            "Chase radius",
+            "px",
+            (10.0, 2000.0, 10.0),
+            400.0,
+            "Predators see prey within this distance.",
+        )
+        .omitted_at_default(),
+        ParamSpec::number(
+            "flee_radius",
+            "Flee radius",
+            "px",
+            (10.0, 1000.0, 5.0),
+            100.0,
+            "Prey see predators within this distance.",
+        )
+        .omitted_at_default(),
+        ParamSpec::number(
+            "flee_weight",
+            "Flee",
+            "×",
+            (0.0, 10.0, 0.1),
+            3.0,
+            "Weight of fleeing from predators.",
+        )
+        .omitted_at_default(),
+        ParamSpec::number(
+            "fleeing_separation_weight",
+            "Separation (fleeing)",
+            "×",
+            (0.0, 5.0, 0.1),
+            0.8,
+            "Separation weight while a predator is in sight.",
+        )
+        .omitted_at_default(),
+        ParamSpec::number(
+            "fleeing_alignment_weight",
+            "Alignment (fleeing)",
+            "×",
+            (0.0, 5.0, 0.1),
+            2.0,
+            "Alignment weight while a predator is in sight.",
+        )
+        .omitted_at_default(),
+        ParamSpec::number(
+            "fleeing_cohesion_weight",
+            "Cohesion (fleeing)",
+            "×",
+            (0.0, 5.0, 0.1),
+            2.0,
+            "Cohesion weight while a predator is in sight.",
+        )
+        .omitted_at_default(),
+        ParamSpec::choice(
+            "role",
+            "Role",
+            &["none", "predator", "prey"],
+            0,
+            "predator: chase the nearest prey; prey: flee predators in sight.",
+        )
+        .omitted_at_default(),
     ];
 }
 
@@ -180,7 +375,31 @@ pub struct Boids {
     params: BoidsParams,
     /// Scratch: the neighbours of the agent being planned (reused to avoid allocating).
     near: Vec<NearAgent>,
+    /// The flow field towards the goal and what it was built from (flow field guidance).
+    flow: Option<(FlowKey, FlowField)>,
+    /// Per agent of the group: the path segment it has reached (path following only moves on).
+    path_segment: Vec<u32>,
+    /// The leader's last heading while it moved (leader following).
+    leader_heading: Vec2,
 }
+
+/// What a cached flow field depends on.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct FlowKey {
+    goal_cell: (i32, i32),
+    obstacles: u64,
+    bounds: Vec2,
+    clearance: f32,
+}
+
+/// Segment index meaning "not placed on the path yet".
+const UNPLACED: u32 = u32::MAX;
+/// Weight of a follower's steering out of the leader's way.
+const LEADER_EVADE_WEIGHT: f32 = 2.0;
+/// Longest look into the future (steps) when predicting a chased or feared agent's position.
+const MAX_PREDICTION_STEPS: f32 = 40.0;
+/// A leader slower than this (px/step) keeps its last heading.
+const MIN_HEADING_SPEED: f32 = 0.05;
 
 /// A neighbour found within the perception radius.
 #[derive(Clone, Copy, Debug, Default)]
@@ -198,7 +417,234 @@ const SIDE_WHISKER_SCALE: f32 = 0.6;
 impl Boids {
     /// A planner with these parameters.
     pub fn new(params: BoidsParams) -> Self {
-        Self { params, near: Vec::new() }
+        Self { params, near: Vec::new(), flow: None, path_segment: Vec::new(), leader_heading: Vec2::ZERO }
+    }
+
+    /// The planner's parameters.
+    pub fn params(&self) -> &BoidsParams {
+        &self.params
+    }
+
+    /// Updates what the extensions remember between steps, from the state at the start of the
+    /// step (so `agent_forces` stays a pure function of it): the flow field when the goal moved
+    /// to another cell or the obstacles changed, each agent's progress along its path, the
+    /// leader's heading.
+    fn prepare(&mut self, ctx: &StepContext, group: &GroupView) {
+        let prm = &self.params;
+        if prm.flow_field == FlowGuide::Goal {
+            if let Some((goal, _)) = group.goal {
+                let clearance = group.agents.clone().next().map_or(0.0, |i| ctx.radii[i as usize]);
+                let key = FlowKey {
+                    goal_cell: ((goal.x / flow_field::CELL) as i32, (goal.y / flow_field::CELL) as i32),
+                    obstacles: flow_field::obstacles_fingerprint(ctx.obstacles.obstacles()),
+                    bounds: ctx.bounds,
+                    clearance,
+                };
+                if self.flow.as_ref().is_none_or(|(k, _)| *k != key) {
+                    let field = FlowField::new(ctx.bounds, ctx.obstacles, goal, clearance);
+                    self.flow = Some((key, field));
+                }
+            }
+        }
+        if prm.leader == Leader::First {
+            let leader = group.agents.start as usize;
+            if let Some(&v) = ctx.velocities.get(leader).filter(|_| !group.agents.is_empty()) {
+                if v.length() > MIN_HEADING_SPEED {
+                    self.leader_heading = unit_or(v, Vec2::X);
+                } else if self.leader_heading == Vec2::ZERO {
+                    let to = group.goal.map_or(Vec2::X, |(g, _)| g - ctx.positions[leader]);
+                    self.leader_heading = unit_or(to, Vec2::X);
+                }
+            }
+        }
+        let n = group.agents.len();
+        if self.path_segment.len() != n {
+            self.path_segment = vec![UNPLACED; n];
+        }
+        if let Some(path) = self.followed_path(ctx) {
+            for (k, id) in group.agents.clone().enumerate() {
+                let p = ctx.positions[id as usize];
+                let seg = self.path_segment[k];
+                let found = if seg == UNPLACED {
+                    path.closest_point(p)
+                } else {
+                    // Only the next two segments are candidates: a path that loops back near
+                    // itself is still walked in order.
+                    path.closest_point_in(p, seg as usize..seg as usize + 3)
+                };
+                if let Some(q) = found {
+                    self.path_segment[k] =
+                        if seg == UNPLACED { q.segment as u32 } else { seg.max(q.segment as u32) };
+                }
+            }
+        }
+    }
+
+    /// The scene path this group follows, if any.
+    fn followed_path<'s>(&self, ctx: &StepContext<'s>) -> Option<&'s PathSpec> {
+        let index = self.params.path.checked_sub(1)?;
+        ctx.scene.paths.get(index as usize)
+    }
+
+    /// Seek with arrival towards a goal of radius `goal_radius` at up to `top_speed`: the
+    /// steering force, the way to the goal, and whether the agent is parked inside it.
+    fn seek_goal(&self, goal: Option<(Vec2, f32)>, p: Vec2, vel: Vec2, top_speed: f32) -> (Vec2, Vec2, bool) {
+        let prm = &self.params;
+        match goal {
+            Some((goal, goal_radius)) => {
+                let to = goal - p;
+                let d = to.length();
+                // Inside the goal the agent parks: it brakes and only keeps its distance, so
+                // an arrived group spreads over the goal instead of piling onto its centre.
+                let parked = d <= goal_radius;
+                // Arrival: slow down over `arrival_radius` before the goal's edge, and creep
+                // (a tenth of max speed) the rest of the way so the group keeps filling in.
+                let ramp = ((d - goal_radius) / prm.arrival_radius).clamp(0.1, 1.0);
+                let speed = if parked { 0.0 } else { top_speed * ramp };
+                let desired = if d > 1e-6 { to * (speed / d) } else { Vec2::ZERO };
+                (limit(desired - vel, prm.max_force), to, parked)
+            }
+            None => (Vec2::ZERO, Vec2::X, false),
+        }
+    }
+
+    /// The top-down or leader guidance that replaces seeking the goal, if a feature gives one.
+    fn guide(
+        &self,
+        ctx: &StepContext,
+        group: &GroupView,
+        k: usize,
+        id: u32,
+        p: Vec2,
+        vel: Vec2,
+    ) -> Option<Guide> {
+        let prm = &self.params;
+        if prm.role == Role::Predator {
+            if let Some(prey) = nearest_of_role(ctx, p, prm.chase_radius, Role::Prey, id) {
+                // Pursuit: aim where the prey will be when reached at top speed.
+                let t = (prey.d2.sqrt() / prm.max_speed).min(MAX_PREDICTION_STEPS);
+                let aim = prey.pos + prey.vel * t - p;
+                return Some(Guide::new("pursue prey", self.steer_towards(aim, vel), aim));
+            }
+        }
+        if prm.leader == Leader::First && !group.agents.is_empty() {
+            let leader = group.agents.start;
+            if id == leader {
+                let (seek, to, parked) = self.seek_goal(group.goal, p, vel, prm.max_speed * prm.leader_speed);
+                return Some(Guide {
+                    name: "lead to goal",
+                    steer: seek,
+                    to_goal: to,
+                    parked,
+                    flock: false,
+                    evade: None,
+                });
+            }
+            return Some(self.follow_leader(ctx, leader, p, vel));
+        }
+        if let Some(path) = self.followed_path(ctx) {
+            if let Some(g) = self.follow_path(path, group, k, p, vel) {
+                return Some(g);
+            }
+        }
+        if prm.flow_field == FlowGuide::Goal {
+            if let (Some((goal, goal_radius)), Some((_, field))) = (group.goal, &self.flow) {
+                let direction = field.direction_at(p);
+                if direction != Vec2::ZERO {
+                    let parked = p.distance(goal) <= goal_radius;
+                    let way = field.distance_at(p);
+                    let way = if way.is_finite() { way } else { p.distance(goal) };
+                    let ramp = ((way - goal_radius) / prm.arrival_radius).clamp(0.1, 1.0);
+                    let speed = if parked { 0.0 } else { prm.max_speed * ramp };
+                    let steer = limit(direction * speed - vel, prm.max_force);
+                    return Some(Guide {
+                        name: "flow field",
+                        steer,
+                        to_goal: direction,
+                        parked,
+                        flock: true,
+                        evade: None,
+                    });
+                }
+            }
+        }
+        None
+    }
+
+    /// Reynolds' leader following: arrive at a point `leader_distance` behind the leader; when in
+    /// front of it (within its path's width), steer sideways out of its way and brake.
+    fn follow_leader(&self, ctx: &StepContext, leader: u32, p: Vec2, vel: Vec2) -> Guide {
+        let prm = &self.params;
+        let l = ctx.positions[leader as usize];
+        let heading = self.leader_heading;
+        let behind = l - heading * prm.leader_distance;
+        let to = behind - p;
+        // Arrival at a moving point: the leader's velocity plus a pull that fades over the
+        // arrival radius, so a follower at the point walks with the leader instead of stopping.
+        let desired =
+            limit(ctx.velocities[leader as usize] + to * (prm.max_speed / prm.arrival_radius), prm.max_speed);
+        let steer = limit(desired - vel, prm.max_force);
+        let rel = p - l;
+        let ahead = rel.dot(heading);
+        let lateral = rel - heading * ahead;
+        let in_the_way = ahead > -ctx.radii[leader as usize]
+            && ahead < 2.0 * prm.leader_distance
+            && lateral.length() < prm.leader_distance;
+        let evade = in_the_way.then(|| {
+            let side = unit_or(lateral, heading.perp());
+            self.steer_towards(side - heading * 0.5, vel) * LEADER_EVADE_WEIGHT
+        });
+        Guide { name: "follow leader", steer, to_goal: to, parked: false, flock: true, evade }
+    }
+
+    /// Reynolds' path following: predict the position `path_lookahead` ahead; inside the
+    /// corridor, steer along the path; outside it, seek the path point `path_lookahead` beyond
+    /// the predicted position's projection. `None` once the end is reached (the goal takes over).
+    fn follow_path(&self, path: &PathSpec, group: &GroupView, k: usize, p: Vec2, vel: Vec2) -> Option<Guide> {
+        let prm = &self.params;
+        let seg = self.path_segment.get(k).copied().filter(|&s| s != UNPLACED).unwrap_or(0) as usize;
+        let here = path.closest_point_in(p, seg..seg + 3)?;
+        let length = path.length();
+        let end = path.point_at(length);
+        if here.along >= length - path.radius && p.distance(end) <= path.radius {
+            return if group.goal.is_some() {
+                None
+            } else {
+                let (steer, to, parked) = self.seek_goal(Some((end, path.radius)), p, vel, prm.max_speed);
+                Some(Guide { name: "path end", steer, to_goal: to, parked, flock: !parked, evade: None })
+            };
+        }
+        let ahead = unit_or(vel, here.direction);
+        let future = p + ahead * prm.path_lookahead;
+        let projected = path.closest_point_in(future, seg..seg + 3)?;
+        let along = projected.along.max(here.along);
+        let target = path.point_at(along + prm.path_lookahead);
+        let direction =
+            if future.distance(projected.point) > path.radius || p.distance(here.point) > path.radius {
+                target - p
+            } else {
+                target - here.point
+            };
+        Some(Guide::new("follow path", self.steer_towards(direction, vel), direction))
+    }
+
+    /// Evasion of predators in sight: away from their predicted positions, nearer ones more.
+    fn flee(&self, ctx: &StepContext, p: Vec2, vel: Vec2, id: u32) -> Option<Vec2> {
+        let prm = &self.params;
+        let mut away = Vec2::ZERO;
+        let mut seen = false;
+        ctx.grid.for_each_within(p, prm.flee_radius, |n| {
+            if n.id != id && role_of(ctx, n.id) == Role::Predator {
+                // Until they would meet head-on: the predicted point stays between the two, so
+                // fleeing never turns the prey towards a fast predator.
+                let t = (n.d2.sqrt() / (n.vel.length() + prm.max_speed)).min(MAX_PREDICTION_STEPS);
+                let from = p - (n.pos + n.vel * t);
+                let d2 = from.length_squared().max(1.0);
+                away += from / d2;
+                seen = true;
+            }
+        });
+        seen.then(|| self.steer_towards(away, vel))
     }
 
     /// `desired − velocity` with the desired velocity along `direction` at max speed, limited.
@@ -289,9 +735,10 @@ impl Planner for Boids {
     }
 
     fn plan(&mut self, ctx: &StepContext, group: GroupView, _rng: &mut Rng, new_velocities: &mut [Vec2]) {
+        self.prepare(ctx, &group);
         let mut near = std::mem::take(&mut self.near);
         for (k, id) in group.agents.clone().enumerate() {
-            let forces = self.agent_forces(ctx, &group, id, &mut near);
+            let forces = self.agent_forces(ctx, &group, k, id, &mut near);
             new_velocities[k] =
                 limit(ctx.velocities[id as usize] + forces.acceleration, self.params.max_speed);
         }
@@ -300,33 +747,83 @@ impl Planner for Boids {
 
     fn explain(&self, ctx: &StepContext, group: &GroupView, agent: u32) -> Explanation {
         let mut near = Vec::new();
-        let forces = self.agent_forces(ctx, group, agent, &mut near);
+        let k = agent.saturating_sub(group.agents.start) as usize;
+        let forces = self.agent_forces(ctx, group, k, agent, &mut near);
         let mut e = Explanation::default();
-        for (name, force) in RULE_NAMES.iter().zip(forces.weighted) {
+        for &(name, force) in &forces.weighted[..forces.used] {
             e.vectors.push(NamedVector::new(name, force));
         }
         e.applied = forces.acceleration;
         e.neighbours =
             near[..forces.neighbours].iter().filter(|n| n.id != agent && n.d2 > 0.0).map(|n| n.id).collect();
-        e.state = if forces.parked { "parked in the goal".into() } else { "steering".into() };
+        e.state = match (forces.parked, forces.fleeing) {
+            (_, true) => "fleeing a predator".into(),
+            (true, false) => "parked in the goal".into(),
+            (false, false) => "steering".into(),
+        };
         e
     }
 }
 
 /// The rule forces of one agent in one step.
 struct AgentForces {
-    /// Weighted forces in [`RULE_NAMES`] order.
-    weighted: [Vec2; 5],
+    /// Named weighted forces in arbitration order: obstacle avoidance, (fleeing or leaving the
+    /// leader's way, when active), separation, seek (or the guidance replacing it), alignment,
+    /// cohesion. Only the first `used` entries are forces.
+    weighted: [(&'static str, Vec2); 6],
+    /// How many entries of `weighted` hold forces.
+    used: usize,
     /// The acceleration the arbitration makes of them.
     acceleration: Vec2,
     /// Inside the goal: braking, only keeping its distance.
     parked: bool,
+    /// A predator is in sight (prey only).
+    fleeing: bool,
     /// How many entries of the scratch list are the agent's neighbours (itself included).
     neighbours: usize,
 }
 
-/// Names of the weighted rule forces, in arbitration order (the explanation's arrows).
-const RULE_NAMES: [&str; 5] = ["obstacle avoidance", "separation", "seek", "alignment", "cohesion"];
+/// Guidance that replaces seeking the goal (pursuit, leader, path, flow field).
+struct Guide {
+    /// Name of the force in explanations.
+    name: &'static str,
+    /// Its steering force (unweighted).
+    steer: Vec2,
+    /// The way the agent wants to go (fallback heading of the whiskers).
+    to_goal: Vec2,
+    /// Parked: braking inside its goal.
+    parked: bool,
+    /// Whether alignment and cohesion apply (a leader ignores its followers).
+    flock: bool,
+    /// An urgent force that comes right after obstacle avoidance (leaving the leader's way).
+    evade: Option<Vec2>,
+}
+
+impl Guide {
+    fn new(name: &'static str, steer: Vec2, to_goal: Vec2) -> Self {
+        Self { name, steer, to_goal, parked: false, flock: true, evade: None }
+    }
+}
+
+/// A planner's role read from another group's settings (only Boids groups have one).
+fn role_of(ctx: &StepContext, agent: u32) -> Role {
+    let group = ctx.group_of.get(agent as usize).and_then(|&g| ctx.scene.groups.get(g as usize));
+    match group.map(|g| &g.planner) {
+        Some(super::PlannerConfig::Boids(p)) => p.role,
+        _ => Role::None,
+    }
+}
+
+/// The nearest agent of `role` within `radius` of `p` (not `me`), ties by id.
+fn nearest_of_role(ctx: &StepContext, p: Vec2, radius: f32, role: Role, me: u32) -> Option<Neighbour> {
+    let mut best: Option<Neighbour> = None;
+    ctx.grid.for_each_within(p, radius, |n| {
+        if n.id != me && best.is_none_or(|b| (n.d2, n.id) < (b.d2, b.id)) && role_of(ctx, n.id) == role {
+            best = Some(n);
+        }
+    });
+    best
+}
 
 impl Boids {
     /// Every rule force of agent `id` from the step's state; `near` is scratch for its neighbours.
@@ -335,6 +832,7 @@ impl Boids {
         &self,
         ctx: &StepContext,
         group: &GroupView,
+        k: usize,
         id: u32,
         near: &mut Vec<NearAgent>,
     ) -> AgentForces {
@@ -390,40 +888,52 @@ impl Boids {
         } else {
             (Vec2::ZERO, Vec2::ZERO)
         };
-        let mut parked = false;
-        let (seek, to_goal) = match group.goal {
-            Some((goal, goal_radius)) => {
-                let to = goal - p;
-                let d = to.length();
-                // Inside the goal the agent parks: it brakes and only keeps its distance, so
-                // an arrived group spreads over the goal instead of piling onto its centre.
-                parked = d <= goal_radius;
-                // Arrival: slow down over `arrival_radius` before the goal's edge, and creep
-                // (a tenth of max speed) the rest of the way so the group keeps filling in.
-                let ramp = ((d - goal_radius) / prm.arrival_radius).clamp(0.1, 1.0);
-                let speed = if parked { 0.0 } else { prm.max_speed * ramp };
-                let desired = if d > 1e-6 { to * (speed / d) } else { Vec2::ZERO };
-                (limit(desired - vel, prm.max_force), to)
+        // Without an extension this is plain seeking, computed exactly as it always was.
+        let (seek_name, seek, to_goal, mut parked, flock, evade) = match self.guide(ctx, group, k, id, p, vel)
+        {
+            Some(g) => (g.name, g.steer, g.to_goal, g.parked, g.flock, g.evade),
+            None => {
+                let (seek, to, parked) = self.seek_goal(group.goal, p, vel, prm.max_speed);
+                ("seek", seek, to, parked, true, None)
             }
-            None => (Vec2::ZERO, Vec2::X),
         };
-        let (alignment, cohesion) = if parked { (Vec2::ZERO, Vec2::ZERO) } else { (alignment, cohesion) };
+        let flee = if prm.role == Role::Prey { self.flee(ctx, p, vel, id) } else { None };
+        let fleeing = flee.is_some();
+        // A threatened prey leaves its parking spot; its flocking weights change (lecture).
+        parked &= !fleeing;
+        let (w_sep, w_align, w_coh) = if fleeing {
+            (prm.fleeing_separation_weight, prm.fleeing_alignment_weight, prm.fleeing_cohesion_weight)
+        } else {
+            (prm.separation_weight, prm.alignment_weight, prm.cohesion_weight)
+        };
+        let (alignment, cohesion) =
+            if parked || !flock { (Vec2::ZERO, Vec2::ZERO) } else { (alignment, cohesion) };
         let avoid = self.avoid_obstacles(ctx, p, vel, ctx.radii[i], unit_or(to_goal, Vec2::X))
             + self.contain(ctx, p, vel);
 
-        let weighted = [
-            avoid * prm.avoid_weight,
-            separation * prm.separation_weight,
-            seek * prm.seek_weight,
-            alignment * prm.alignment_weight,
-            cohesion * prm.cohesion_weight,
-        ];
+        let mut weighted = [("", Vec2::ZERO); 6];
+        let mut used = 0;
+        let mut push = |name: &'static str, force: Vec2| {
+            weighted[used] = (name, force);
+            used += 1;
+        };
+        push("obstacle avoidance", avoid * prm.avoid_weight);
+        if let Some(f) = flee {
+            push("flee predator", f * prm.flee_weight);
+        } else if let Some(f) = evade {
+            push("leave leader's way", f);
+        }
+        push("separation", separation * w_sep);
+        push(seek_name, seek * prm.seek_weight);
+        push("alignment", alignment * w_align);
+        push("cohesion", cohesion * w_coh);
+        let forces = weighted.iter().take(used).map(|&(_, f)| f);
         let acceleration = match prm.arbitration {
-            Arbitration::Weighted => limit(weighted.iter().sum(), prm.max_force),
+            Arbitration::Weighted => limit(forces.sum(), prm.max_force),
             Arbitration::Priority => {
                 let mut acc = Vec2::ZERO;
                 let mut budget = prm.max_force;
-                for f in weighted {
+                for f in forces {
                     let len = f.length();
                     if len <= budget {
                         acc += f;
@@ -436,7 +946,7 @@ impl Boids {
                 acc
             }
         };
-        AgentForces { weighted, acceleration, parked, neighbours: count }
+        AgentForces { weighted, used, acceleration, parked, fleeing, neighbours: count }
     }
 }
 

@@ -3,11 +3,13 @@
 pub mod boids;
 pub mod firefly;
 pub mod forces;
+pub mod igsa;
 pub mod pso;
 
 use crate::diagnose::Explanation;
 use crate::geometry::Obstacle;
 use crate::rng::Rng;
+use crate::scene::Scene;
 use crate::spatial::{ObstacleIndex, SpatialGrid};
 use glam::Vec2;
 use serde::{Deserialize, Serialize};
@@ -16,6 +18,7 @@ use std::ops::Range;
 pub use boids::{Arbitration, Boids, BoidsParams};
 pub use firefly::{Firefly, FireflyParams};
 pub use forces::{Forces, ForcesParams};
+pub use igsa::{GroupPath, IgsaParams, IgsaPlanner};
 pub use pso::{Pso, PsoParams};
 
 /// Read-only view of the world at the start of a step: planners read it, never write it,
@@ -35,6 +38,10 @@ pub struct StepContext<'a> {
     pub bounds: Vec2,
     /// Steps simulated so far.
     pub step: u32,
+    /// The scene being run: its paths, hills and every group's planner settings (roles).
+    pub scene: &'a Scene,
+    /// Group index of every agent.
+    pub group_of: &'a [u32],
 }
 
 /// What a planner knows about the group it steers.
@@ -46,8 +53,27 @@ pub struct GroupView {
     pub goal: Option<(Vec2, f32)>,
 }
 
+/// Copies a boxed planner with all its internal state (replay checkpoints clone the world).
+/// Implemented for every `Clone` planner, so a planner only has to derive `Clone`.
+pub trait PlannerClone {
+    /// A boxed deep copy of this planner.
+    fn clone_box(&self) -> Box<dyn Planner>;
+}
+
+impl<T: Planner + Clone + 'static> PlannerClone for T {
+    fn clone_box(&self) -> Box<dyn Planner> {
+        Box::new(self.clone())
+    }
+}
+
+impl Clone for Box<dyn Planner> {
+    fn clone(&self) -> Self {
+        self.clone_box()
+    }
+}
+
 /// A crowd planner: computes every new velocity of its group from the old state.
-pub trait Planner {
+pub trait Planner: PlannerClone {
     /// Largest radius (px) the planner queries neighbours in; sizes the spatial grid.
     fn interaction_radius(&self) -> f32;
     /// Speed limit (px/step); the world checks it after every step.
@@ -57,6 +83,15 @@ pub trait Planner {
     /// Whether the world should let this group's agents move into obstacles instead of pushing
     /// them out. Only for showing a planner's own failure (the original PSO penetrating).
     fn passes_through_obstacles(&self) -> bool {
+        false
+    }
+    /// The path the group follows, for planners that plan one (IGSA group path control).
+    fn planned_path(&self) -> Option<&GroupPath> {
+        None
+    }
+    /// Whether the world must rebuild this planner when obstacles or goals are edited during a
+    /// run (a planner that planned on the old geometry).
+    fn replans_on_edit(&self) -> bool {
         false
     }
     /// Why `agent` would move as it does at the next step: the terms of its step recomputed from
@@ -86,12 +121,14 @@ pub enum PlannerKind {
     Firefly,
     /// Five GA-tunable virtual forces (DESIGN §3.5).
     Forces,
+    /// IGSA group path control (Liu & Liu 2022, DESIGN §3.4).
+    Igsa,
 }
 
 impl PlannerKind {
     /// Every planner, in menu order.
     pub const ALL: &'static [PlannerKind] =
-        &[PlannerKind::Boids, PlannerKind::Pso, PlannerKind::Firefly, PlannerKind::Forces];
+        &[PlannerKind::Boids, PlannerKind::Pso, PlannerKind::Firefly, PlannerKind::Forces, PlannerKind::Igsa];
 
     /// The CLI / URL name.
     pub fn name(self) -> &'static str {
@@ -100,6 +137,7 @@ impl PlannerKind {
             PlannerKind::Pso => "pso",
             PlannerKind::Firefly => "firefly",
             PlannerKind::Forces => "forces",
+            PlannerKind::Igsa => "igsa",
         }
     }
 
@@ -115,6 +153,7 @@ impl PlannerKind {
             PlannerKind::Pso => "PSO crowd (Chen & Lin 2009)",
             PlannerKind::Firefly => "Firefly crowd (Zhang et al. 2017)",
             PlannerKind::Forces => "Virtual forces (GA-tuned)",
+            PlannerKind::Igsa => "IGSA group path (Liu & Liu 2022)",
         }
     }
 
@@ -125,6 +164,7 @@ impl PlannerKind {
             PlannerKind::Pso => PlannerConfig::Pso(PsoParams::default()),
             PlannerKind::Firefly => PlannerConfig::Firefly(FireflyParams::default()),
             PlannerKind::Forces => PlannerConfig::Forces(ForcesParams::default()),
+            PlannerKind::Igsa => PlannerConfig::Igsa(IgsaParams::default()),
         }
     }
 
@@ -135,6 +175,7 @@ impl PlannerKind {
             PlannerKind::Pso => PsoParams::SPECS,
             PlannerKind::Firefly => FireflyParams::SPECS,
             PlannerKind::Forces => ForcesParams::SPECS,
+            PlannerKind::Igsa => IgsaParams::SPECS,
         }
     }
 }
@@ -151,6 +192,8 @@ pub enum PlannerConfig {
     Firefly(FireflyParams),
     /// Virtual forces.
     Forces(ForcesParams),
+    /// IGSA group path control.
+    Igsa(IgsaParams),
 }
 
 impl Default for PlannerConfig {
@@ -167,6 +210,7 @@ impl PlannerConfig {
             PlannerConfig::Pso(_) => PlannerKind::Pso,
             PlannerConfig::Firefly(_) => PlannerKind::Firefly,
             PlannerConfig::Forces(_) => PlannerKind::Forces,
+            PlannerConfig::Igsa(_) => PlannerKind::Igsa,
         }
     }
 
@@ -174,7 +218,11 @@ impl PlannerConfig {
     pub fn validate(&self) -> Result<(), String> {
         let value = serde_json::to_value(self).map_err(|e| e.to_string())?;
         let params = value.get("params").cloned().unwrap_or_default();
-        check_params(self.kind().param_specs(), &params)
+        check_params(self.kind().param_specs(), &params)?;
+        match self {
+            PlannerConfig::Igsa(p) => p.check_waypoints(),
+            _ => Ok(()),
+        }
     }
 
     /// A fresh planner for a group of `count` agents.
@@ -185,6 +233,20 @@ impl PlannerConfig {
             PlannerConfig::Pso(p) => Box::new(Pso::new(p.clone(), obstacles)),
             PlannerConfig::Firefly(p) => Box::new(Firefly::new(p.clone())),
             PlannerConfig::Forces(p) => Box::new(Forces::new(p.clone())),
+            // Without its scene the IGSA planner has no path to plan: use `build_for_group`.
+            PlannerConfig::Igsa(p) => Box::new(IgsaPlanner::new(p.clone(), &Scene::empty(10.0, 10.0), 0)),
+        }
+    }
+
+    /// A fresh planner for group `group` of `scene`. Planners that plan ahead (IGSA) read the
+    /// scene's geometry and seed here; the others are [`PlannerConfig::build`].
+    pub fn build_for_group(&self, scene: &Scene, group: usize) -> Box<dyn Planner> {
+        match self {
+            PlannerConfig::Igsa(p) => Box::new(IgsaPlanner::new(p.clone(), scene, group)),
+            _ => {
+                let count = scene.groups.get(group).map_or(0, |g| g.count as usize);
+                self.build(count, &scene.obstacles)
+            }
         }
     }
 
@@ -231,6 +293,9 @@ pub struct ParamSpec {
     pub choices: &'static [&'static str],
     /// One-line help.
     pub help: &'static str,
+    /// Links may leave this parameter out while it and every later one hold their defaults (see
+    /// [`ParamSpec::omitted_at_default`]).
+    pub omit_default: bool,
 }
 
 impl ParamSpec {
@@ -243,7 +308,18 @@ impl ParamSpec {
         default: f64,
         help: &'static str,
     ) -> Self {
-        Self { key, label, unit, min: range.0, max: range.1, step: range.2, default, choices: &[], help }
+        Self {
+            key,
+            label,
+            unit,
+            min: range.0,
+            max: range.1,
+            step: range.2,
+            default,
+            choices: &[],
+            help,
+            omit_default: false,
+        }
     }
 
     /// A choice among named options; `default` indexes `choices`.
@@ -254,7 +330,36 @@ impl ParamSpec {
         default: usize,
         help: &'static str,
     ) -> Self {
-        Self { key, label, unit: "", min: 0.0, max: 0.0, step: 0.0, default: default as f64, choices, help }
+        Self {
+            key,
+            label,
+            unit: "",
+            min: 0.0,
+            max: 0.0,
+            step: 0.0,
+            default: default as f64,
+            choices,
+            help,
+            omit_default: false,
+        }
+    }
+
+    /// Marks a parameter appended after links existed: while it and every later parameter hold
+    /// their defaults, links leave them out, so older links and their fixtures keep their exact
+    /// text. Only for parameters whose feature is off by default and sits before its switch in
+    /// the table (a feature's settings first, its on/off choice last), so a value left out never
+    /// changes a run: when the switch is on, it and everything before it is written.
+    pub const fn omitted_at_default(self) -> Self {
+        Self { omit_default: true, ..self }
+    }
+
+    /// Whether `value` (as the params JSON holds it) is this parameter's default.
+    pub fn is_default(&self, value: &serde_json::Value) -> bool {
+        if self.choices.is_empty() {
+            value.as_f64().is_some_and(|x| x as f32 == self.default as f32)
+        } else {
+            value.as_str().is_some_and(|s| self.choices.get(self.default as usize) == Some(&s))
+        }
     }
 }
 

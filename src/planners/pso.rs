@@ -39,6 +39,13 @@
 //!   `retries` candidates turned by a random angle in (−20°, 20°) from it are tried and the accepted
 //!   one of lowest F is kept; if none is accepted the agent stays and its heading becomes the least
 //!   bad refused direction, so a person blocked head-on keeps turning instead of pushing forever.
+//! * Hills (the paper's §5.6, "a crowd passing over mountains of three heights"): the ground
+//!   height `h(p)` (sum of the scene's Gaussian hills) is one more object of the uniform model,
+//!   with cost `e^{−k} · h / climb_limit`. It enters the max over O like an obstacle: the
+//!   objective grows with height (people prefer the low way), and the acceptance step refuses
+//!   every position with `h ≥ climb_limit`, so a hill higher than the limit is never climbed
+//!   above that contour while a lower one is crossed, rarely at its top (acceptance
+//!   `1 − h/climb_limit` there).
 //! * With `acceptance` off the candidate is always taken and the world lets these agents pass
 //!   through obstacles: the original PSO of the paper's Fig. 5(b).
 
@@ -46,6 +53,7 @@ use super::{GroupView, ParamSpec, Planner, StepContext};
 use crate::diagnose::{Explanation, NamedPoint, NamedVector};
 use crate::geometry::{unit_or, Aabb, Obstacle};
 use crate::rng::Rng;
+use crate::scene::ground_height;
 use glam::Vec2;
 use serde::{Deserialize, Serialize};
 
@@ -84,6 +92,10 @@ pub struct PsoParams {
     /// walk through obstacles.
     #[serde(with = "on_off")]
     pub acceptance: bool,
+    /// Ground height (px) at which the terrain cost of the scene's hills equals an obstacle's
+    /// at its no-go boundary: higher ground is never accepted, lower ground costs in proportion
+    /// to its height. Range 1…1000, default 60.
+    pub climb_limit: f32,
 }
 
 impl Default for PsoParams {
@@ -100,6 +112,7 @@ impl Default for PsoParams {
             retry_angle_deg: 20.0,
             sight: 50.0,
             acceptance: true,
+            climb_limit: 60.0,
         }
     }
 }
@@ -179,6 +192,14 @@ impl PsoParams {
             &["on", "off"],
             0,
             "Off is the original PSO: agents may walk through obstacles.",
+        ),
+        ParamSpec::number(
+            "climb_limit",
+            "Climb limit",
+            "px",
+            (1.0, 1000.0, 1.0),
+            60.0,
+            "Hills: ground this high is never walked on; lower ground costs in proportion to its height.",
         ),
     ];
 }
@@ -283,6 +304,16 @@ impl Pso {
             }
         });
         scaled2 = scaled2.min(nearest2 / (pair * pair));
+        if !ctx.scene.hills.is_empty() {
+            // Hills join the uniform model as one more object: cost `e^{−k} · h / climb_limit`,
+            // written as its σ-scaled distance² `k − ln(h / climb_limit)`, so ground at the climb
+            // limit sits exactly on the no-go boundary and higher ground is never accepted.
+            let h = ground_height(&ctx.scene.hills, p);
+            if h > 0.0 {
+                let s2 = self.params.k - libm::logf(h / self.params.climb_limit);
+                scaled2 = scaled2.min(s2.max(0.0));
+            }
+        }
         let target = match goal {
             // 1/C(p, g) with the target's σ = the whole search area.
             Some(g) => {
@@ -357,7 +388,20 @@ impl Pso {
         // Draw even for refused positions so the random stream does not depend on geometry edge cases.
         let draw = rng.unit();
         let escaping = here2 <= self.params.k && e.scaled2 > here2;
-        (inside && (escaping || draw < self.acceptance_probability(e.scaled2)), e)
+        let climbs = self.climbs_over_limit(ctx, ctx.positions[id as usize], candidate);
+        (inside && !climbs && (escaping || draw < self.acceptance_probability(e.scaled2)), e)
+    }
+
+    /// Whether moving from `from` to `candidate` climbs to ground at or above the climb limit.
+    /// Refused even when escaping a crowd: pushed by its neighbours (their no-go zones), an
+    /// agent could otherwise be accepted up a hill's slope whenever the hill is the lesser cost
+    /// (measured with 300 people: 2 crossed the limit contour by up to 1.2 px).
+    fn climbs_over_limit(&self, ctx: &StepContext, from: Vec2, candidate: Vec2) -> bool {
+        if ctx.scene.hills.is_empty() || !self.params.acceptance {
+            return false;
+        }
+        let h = ground_height(&ctx.scene.hills, candidate);
+        h >= self.params.climb_limit && h > ground_height(&ctx.scene.hills, from)
     }
 
     /// Eq. 4 in σ-scaled distance: `1 − f e^{k} = 1 − exp(k − s²)`, exactly 0 when `s² ≤ k`.
@@ -489,7 +533,9 @@ impl Planner for Pso {
             let r = Vec2::splat(ctx.radii[agent as usize]);
             let inside = candidate.cmpge(r).all() && candidate.cmple(ctx.bounds - r).all();
             let escaping = mine.here.scaled2 <= prm.k && ev.scaled2 > mine.here.scaled2;
-            let probability = if !prm.acceptance || escaping {
+            let probability = if self.climbs_over_limit(ctx, p, candidate) {
+                0.0
+            } else if !prm.acceptance || escaping {
                 1.0
             } else if inside {
                 self.acceptance_probability(ev.scaled2)

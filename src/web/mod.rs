@@ -15,12 +15,17 @@ use crate::planners::PlannerKind;
 use crate::presets;
 use crate::recording::Recording;
 use crate::render::Renderer;
+use crate::replay::Replay;
 use crate::scene::ViewOptions;
 use crate::world::World;
 use glam::Vec2;
 use std::fmt::Display;
 use wasm_bindgen::prelude::*;
 
+mod compare;
+pub mod lab;
+mod paths;
+mod timeline;
 pub mod tune;
 
 /// Installs the panic hook so a Rust panic shows its message in the console (runs on load).
@@ -47,6 +52,8 @@ pub struct Sim {
     world: World,
     renderer: Renderer,
     recording: Recording,
+    /// The run's history for the timeline (see `timeline.rs`).
+    replay: Replay,
     /// The metrics over time for the plots (a run that restarts starts a new one).
     history: MetricsHistory,
 }
@@ -60,10 +67,12 @@ impl Sim {
         let scene = codec::scene_from_any(scene_text).map_err(js_error)?;
         let world = World::new(scene).map_err(js_error)?;
         let recording = Recording::of_world(&world, RECORDING_BUDGET_BYTES);
+        let replay = Replay::new(&world);
         let mut sim = Sim {
             world,
             renderer: Renderer::new(width, height),
             recording,
+            replay,
             history: MetricsHistory::default(),
         };
         sim.show_scene_view();
@@ -81,6 +90,9 @@ impl Sim {
     fn restart_recording_if_new_run(&mut self) {
         if self.world.step_count() == 0 || self.recording.agents() != self.world.agent_count() {
             self.recording = Recording::of_world(&self.world, RECORDING_BUDGET_BYTES);
+            self.replay = Replay::new(&self.world);
+        } else {
+            self.note_live_edit();
         }
     }
 
@@ -116,8 +128,13 @@ impl Sim {
     pub fn step(&mut self, n: u32) {
         for _ in 0..n {
             self.world.step();
-            self.recording.capture_world(&self.world);
-            self.history.sample(&self.world);
+            if self.replay.record(&self.world) {
+                // A new step (not one replayed after a jump back): the export recording and the
+                // metrics history keep the same history as the timeline.
+                self.recording.truncate_after(self.world.step_count().saturating_sub(1));
+                self.recording.capture_world(&self.world);
+                self.history.sample(&self.world);
+            }
         }
     }
 
@@ -211,7 +228,9 @@ impl Sim {
             .planner
             .clone();
         config.set_param(key, value).map_err(js_error)?;
-        self.world.set_group_planner(group as usize, config).map_err(js_error)
+        self.world.set_group_planner(group as usize, config).map_err(js_error)?;
+        self.note_live_edit();
+        Ok(())
     }
 
     /// Switches a group (0-based) to another planner with that planner's default parameters.
@@ -220,7 +239,9 @@ impl Sim {
             let names: Vec<&str> = PlannerKind::ALL.iter().map(|k| k.name()).collect();
             js_error(format!("unknown planner {planner_name:?}; known: {}", names.join(", ")))
         })?;
-        self.world.set_group_planner(group as usize, kind.default_config()).map_err(js_error)
+        self.world.set_group_planner(group as usize, kind.default_config()).map_err(js_error)?;
+        self.note_live_edit();
+        Ok(())
     }
 
     /// Applies an editor operation (JSON of `crate::edit::Edit`); on error nothing changes.

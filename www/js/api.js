@@ -7,6 +7,8 @@
 // Every call goes through the same guarded path as the UI: a refused input throws an `Error` with
 // a readable message (also shown in the page's banner) and the current scene keeps running.
 
+import { seekTo } from './timeline.js';
+
 let app = null;
 let resolveReady;
 
@@ -110,6 +112,26 @@ export function view() {
 }
 
 /**
+ * Jumps to recorded step `k` (clamped to the run's history): the nearest checkpoint is restored
+ * and re-simulated, so the state is bit-identical to the original run at `k`; play goes on from
+ * there. Returns the step count afterwards.
+ */
+export function seek(k) {
+  const target = Number(k);
+  if (!Number.isInteger(target) || target < 0 || target > 0xffffffff) {
+    throw new RangeError(`seek(k) takes a whole step number ≥ 0, not ${k}`);
+  }
+  const a = booted();
+  seekTo(a, target, { rethrow: true });
+  return a.guard((sim) => sim.steps(), { rethrow: true }).value;
+}
+
+/** The timeline's state: `{step, first_step, end_step, frame_every, checkpoint_every, note, …}`. */
+export function timeline() {
+  return booted().guard((sim) => JSON.parse(sim.timeline_json()), { rethrow: true }).value;
+}
+
+/**
  * The agent at scene point (x, y) within `tolerance` px of its body (the nearest), or null.
  */
 export function agentAt(x, y, tolerance = 0) {
@@ -187,6 +209,8 @@ export const flockpath = Object.freeze({
   scene,
   sceneString,
   digest,
+  seek,
+  timeline,
   positions,
   view,
   agentAt,

@@ -124,7 +124,7 @@ export function setupControls(app, editor) {
     else if (key === 'Escape') {
       editor.cancel();
       app.select(null);
-    } else if (key === 'Enter' && editor.tool === 'polygon' && editor.polygon.length) editor.closePolygon();
+    } else if (key === 'Enter' && ['polygon', 'path'].includes(editor.tool) && editor.polygon.length) editor.closePolygon();
     else return;
     e.preventDefault();
   });

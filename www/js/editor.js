@@ -3,9 +3,13 @@
 // The overlay only shows rubber-band previews of gestures in progress.
 
 import { clientToScene, sceneUnitsPerCssPixel, viewTransform } from './view.js';
+import { PathEditor } from './path-edit.js';
 
-/** Tool names in number-key order (1…6). */
-export const TOOLS = ['select', 'circle', 'rect', 'polygon', 'goal', 'group'];
+/** Tool names in number-key order (1…7). */
+export const TOOLS = ['select', 'circle', 'rect', 'polygon', 'goal', 'group', 'path'];
+
+/** Tools whose shape is a list of clicked points. */
+const POINT_TOOLS = ['polygon', 'path'];
 
 const HINTS = {
   select: 'Click an item to select it, drag to move it, Delete removes it.',
@@ -14,6 +18,7 @@ const HINTS = {
   polygon: 'Click to add points; double-click, Enter or click the first point to close; Esc cancels.',
   goal: 'Click to place a goal; the active group heads for it.',
   group: 'Drag a spawn region for a new group of agents.',
+  path: 'Click points along the way; double-click or Enter ends the path; the active group follows it (Boids).',
 };
 
 /** Pick tolerance and gesture thresholds, in CSS px. */
@@ -33,12 +38,13 @@ export class Editor {
     /** Polygon vertices placed so far (scene coordinates). */
     this.polygon = [];
     this.hover = null;
+    this.paths = new PathEditor(app, this, overlay, canvas);
     overlay.addEventListener('pointerdown', (e) => this.pointerDown(e));
     overlay.addEventListener('pointermove', (e) => this.pointerMove(e));
     overlay.addEventListener('pointerup', (e) => this.pointerUp(e));
     overlay.addEventListener('pointercancel', () => this.cancel());
     overlay.addEventListener('dblclick', (e) => {
-      if (this.tool === 'polygon') {
+      if (POINT_TOOLS.includes(this.tool)) {
         e.preventDefault();
         this.closePolygon();
       }
@@ -90,7 +96,7 @@ export class Editor {
     e.preventDefault();
     this.overlay.focus?.({ preventScroll: true });
     const p = this.point(e);
-    if (this.tool === 'polygon') {
+    if (POINT_TOOLS.includes(this.tool)) {
       this.polygonClick(p);
       return;
     }
@@ -107,7 +113,7 @@ export class Editor {
   }
 
   pointerMove(e) {
-    if (this.tool === 'polygon' && this.polygon.length) {
+    if (POINT_TOOLS.includes(this.tool) && this.polygon.length) {
       this.hover = this.point(e);
       this.draw();
       return;
@@ -189,7 +195,7 @@ export class Editor {
     const first = this.polygon[0];
     const near = first && Math.abs(first[0] - p[0]) <= this.units(CLOSE_POLYGON_CSS) &&
       Math.abs(first[1] - p[1]) <= this.units(CLOSE_POLYGON_CSS);
-    if (near && this.polygon.length >= 3) {
+    if (near && this.polygon.length >= 3 && this.tool === 'polygon') {
       this.closePolygon();
       return;
     }
@@ -198,12 +204,19 @@ export class Editor {
     this.draw();
   }
 
-  /** Ends the polygon in progress (needs three points; a double-click may add a duplicate). */
+  /** Ends the polygon (three points or more) or path (two or more) in progress; a double-click
+   * may add a duplicate point. A path is followed by the active group when it uses Boids. */
   closePolygon() {
     const points = this.polygon.filter((p, i, all) => i === 0 || p[0] !== all[i - 1][0] || p[1] !== all[i - 1][1]);
     this.polygon = [];
     this.hover = null;
-    if (points.length >= 3) this.edit({ op: 'add_obstacle', obstacle: { shape: 'polygon', points } });
+    if (this.tool === 'path') {
+      const active = (this.app.scene.groups ?? [])[this.app.activeGroup];
+      const group = active?.planner?.kind === 'boids' ? this.app.activeGroup : null;
+      if (points.length >= 2) this.edit({ op: 'add_path', points, radius: null, group });
+    } else if (points.length >= 3) {
+      this.edit({ op: 'add_obstacle', obstacle: { shape: 'polygon', points } });
+    }
     this.draw();
   }
 
@@ -233,7 +246,7 @@ export class Editor {
     ctx.setLineDash([6 * ratio * px, 4 * ratio * px]);
     ctx.strokeStyle = '#17202c';
     ctx.fillStyle = 'rgba(47, 111, 223, 0.18)';
-    if (this.tool === 'polygon') {
+    if (POINT_TOOLS.includes(this.tool)) {
       this.drawPolygon(ctx, ratio * px);
       return;
     }
@@ -265,8 +278,10 @@ export class Editor {
     const points = this.hover ? [...this.polygon, this.hover] : this.polygon;
     ctx.beginPath();
     points.forEach(([x, y], i) => (i ? ctx.lineTo(x, y) : ctx.moveTo(x, y)));
-    if (points.length > 2) ctx.closePath();
-    ctx.fill();
+    if (this.tool === 'polygon') {
+      if (points.length > 2) ctx.closePath();
+      ctx.fill();
+    }
     ctx.stroke();
     ctx.setLineDash([]);
     ctx.fillStyle = '#17202c';
@@ -295,6 +310,9 @@ export class Editor {
     } else if (item.kind === 'goal') {
       const g = scene.goals?.[item.index];
       if (g) ctx.arc(g.position[0] + dx, g.position[1] + dy, g.radius, 0, Math.PI * 2);
+    } else if (item.kind === 'path') {
+      const path = scene.paths?.[item.index];
+      path?.points.forEach(([x, y], i) => (i ? ctx.lineTo(x + dx, y + dy) : ctx.moveTo(x + dx, y + dy)));
     } else if (item.kind === 'group') {
       const g = scene.groups?.[item.index];
       if (g) ctx.rect(g.spawn.min[0] + dx, g.spawn.min[1] + dy, g.spawn.max[0] - g.spawn.min[0], g.spawn.max[1] - g.spawn.min[1]);

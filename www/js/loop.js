@@ -1,5 +1,7 @@
 // The frame loop: requestAnimationFrame → step(stepsPerFrame) → render() → putImageData over a
 // view of the wasm pixel buffer. Rust owns simulated time; wall-clock time only feeds the FPS.
+// A hidden tab does not step (Page Visibility), and a frame never "catches up" on lost time: it
+// always steps `stepsPerFrame` fixed steps, however long the tab was away.
 
 /** Copies the Sim's RGBA frame to the canvas (the view is rebuilt: wasm memory may have grown). */
 export function blit(app, ctx) {
@@ -17,7 +19,7 @@ export function startLoop(app, canvas, onFrame) {
   const ctx = canvas.getContext('2d', { alpha: false });
   const frame = (now) => {
     if (app.crashed) return;
-    if (app.playing) {
+    if (app.playing && document.visibilityState !== 'hidden') {
       // A refused step (not a panic) would repeat every frame: pause and let the banner explain.
       if (!app.guard((sim) => sim.step(app.stepsPerFrame)).ok) app.setPlaying(false);
       app.dirty = true;

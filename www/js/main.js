@@ -14,6 +14,8 @@ import { setupInspector } from './inspector.js';
 import { Panel } from './panel.js';
 import { setupExport } from './export.js';
 import { setupShare } from './share.js';
+import { setupSceneLinks } from './scene-links.js';
+import { setupTimeline } from './timeline.js';
 import { keepLocationInSync, sceneFromLocation, watchLocation } from './url.js';
 import { measure, setupView } from './view.js';
 
@@ -70,6 +72,8 @@ async function boot() {
   keepLocationInSync(app);
   setupShare(app);
   setupExport(app, canvas);
+  setupTimeline(app);
+  setupSceneLinks(app);
   const onFrame = setupMetrics(app);
   setupInspector(app);
   startLoop(app, canvas, onFrame);

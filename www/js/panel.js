@@ -55,6 +55,7 @@ export class Panel {
       this.app.activeGroup,
       (scene.groups ?? []).map((g) => [g.name, g.color]),
       (scene.goals ?? []).length,
+      (scene.paths ?? []).length,
       group?.planner?.kind,
     ]);
     if (key !== this.builtFor) {
@@ -146,7 +147,15 @@ export class Panel {
       const id = `param-${spec.key}`;
       const output = el('output', { htmlFor: id });
       let input;
-      if (spec.choices && spec.choices.length) {
+      if (spec.key === 'path') {
+        // A scene path by number, not a slider: "none" or one of the drawn paths.
+        const paths = this.app.scene.paths ?? [];
+        input = el('select', { id, name: spec.key, title: spec.help }, [
+          el('option', { value: '0', textContent: 'none' }),
+          ...paths.map((_, i) => el('option', { value: String(i + 1), textContent: `path ${i + 1}` })),
+        ]);
+        input.addEventListener('change', () => this.setParam(spec, Number(input.value), true));
+      } else if (spec.choices && spec.choices.length) {
         input = el('select', { id, name: spec.key, title: spec.help },
           spec.choices.map((c) => el('option', { value: c, textContent: c })));
         input.addEventListener('change', () => this.setParam(spec, input.value, true));
@@ -201,7 +210,7 @@ export class Panel {
     if (!entry || value === undefined) return;
     const { spec, input, output } = entry;
     if (document.activeElement !== input || input.tagName === 'SELECT') input.value = String(value);
-    output.textContent = spec.choices?.length ? '' : `${formatValue(value, spec.step)} ${spec.unit}`.trim();
+    output.textContent = spec.choices?.length || input.tagName === 'SELECT' ? '' : `${formatValue(value, spec.step)} ${spec.unit}`.trim();
   }
 
   fillValues() {

@@ -39,10 +39,10 @@ export function drawPlot(canvas, { steps, lines, label, unit }) {
     ctx.fillText('no data yet', 3, top + 4);
     return;
   }
-  lo = Math.min(lo, 0);
-  if (hi - lo < 1e-9) hi = lo + 1;
   // The scale (largest value shown) on a second line: labels and values never overlap.
   ctx.fillText(`max ${formatValue(hi)} ${unit}`.trim(), 3, 12);
+  lo = Math.min(lo, 0);
+  if (hi - lo < 1e-9) hi = lo + 1;
 
   const first = steps[0];
   const last = steps[steps.length - 1];
@@ -79,6 +79,7 @@ export function drawPlot(canvas, { steps, lines, label, unit }) {
 
 function formatValue(v) {
   const a = Math.abs(v);
+  if (a === 0) return '0';
   if (a >= 1000) return v.toFixed(0);
   if (a >= 10) return v.toFixed(1);
   if (a >= 1) return v.toFixed(2);

@@ -3,9 +3,11 @@
 //!
 //! Wall-clock timing lives here, in `src/bin/`, and nowhere in the core.
 
+use flockpath::planners::boids::{FlowGuide, Leader, Role};
+use flockpath::planners::BoidsParams;
 use flockpath::render::Renderer;
 use flockpath::spatial::SpatialGrid;
-use flockpath::{presets, Scene, World};
+use flockpath::{presets, PlannerConfig, PlannerKind, Scene, World};
 use serde_json::{json, Map, Value};
 use std::time::Instant;
 
@@ -69,6 +71,7 @@ pub fn main(options: &Options) -> Result<(), String> {
     report.insert("neighbours_target".into(), json!(NEIGHBOURS));
     if options.step {
         step_benchmarks(options, &mut report)?;
+        planner_benchmarks(options, &mut report)?;
     }
     if options.render {
         render_benchmarks(options, &mut report)?;
@@ -146,6 +149,75 @@ fn step_benchmarks(options: &Options, report: &mut Map<String, Value>) -> Result
     Ok(())
 }
 
+/// Sizes of the per-planner table.
+const PLANNER_SIZES: &[u32] = &[1_000, 10_000];
+
+/// The planners and Boids extensions of the per-planner table, by name.
+fn planner_configs() -> Vec<(&'static str, PlannerConfig)> {
+    let boids = |edit: fn(&mut BoidsParams)| {
+        let mut p = BoidsParams::default();
+        edit(&mut p);
+        PlannerConfig::Boids(p)
+    };
+    let mut rows: Vec<(&'static str, PlannerConfig)> =
+        PlannerKind::ALL.iter().map(|&k| (k.name(), k.default_config())).collect();
+    rows.push(("boids+leader", boids(|p| p.leader = Leader::First)));
+    rows.push(("boids+flow-field", boids(|p| p.flow_field = FlowGuide::Goal)));
+    rows.push(("boids+prey", boids(|p| p.role = Role::Prey)));
+    rows
+}
+
+/// The constant-density scene with a goal at its centre, every agent steered by `config`.
+fn planner_scene(n: u32, config: &PlannerConfig) -> Scene {
+    let mut scene = bench_scene(n);
+    let c = [0.5 * scene.width, 0.5 * scene.height];
+    scene.goals.push(flockpath::Goal::fixed(c, 0.05 * scene.width));
+    for g in &mut scene.groups {
+        g.goal = Some(0);
+        g.planner = config.clone();
+    }
+    scene
+}
+
+/// ns per agent-step of every planner (and the Boids extensions) at 1k and 10k agents, on the
+/// constant-density scene heading for a central goal (from spawn, so the figures compare the
+/// same moment of every run).
+fn planner_benchmarks(options: &Options, report: &mut Map<String, Value>) -> Result<(), String> {
+    let plan = if options.quick {
+        Plan { warmup_steps: 2, steps: 3, agents_per_rep: 10_000, reps: 3 }
+    } else {
+        Plan { warmup_steps: 3, steps: 10, agents_per_rep: 20_000, reps: 5 }
+    };
+    println!();
+    println!(
+        "Per planner: World::step, ns per agent-step (median; min…max), constant density, goal at the centre"
+    );
+    println!("{:>18}  {:>9}  {:>14}  {:>18}  {:>9}", "planner", "agents", "ns/agent-step", "range", "cpu ns");
+    let mut table = Map::new();
+    for (name, config) in planner_configs() {
+        let mut row = Map::new();
+        for &n in PLANNER_SIZES {
+            let r = time_scene(n, &plan, |seed| {
+                let mut scene = planner_scene(n, &config);
+                scene.seed = seed;
+                scene
+            })?;
+            println!(
+                "{:>18}  {:>9}  {:>14.1}  {:>18}  {:>9}",
+                name,
+                n,
+                r.median,
+                format!("{:.1}…{:.1}", r.min, r.max),
+                r.cpu_median.map_or("–".to_string(), |c| format!("{c:.1}"))
+            );
+            row.insert(n.to_string(), json!(r.median));
+        }
+        table.insert(name.to_string(), Value::Object(row));
+    }
+    report.insert("planner_ns_per_agent_step".into(), Value::Object(table));
+    Ok(())
+}
+
 /// Timing of one configuration.
 struct Timing {
     median: f64,
@@ -171,6 +243,19 @@ fn print_row(n: u32, r: &Timing) {
 }
 
 fn time_steps(n: u32, plan: &Plan, brute: bool) -> Result<Timing, String> {
+    time_worlds(n, plan, brute, |seed| {
+        let mut scene = bench_scene(n);
+        scene.seed = seed;
+        scene
+    })
+}
+
+fn time_scene(n: u32, plan: &Plan, scene: impl Fn(u32) -> Scene) -> Result<Timing, String> {
+    time_worlds(n, plan, false, scene)
+}
+
+/// Times `plan` on worlds of `n` agents built by `scene(seed)`.
+fn time_worlds(n: u32, plan: &Plan, brute: bool, scene: impl Fn(u32) -> Scene) -> Result<Timing, String> {
     let worlds_per_rep = plan.agents_per_rep.div_ceil(n).max(1);
     let mut samples = Vec::with_capacity(plan.reps);
     let mut cpu_samples = Vec::with_capacity(plan.reps);
@@ -178,9 +263,8 @@ fn time_steps(n: u32, plan: &Plan, brute: bool) -> Result<Timing, String> {
     for _ in 0..plan.reps {
         let mut worlds = Vec::with_capacity(worlds_per_rep as usize);
         for w in 0..worlds_per_rep {
-            let mut scene = bench_scene(n);
-            scene.seed = w + 1;
-            let mut world = World::new(scene).map_err(|e| format!("benchmark scene with {n} agents: {e}"))?;
+            let mut world =
+                World::new(scene(w + 1)).map_err(|e| format!("benchmark scene with {n} agents: {e}"))?;
             if brute {
                 world.use_brute_force_neighbours();
             }

@@ -1,0 +1,656 @@
+//! Side-by-side comparison: one scene and seed in up to four panes, each with its own planners,
+//! stepped in lockstep, with per-pane metrics, overlaid time series and a summary table.
+//!
+//! Random streams: every pane builds its own [`World`] from the scene with the scene's seed
+//! unchanged, so each pane owns its generators (spawn stream and planning stream, see
+//! `world.rs`) and no generator is shared between panes. Consequences, both tested: all panes
+//! start from the same spawn positions (a fair comparison: common random numbers), a pane whose
+//! planners equal the scene's runs exactly as the playground does, and a pane's run does not
+//! depend on which other panes are shown.
+//!
+//! The comparison travels in the URL as `compare.html#s=<scene>&c=<spec>`; the spec string is
+//! `1.` followed by the panes separated by `~`. A pane is `scene` (the scene's own planners) or
+//! `;`-separated assignments `[group=]planner[(v1,v2,…)]`: without a group the planner is for
+//! every group, `2=pso` is for group 2 (1-based). The values are the planner's parameters by
+//! table position (choices by name); missing trailing values take their defaults. Writing lists
+//! every value, so a link replays the same runs after a default changes (as the scene codec does).
+//! Example: `1.scene~pso~firefly(2,0.2)` or `1.boids~1=pso;2=firefly`.
+
+use crate::metrics::Metrics;
+use crate::planners::{PlannerConfig, PlannerKind};
+use crate::scene::{Scene, SceneError};
+use crate::world::World;
+use serde::Serialize;
+use std::fmt::Write as _;
+
+/// The spec version written today.
+pub const SPEC_VERSION: &str = "1";
+/// Most panes a comparison shows.
+pub const MAX_PANES: usize = 4;
+/// Steps between time-series samples at the start (doubles when the series thins).
+pub const SERIES_EVERY: u32 = 10;
+/// Most samples kept per series; beyond it every other sample goes and the interval doubles.
+pub const MAX_SERIES_SAMPLES: usize = 1000;
+/// Pane names and colours (plots and table headers), in pane order.
+pub const PANE_NAMES: [&str; MAX_PANES] = ["A", "B", "C", "D"];
+/// One colour per pane for the overlaid plots.
+pub const PANE_COLORS: [&str; MAX_PANES] = ["#2f6fdf", "#df4f2f", "#2f9f5f", "#9f4fdf"];
+/// The time-series keys, in plot order.
+pub const SERIES_KEYS: [&str; 5] =
+    ["arrived_share", "collisions_agent_agent", "penetrations_agent_obstacle", "speed", "stuck_agents"];
+/// Longest spec string accepted (bytes).
+const MAX_SPEC_BYTES: usize = 16 << 10;
+
+/// Why a comparison spec was refused; the message names the problem.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SpecError(pub String);
+
+impl std::fmt::Display for SpecError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "comparison: {}", self.0)
+    }
+}
+
+impl std::error::Error for SpecError {}
+
+impl From<SceneError> for SpecError {
+    fn from(e: SceneError) -> Self {
+        SpecError(e.to_string())
+    }
+}
+
+fn err<T>(message: impl Into<String>) -> Result<T, SpecError> {
+    Err(SpecError(message.into()))
+}
+
+/// The planners of one pane.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct PaneSpec {
+    /// A planner for every group, or `None` to keep each group's own.
+    pub all: Option<PlannerConfig>,
+    /// Per-group planners (0-based group index), applied after `all`.
+    pub groups: Vec<(u32, PlannerConfig)>,
+}
+
+impl PaneSpec {
+    /// A pane that runs the scene as it is.
+    pub fn scene() -> Self {
+        Self::default()
+    }
+
+    /// A pane with `kind` (default parameters) for every group.
+    pub fn every_group(kind: PlannerKind) -> Self {
+        Self { all: Some(kind.default_config()), groups: Vec::new() }
+    }
+
+    /// The scene with this pane's planners; errors name a group the scene does not have.
+    pub fn apply(&self, scene: &Scene) -> Result<Scene, SpecError> {
+        let mut scene = scene.clone();
+        if let Some(all) = &self.all {
+            for g in &mut scene.groups {
+                g.planner = all.clone();
+            }
+        }
+        for (g, config) in &self.groups {
+            let count = scene.groups.len();
+            let group = scene.groups.get_mut(*g as usize).ok_or_else(|| {
+                SpecError(format!("the pane sets group {} but the scene has {count} group(s)", g + 1))
+            })?;
+            group.planner = config.clone();
+        }
+        Ok(scene)
+    }
+
+    fn parse(text: &str) -> Result<Self, SpecError> {
+        let mut pane = PaneSpec::default();
+        if text == "scene" {
+            return Ok(pane);
+        }
+        if text.is_empty() {
+            return err("a pane is empty (write `scene` for the scene's own planners)");
+        }
+        for assignment in text.split(';') {
+            let (group, planner) = match assignment.split_once('=') {
+                Some((g, p)) => {
+                    let n: u32 = g.parse().map_err(|_| {
+                        SpecError(format!("{g:?} is not a group number (groups count from 1)"))
+                    })?;
+                    if n == 0 {
+                        return err("groups count from 1, not 0");
+                    }
+                    (Some(n - 1), p)
+                }
+                None => (None, assignment),
+            };
+            let config = parse_planner(planner)?;
+            match group {
+                None if pane.all.is_some() => return err("a pane sets the planner for every group twice"),
+                None => pane.all = Some(config),
+                Some(g) if pane.groups.iter().any(|(h, _)| *h == g) => {
+                    return err(format!("a pane sets group {} twice", g + 1))
+                }
+                Some(g) => pane.groups.push((g, config)),
+            }
+        }
+        Ok(pane)
+    }
+
+    fn write(&self, out: &mut String) {
+        if self.all.is_none() && self.groups.is_empty() {
+            out.push_str("scene");
+            return;
+        }
+        let mut first = true;
+        if let Some(all) = &self.all {
+            write_planner(all, out);
+            first = false;
+        }
+        for (g, config) in &self.groups {
+            if !first {
+                out.push(';');
+            }
+            first = false;
+            let _ = write!(out, "{}=", g + 1);
+            write_planner(config, out);
+        }
+    }
+
+    /// A short description: the planner (with parameters that differ from its defaults) or,
+    /// per group, `group: planner`.
+    pub fn describe(&self, scene: &Scene) -> String {
+        let Ok(applied) = self.apply(scene) else { return "(invalid)".into() };
+        let configs: Vec<&PlannerConfig> = applied.groups.iter().map(|g| &g.planner).collect();
+        if configs.windows(2).all(|w| w[0] == w[1]) {
+            if let Some(c) = configs.first() {
+                return describe_config(c);
+            }
+            return "no groups".into();
+        }
+        applied
+            .groups
+            .iter()
+            .map(|g| format!("{}: {}", g.name, describe_config(&g.planner)))
+            .collect::<Vec<_>>()
+            .join(", ")
+    }
+}
+
+/// The planner's label and up to two parameters that differ from its defaults.
+fn describe_config(config: &PlannerConfig) -> String {
+    let kind = config.kind();
+    let values = param_values(config);
+    let defaults = param_values(&kind.default_config());
+    let changed: Vec<String> = kind
+        .param_specs()
+        .iter()
+        .zip(values.iter().zip(&defaults))
+        .filter(|(_, (v, d))| v != d)
+        .map(|(spec, (v, _))| format!("{} {v}", spec.label.to_lowercase()))
+        .collect();
+    let name = kind.label().split(" (").next().unwrap_or_default().to_string();
+    match changed.len() {
+        0 => name,
+        1 | 2 => format!("{name}, {}", changed.join(", ")),
+        n => format!("{name}, {} and {} more", changed[..2].join(", "), n - 2),
+    }
+}
+
+/// The planner's parameter values as spec text, by table position.
+fn param_values(config: &PlannerConfig) -> Vec<String> {
+    let json = serde_json::to_value(config).unwrap_or_default();
+    let params = json.get("params");
+    config
+        .kind()
+        .param_specs()
+        .iter()
+        .map(|spec| match params.and_then(|p| p.get(spec.key)) {
+            Some(serde_json::Value::String(s)) => s.clone(),
+            Some(serde_json::Value::Bool(b)) => if *b { "on" } else { "off" }.to_string(),
+            Some(serde_json::Value::Number(n)) => format_number(n.as_f64().unwrap_or_default()),
+            _ => format_number(spec.default),
+        })
+        .collect()
+}
+
+/// The shortest text that reads back as the same parameter (most parameters are `f32`).
+fn format_number(x: f64) -> String {
+    if x.fract() == 0.0 && x.abs() < 1e15 {
+        format!("{}", x as i64)
+    } else if f64::from(x as f32) == x {
+        format!("{}", x as f32)
+    } else {
+        format!("{x}")
+    }
+}
+
+fn write_planner(config: &PlannerConfig, out: &mut String) {
+    out.push_str(config.kind().name());
+    out.push('(');
+    out.push_str(&param_values(config).join(","));
+    out.push(')');
+}
+
+fn parse_planner(text: &str) -> Result<PlannerConfig, SpecError> {
+    let (name, values) = match text.split_once('(') {
+        Some((name, rest)) => {
+            let inner = rest
+                .strip_suffix(')')
+                .ok_or_else(|| SpecError(format!("{text:?}: the parameter list has no closing `)`")))?;
+            (name, inner)
+        }
+        None => (text, ""),
+    };
+    let kind = PlannerKind::from_name(name).ok_or_else(|| {
+        let names: Vec<&str> = PlannerKind::ALL.iter().map(|k| k.name()).collect();
+        SpecError(format!("unknown planner {name:?}; known: scene, {}", names.join(", ")))
+    })?;
+    let specs = kind.param_specs();
+    let mut params = serde_json::Map::new();
+    let values: Vec<&str> = if values.is_empty() { Vec::new() } else { values.split(',').collect() };
+    if values.len() > specs.len() {
+        return err(format!(
+            "{} takes {} parameters, the pane gives {}",
+            kind.name(),
+            specs.len(),
+            values.len()
+        ));
+    }
+    for (spec, value) in specs.iter().zip(values) {
+        let json = if spec.choices.is_empty() {
+            let x: f64 = value.parse().map_err(|_| {
+                SpecError(format!("{} ({}) must be a number, not {value:?}", spec.label, kind.name()))
+            })?;
+            if !(spec.min..=spec.max).contains(&x) {
+                return err(format!(
+                    "{} ({}) = {value} is outside {}…{} {}",
+                    spec.label,
+                    kind.name(),
+                    spec.min,
+                    spec.max,
+                    spec.unit
+                ));
+            }
+            if value.bytes().all(|b| b.is_ascii_digit() || b == b'-') {
+                serde_json::Value::from(x as i64)
+            } else {
+                serde_json::Number::from_f64(x).map(serde_json::Value::Number).ok_or_else(|| {
+                    SpecError(format!("{} ({}) is not a finite number", spec.label, kind.name()))
+                })?
+            }
+        } else if spec.choices.contains(&value) {
+            serde_json::Value::from(value)
+        } else {
+            return err(format!(
+                "{} ({}) must be one of {:?}, not {value:?}",
+                spec.label,
+                kind.name(),
+                spec.choices
+            ));
+        };
+        params.insert(spec.key.to_string(), json);
+    }
+    let config: PlannerConfig =
+        serde_json::from_value(serde_json::json!({ "kind": kind.name(), "params": params }))
+            .map_err(|e| SpecError(format!("{}: {e}", kind.name())))?;
+    config.validate().map_err(|e| SpecError(format!("{}: {e}", kind.name())))?;
+    Ok(config)
+}
+
+/// What each pane runs.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ComparisonSpec {
+    /// One to [`MAX_PANES`] panes.
+    pub panes: Vec<PaneSpec>,
+}
+
+impl ComparisonSpec {
+    /// The comparison a scene opens with when the link has none: the scene's own planners
+    /// against PSO (or against Boids when the scene already uses PSO everywhere).
+    pub fn default_for(scene: &Scene) -> Self {
+        let all_pso =
+            !scene.groups.is_empty() && scene.groups.iter().all(|g| g.planner.kind() == PlannerKind::Pso);
+        let other = if all_pso { PlannerKind::Boids } else { PlannerKind::Pso };
+        Self { panes: vec![PaneSpec::scene(), PaneSpec::every_group(other)] }
+    }
+
+    /// Reads a spec string (`1.…`, or a URL / fragment holding `c=1.…`).
+    pub fn parse(input: &str) -> Result<Self, SpecError> {
+        let value = spec_value(input.trim());
+        if value.len() > MAX_SPEC_BYTES {
+            return err(format!("the spec is {} bytes, over the {MAX_SPEC_BYTES}-byte limit", value.len()));
+        }
+        if value.is_empty() {
+            return err("the spec is empty");
+        }
+        let (version, body) = value.split_once('.').ok_or_else(|| {
+            SpecError(format!("the spec has no version prefix (expected \"{SPEC_VERSION}.…\")"))
+        })?;
+        if version != SPEC_VERSION {
+            return err(format!(
+                "unknown spec version {:?}; this flockpath reads version {SPEC_VERSION}",
+                version.chars().take(12).collect::<String>()
+            ));
+        }
+        let panes = body.split('~').map(PaneSpec::parse).collect::<Result<Vec<_>, _>>()?;
+        if panes.len() > MAX_PANES {
+            return err(format!("{} panes; at most {MAX_PANES}", panes.len()));
+        }
+        Ok(Self { panes })
+    }
+
+    /// The spec string (`1.…`), listing every parameter value.
+    pub fn to_spec_string(&self) -> String {
+        let mut out = format!("{SPEC_VERSION}.");
+        for (i, pane) in self.panes.iter().enumerate() {
+            if i > 0 {
+                out.push('~');
+            }
+            pane.write(&mut out);
+        }
+        out
+    }
+}
+
+/// Extracts the `c=` value from a URL or fragment, or returns the input unchanged.
+fn spec_value(input: &str) -> &str {
+    let after_hash = input.rsplit_once('#').map_or(input, |(_, f)| f);
+    for part in after_hash.split('&') {
+        if let Some(v) = part.strip_prefix("c=") {
+            return v;
+        }
+    }
+    after_hash
+}
+
+/// Sampled time series of one pane (every `every` steps).
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct Series {
+    /// Steps between samples now.
+    pub every: u32,
+    /// Step of each sample.
+    pub steps: Vec<u32>,
+    /// Share of agents inside their goal.
+    pub arrived_share: Vec<f64>,
+    /// Agent–agent collisions so far (cumulative).
+    pub collisions_agent_agent: Vec<f64>,
+    /// Agent–obstacle penetrations so far (cumulative).
+    pub penetrations_agent_obstacle: Vec<f64>,
+    /// Mean speed of the agents at that step (px/step).
+    pub speed: Vec<f64>,
+    /// Agents stuck at that step.
+    pub stuck_agents: Vec<f64>,
+}
+
+impl Series {
+    fn new() -> Self {
+        Self { every: SERIES_EVERY, ..Self::default() }
+    }
+
+    fn sample(&mut self, world: &World) {
+        let m = world.metrics();
+        let n = world.velocities().len().max(1) as f64;
+        let speed = world.velocities().iter().map(|v| f64::from(v.length())).sum::<f64>() / n;
+        self.steps.push(m.steps);
+        self.arrived_share.push(m.overall.arrived_share);
+        self.collisions_agent_agent.push(m.overall.collisions_agent_agent as f64);
+        self.penetrations_agent_obstacle.push(m.overall.penetrations_agent_obstacle as f64);
+        self.speed.push(speed);
+        self.stuck_agents.push(f64::from(m.overall.stuck_agents));
+        if self.steps.len() > MAX_SERIES_SAMPLES {
+            self.every = self.every.saturating_mul(2);
+            let every = self.every;
+            let keep: Vec<bool> = self.steps.iter().map(|s| s.is_multiple_of(every)).collect();
+            let thin = |v: &mut Vec<f64>| {
+                let mut k = keep.iter();
+                v.retain(|_| k.next().copied().unwrap_or(false));
+            };
+            thin(&mut self.arrived_share);
+            thin(&mut self.collisions_agent_agent);
+            thin(&mut self.penetrations_agent_obstacle);
+            thin(&mut self.speed);
+            thin(&mut self.stuck_agents);
+            let mut k = keep.iter();
+            self.steps.retain(|_| k.next().copied().unwrap_or(false));
+        }
+    }
+}
+
+/// One pane: its planners, its world and its series.
+pub struct Pane {
+    spec: PaneSpec,
+    label: String,
+    world: World,
+    series: Series,
+}
+
+impl Pane {
+    fn new(scene: &Scene, spec: PaneSpec) -> Result<Self, SpecError> {
+        let applied = spec.apply(scene)?;
+        let world = World::new(applied)?;
+        let label = spec.describe(scene);
+        let mut series = Series::new();
+        series.sample(&world);
+        Ok(Self { spec, label, world, series })
+    }
+
+    /// What this pane runs.
+    pub fn spec(&self) -> &PaneSpec {
+        &self.spec
+    }
+
+    /// A short description of the pane's planners.
+    pub fn label(&self) -> &str {
+        &self.label
+    }
+
+    /// The pane's world.
+    pub fn world(&self) -> &World {
+        &self.world
+    }
+
+    /// The pane's time series.
+    pub fn series(&self) -> &Series {
+        &self.series
+    }
+}
+
+/// A pane's row of the summary table.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct PaneSummary {
+    /// Pane name (A, B, …).
+    pub pane: String,
+    /// The pane's planners.
+    pub label: String,
+    /// Steps simulated.
+    pub steps: u32,
+    /// Agents.
+    pub agents: u32,
+    /// Share of agents that reached their goal.
+    pub arrived_share: f64,
+    /// Mean time to the goal over arrived agents (s), if any arrived.
+    pub mean_time_to_goal_s: Option<f64>,
+    /// Agent–agent collisions (pairs × steps).
+    pub collisions_agent_agent: u64,
+    /// Agent–obstacle penetrations (agents × steps).
+    pub penetrations_agent_obstacle: u64,
+    /// Mean path length per agent (px).
+    pub mean_path_length: f64,
+    /// Mean turning angle per step (degrees): lower is smoother.
+    pub mean_turn_deg: f64,
+    /// Largest turn in one step (degrees).
+    pub max_turn_deg: f64,
+    /// Agents stuck at the last step.
+    pub stuck_agents: u32,
+}
+
+/// The panes of a comparison, stepped in lockstep.
+pub struct Comparison {
+    scene: Scene,
+    panes: Vec<Pane>,
+}
+
+impl Comparison {
+    /// Builds every pane from `scene` (the same seed in every pane).
+    pub fn new(scene: Scene, spec: ComparisonSpec) -> Result<Self, SpecError> {
+        if spec.panes.is_empty() || spec.panes.len() > MAX_PANES {
+            return err(format!("{} panes; a comparison has 1 to {MAX_PANES}", spec.panes.len()));
+        }
+        scene.validate()?;
+        let panes = spec.panes.into_iter().map(|p| Pane::new(&scene, p)).collect::<Result<Vec<_>, _>>()?;
+        Ok(Self { scene, panes })
+    }
+
+    /// The scene every pane runs (with the pane's planners applied on top).
+    pub fn scene(&self) -> &Scene {
+        &self.scene
+    }
+
+    /// The panes, in order.
+    pub fn panes(&self) -> &[Pane] {
+        &self.panes
+    }
+
+    /// The spec of the panes as they are now.
+    pub fn spec(&self) -> ComparisonSpec {
+        ComparisonSpec { panes: self.panes.iter().map(|p| p.spec.clone()).collect() }
+    }
+
+    /// Steps simulated (the same in every pane).
+    pub fn step_count(&self) -> u32 {
+        self.panes.first().map_or(0, |p| p.world.step_count())
+    }
+
+    /// Advances every pane `n` steps.
+    pub fn step_n(&mut self, n: u32) {
+        for pane in &mut self.panes {
+            for _ in 0..n {
+                pane.world.step();
+                if pane.world.step_count().is_multiple_of(pane.series.every) {
+                    pane.series.sample(&pane.world);
+                }
+            }
+        }
+    }
+
+    /// Restarts every pane from step 0.
+    pub fn reset(&mut self) -> Result<(), SpecError> {
+        let spec = self.spec();
+        *self = Self::new(self.scene.clone(), spec)?;
+        Ok(())
+    }
+
+    /// Replaces the spec (restarts every pane); on error nothing changes.
+    pub fn set_spec(&mut self, spec: ComparisonSpec) -> Result<(), SpecError> {
+        *self = Self::new(self.scene.clone(), spec)?;
+        Ok(())
+    }
+
+    /// Replaces the scene, keeping the spec (restarts); on error nothing changes.
+    pub fn set_scene(&mut self, scene: Scene) -> Result<(), SpecError> {
+        *self = Self::new(scene, self.spec())?;
+        Ok(())
+    }
+
+    /// The metrics of every pane.
+    pub fn metrics(&self) -> Vec<Metrics> {
+        self.panes.iter().map(|p| p.world.metrics()).collect()
+    }
+
+    /// The summary row of every pane.
+    pub fn summary(&self) -> Vec<PaneSummary> {
+        self.panes
+            .iter()
+            .zip(PANE_NAMES)
+            .map(|(p, name)| {
+                let m = p.world.metrics();
+                PaneSummary {
+                    pane: name.to_string(),
+                    label: p.label.clone(),
+                    steps: m.steps,
+                    agents: m.overall.agents,
+                    arrived_share: m.overall.arrived_share,
+                    mean_time_to_goal_s: m.overall.mean_time_to_goal_s,
+                    collisions_agent_agent: m.overall.collisions_agent_agent,
+                    penetrations_agent_obstacle: m.overall.penetrations_agent_obstacle,
+                    mean_path_length: m.overall.mean_path_length,
+                    mean_turn_deg: m.overall.mean_turn_deg,
+                    max_turn_deg: m.overall.max_turn_deg,
+                    stuck_agents: m.overall.stuck_agents,
+                }
+            })
+            .collect()
+    }
+
+    /// The summary as CSV with a header row (one row per pane; empty cell for "none arrived").
+    pub fn summary_csv(&self) -> String {
+        let mut out = String::from(
+            "pane,planners,steps,agents,arrived_share,mean_time_to_goal_s,collisions_agent_agent,\
+             penetrations_agent_obstacle,mean_path_length_px,mean_turn_deg,max_turn_deg,stuck_agents\n",
+        );
+        for r in self.summary() {
+            let time = r.mean_time_to_goal_s.map(|t| format!("{t:.3}")).unwrap_or_default();
+            let _ = writeln!(
+                out,
+                "{},{},{},{},{:.4},{},{},{},{:.2},{:.3},{:.3},{}",
+                r.pane,
+                csv_field(&r.label),
+                r.steps,
+                r.agents,
+                r.arrived_share,
+                time,
+                r.collisions_agent_agent,
+                r.penetrations_agent_obstacle,
+                r.mean_path_length,
+                r.mean_turn_deg,
+                r.max_turn_deg,
+                r.stuck_agents
+            );
+        }
+        out
+    }
+
+    /// Every pane's digest (equal digests: bit-identical runs).
+    pub fn digests(&self) -> Vec<u64> {
+        self.panes.iter().map(|p| p.world.digest()).collect()
+    }
+}
+
+/// Quotes a CSV field when it holds a comma, quote or line break.
+fn csv_field(text: &str) -> String {
+    if text.contains([',', '"', '\n', '\r']) {
+        format!("\"{}\"", text.replace('"', "\"\""))
+    } else {
+        text.to_string()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::presets;
+
+    #[test]
+    fn number_formatting_reads_back_exactly() {
+        for x in [0.1f32, 1.5, 14.0, 0.15, 1e-3, 123.456] {
+            let text = format_number(f64::from(x));
+            assert_eq!(text.parse::<f32>().expect("number"), x, "{text}");
+        }
+        assert_eq!(format_number(3.0), "3");
+    }
+
+    #[test]
+    fn csv_quotes_labels_with_commas() {
+        assert_eq!(csv_field("Boids, seek 2"), "\"Boids, seek 2\"");
+        assert_eq!(csv_field("PSO crowd"), "PSO crowd");
+    }
+
+    #[test]
+    fn describe_names_changed_parameters() {
+        let scene = (presets::find("open-field").expect("preset").build)();
+        let mut config = PlannerKind::Boids.default_config();
+        config.set_param("max_speed", serde_json::json!(3.0)).expect("in range");
+        let pane = PaneSpec { all: Some(config), groups: Vec::new() };
+        assert!(pane.describe(&scene).contains('3'), "{}", pane.describe(&scene));
+        assert_eq!(PaneSpec::every_group(PlannerKind::Pso).describe(&scene), "PSO crowd");
+    }
+}

@@ -1,0 +1,157 @@
+//! The optimizer lab page's bindings (`www/lab.html`, `www/js/lab*.js`): one optimizer run as an
+//! opaque handle, its 2-D picture as a pointer into wasm memory, and single seeded runs for the
+//! page's worker. Conversion only; the runs and the pixels are `crate::optim::lab`.
+
+use super::{js_error, to_json};
+use crate::optim::lab::{self, LabRun};
+use crate::optim::{Algorithm, Function, Settings};
+use wasm_bindgen::prelude::*;
+
+fn algorithm(name: &str) -> Result<Algorithm, JsError> {
+    Algorithm::from_name(name).ok_or_else(|| {
+        let known: Vec<&str> = Algorithm::ALL.iter().map(|a| a.name()).collect();
+        js_error(format!("unknown algorithm {name:?}; known: {}", known.join(", ")))
+    })
+}
+
+fn function(name: &str) -> Result<Function, JsError> {
+    Function::from_name(name).ok_or_else(|| {
+        let known: Vec<&str> = Function::ALL.iter().map(|f| f.name()).collect();
+        js_error(format!("unknown function {name:?}; known: {}", known.join(", ")))
+    })
+}
+
+fn settings(dim: u32, population: u32, iterations: u32) -> Result<Settings, JsError> {
+    if !(1..=1000).contains(&dim) || !(2..=2000).contains(&population) || !(1..=100_000).contains(&iterations)
+    {
+        return Err(js_error(format!(
+            "dimension {dim}, population {population}, iterations {iterations}: allowed 1…1000, 2…2000, 1…100000"
+        )));
+    }
+    Ok(Settings { population: population as usize, iterations, ..Settings::default() })
+}
+
+/// One optimizer run in the lab, stepped by the page.
+#[wasm_bindgen]
+pub struct Lab {
+    run: LabRun,
+}
+
+#[wasm_bindgen]
+impl Lab {
+    /// A fresh run: algorithm and function by name (see [`lab_options_json`]), seeded.
+    #[wasm_bindgen(constructor)]
+    pub fn new(
+        algorithm_name: &str,
+        function_name: &str,
+        dim: u32,
+        population: u32,
+        iterations: u32,
+        seed: u32,
+    ) -> Result<Lab, JsError> {
+        console_error_panic_hook::set_once();
+        let settings = settings(dim, population, iterations)?;
+        let run =
+            LabRun::new(algorithm(algorithm_name)?, function(function_name)?, dim as usize, &settings, seed);
+        Ok(Lab { run })
+    }
+
+    /// Advances `n` iterations (never beyond the budget).
+    pub fn step(&mut self, n: u32) {
+        self.run.step(n);
+    }
+
+    /// Iterations done.
+    pub fn iteration(&self) -> u32 {
+        self.run.iteration()
+    }
+
+    /// The iteration budget.
+    pub fn iterations(&self) -> u32 {
+        self.run.iterations()
+    }
+
+    /// Number of particles.
+    pub fn particles(&self) -> u32 {
+        self.run.particles() as u32
+    }
+
+    /// Best value so far.
+    pub fn best_value(&self) -> f64 {
+        self.run.best_value()
+    }
+
+    /// Best point so far.
+    pub fn best_position(&self) -> Vec<f64> {
+        self.run.best_position().to_vec()
+    }
+
+    /// Current positions, row-major.
+    pub fn positions(&self) -> Vec<f64> {
+        self.run.positions().to_vec()
+    }
+
+    /// Best value after initialisation and after each iteration.
+    pub fn curve(&self) -> Vec<f64> {
+        self.run.curve().to_vec()
+    }
+
+    /// Digest of the run's state: equal natively and in wasm for the same seed.
+    pub fn digest(&self) -> String {
+        self.run.digest()
+    }
+
+    /// Draws the 2-D picture (first two coordinates) at `width × height` px.
+    pub fn render(&mut self, width: u32, height: u32) {
+        self.run.render(width, height);
+    }
+
+    /// Address of the RGBA frame in wasm memory.
+    pub fn frame_ptr(&self) -> u32 {
+        self.run.pixels().as_ptr() as u32
+    }
+
+    /// Length of the RGBA frame in bytes.
+    pub fn frame_len(&self) -> u32 {
+        self.run.pixels().len() as u32
+    }
+}
+
+/// The lab's menus as JSON `{algorithms: [{name}], functions: [{name, half_range}]}`.
+#[wasm_bindgen]
+pub fn lab_options_json() -> Result<String, JsError> {
+    let algorithms: Vec<_> = Algorithm::ALL.iter().map(|a| serde_json::json!({ "name": a.name() })).collect();
+    let functions: Vec<_> = Function::ALL
+        .iter()
+        .map(|f| serde_json::json!({ "name": f.name(), "half_range": f.half_range() }))
+        .collect();
+    to_json(&serde_json::json!({ "algorithms": algorithms, "functions": functions }))
+}
+
+/// The final best value of run `run` (stream `run` of `seed`): one entry of the 30-run table.
+#[wasm_bindgen]
+pub fn lab_best_of_run(
+    algorithm_name: &str,
+    function_name: &str,
+    dim: u32,
+    population: u32,
+    iterations: u32,
+    seed: u32,
+    run: u32,
+) -> Result<f64, JsError> {
+    let settings = settings(dim, population, iterations)?;
+    Ok(lab::best_of_run(
+        algorithm(algorithm_name)?,
+        function(function_name)?,
+        dim as usize,
+        &settings,
+        seed,
+        run,
+    ))
+}
+
+/// The digest of the pinned reference run (IGSA, Ackley, d = 5, N = 20, T = 100, seed 3).
+#[wasm_bindgen]
+pub fn lab_reference_digest() -> String {
+    lab::reference_digest()
+}

@@ -1,0 +1,51 @@
+//! The playground's path-editing bindings: an IGSA group's planned path, picking and moving its
+//! waypoints. Conversion only; the core plans, validates and flags crossings.
+
+use super::{js_error, to_json, Sim};
+use crate::planners::{igsa, PlannerConfig};
+use glam::Vec2;
+use wasm_bindgen::prelude::*;
+
+#[wasm_bindgen]
+impl Sim {
+    /// The path group `group` (0-based) follows, as JSON `{points, crossing, source, length,
+    /// max_turn_deg, mean_turn_deg, fitness, evaluations}`, or `"null"` for a group whose
+    /// planner plans no path.
+    pub fn group_path_json(&self, group: u32) -> Result<String, JsError> {
+        to_json(&self.world.planned_path(group as usize))
+    }
+
+    /// The draggable waypoint within `tolerance` scene px of `(x, y)`: JSON `{group, index}` or
+    /// `"null"`.
+    pub fn pick_waypoint(&self, x: f32, y: f32, tolerance: f32) -> Result<String, JsError> {
+        let hit = igsa::pick_waypoint(&self.world, Vec2::new(x, y), tolerance)
+            .map(|(group, index)| serde_json::json!({ "group": group, "index": index }));
+        to_json(&hit)
+    }
+
+    /// Replaces the waypoints of an IGSA group (JSON `[[x, y], …]`; `[]` plans them again) and
+    /// lets the group follow the new path without restarting the run. A path that crosses an
+    /// obstacle is accepted; the returned path JSON flags the crossing segments.
+    pub fn set_group_waypoints(&mut self, group: u32, points_json: &str) -> Result<String, JsError> {
+        let points: Vec<[f32; 2]> = serde_json::from_str(points_json)
+            .map_err(|e| js_error(format!("the waypoints are not a list of [x, y] points: {e}")))?;
+        let g = group as usize;
+        let mut config = self
+            .world
+            .scene()
+            .groups
+            .get(g)
+            .ok_or_else(|| js_error(format!("there is no group {}", u64::from(group) + 1)))?
+            .planner
+            .clone();
+        let PlannerConfig::Igsa(params) = &mut config else {
+            return Err(js_error(format!(
+                "group {} does not follow a planned path (its planner is not igsa)",
+                u64::from(group) + 1
+            )));
+        };
+        params.waypoints = points;
+        self.world.set_group_planner(g, config).map_err(js_error)?;
+        self.group_path_json(group)
+    }
+}

@@ -1,0 +1,50 @@
+// The path tool (Boids path following): clicking points and pressing Enter adds a path that the
+// active Boids group follows; the group panel offers it in its "Follow path" choice, and deleting
+// it with the select tool unlinks the group.
+
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import { assertNoUnexpectedErrors, openPage, sceneToClient, simpleScene } from './helpers.mjs';
+
+const scene = (page) => page.evaluate(() => window.flockpath.scene());
+
+async function clickAt(page, x, y, options) {
+  const p = await sceneToClient(page, x, y);
+  await page.mouse.click(p.x, p.y, options);
+}
+
+test('a drawn path is followed by the active group and can be deleted', async () => {
+  const { page, errors, close } = await openPage();
+  try {
+    await page.evaluate((s) => {
+      window.flockpath.pause();
+      window.flockpath.load(s);
+    }, simpleScene());
+    await page.keyboard.press('7');
+    for (const [x, y] of [[150, 250], [400, 120], [650, 250]]) await clickAt(page, x, y);
+    await page.keyboard.press('Enter');
+    let s = await scene(page);
+    assert.equal(s.paths?.length, 1, 'one path added');
+    assert.equal(s.paths[0].points.length, 3);
+    assert.equal(s.groups[0].planner.params.path, 1, 'the active Boids group follows path 1');
+    assert.equal(await page.locator('#param-path').inputValue(), '1', 'the panel shows the followed path');
+
+    // Agents now walk the arc: halfway along it they are well above the straight line (y = 250)
+    // to the goal.
+    await page.evaluate(() => window.flockpath.step(200));
+    const ys = await page.evaluate(() => window.flockpath.positions().map(([, y]) => y));
+    const meanY = ys.reduce((a, b) => a + b, 0) / ys.length;
+    assert.ok(meanY < 215, `mean y ${meanY.toFixed(1)} px: the flock does not follow the arc`);
+
+    // Select the path by clicking its centre line and delete it: the group stops following.
+    await page.keyboard.press('1');
+    await clickAt(page, 275, 185);
+    await page.keyboard.press('Delete');
+    s = await scene(page);
+    assert.equal(s.paths?.length ?? 0, 0, 'path deleted');
+    assert.equal(s.groups[0].planner.params.path, 0, 'the group follows no path');
+    assertNoUnexpectedErrors(errors);
+  } finally {
+    await close();
+  }
+});

@@ -1,0 +1,134 @@
+// The compare page's panes: one canvas each with a header (name, planner picker, label, remove)
+// and a parameter form generated from the planner table (`planners_json`), plus the pane's spec
+// text for per-group planners. Blitting copies each pane's wasm frame to its canvas.
+
+import { formatValue } from './panel.js';
+import { backingSize } from './view.js';
+
+const el = (tag, props = {}, ...children) => {
+  const node = Object.assign(document.createElement(tag), props);
+  node.append(...children);
+  return node;
+};
+
+/** Canvas size for one pane: half the pane area's width (two columns), 16:10. */
+export function measurePane() {
+  const area = document.getElementById('panes');
+  const columns = getComputedStyle(area).gridTemplateColumns.split(' ').length || 2;
+  const cssWidth = Math.max(200, (area.clientWidth - 10 * (columns - 1)) / columns);
+  return backingSize(cssWidth, cssWidth / 1.6, null);
+}
+
+/** Copies every pane's frame into its canvas (views rebuilt: wasm memory may have grown). */
+export function blitPanes(app, canvases) {
+  const { sim, wasm } = app;
+  const width = sim.width();
+  const height = sim.height();
+  canvases.forEach((canvas, i) => {
+    sim.render(i);
+    if (canvas.width !== width || canvas.height !== height) {
+      canvas.width = width;
+      canvas.height = height;
+    }
+    const pixels = new Uint8ClampedArray(wasm.memory.buffer, sim.frame_ptr(i), sim.frame_len(i));
+    if (pixels.length !== width * height * 4) return;
+    canvas.getContext('2d', { alpha: false }).putImageData(new ImageData(pixels, width, height), 0, 0);
+  });
+}
+
+function paramForm(app, index, pane) {
+  const spec = app.planners.find((p) => p.name === pane.planner);
+  const form = el('div', { className: 'form' });
+  for (const p of spec?.params ?? []) {
+    const id = `pane-${index}-${p.key}`;
+    const value = pane.params?.[p.key];
+    let input;
+    let readout = null;
+    if (p.choices && p.choices.length) {
+      input = el('select', { id });
+      for (const c of p.choices) input.append(el('option', { value: c, textContent: c, selected: c === value }));
+    } else {
+      input = el('input', { id, type: 'range', min: String(p.min), max: String(p.max), step: String(p.step), value: String(value) });
+      readout = el('output', { textContent: `${formatValue(value, p.step)} ${p.unit}` });
+      input.addEventListener('input', () => (readout.textContent = `${formatValue(Number(input.value), p.step)} ${p.unit}`));
+    }
+    input.title = p.help;
+    input.addEventListener('change', () => {
+      const v = input.tagName === 'SELECT' ? input.value : Number(input.value);
+      app.change((sim) => sim.set_pane_param(index, p.key, JSON.stringify(v)));
+    });
+    form.append(el('label', { className: 'param', htmlFor: id }, el('span', { textContent: p.label }), input, readout ?? el('span')));
+  }
+  return form;
+}
+
+function paneElement(app, index, pane, count) {
+  const canvas = el('canvas', { className: 'pane-canvas' });
+  canvas.setAttribute('aria-label', `Pane ${pane.pane}: ${pane.label}`);
+  const picker = el('select', { title: 'The planner of every group in this pane' });
+  picker.append(el('option', { value: 'scene', textContent: "scene's planners", selected: pane.planner === 'scene' }));
+  for (const p of app.planners) {
+    picker.append(el('option', { value: p.name, textContent: p.label, selected: pane.planner === p.name && !pane.per_group }));
+  }
+  if (pane.per_group) picker.append(el('option', { value: '', textContent: 'per group (see spec)', selected: true, disabled: true }));
+  picker.addEventListener('change', () => app.change((sim) => sim.set_pane_planner(index, picker.value)));
+  const remove = el('button', { type: 'button', className: 'small ghost', textContent: '✕', title: 'Remove this pane', disabled: count <= 1 });
+  remove.addEventListener('click', () => app.change((sim) => sim.remove_pane(index)));
+  const head = el('div', { className: 'pane-head' },
+    el('span', { className: 'pane-name', textContent: pane.pane }),
+    picker,
+    el('span', { className: 'pane-label', textContent: pane.label, title: pane.label }),
+    remove);
+
+  const details = el('details', {}, el('summary', { textContent: 'Parameters' }));
+  if (pane.planner !== 'scene' && !pane.per_group) details.append(paramForm(app, index, pane));
+  const specInput = el('input', { type: 'text', value: pane.spec, spellcheck: false,
+    title: 'This pane as spec text: scene, or planner(values…), or per group 1=pso;2=firefly(…)' });
+  specInput.setAttribute('aria-label', `Pane ${pane.pane} spec`);
+  specInput.addEventListener('change', () => {
+    const all = JSON.parse(app.guard((sim) => sim.panes_json()).value ?? '[]').map((p) => p.spec);
+    all[index] = specInput.value.trim();
+    app.change((sim) => sim.set_spec(`1.${all.join('~')}`));
+  });
+  details.append(el('div', { className: 'spec-row' }, specInput));
+
+  const node = el('article', { className: 'pane' }, head, canvas, details);
+  node.style.setProperty('--pane-color', pane.color);
+  node.dataset.pane = pane.pane;
+  return { node, canvas };
+}
+
+/**
+ * Builds the pane elements now and again whenever the panes change; returns a function giving
+ * the current canvases (in pane order). Keeps the canvas size in step with the layout.
+ */
+export function buildPanes(app) {
+  const area = document.getElementById('panes');
+  let canvases = [];
+  const build = () => {
+    const result = app.guard((sim) => JSON.parse(sim.panes_json()));
+    if (!result.ok) return;
+    const panes = result.value;
+    area.replaceChildren();
+    canvases = [];
+    panes.forEach((pane, i) => {
+      const { node, canvas } = paneElement(app, i, pane, panes.length);
+      area.append(node);
+      canvases.push(canvas);
+    });
+    area.classList.toggle('single', panes.length === 1);
+    app.dirty = true;
+  };
+  app.addEventListener('panes', build);
+  build();
+  const fit = () => {
+    const { width, height } = measurePane();
+    if (width !== app.sim.width() || height !== app.sim.height()) {
+      app.guard((sim) => sim.resize(width, height));
+      app.dirty = true;
+    }
+  };
+  new ResizeObserver(fit).observe(area);
+  fit();
+  return () => canvases;
+}

@@ -1,0 +1,100 @@
+// The compare page's metrics table (one column per pane) and overlaid time-series plots (one
+// colour per pane). The numbers come from the core (`metrics_json`, `series_json`); this module
+// only formats and draws them.
+
+/** [metrics key, label, format]. */
+const ROWS = [
+  ['steps', 'Steps', (m) => m.steps.toLocaleString('en-US')],
+  ['agents', 'Agents', (m) => m.agents.toLocaleString('en-US')],
+  ['arrived_share', 'Arrived', (m) => `${(100 * m.arrived_share).toFixed(1)} %`],
+  ['mean_time_to_goal_s', 'Time to goal', (m) => (m.mean_time_to_goal_s == null ? '–' : `${m.mean_time_to_goal_s.toFixed(1)} s`)],
+  ['collisions_agent_agent', 'Collisions', (m) => m.collisions_agent_agent.toLocaleString('en-US')],
+  ['penetrations_agent_obstacle', 'Penetrations', (m) => m.penetrations_agent_obstacle.toLocaleString('en-US')],
+  ['mean_path_length', 'Path length', (m) => `${m.mean_path_length.toFixed(0)} px`],
+  ['mean_turn_deg', 'Mean turn', (m) => `${m.mean_turn_deg.toFixed(2)}°`],
+  ['max_turn_deg', 'Max turn', (m) => `${m.max_turn_deg.toFixed(1)}°`],
+  ['mean_speed', 'Mean speed', (m) => `${m.mean_speed.toFixed(2)} px/step`],
+  ['stuck_agents', 'Stuck', (m) => m.stuck_agents.toLocaleString('en-US')],
+];
+
+/** Plot titles per series key. */
+const TITLES = {
+  arrived_share: 'Arrived (share)',
+  collisions_agent_agent: 'Collisions (cumulative)',
+  penetrations_agent_obstacle: 'Penetrations (cumulative)',
+  speed: 'Mean speed (px/step)',
+  stuck_agents: 'Stuck agents',
+};
+
+/** Fills the table: a header row of pane names, one row per metric, one column per pane. */
+export function drawTable(table, panes, metrics) {
+  const head = document.createElement('thead');
+  const top = document.createElement('tr');
+  top.append(Object.assign(document.createElement('th'), { textContent: '' }));
+  for (const p of panes) {
+    const th = Object.assign(document.createElement('th'), { textContent: p.pane, title: p.label, scope: 'col' });
+    th.style.setProperty('--pane-color', p.color);
+    top.append(th);
+  }
+  head.append(top);
+  const body = document.createElement('tbody');
+  for (const [key, label, format] of ROWS) {
+    const tr = document.createElement('tr');
+    tr.dataset.key = key;
+    tr.append(Object.assign(document.createElement('td'), { textContent: label }));
+    for (const m of metrics) tr.append(Object.assign(document.createElement('td'), { textContent: format(m) }));
+    body.append(tr);
+  }
+  table.replaceChildren(head, body);
+}
+
+function plotCanvas(container, key) {
+  let figure = container.querySelector(`[data-key="${key}"]`);
+  if (!figure) {
+    figure = document.createElement('figure');
+    figure.className = 'plot';
+    figure.dataset.key = key;
+    const canvas = document.createElement('canvas');
+    canvas.setAttribute('aria-label', TITLES[key] ?? key);
+    figure.append(Object.assign(document.createElement('figcaption'), { textContent: TITLES[key] ?? key }), canvas);
+    container.append(figure);
+  }
+  return figure.querySelector('canvas');
+}
+
+/** Draws one plot per series key with every pane's line overlaid. */
+export function drawPlots(container, series) {
+  const ratio = window.devicePixelRatio || 1;
+  for (const key of series.keys) {
+    const canvas = plotCanvas(container, key);
+    const width = Math.max(1, Math.round(canvas.clientWidth * ratio));
+    const height = Math.max(1, Math.round(canvas.clientHeight * ratio));
+    if (canvas.width !== width || canvas.height !== height) {
+      canvas.width = width;
+      canvas.height = height;
+    }
+    const ctx = canvas.getContext('2d');
+    ctx.clearRect(0, 0, width, height);
+    let maxStep = 1;
+    let maxValue = key === 'arrived_share' ? 1 : 0;
+    for (const p of series.panes) {
+      maxStep = Math.max(maxStep, p.steps[p.steps.length - 1] ?? 0);
+      for (const v of p[key]) maxValue = Math.max(maxValue, v);
+    }
+    if (maxValue <= 0) maxValue = 1;
+    const pad = 4 * ratio;
+    const x = (s) => pad + ((width - 2 * pad) * s) / maxStep;
+    const y = (v) => height - pad - ((height - 2 * pad) * v) / maxValue;
+    ctx.lineWidth = 2 * ratio;
+    for (const p of series.panes) {
+      ctx.strokeStyle = p.color;
+      ctx.beginPath();
+      p.steps.forEach((s, i) => (i === 0 ? ctx.moveTo(x(s), y(p[key][i])) : ctx.lineTo(x(s), y(p[key][i]))));
+      ctx.stroke();
+    }
+    ctx.fillStyle = '#5a6676';
+    ctx.font = `${11 * ratio}px system-ui, sans-serif`;
+    ctx.textBaseline = 'top';
+    ctx.fillText(maxValue.toLocaleString('en-US', { maximumFractionDigits: 2 }), pad, pad);
+  }
+}

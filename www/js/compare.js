@@ -1,0 +1,333 @@
+// The compare page: boot, the lockstep frame loop, playback controls, the URL
+// (`compare.html#s=<scene>&c=<comparison>`) and the page API `window.flockpathCompare`.
+// Rust owns the panes, their runs, metrics, series and summary; this shell only draws and wires.
+
+import { capturePanicReports, isPanic, messageOf, setupBanner, showMessage, showPanic } from './errors.js';
+import { buildPanes, blitPanes, measurePane } from './compare-panes.js';
+import { drawPlots, drawTable } from './compare-plots.js';
+import { download } from './share.js';
+
+const $ = (id) => document.getElementById(id);
+
+/** How often the table and plots refresh while playing (ms, display only). */
+const REFRESH_MS = 250;
+/** How long changes settle before the address bar is rewritten (ms). */
+const WRITE_DELAY_MS = 300;
+
+/** `{ s, c }` from a fragment (`#s=…&c=…`), each null when absent. */
+export function parseHash(hash = location.hash) {
+  const out = { s: null, c: null };
+  const fragment = hash.startsWith('#') ? hash.slice(1) : hash;
+  for (const part of fragment.split('&')) {
+    const eq = part.indexOf('=');
+    if (eq < 0) continue;
+    const key = part.slice(0, eq);
+    if (key !== 's' && key !== 'c') continue;
+    let value = part.slice(eq + 1);
+    try {
+      value = decodeURIComponent(value);
+    } catch {
+      // Keep the raw text: the core names what is wrong with it.
+    }
+    out[key] = value;
+  }
+  return out;
+}
+
+/** The compare page's state: the wasm handle and the one guarded door to it. */
+class CompareApp extends EventTarget {
+  constructor(wasm, module, sim) {
+    super();
+    this.wasm = wasm;
+    this.module = module;
+    this.sim = sim;
+    this.planners = JSON.parse(module.planners_json());
+    this.presets = JSON.parse(module.presets_json());
+    this.playing = true;
+    this.stepsPerFrame = 2;
+    this.dirty = true;
+    this.crashed = false;
+  }
+
+  /** Runs `fn(sim)`; errors go to the banner (a panic to the crash panel). */
+  guard(fn, { rethrow = false } = {}) {
+    if (this.crashed) {
+      const error = new Error('the simulation crashed; reload the page');
+      if (rethrow) throw error;
+      return { ok: false, error };
+    }
+    try {
+      return { ok: true, value: fn(this.sim) };
+    } catch (thrown) {
+      const message = messageOf(thrown);
+      if (isPanic(thrown)) {
+        this.crashed = true;
+        this.playing = false;
+        showPanic(message);
+      } else {
+        showMessage(message);
+      }
+      if (rethrow) throw thrown instanceof Error ? thrown : new Error(message);
+      return { ok: false, error: thrown };
+    }
+  }
+
+  /** A change of the panes or the scene (restarts every pane): redraw everything, rewrite the URL. */
+  change(fn, options = {}) {
+    const result = this.guard(fn, options);
+    if (result.ok) {
+      this.dirty = true;
+      this.dispatchEvent(new Event('panes'));
+    }
+    return result;
+  }
+
+  setPlaying(playing) {
+    this.playing = playing;
+    this.dispatchEvent(new Event('playing'));
+  }
+
+  stepNow(n, options = {}) {
+    const result = this.guard((sim) => {
+      sim.step(n);
+      return sim.steps();
+    }, options);
+    this.dirty = true;
+    this.dispatchEvent(new Event('stepped'));
+    return result;
+  }
+
+  reset(options = {}) {
+    const result = this.guard((sim) => sim.reset(), options);
+    this.dirty = true;
+    this.dispatchEvent(new Event('stepped'));
+    return result;
+  }
+
+  /** The link that reopens this comparison. */
+  link() {
+    const url = new URL(location.href);
+    const s = this.guard((sim) => sim.scene_string()).value ?? '';
+    const c = this.guard((sim) => sim.spec_string()).value ?? '';
+    url.hash = `s=${s}&c=${c}`;
+    return url.href;
+  }
+}
+
+function setupControls(app) {
+  const play = $('play');
+  const refreshPlay = () => {
+    play.textContent = app.playing ? 'Pause' : 'Play';
+    play.setAttribute('aria-pressed', String(app.playing));
+  };
+  app.addEventListener('playing', refreshPlay);
+  refreshPlay();
+  const toggle = () => app.setPlaying(!app.playing);
+  const stepOnce = () => {
+    app.setPlaying(false);
+    app.stepNow(1);
+  };
+  play.addEventListener('click', toggle);
+  $('step').addEventListener('click', stepOnce);
+  $('reset').addEventListener('click', () => app.reset());
+  const spf = $('spf');
+  const applySpeed = () => {
+    app.stepsPerFrame = Math.min(20, Math.max(1, Math.round(Number(spf.value)) || 1));
+    $('spf-value').textContent = `${app.stepsPerFrame}×`;
+  };
+  spf.addEventListener('input', applySpeed);
+  applySpeed();
+
+  $('add-pane').addEventListener('click', () => {
+    const used = new Set(JSON.parse(app.guard((sim) => sim.panes_json()).value ?? '[]').map((p) => p.planner));
+    const next = app.planners.find((p) => !used.has(p.name))?.name ?? app.planners[0].name;
+    app.change((sim) => sim.add_pane(next));
+  });
+  const refreshAdd = () => {
+    const count = app.guard((sim) => sim.pane_count()).value ?? 0;
+    $('add-pane').disabled = count >= (app.guard((sim) => sim.max_panes()).value ?? 4);
+  };
+  app.addEventListener('panes', refreshAdd);
+  refreshAdd();
+
+  $('export-csv').addEventListener('click', () => {
+    const csv = app.guard((sim) => sim.summary_csv());
+    if (csv.ok) download('flockpath-comparison.csv', csv.value, 'text/csv');
+  });
+  $('copy-link').addEventListener('click', async () => {
+    const link = app.link();
+    try {
+      await navigator.clipboard.writeText(link);
+      $('copy-link').textContent = 'Link copied';
+    } catch {
+      showMessage(`the browser refused clipboard access; the link is: ${link}`);
+    }
+    setTimeout(() => ($('copy-link').textContent = 'Copy link'), 2000);
+  });
+
+  const preset = $('preset');
+  for (const p of app.presets) {
+    preset.append(Object.assign(document.createElement('option'), { value: p.name, textContent: p.name, title: p.description }));
+  }
+  preset.append(Object.assign(document.createElement('option'), { value: '', textContent: '(linked scene)', disabled: true }));
+  const showPreset = () => {
+    const name = JSON.parse(app.guard((sim) => sim.scene_json()).value ?? '{}').name;
+    preset.value = app.presets.some((p) => p.name === name) ? name : '';
+  };
+  preset.addEventListener('change', () => {
+    const text = app.guard(() => app.module.preset_scene_json(preset.value));
+    if (text.ok) app.change((sim) => sim.load(text.value));
+  });
+  app.addEventListener('panes', showPreset);
+  showPreset();
+
+  document.addEventListener('keydown', (e) => {
+    const t = e.target;
+    const typing = t instanceof HTMLElement && (t.tagName === 'TEXTAREA' || t.tagName === 'SELECT' ||
+      (t.tagName === 'INPUT' && !['checkbox', 'range', 'button'].includes(t.type)));
+    if (app.crashed || typing || e.ctrlKey || e.metaKey || e.altKey) return;
+    if (e.key === ' ') toggle();
+    else if (e.key === 's' || e.key === 'S') stepOnce();
+    else if (e.key === 'r' || e.key === 'R') app.reset();
+    else return;
+    e.preventDefault();
+  });
+}
+
+/** Keeps the address bar and the playground link on the current comparison (debounced). */
+function keepLocationInSync(app) {
+  let timer = null;
+  const write = () => {
+    timer = null;
+    if (app.crashed) return;
+    history.replaceState(null, '', app.link());
+    const s = app.guard((sim) => sim.scene_string()).value ?? '';
+    $('playground-link').href = `index.html#s=${s}`;
+  };
+  app.addEventListener('panes', () => {
+    clearTimeout(timer);
+    timer = setTimeout(write, WRITE_DELAY_MS);
+  });
+  write();
+}
+
+/** The frame loop: every pane steps the same fixed steps per frame; hidden tabs do not step. */
+function startLoop(app, canvases) {
+  let lastRefresh = -Infinity;
+  let forced = true;
+  const force = () => (forced = true);
+  app.addEventListener('stepped', force);
+  app.addEventListener('panes', force);
+  const frame = (now) => {
+    if (app.crashed) return;
+    if (app.playing && document.visibilityState !== 'hidden') {
+      if (!app.guard((sim) => sim.step(app.stepsPerFrame)).ok) app.setPlaying(false);
+      app.dirty = true;
+    }
+    if (app.dirty) {
+      app.dirty = false;
+      app.guard(() => blitPanes(app, canvases()));
+    }
+    if (forced || (app.playing && now - lastRefresh >= REFRESH_MS)) {
+      forced = false;
+      lastRefresh = now;
+      refresh(app);
+    }
+    requestAnimationFrame(frame);
+  };
+  requestAnimationFrame(frame);
+}
+
+function refresh(app) {
+  const result = app.guard((sim) => ({
+    steps: sim.steps(),
+    metrics: JSON.parse(sim.metrics_json()),
+    panes: JSON.parse(sim.panes_json()),
+    series: JSON.parse(sim.series_json()),
+  }));
+  if (!result.ok) return;
+  const { steps, metrics, panes, series } = result.value;
+  $('steps').textContent = `step ${steps.toLocaleString('en-US')}`;
+  drawTable($('metrics-table'), panes, metrics);
+  drawPlots($('plots'), series);
+}
+
+async function boot() {
+  setupBanner();
+  capturePanicReports();
+  let module;
+  try {
+    module = await import('../pkg/flockpath.js');
+  } catch (error) {
+    throw new Error(`the simulation module (pkg/flockpath.js) could not be loaded: ${messageOf(error)}. ` +
+      'Build it with: bash scripts/build-wasm.sh');
+  }
+  const wasm = await module.default();
+  const presets = JSON.parse(module.presets_json());
+  const fallback = module.preset_scene_json(presets[0].name);
+  const linked = parseHash();
+  const problems = [];
+  const { width, height } = measurePane();
+
+  let sim = null;
+  let sceneText = linked.s ?? fallback;
+  try {
+    module.scene_from_text(sceneText);
+  } catch (error) {
+    if (isPanic(error)) throw error;
+    problems.push(`The scene in the link could not be loaded: ${messageOf(error)}. Showing “${presets[0].name}” instead.`);
+    sceneText = fallback;
+  }
+  try {
+    sim = new module.CompareSim(sceneText, linked.c ?? '', width, height);
+  } catch (error) {
+    if (isPanic(error)) throw error;
+    problems.push(`The comparison in the link could not be used: ${messageOf(error)}. Showing the default comparison instead.`);
+    sim = new module.CompareSim(sceneText, '', width, height);
+  }
+
+  const app = new CompareApp(wasm, module, sim);
+  window.addEventListener('unhandledrejection', (e) => {
+    if (isPanic(e.reason)) showPanic(messageOf(e.reason));
+  });
+  const canvases = buildPanes(app);
+  setupControls(app);
+  keepLocationInSync(app);
+  startLoop(app, canvases);
+  $('loading').hidden = true;
+  if (problems.length) showMessage(problems.join(' '));
+
+  addEventListener('hashchange', () => {
+    const next = parseHash();
+    if (next.c !== null && next.c !== app.guard((s) => s.spec_string()).value) app.change((s) => s.set_spec(next.c));
+    if (next.s !== null && next.s !== app.guard((s) => s.scene_string()).value) app.change((s) => s.load(next.s));
+  });
+
+  window.flockpathCompare = Object.freeze({
+    play: () => app.setPlaying(true),
+    pause: () => app.setPlaying(false),
+    isPlaying: () => app.playing,
+    step: (n = 1) => app.stepNow(n, { rethrow: true }).value,
+    reset: () => void app.reset({ rethrow: true }),
+    steps: () => JSON.parse(app.guard((s) => s.pane_steps_json(), { rethrow: true }).value),
+    metrics: () => JSON.parse(app.guard((s) => s.metrics_json(), { rethrow: true }).value),
+    panes: () => JSON.parse(app.guard((s) => s.panes_json(), { rethrow: true }).value),
+    digests: () => JSON.parse(app.guard((s) => s.digests_json(), { rethrow: true }).value),
+    series: () => JSON.parse(app.guard((s) => s.series_json(), { rethrow: true }).value),
+    summary: () => JSON.parse(app.guard((s) => s.summary_json(), { rethrow: true }).value),
+    summaryCsv: () => app.guard((s) => s.summary_csv(), { rethrow: true }).value,
+    specString: () => app.guard((s) => s.spec_string(), { rethrow: true }).value,
+    sceneString: () => app.guard((s) => s.scene_string(), { rethrow: true }).value,
+    setSpec: (text) => void app.change((s) => s.set_spec(text), { rethrow: true }),
+    load: (text) => void app.change((s) => s.load(typeof text === 'string' ? text : JSON.stringify(text)), { rethrow: true }),
+    link: () => app.link(),
+  });
+  window.dispatchEvent(new Event('flockpath-compare-ready'));
+}
+
+boot().catch((error) => {
+  document.getElementById('loading')?.setAttribute('hidden', '');
+  if (isPanic(error)) showPanic(messageOf(error));
+  else showMessage(`the comparison could not start: ${messageOf(error)}`);
+  console.error(error);
+});

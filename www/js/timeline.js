@@ -1,0 +1,116 @@
+// The timeline: a slider over the run's recorded history. Dragging it jumps to any step (Rust
+// restores the nearest checkpoint and re-simulates, bit-identical to the original run); playing
+// goes on from the step shown. The recording's budget and any thinning are stated under it.
+
+/** How often the slider follows a playing run (ms, display only). */
+const REFRESH_MS = 100;
+
+const STYLE = `
+.timeline { display: flex; align-items: center; gap: 0.6rem; padding: 0.25rem 1rem; background: var(--surface, #fff);
+  border-bottom: 1px solid var(--line, #d5dbe3); font-size: 0.9rem; flex-wrap: wrap; }
+.timeline input[type=range] { flex: 1; min-width: 12rem; }
+.timeline output { font-variant-numeric: tabular-nums; min-width: 11rem; color: var(--muted, #5a6676); }
+.timeline .timeline-note { flex-basis: 100%; margin: 0; color: #8a5a00; background: #fff6e0; border-radius: 6px;
+  padding: 0.2rem 0.5rem; }
+.timeline .timeline-note[hidden] { display: none; }
+`;
+
+/** The timeline's state from the Sim (`timeline_json`), or null when the call was refused. */
+export function timelineInfo(app) {
+  const result = app.guard((sim) => JSON.parse(sim.timeline_json()));
+  return result.ok ? result.value : null;
+}
+
+/**
+ * Jumps to `step` (clamped to the recorded history) and tells the UI. Returns the number of
+ * steps re-simulated. `rethrow` as in `app.guard`.
+ */
+export function seekTo(app, step, options = {}) {
+  const result = app.guard((sim) => sim.seek(step), options);
+  if (!result.ok) return result;
+  app.dirty = true;
+  // An edit made during the run (an obstacle, a parameter) is part of the history: the scene
+  // shown may have changed with the jump.
+  const info = timelineInfo(app);
+  if (info && info.edits.length > 0) app.sceneChanged();
+  app.dispatchEvent(new Event('stepped'));
+  return result;
+}
+
+export function setupTimeline(app) {
+  const style = document.createElement('style');
+  style.textContent = STYLE;
+  document.head.append(style);
+
+  const bar = document.createElement('div');
+  bar.className = 'timeline';
+  bar.setAttribute('role', 'group');
+  bar.setAttribute('aria-label', 'Timeline');
+  const label = Object.assign(document.createElement('label'), { htmlFor: 'timeline', textContent: 'Timeline' });
+  const slider = Object.assign(document.createElement('input'), {
+    id: 'timeline',
+    type: 'range',
+    min: '0',
+    max: '0',
+    step: '1',
+    value: '0',
+    title: 'Drag to go back and forth in the run; Play goes on from the step shown',
+  });
+  const readout = Object.assign(document.createElement('output'), { id: 'timeline-step' });
+  readout.setAttribute('for', 'timeline');
+  const note = Object.assign(document.createElement('p'), { id: 'timeline-note', className: 'timeline-note', hidden: true });
+  note.setAttribute('role', 'status');
+  bar.append(label, slider, readout, note);
+  document.querySelector('.toolbar')?.after(bar);
+
+  let dragging = false;
+  let resumeAfterDrag = false;
+  let pending = null;
+
+  const show = () => {
+    const info = timelineInfo(app);
+    if (!info) return;
+    slider.min = String(info.first_step);
+    slider.max = String(info.end_step);
+    if (!dragging) slider.value = String(info.step);
+    readout.textContent = `step ${info.step.toLocaleString('en-US')} of ${info.end_step.toLocaleString('en-US')}`;
+    readout.title =
+      `Positions: ${(info.frame_bytes / 1e6).toFixed(1)} of ${(info.frame_budget_bytes / 1e6).toFixed(0)} MB ` +
+      `(${info.capacity_steps.toLocaleString('en-US')} steps of this run at every step); ` +
+      `${info.checkpoints} checkpoints every ${info.checkpoint_every} steps`;
+    note.hidden = info.note === null;
+    if (info.note !== null && note.textContent !== info.note) note.textContent = info.note;
+  };
+
+  // Jumps are coalesced to one per animation frame: a fast drag asks for many.
+  const flush = () => {
+    const step = pending;
+    pending = null;
+    if (step !== null) seekTo(app, step);
+  };
+  slider.addEventListener('input', () => {
+    if (pending === null) requestAnimationFrame(flush);
+    pending = Number(slider.value);
+  });
+  slider.addEventListener('pointerdown', () => {
+    dragging = true;
+    resumeAfterDrag = app.playing;
+    if (app.playing) app.setPlaying(false);
+  });
+  const endDrag = () => {
+    if (!dragging) return;
+    dragging = false;
+    if (resumeAfterDrag) app.setPlaying(true);
+    resumeAfterDrag = false;
+  };
+  slider.addEventListener('pointerup', endDrag);
+  slider.addEventListener('pointercancel', endDrag);
+  slider.addEventListener('change', endDrag);
+
+  app.addEventListener('stepped', show);
+  app.addEventListener('scene', show);
+  setInterval(() => {
+    if (app.playing && !app.crashed && !document.hidden) show();
+  }, REFRESH_MS);
+  show();
+}
