@@ -91,18 +91,28 @@ impl MetricsHistory {
         *self = Self::new(every, self.cap);
     }
 
-    /// Samples `world` if its step count falls on the sampling interval (call after every step;
-    /// a run that restarted from an earlier step starts a new history).
+    /// Samples `world` if its step count falls on the sampling interval (call after every new
+    /// step). A run that went back (a restart, or a change after a jump back on the timeline)
+    /// drops the samples from its step on, since they belonged to the old future.
     pub fn sample(&mut self, world: &World) {
         let step = world.step_count();
         if self.steps.last().is_some_and(|&last| step <= last) {
-            let every = if step == 0 { DEFAULT_EVERY } else { self.every };
-            self.clear(every.min(DEFAULT_EVERY));
+            self.truncate_before(step);
         }
         if !step.is_multiple_of(self.every) {
             return;
         }
         self.push(&plot_metrics(world));
+    }
+
+    /// Drops the samples at `step` and later; an emptied history samples at the start rate again.
+    pub fn truncate_before(&mut self, step: u32) {
+        let keep = self.steps.partition_point(|&s| s < step);
+        self.steps.truncate(keep);
+        self.values.truncate(keep * self.rows * RAW);
+        if keep == 0 {
+            self.clear(DEFAULT_EVERY);
+        }
     }
 
     /// Appends the metrics of one step (thinning first when full).
@@ -295,7 +305,7 @@ mod tests {
     }
 
     #[test]
-    fn a_reset_run_starts_a_new_history_and_csv_has_a_row_per_group() {
+    fn a_run_that_goes_back_drops_the_old_future_and_csv_has_a_row_per_group() {
         let mut world = World::new(presets::open_field()).expect("valid");
         let mut h = MetricsHistory::default();
         world.step_n(20);
@@ -310,5 +320,15 @@ mod tests {
         assert!(lines[0].starts_with("step,time_s,group,arrived_share"));
         assert!(lines[2].contains(",flock,"));
         assert_eq!(lines[1].split(',').count(), 3 + SERIES.len());
+        // Going back to step 55 (a change after a jump back) keeps the samples before it.
+        for _ in 0..100 {
+            world.step();
+            h.sample(&world);
+        }
+        let mut back = World::new(presets::open_field()).expect("valid");
+        back.step_n(55);
+        h.sample(&back);
+        assert_eq!(h.steps().last(), Some(&55));
+        assert_eq!(h.steps().len(), 11, "{:?}", h.steps());
     }
 }

@@ -82,7 +82,7 @@ pub const ALL: &[Preset] = &[
     },
     Preset {
         name: "u-trap",
-        description: "A U-shaped wall opens towards three groups (PSO, firefly, Boids): local minima, stuck agents flagged.",
+        description: "A U-shaped wall opens towards PSO, firefly and Boids groups: local minima, stuck agents flagged; path-following Boids go round.",
         build: u_trap,
     },
     Preset {
@@ -208,7 +208,8 @@ pub fn corridor() -> Scene {
 
 /// A U-shaped wall between three groups and their goal, opening towards them: the straight way
 /// leads into the cup, a local minimum of every cost that only looks at the distance to the goal.
-/// PSO (blue), firefly (orange) and Boids (green) groups start side by side on the left.
+/// PSO (blue), firefly (orange) and Boids (green) groups start side by side on the left; a
+/// fourth Boids group (purple) follows a path round the cup.
 pub fn u_trap() -> Scene {
     let mut s = base("u-trap", 900.0, 600.0);
     s.obstacles.push(Obstacle::Rect { min: [520.0, 160.0], max: [550.0, 440.0] });
@@ -222,6 +223,11 @@ pub fn u_trap() -> Scene {
         ..group("firefly", "#df7f1f", 15, ([60.0, 310.0], [160.0, 370.0]), 0)
     });
     s.groups.push(group("boids", "#2f9f5f", 15, ([60.0, 390.0], [160.0, 450.0]), 0));
+    // Path following goes round the cup: guidance from above the local rules.
+    let around = vec![[110.0, 520.0], [400.0, 520.0], [620.0, 490.0], [720.0, 390.0], [790.0, 310.0]];
+    s.paths.push(PathSpec { points: around, radius: 30.0 });
+    let walkers = boids_group("boids on a path", "#8f3fbf", 15, ([60.0, 490.0], [160.0, 550.0]), Some(0));
+    s.groups.push(with_boids(walkers, |p| p.path = 1));
     s
 }
 

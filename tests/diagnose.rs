@@ -30,6 +30,10 @@ fn the_u_trap_flags_stuck_pso_and_firefly_agents() {
         let e = explain(&world, id).expect("explanation");
         assert!(e.stuck && e.state.starts_with("stuck"), "{}", e.state);
     }
+    // Guidance from above the local rules gets out: the path followers arrive, none stuck.
+    let path = m.groups.iter().find(|g| g.name.as_deref() == Some("boids on a path")).expect("group");
+    assert!(path.arrived_share >= 0.8, "path followers arrived: {}", path.arrived_share);
+    assert_eq!(path.stuck_agents, 0);
 }
 
 #[test]

@@ -566,8 +566,8 @@ impl Planner for Pso {
         });
         e.state = if accepted == 0 {
             "every candidate refused: stays this step".into()
-        } else if mine.here.objective > 1.5 {
-            "slowed by the cost landscape".into()
+        } else if Self::obstacle_cost(mine.here.scaled2) > 0.05 {
+            "slowed: an obstacle or another person is near (obstacle cost above 0.05)".into()
         } else {
             "walking towards gbest".into()
         };

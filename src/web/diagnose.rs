@@ -66,11 +66,11 @@ impl Sim {
         diagnose::stuck_agents(&self.world)
     }
 
-    /// Forgets the history if it belongs to an earlier run (its last sample lies ahead).
+    /// Forgets the history if it belongs to another scene (its groups differ). After a jump back
+    /// on the timeline the samples ahead stay: the replay reproduces them until something changes,
+    /// and the next new step drops them then.
     fn current_history(&mut self) {
-        if self.history.steps().last().is_some_and(|&last| last > self.world.step_count())
-            || self.history.groups() != self.world.scene().groups.len()
-        {
+        if self.history.groups() != self.world.scene().groups.len() {
             self.history.clear(crate::history::DEFAULT_EVERY);
         }
     }
