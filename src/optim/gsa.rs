@@ -210,20 +210,8 @@ impl Optimizer for Gsa {
         self.t += 1;
     }
 
-    fn best_position(&self) -> &[f64] {
-        &self.pop.best_x
-    }
-
-    fn best_value(&self) -> f64 {
-        self.pop.best_f
-    }
-
-    fn positions(&self) -> &[f64] {
-        &self.pop.x
-    }
-
-    fn evaluations(&self) -> u64 {
-        self.pop.evaluations
+    fn population(&self) -> &Population {
+        &self.pop
     }
 }
 

@@ -250,20 +250,8 @@ impl Optimizer for Igsa {
         }
     }
 
-    fn best_position(&self) -> &[f64] {
-        &self.pop.best_x
-    }
-
-    fn best_value(&self) -> f64 {
-        self.pop.best_f
-    }
-
-    fn positions(&self) -> &[f64] {
-        &self.pop.x
-    }
-
-    fn evaluations(&self) -> u64 {
-        self.pop.evaluations
+    fn population(&self) -> &Population {
+        &self.pop
     }
 }
 

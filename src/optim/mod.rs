@@ -81,14 +81,24 @@ pub trait Optimizer {
     fn iteration(&self) -> u32;
     /// One iteration: move the population and evaluate it.
     fn step(&mut self, objective: &dyn Objective);
+    /// The particles, their best point and the evaluation count.
+    fn population(&self) -> &Population;
     /// Best point found so far.
-    fn best_position(&self) -> &[f64];
+    fn best_position(&self) -> &[f64] {
+        &self.population().best_x
+    }
     /// Objective value at [`Optimizer::best_position`].
-    fn best_value(&self) -> f64;
+    fn best_value(&self) -> f64 {
+        self.population().best_f
+    }
     /// Current positions, row-major: particle `i` is `positions()[i * dim..(i + 1) * dim]`.
-    fn positions(&self) -> &[f64];
+    fn positions(&self) -> &[f64] {
+        &self.population().x
+    }
     /// Objective evaluations so far (initialisation included).
-    fn evaluations(&self) -> u64;
+    fn evaluations(&self) -> u64 {
+        self.population().evaluations
+    }
 }
 
 /// The closed set of optimizers, for the CLI and the lab page.
