@@ -50,7 +50,9 @@ fn nobody_is_stuck_in_the_open_field_with_any_planner() {
 
 #[test]
 fn the_boids_explanation_adds_up_to_the_applied_steering() {
+    // The weighted sum, whose parts must add up (the preset itself uses priority arbitration).
     let mut world = world_of("pillars");
+    world.set_group_planner(0, PlannerKind::Boids.default_config()).expect("planner");
     world.step_n(150);
     let ctx = world.step_context();
     let view = world.group_view(0).expect("group");
