@@ -83,6 +83,10 @@ test('refused scenes keep the previous scene running unchanged', async () => {
     // A good link loads.
     const goodLink = await page.evaluate(() => window.flockpath.sceneString());
     await page.evaluate((value) => window.flockpath.load(value), simpleScene({ name: 'other' }));
+    // Wait for the address bar to follow the load (it is rewritten 300 ms after a change): setting
+    // the hash to the value it already holds fires no hashchange, and a write still pending from
+    // before the garbled link could have put the good link back into the address bar.
+    await page.waitForFunction(() => location.hash === `#s=${window.flockpath.sceneString()}`);
     await page.evaluate((value) => {
       location.hash = `s=${value}`;
     }, goodLink);

@@ -2,60 +2,25 @@
 // wasm call goes through (so every thrown error reaches the banner and a panic reaches the panel).
 
 import { History } from './history.js';
-import { isPanic, messageOf, showMessage, showPanic } from './errors.js';
+import { SimHost } from './sim-host.js';
 
 /** Colours handed to new groups, in order. */
 export const PALETTE = ['#2f6fdf', '#df4f2f', '#2f9f5f', '#9f4fdf', '#df9f1f', '#1f9fbf', '#df3f8f', '#6f7f8f'];
 
-export class App extends EventTarget {
+export class App extends SimHost {
   /**
    * @param {object} wasm   the instance exports returned by `init()` (for `memory`)
    * @param {object} module the JS bindings (`presets_json`, `preset_scene_json`, …)
    * @param {object} sim    the `Sim` handle
    */
   constructor(wasm, module, sim) {
-    super();
-    this.wasm = wasm;
-    this.module = module;
-    this.sim = sim;
-    this.presets = JSON.parse(module.presets_json());
-    this.planners = JSON.parse(module.planners_json());
+    super(wasm, module, sim);
     this.history = new History(200);
-    this.playing = true;
-    this.stepsPerFrame = 2;
     this.activeGroup = 0;
     this.selection = null;
     this.trails = true;
     this.trailFade = 0.01;
-    /** Set when the canvas must be re-rendered even though the simulation is paused. */
-    this.dirty = true;
-    this.crashed = false;
     this.scene = JSON.parse(sim.scene_json());
-  }
-
-  /**
-   * Runs `fn(sim)`; a thrown error shows in the banner (or the crash panel for a panic) and the
-   * current scene keeps running. Returns `{ ok, value, error }`; with `rethrow` the error is
-   * thrown again as a plain `Error` carrying the readable message (for the page API).
-   */
-  guard(fn, { rethrow = false } = {}) {
-    if (this.crashed) {
-      const error = new Error('the simulation crashed; reload the page');
-      if (rethrow) throw error;
-      return { ok: false, error };
-    }
-    try {
-      return { ok: true, value: fn(this.sim) };
-    } catch (thrown) {
-      const message = messageOf(thrown);
-      if (isPanic(thrown)) {
-        this.crash(message);
-      } else {
-        showMessage(message);
-      }
-      if (rethrow) throw thrown instanceof Error ? thrown : new Error(message);
-      return { ok: false, error: thrown };
-    }
   }
 
   /**
@@ -141,31 +106,6 @@ export class App extends EventTarget {
     this.dispatchEvent(new Event('selection'));
   }
 
-  /** Play or pause the frame loop's stepping. */
-  setPlaying(playing) {
-    this.playing = playing;
-    this.dispatchEvent(new Event('playing'));
-  }
-
-  /** Advances `n` steps now (paused stepping, the page API). */
-  stepNow(n, options = {}) {
-    const result = this.guard((sim) => {
-      sim.step(n);
-      return sim.steps();
-    }, options);
-    this.dirty = true;
-    this.dispatchEvent(new Event('stepped'));
-    return result;
-  }
-
-  /** Restarts the current scene from its seed. */
-  reset(options = {}) {
-    const result = this.guard((sim) => sim.reset(), options);
-    this.dirty = true;
-    this.dispatchEvent(new Event('stepped'));
-    return result;
-  }
-
   /** Steps back to the scene before the last change. */
   undo() {
     this.travel(this.history.undoStack, this.history.redoStack);
@@ -188,15 +128,6 @@ export class App extends EventTarget {
       from.push(target);
     }
     this.dispatchEvent(new Event('history'));
-  }
-
-  /** Stops everything and shows the crash panel. */
-  crash(message) {
-    if (this.crashed) return;
-    this.crashed = true;
-    this.setPlaying(false);
-    showPanic(message);
-    this.dispatchEvent(new Event('crash'));
   }
 
   /** The next palette colour no group uses yet. */

@@ -3,6 +3,7 @@
 // Rust owns the panes, their runs, metrics, series and summary; this shell only draws and wires.
 
 import { capturePanicReports, isPanic, messageOf, setupBanner, showMessage, showPanic } from './errors.js';
+import { SimHost } from './sim-host.js';
 import { buildPanes, blitPanes, measurePane } from './compare-panes.js';
 import { drawPlots, drawTable } from './compare-plots.js';
 import { download } from './share.js';
@@ -34,44 +35,8 @@ export function parseHash(hash = location.hash) {
   return out;
 }
 
-/** The compare page's state: the wasm handle and the one guarded door to it. */
-class CompareApp extends EventTarget {
-  constructor(wasm, module, sim) {
-    super();
-    this.wasm = wasm;
-    this.module = module;
-    this.sim = sim;
-    this.planners = JSON.parse(module.planners_json());
-    this.presets = JSON.parse(module.presets_json());
-    this.playing = true;
-    this.stepsPerFrame = 2;
-    this.dirty = true;
-    this.crashed = false;
-  }
-
-  /** Runs `fn(sim)`; errors go to the banner (a panic to the crash panel). */
-  guard(fn, { rethrow = false } = {}) {
-    if (this.crashed) {
-      const error = new Error('the simulation crashed; reload the page');
-      if (rethrow) throw error;
-      return { ok: false, error };
-    }
-    try {
-      return { ok: true, value: fn(this.sim) };
-    } catch (thrown) {
-      const message = messageOf(thrown);
-      if (isPanic(thrown)) {
-        this.crashed = true;
-        this.playing = false;
-        showPanic(message);
-      } else {
-        showMessage(message);
-      }
-      if (rethrow) throw thrown instanceof Error ? thrown : new Error(message);
-      return { ok: false, error: thrown };
-    }
-  }
-
+/** The compare page's state: the wasm handle of the panes behind the shared guarded door. */
+class CompareApp extends SimHost {
   /** A change of the panes or the scene (restarts every pane): redraw everything, rewrite the URL. */
   change(fn, options = {}) {
     const result = this.guard(fn, options);
@@ -79,28 +44,6 @@ class CompareApp extends EventTarget {
       this.dirty = true;
       this.dispatchEvent(new Event('panes'));
     }
-    return result;
-  }
-
-  setPlaying(playing) {
-    this.playing = playing;
-    this.dispatchEvent(new Event('playing'));
-  }
-
-  stepNow(n, options = {}) {
-    const result = this.guard((sim) => {
-      sim.step(n);
-      return sim.steps();
-    }, options);
-    this.dirty = true;
-    this.dispatchEvent(new Event('stepped'));
-    return result;
-  }
-
-  reset(options = {}) {
-    const result = this.guard((sim) => sim.reset(), options);
-    this.dirty = true;
-    this.dispatchEvent(new Event('stepped'));
     return result;
   }
 
