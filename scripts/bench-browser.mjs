@@ -72,6 +72,18 @@ try {
     console.log(row.map((c) => String(c).padStart(13)).join(''));
   }
   console.log(`10,000-agent frame (step + render + putImageData) at 1280×800: ${wasm.frame_ms.toFixed(2)} ms`);
+  // The per-planner table, against the native bench's wall-clock medians of the same scenes.
+  const nativePlanners = native?.planner_ns_per_agent_step ?? {};
+  console.log(`\nper planner, wasm vs native, ns per agent-step`);
+  console.log(['planner', 'agents', 'wasm', 'native', 'wasm/native'].map((c) => c.padStart(18)).join(''));
+  for (const [name, bySize] of Object.entries(wasm.planner_ns_per_agent_step ?? {})) {
+    for (const [n, ns] of Object.entries(bySize)) {
+      const entry = nativePlanners?.[name]?.[n];
+      const nat = typeof entry === 'number' ? entry : entry?.median;
+      const row = [name, n, fmt(ns), fmt(nat), nat ? fmt(ns / nat, 2) : '–'];
+      console.log(row.map((c) => String(c).padStart(18)).join(''));
+    }
+  }
   const jsonFile = flag('--json');
   if (jsonFile) await writeFile(jsonFile, `${JSON.stringify({ wasm, native }, null, 2)}\n`);
 } catch (error) {

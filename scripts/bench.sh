@@ -27,6 +27,13 @@ echo "[bench] scenes for the browser: www/bench/density-N.json"
 for n in 1000 10000 100000; do
   "$bin" density-scene "$n" > "www/bench/density-$n.json"
 done
+# The per-planner rows of the native bench, as scenes for the same table in wasm.
+"$bin" density-scene --planners > www/bench/planners.txt
+while read -r planner; do
+  for n in 1000 10000; do
+    "$bin" density-scene "$n" --planner "$planner" > "www/bench/planner-$planner-$n.json"
+  done
+done < www/bench/planners.txt
 
 bash scripts/build-wasm.sh
 if [ ! -d node_modules/playwright-core ]; then

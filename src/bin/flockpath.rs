@@ -189,12 +189,33 @@ fn dispatch(args: &[String]) -> Result<(), CliError> {
         "bench" => bench::main(&parse_bench(rest)?).map_err(failed),
         // Hidden: the scene the benchmarks use, for the browser bench page.
         "density-scene" => {
-            let n = one_arg("density-scene", "N", rest)?;
+            // `density-scene --planners` lists the per-planner rows; `density-scene N [--planner
+            // NAME]` prints the scene (the per-planner one heads for a central goal).
+            if rest.first().map(String::as_str) == Some("--planners") {
+                let names: Vec<&str> = bench::planner_configs().into_iter().map(|(name, _)| name).collect();
+                return out(&format!("{}\n", names.join("\n")));
+            }
+            let (n, planner) = match rest {
+                [n] => (n, None),
+                [n, flag, name] if flag == "--planner" => (n, Some(name.as_str())),
+                _ => return Err(usage("usage: flockpath density-scene N [--planner NAME] | --planners")),
+            };
             let n: u32 = parse_number("N", n)?;
             if n == 0 || n > flockpath::scene::MAX_AGENTS {
                 return Err(usage(format!("N = {n} is outside 1…{}", flockpath::scene::MAX_AGENTS)));
             }
-            out(&format!("{}\n", scene_to_json(&bench::bench_scene(n))))
+            let scene = match planner {
+                None => bench::bench_scene(n),
+                Some(name) => {
+                    let config = bench::planner_configs()
+                        .into_iter()
+                        .find(|(row, _)| *row == name)
+                        .map(|(_, config)| config)
+                        .ok_or_else(|| usage(format!("no bench row {name:?}; see --planners")))?;
+                    bench::planner_scene(n, &config)
+                }
+            };
+            out(&format!("{}\n", scene_to_json(&scene)))
         }
         c if LATER_COMMANDS.contains(&c) => {
             Err(usage(format!("`flockpath {c}` is not available yet in this build")))

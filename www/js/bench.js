@@ -20,11 +20,16 @@ function median(samples) {
   return s.length % 2 ? s[mid] : 0.5 * (s[mid - 1] + s[mid]);
 }
 
-async function sceneText(n) {
-  const response = await fetch(`bench/density-${n}.json`, { cache: 'no-store' });
-  if (!response.ok) throw new Error(`bench/density-${n}.json: HTTP ${response.status} (run scripts/bench.sh)`);
+async function fetchText(file) {
+  const response = await fetch(`bench/${file}`, { cache: 'no-store' });
+  if (!response.ok) throw new Error(`bench/${file}: HTTP ${response.status} (run scripts/bench.sh)`);
   return response.text();
 }
+
+const sceneText = (n) => fetchText(`density-${n}.json`);
+
+/** The per-planner rows (the native bench's names), at 1k and 10k agents. */
+const PLANNER_SIZES = [1_000, 10_000];
 
 /**
  * Like the native bench: every repetition steps freshly spawned worlds (same simulated moment
@@ -92,6 +97,23 @@ async function main() {
   results.frame_ms = f.median;
   log(`Frame at ${FRAME_AGENTS} agents, ${CANVAS.width}×${CANVAS.height} (step + render + putImageData): ` +
     `${f.median.toFixed(2)} ms (${f.min.toFixed(2)}…${f.max.toFixed(2)})`);
+  // The same per-planner table as the native bench (fewer agent-steps per repetition: the paper
+  // planners cost several times a Boids step).
+  const planPlanners = quick
+    ? { warmupSteps: 2, steps: 3, agentsPerRep: 10_000, reps: 3 }
+    : { warmupSteps: 3, steps: 10, agentsPerRep: 20_000, reps: 5 };
+  const names = (await fetchText('planners.txt')).split('\n').map((l) => l.trim()).filter(Boolean);
+  results.planner_ns_per_agent_step = {};
+  log('Per planner: Sim.step in wasm, ns per agent-step (median)');
+  for (const name of names) {
+    results.planner_ns_per_agent_step[name] = {};
+    for (const n of PLANNER_SIZES) {
+      const t = timeSteps(await fetchText(`planner-${name}-${n}.json`), n, planPlanners);
+      results.planner_ns_per_agent_step[name][n] = t.median;
+      log(`${name.padStart(18)} ${String(n).padStart(7)}  ${t.median.toFixed(1).padStart(8)}`);
+      await new Promise((resolve) => setTimeout(resolve, 0));
+    }
+  }
   window.benchResults = results;
 }
 

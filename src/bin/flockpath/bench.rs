@@ -150,10 +150,10 @@ fn step_benchmarks(options: &Options, report: &mut Map<String, Value>) -> Result
 }
 
 /// Sizes of the per-planner table.
-const PLANNER_SIZES: &[u32] = &[1_000, 10_000];
+pub const PLANNER_SIZES: &[u32] = &[1_000, 10_000];
 
 /// The planners and Boids extensions of the per-planner table, by name.
-fn planner_configs() -> Vec<(&'static str, PlannerConfig)> {
+pub fn planner_configs() -> Vec<(&'static str, PlannerConfig)> {
     let boids = |edit: fn(&mut BoidsParams)| {
         let mut p = BoidsParams::default();
         edit(&mut p);
@@ -167,8 +167,9 @@ fn planner_configs() -> Vec<(&'static str, PlannerConfig)> {
     rows
 }
 
-/// The constant-density scene with a goal at its centre, every agent steered by `config`.
-fn planner_scene(n: u32, config: &PlannerConfig) -> Scene {
+/// The constant-density scene with a goal at its centre, every agent steered by `config` (also
+/// written for the browser bench by the hidden `flockpath density-scene N --planner NAME`).
+pub fn planner_scene(n: u32, config: &PlannerConfig) -> Scene {
     let mut scene = bench_scene(n);
     let c = [0.5 * scene.width, 0.5 * scene.height];
     scene.goals.push(flockpath::Goal::fixed(c, 0.05 * scene.width));
