@@ -36,9 +36,17 @@ test('a drawn path is followed by the active group and can be deleted', async ()
     const meanY = ys.reduce((a, b) => a + b, 0) / ys.length;
     assert.ok(meanY < 215, `mean y ${meanY.toFixed(1)} px: the flock does not follow the arc`);
 
-    // Select the path by clicking its centre line and delete it: the group stops following.
+    // Select the path by clicking its centre line and delete it: the group stops following. First
+    // let the flock reach the goal, so no agent on the arc takes the click (agents pick first).
+    await page.evaluate(() => {
+      window.flockpath.pause();
+      window.flockpath.step(1500);
+    });
+    // Keys go to the editor only when no form field has focus (the group panel re-renders).
+    await page.evaluate(() => document.activeElement?.blur());
     await page.keyboard.press('1');
     await clickAt(page, 275, 185);
+    await page.evaluate(() => document.activeElement?.blur());
     await page.keyboard.press('Delete');
     s = await scene(page);
     assert.equal(s.paths?.length ?? 0, 0, 'path deleted');
