@@ -19,6 +19,8 @@ pub struct SpatialGrid {
     pos: Vec<Vec2>,
     vel: Vec<Vec2>,
     scratch_cell: Vec<u32>,
+    /// Scratch: the next free slot of each cell while scattering.
+    scratch_next: Vec<u32>,
 }
 
 /// One agent found by a query.
@@ -61,6 +63,7 @@ impl SpatialGrid {
             pos: Vec::new(),
             vel: Vec::new(),
             scratch_cell: Vec::new(),
+            scratch_next: Vec::new(),
         }
     }
 
@@ -102,7 +105,9 @@ impl SpatialGrid {
         self.pos.resize(n, Vec2::ZERO);
         self.vel.resize(n, Vec2::ZERO);
         // Scatter in id order: stable, so each cell lists its agents by increasing id.
-        let mut next = self.cell_start.clone();
+        self.scratch_next.clear();
+        self.scratch_next.extend_from_slice(&self.cell_start);
+        let next = &mut self.scratch_next;
         for (i, &c) in self.scratch_cell.iter().enumerate() {
             let slot = next[c as usize] as usize;
             next[c as usize] += 1;
@@ -110,6 +115,12 @@ impl SpatialGrid {
             self.pos[slot] = positions[i];
             self.vel[slot] = velocities.get(i).copied().unwrap_or(Vec2::ZERO);
         }
+    }
+
+    /// Agent ids in storage order: cell by cell, by id inside a cell. Visiting agents in this
+    /// order keeps the cells their queries touch hot in the cache.
+    pub fn ids_in_cell_order(&self) -> &[u32] {
+        &self.ids
     }
 
     /// Calls `visit` for every agent within `radius` of `p`
@@ -171,17 +182,57 @@ impl SpatialGrid {
 
     /// Calls `visit(a, b)` once for every unordered pair of agents closer than `radius`
     /// (`radius` ≤ cell size), `a < b`.
+    ///
+    /// Half-neighbourhood scan: an agent is tested against the later agents of its own cell and,
+    /// only when it lies within `radius` of that border, against the cell to its right and the
+    /// three cells below. A pair in two cells is so seen once, from the earlier cell; with a
+    /// body-sized radius and perception-sized cells most agents test their own cell only.
     pub fn for_each_pair_within(&self, radius: f32, mut visit: impl FnMut(u32, u32)) {
         let r2 = radius * radius;
-        let n = self.pos.len();
-        for k in 0..n {
-            let p = self.pos[k];
-            let id = self.ids[k];
-            self.for_each_within(p, radius, |n| {
-                if n.id > id && n.d2 < r2 {
-                    visit(id, n.id);
+        let (cols, rows) = (self.cols as usize, self.rows as usize);
+        let mut test = |id: u32, p: Vec2, other: usize| {
+            if let (Some(&q), Some(&other_id)) = (self.pos.get(other), self.ids.get(other)) {
+                if p.distance_squared(q) < r2 {
+                    visit(id.min(other_id), id.max(other_id));
                 }
-            });
+            }
+        };
+        let cell_range = |cx: usize, cy: usize| {
+            let c = cy * cols + cx;
+            self.cell_start[c] as usize..self.cell_start[c + 1] as usize
+        };
+        for cy in 0..rows {
+            for cx in 0..cols {
+                let here = cell_range(cx, cy);
+                // Border lines of this cell; points outside the world sit in edge cells, so
+                // an edge cell's outer side is open and never near a neighbour cell.
+                let right = (cx + 1 < cols).then(|| (cx + 1) as f32 * self.cell_size);
+                let bottom = (cy + 1 < rows).then(|| (cy + 1) as f32 * self.cell_size);
+                let left = cx as f32 * self.cell_size;
+                for k in here.clone() {
+                    let (p, id) = (self.pos[k], self.ids[k]);
+                    for other in k + 1..here.end {
+                        test(id, p, other);
+                    }
+                    let near_right = right.is_some_and(|x| x - p.x < radius);
+                    if near_right {
+                        for other in cell_range(cx + 1, cy) {
+                            test(id, p, other);
+                        }
+                    }
+                    if !bottom.is_some_and(|y| y - p.y < radius) {
+                        continue;
+                    }
+                    let near_left = cx > 0 && p.x - left < radius;
+                    let first = if near_left { cx - 1 } else { cx };
+                    let last = if near_right { cx + 1 } else { cx };
+                    // Cells first..=last of the next row are contiguous in storage.
+                    let below = cell_range(first, cy + 1).start..cell_range(last, cy + 1).end;
+                    for other in below {
+                        test(id, p, other);
+                    }
+                }
+            }
         }
     }
 }
@@ -339,6 +390,37 @@ mod tests {
         grid.for_each_pair_within(2.0, |a, b| pairs.push((a, b)));
         pairs.sort();
         assert_eq!(pairs, vec![(0, 1), (0, 3), (1, 3)]);
+    }
+
+    #[test]
+    fn pairs_equal_brute_force_across_cell_borders() {
+        let mut rng = rand_pcg::Pcg32::seed_from_u64(11);
+        let mut unit = || (rng.next_u32() >> 8) as f32 / (1u32 << 24) as f32;
+        let (w, h, cell) = (300.0, 200.0, 20.0);
+        // Dense enough for many pairs, plus points on borders and outside the world.
+        let mut points: Vec<Vec2> = (0..1500).map(|_| Vec2::new(unit() * w, unit() * h)).collect();
+        for i in 0..=15 {
+            points.push(Vec2::new(i as f32 * cell, (i % 10) as f32 * cell));
+            points.push(Vec2::new(i as f32 * cell - 0.5, (i % 10) as f32 * cell + 0.5));
+        }
+        points.extend([Vec2::new(-3.0, 5.0), Vec2::new(-2.0, 5.5), Vec2::new(w + 4.0, h + 4.0)]);
+        let mut grid = SpatialGrid::new(w, h, cell, points.len());
+        grid.rebuild(&points, &[]);
+        for radius in [3.0, 8.0, cell] {
+            let mut pairs = Vec::new();
+            grid.for_each_pair_within(radius, |a, b| pairs.push((a, b)));
+            pairs.sort_unstable();
+            let mut expected = Vec::new();
+            for a in 0..points.len() {
+                for b in a + 1..points.len() {
+                    if points[a].distance_squared(points[b]) < radius * radius {
+                        expected.push((a as u32, b as u32));
+                    }
+                }
+            }
+            assert!(expected.len() > 50, "the test needs pairs (radius {radius})");
+            assert_eq!(pairs, expected, "radius {radius}");
+        }
     }
 
     #[test]

@@ -88,13 +88,14 @@ const BENCH_HELP: &str = "\
 flockpath bench — ns per agent-step of World::step and render time per frame
 
 USAGE:
-    taskset -c 0 flockpath bench [--quick] [--only step|render] [--json FILE]
+    taskset -c 0 flockpath bench [--quick] [--only step|grid|planners|render] [--json FILE]
 
 OPTIONS:
     --quick            Fewer and shorter repetitions (CI smoke run; figures are rougher)
-    --only step|grid|render
-                       Run only the step benchmarks (grid and brute force), only the
-                       grid step benchmark, or only the render benchmark
+    --only step|grid|planners|render
+                       Run only the step benchmarks (grid, brute force, per planner), only
+                       the Boids grid step benchmark, only the per-planner table, or only
+                       the render benchmark
     --json FILE        Also write the figures as JSON
     -h, --help         Show this help
 
@@ -521,10 +522,13 @@ fn parse_bench(args: &[String]) -> Result<bench::Options, CliError> {
             "--json" => options.json = Some(value),
             "--only" => match value.as_str() {
                 "step" => options.render = false,
-                "grid" => (options.render, options.brute) = (false, false),
-                "render" => options.step = false,
+                "grid" => (options.render, options.brute, options.planners) = (false, false, false),
+                "planners" => (options.render, options.step) = (false, false),
+                "render" => (options.step, options.planners) = (false, false),
                 other => {
-                    return Err(usage(format!("--only must be `step`, `grid` or `render`, got {other:?}")))
+                    return Err(usage(format!(
+                        "--only must be `step`, `grid`, `planners` or `render`, got {other:?}"
+                    )))
                 }
             },
             _ => return Err(usage(format!("unknown option {flag:?} for `flockpath bench`"))),

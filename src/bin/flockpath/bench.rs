@@ -27,6 +27,8 @@ pub struct Options {
     pub step: bool,
     /// Include the brute-force baseline in the step benchmarks.
     pub brute: bool,
+    /// Run the per-planner table.
+    pub planners: bool,
     /// Run the render benchmarks.
     pub render: bool,
     /// Where to write the figures as JSON.
@@ -35,7 +37,7 @@ pub struct Options {
 
 impl Default for Options {
     fn default() -> Self {
-        Self { quick: false, step: true, brute: true, render: true, json: None }
+        Self { quick: false, step: true, brute: true, planners: true, render: true, json: None }
     }
 }
 
@@ -71,6 +73,8 @@ pub fn main(options: &Options) -> Result<(), String> {
     report.insert("neighbours_target".into(), json!(NEIGHBOURS));
     if options.step {
         step_benchmarks(options, &mut report)?;
+    }
+    if options.planners {
         planner_benchmarks(options, &mut report)?;
     }
     if options.render {
