@@ -40,6 +40,53 @@ pub struct Neighbour {
 const MAX_CELLS_PER_AGENT: usize = 4;
 const MIN_CELL_BUDGET: usize = 16_384;
 
+/// Candidates gathered into one array per coordinate, padded with NaN positions (and id
+/// `u32::MAX`) to a whole number of [`CANDIDATE_LANES`], so a kernel reads whole groups of lanes
+/// and no comparison with a padding lane holds. Filled by
+/// [`SpatialGrid::for_each_candidate_block`] and [`SpatialGrid::gather_candidates`]; reused
+/// between calls to avoid allocating.
+#[derive(Clone, Debug, Default)]
+pub struct CandidateBlock {
+    /// Agent ids.
+    pub ids: Vec<u32>,
+    /// Positions, x (px).
+    pub x: Vec<f32>,
+    /// Positions, y (px).
+    pub y: Vec<f32>,
+    /// Velocities, x (px/step).
+    pub vx: Vec<f32>,
+    /// Velocities, y (px/step).
+    pub vy: Vec<f32>,
+}
+
+/// How many candidates a [`CandidateBlock`] is padded to a multiple of.
+pub const CANDIDATE_LANES: usize = 4;
+
+impl CandidateBlock {
+    fn clear(&mut self) {
+        for c in [&mut self.x, &mut self.y, &mut self.vx, &mut self.vy] {
+            c.clear();
+        }
+        self.ids.clear();
+    }
+
+    fn push_run(&mut self, ids: &[u32], pos: &[Vec2], vel: &[Vec2]) {
+        self.ids.extend_from_slice(ids);
+        self.x.extend(pos.iter().map(|p| p.x));
+        self.y.extend(pos.iter().map(|p| p.y));
+        self.vx.extend(vel.iter().map(|v| v.x));
+        self.vy.extend(vel.iter().map(|v| v.y));
+    }
+
+    fn pad(&mut self) {
+        let padding = self.ids.len().next_multiple_of(CANDIDATE_LANES) - self.ids.len();
+        self.ids.extend(std::iter::repeat_n(u32::MAX, padding));
+        for c in [&mut self.x, &mut self.y, &mut self.vx, &mut self.vy] {
+            c.extend(std::iter::repeat_n(f32::NAN, padding));
+        }
+    }
+}
+
 impl SpatialGrid {
     /// A grid for a `width × height` world whose queries mostly use radius `cell_size`.
     /// The cell grows if the world would need far more cells than `expected_agents` can fill.
@@ -164,6 +211,90 @@ impl SpatialGrid {
             };
             visit(ids, pos, vel);
         }
+    }
+
+    /// Fills `block` with the candidates for a query of `radius` around `p`: a superset of
+    /// [`Self::for_each_within`] in the grid's storage order. When cells are no larger than
+    /// `2 × radius` that is every agent of the cells within `radius` of `p`'s cell, the same block
+    /// for every point of the cell (what [`Self::for_each_candidate_block`] shares between them);
+    /// on a coarser grid, the cells the disc's bounding box touches.
+    pub fn gather_candidates(&self, p: Vec2, radius: f32, block: &mut CandidateBlock) {
+        let cells = if self.shares_blocks(radius) {
+            let rings = self.rings(radius);
+            let (cx, cy) = (self.cell_coord(p.x, self.cols), self.cell_coord(p.y, self.rows));
+            [
+                cx.saturating_sub(rings),
+                cy.saturating_sub(rings),
+                cx.saturating_add(rings).min(self.cols - 1),
+                cy.saturating_add(rings).min(self.rows - 1),
+            ]
+        } else {
+            [
+                self.cell_coord(p.x - radius, self.cols),
+                self.cell_coord(p.y - radius, self.rows),
+                self.cell_coord(p.x + radius, self.cols),
+                self.cell_coord(p.y + radius, self.rows),
+            ]
+        };
+        self.gather_cells(cells, block);
+    }
+
+    /// Calls `visit(agents, positions, block)` for every group of agents that share a candidate
+    /// block: each non-empty cell's agents (ids and positions in storage order) with the block
+    /// [`Self::gather_candidates`] gives every one of them, gathered once per cell. On a grid too
+    /// coarse for `radius`, one agent at a time.
+    pub fn for_each_candidate_block(
+        &self,
+        radius: f32,
+        block: &mut CandidateBlock,
+        mut visit: impl FnMut(&[u32], &[Vec2], &CandidateBlock),
+    ) {
+        let shared = self.shares_blocks(radius);
+        for cell in 0..(self.cols * self.rows) as usize {
+            let agents = self.cell_start[cell] as usize..self.cell_start[cell + 1] as usize;
+            let (Some(ids), Some(positions)) = (self.ids.get(agents.clone()), self.pos.get(agents)) else {
+                continue;
+            };
+            let Some(&first) = positions.first() else { continue };
+            if shared {
+                self.gather_candidates(first, radius, block);
+                visit(ids, positions, block);
+            } else {
+                for (id, p) in ids.iter().zip(positions) {
+                    self.gather_candidates(*p, radius, block);
+                    visit(std::slice::from_ref(id), std::slice::from_ref(p), block);
+                }
+            }
+        }
+    }
+
+    /// Whether all points of a cell can share one candidate block for queries of `radius`
+    /// without it growing much past the disc's bounding box.
+    fn shares_blocks(&self, radius: f32) -> bool {
+        self.cell_size <= 2.0 * radius
+    }
+
+    /// How many rings of cells around a cell hold every point within `radius` of it.
+    fn rings(&self, radius: f32) -> u32 {
+        // Saturating cast: an infinite cell (one-cell grid) needs no ring.
+        (radius * self.inv_cell).ceil() as u32
+    }
+
+    /// Fills `block` with the agents of cells `[x0, y0, x1, y1]` (inclusive), row by row.
+    fn gather_cells(&self, [x0, y0, x1, y1]: [u32; 4], block: &mut CandidateBlock) {
+        block.clear();
+        for cy in y0..=y1 {
+            let row = cy * self.cols;
+            // Cells x0..=x1 of one row are contiguous in the sorted arrays.
+            let run = self.cell_start[(row + x0) as usize] as usize
+                ..self.cell_start[(row + x1 + 1) as usize] as usize;
+            if let (Some(ids), Some(pos), Some(vel)) =
+                (self.ids.get(run.clone()), self.pos.get(run.clone()), self.vel.get(run))
+            {
+                block.push_run(ids, pos, vel);
+            }
+        }
+        block.pad();
     }
 
     /// Ids of agents within `radius` of `p`, sorted by `(distance², id)`.

@@ -10,9 +10,10 @@ use crate::flow_field::{self, FlowField};
 use crate::geometry::{unit_or, Aabb, Obstacle};
 use crate::rng::Rng;
 use crate::scene::PathSpec;
-use crate::spatial::Neighbour;
-use glam::Vec2;
+use crate::spatial::{CandidateBlock, Neighbour};
+use glam::{BVec4A, Vec2, Vec4};
 use serde::{Deserialize, Serialize};
+use std::ops::Range;
 
 /// How the rules' forces are combined into one acceleration.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -373,8 +374,12 @@ impl BoidsParams {
 #[derive(Clone, Debug)]
 pub struct Boids {
     params: BoidsParams,
-    /// Scratch: the neighbours of the agent being planned (reused to avoid allocating).
-    near: Vec<NearAgent>,
+    /// The left side whisker's direction relative to the heading (computed once: `sin`/`cos`).
+    side_whisker: Vec2,
+    /// Scratch: the candidate neighbours being tested (reused to avoid allocating).
+    candidates: CandidateBlock,
+    /// Scratch: each agent's neighbour sums in this step.
+    sums: Vec<FlockSums>,
     /// The flow field towards the goal and what it was built from (flow field guidance).
     flow: Option<(FlowKey, FlowField)>,
     /// Per agent of the group: the path segment it has reached (path following only moves on).
@@ -401,13 +406,21 @@ const MAX_PREDICTION_STEPS: f32 = 40.0;
 /// A leader slower than this (px/step) keeps its last heading.
 const MIN_HEADING_SPEED: f32 = 0.05;
 
-/// A neighbour found within the perception radius.
-#[derive(Clone, Copy, Debug, Default)]
-struct NearAgent {
-    id: u32,
-    d2: f32,
-    pos: Vec2,
-    vel: Vec2,
+/// Candidates tested at once by [`flock_sums`] (one 128-bit SIMD register of f32).
+const LANES: usize = crate::spatial::CANDIDATE_LANES;
+const _: () = assert!(LANES == 4, "flock_sums works on Vec4");
+
+/// What separation, alignment and cohesion need from an agent's neighbours.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+struct FlockSums {
+    /// Σ (p − q)/|p − q|² over neighbours closer than the separation radius.
+    separation: Vec2,
+    /// Whether there is one (the sum alone cannot say: two opposite neighbours cancel out).
+    separating: bool,
+    /// Σ velocity and Σ position over neighbours of the agent's own group.
+    velocity: Vec2,
+    position: Vec2,
+    flocking: u32,
 }
 
 /// Side whiskers: angle from the heading (radians) and length relative to the main whisker.
@@ -417,7 +430,15 @@ const SIDE_WHISKER_SCALE: f32 = 0.6;
 impl Boids {
     /// A planner with these parameters.
     pub fn new(params: BoidsParams) -> Self {
-        Self { params, near: Vec::new(), flow: None, path_segment: Vec::new(), leader_heading: Vec2::ZERO }
+        Self {
+            params,
+            side_whisker: Vec2::from_angle(SIDE_WHISKER_ANGLE),
+            candidates: CandidateBlock::default(),
+            sums: Vec::new(),
+            flow: None,
+            path_segment: Vec::new(),
+            leader_heading: Vec2::ZERO,
+        }
     }
 
     /// The planner's parameters.
@@ -660,13 +681,14 @@ impl Boids {
     /// Whisker obstacle avoidance: a forward probe and two shorter side probes; a touching
     /// probe yields a force along the surface normal plus a sideways push (lecture, "Obstacle
     /// Avoidance"), stronger the nearer the hit.
-    fn avoid_obstacles(&self, ctx: &StepContext, p: Vec2, vel: Vec2, radius: f32, fallback: Vec2) -> Vec2 {
+    /// A standing agent's whiskers point along `to_goal`.
+    fn avoid_obstacles(&self, ctx: &StepContext, p: Vec2, vel: Vec2, radius: f32, to_goal: Vec2) -> Vec2 {
         let length = self.params.whisker_length;
         if ctx.obstacles.is_empty() || length <= 0.0 {
             return Vec2::ZERO;
         }
-        let heading = unit_or(vel, fallback);
-        let side = Vec2::from_angle(SIDE_WHISKER_ANGLE);
+        let heading = unit_or(vel, unit_or(to_goal, Vec2::X));
+        let side = self.side_whisker;
         let whiskers = [
             heading * (length + radius),
             side.rotate(heading) * (length * SIDE_WHISKER_SCALE + radius),
@@ -736,41 +758,74 @@ impl Planner for Boids {
 
     fn plan(&mut self, ctx: &StepContext, group: GroupView, _rng: &mut Rng, new_velocities: &mut [Vec2]) {
         self.prepare(ctx, &group);
-        let mut near = std::mem::take(&mut self.near);
-        let mut plan_one = |id: u32| {
-            let k = (id - group.agents.start) as usize;
-            let forces = self.agent_forces(ctx, &group, k, id, &mut near);
-            if let Some(out) = new_velocities.get_mut(k) {
-                *out = limit(ctx.velocities[id as usize] + forces.acceleration, self.params.max_speed);
+        // Pass 1: the neighbour sums of every agent. Pass 2: the rule forces from them, in id
+        // order. Apart, each loop is small enough for the CPU to overlap consecutive agents
+        // (pass 2 is chains of square roots and divisions).
+        let mut sums = std::mem::take(&mut self.sums);
+        sums.clear();
+        sums.resize(group.agents.len(), FlockSums::default());
+        let mut block = std::mem::take(&mut self.candidates);
+        let reach = self.interaction_radius();
+        let everyone_is_own = group.agents.start == 0 && group.agents.end as usize >= ctx.positions.len();
+        let sep_r = self.params.separation_radius;
+        let mut sum_one = |id: u32, p: Vec2, block: &CandidateBlock| {
+            if let Some(out) = sums.get_mut((id - group.agents.start) as usize) {
+                *out = flock_sums(block, p, reach, sep_r, &group.agents, everyone_is_own);
             }
         };
-        let in_cell_order = ctx.grid.ids_in_cell_order();
-        if in_cell_order.len() == ctx.positions.len() && group.agents.len() * 4 >= in_cell_order.len() {
-            // Agents one after another in the grid's order query the same cells: at 100,000
-            // agents that keeps them in the cache. Each agent's forces depend only on the state
-            // at the start of the step, so the order changes no result.
-            for &id in in_cell_order {
-                if group.agents.contains(&id) {
-                    plan_one(id);
+        let grid_agents = ctx.grid.ids_in_cell_order().len();
+        if grid_agents == ctx.positions.len() && group.agents.len() * 4 >= grid_agents {
+            // Cell by cell: the agents of a cell share one gathered block of candidates, and
+            // the cells they read stay in the cache.
+            ctx.grid.for_each_candidate_block(reach, &mut block, |agents, positions, block| {
+                for (&id, &p) in agents.iter().zip(positions) {
+                    if group.agents.contains(&id) {
+                        sum_one(id, p, block);
+                    }
                 }
-            }
+            });
         } else {
-            group.agents.clone().for_each(plan_one);
+            // A small group among many agents: gather for its own agents only.
+            for id in group.agents.clone() {
+                let p = ctx.positions[id as usize];
+                ctx.grid.gather_candidates(p, reach, &mut block);
+                sum_one(id, p, &block);
+            }
         }
-        self.near = near;
+        for ((k, id), (out, &neighbours)) in
+            group.agents.clone().enumerate().zip(new_velocities.iter_mut().zip(&sums))
+        {
+            let forces = self.agent_forces(ctx, &group, k, id, neighbours);
+            *out = limit(ctx.velocities[id as usize] + forces.acceleration, self.params.max_speed);
+        }
+        self.candidates = block;
+        self.sums = sums;
     }
 
     fn explain(&self, ctx: &StepContext, group: &GroupView, agent: u32) -> Explanation {
-        let mut near = Vec::new();
         let k = agent.saturating_sub(group.agents.start) as usize;
-        let forces = self.agent_forces(ctx, group, k, agent, &mut near);
+        let mut sums = FlockSums::default();
+        if let Some(&p) = ctx.positions.get(agent as usize) {
+            let mut block = CandidateBlock::default();
+            ctx.grid.gather_candidates(p, self.interaction_radius(), &mut block);
+            let everyone_is_own = group.agents.start == 0 && group.agents.end as usize >= ctx.positions.len();
+            let sep_r = self.params.separation_radius;
+            sums = flock_sums(&block, p, self.interaction_radius(), sep_r, &group.agents, everyone_is_own);
+        }
+        let forces = self.agent_forces(ctx, group, k, agent, sums);
         let mut e = Explanation::default();
         for &(name, force) in &forces.weighted[..forces.used] {
             e.vectors.push(NamedVector::new(name, force));
         }
         e.applied = forces.acceleration;
-        e.neighbours =
-            near[..forces.neighbours].iter().filter(|n| n.id != agent && n.d2 > 0.0).map(|n| n.id).collect();
+        if let Some(&p) = ctx.positions.get(agent as usize) {
+            // The agents flock_sums counts: within reach, not at the agent's own position.
+            ctx.grid.for_each_within(p, self.interaction_radius(), |n| {
+                if n.id != agent && n.d2 > 0.0 {
+                    e.neighbours.push(n.id);
+                }
+            });
+        }
         e.state = match (forces.parked, forces.fleeing) {
             (_, true) => "fleeing a predator".into(),
             (true, false) => "parked in the goal".into(),
@@ -794,8 +849,6 @@ struct AgentForces {
     parked: bool,
     /// A predator is in sight (prey only).
     fleeing: bool,
-    /// How many entries of the scratch list are the agent's neighbours (itself included).
-    neighbours: usize,
 }
 
 /// Guidance that replaces seeking the goal (pursuit, leader, path, flow field).
@@ -841,62 +894,24 @@ fn nearest_of_role(ctx: &StepContext, p: Vec2, radius: f32, role: Role, me: u32)
 }
 
 impl Boids {
-    /// Every rule force of agent `id` from the step's state; `near` is scratch for its neighbours.
+    /// Every rule force of agent `id` from the step's state and its neighbour sums.
     /// `plan` and `explain` both call it, so an explanation is exactly what the step applies.
+    #[inline(always)]
     fn agent_forces(
         &self,
         ctx: &StepContext,
         group: &GroupView,
         k: usize,
         id: u32,
-        near: &mut Vec<NearAgent>,
+        sums: FlockSums,
     ) -> AgentForces {
         let prm = &self.params;
-        let sep_r2 = prm.separation_radius * prm.separation_radius;
-        let look = self.interaction_radius();
-        let look2 = look * look;
-        let (first, end) = (group.agents.start, group.agents.end);
         let i = id as usize;
         let p = ctx.positions[i];
         let vel = ctx.velocities[i];
+        let (sep, sum_vel, sum_pos, n_flock) = (sums.separation, sums.velocity, sums.position, sums.flocking);
 
-        let (mut sep, mut n_sep) = (Vec2::ZERO, 0u32);
-        let (mut sum_vel, mut sum_pos, mut n_flock) = (Vec2::ZERO, Vec2::ZERO, 0u32);
-        // Pass 1 gathers the neighbours without a branch per candidate (whether a candidate of
-        // the nearby cells is within reach is a coin flip the CPU cannot predict); pass 2 sums
-        // over them in the same order, so the sums are those of a plain loop, bit for bit.
-        // `near` only grows; `count` is how much of it holds this agent's neighbours.
-        let mut count = 0usize;
-        ctx.grid.for_each_candidate_run(p, look, |ids, positions, velocities| {
-            if near.len() <= count + ids.len() {
-                near.resize(count + ids.len() + 1, NearAgent::default());
-            }
-            for ((&nid, &q), &nv) in ids.iter().zip(positions).zip(velocities) {
-                let d2 = p.distance_squared(q);
-                if let Some(slot) = near.get_mut(count) {
-                    *slot = NearAgent { id: nid, d2, pos: q, vel: nv };
-                }
-                count += usize::from(d2 <= look2);
-            }
-        });
-        for n in &near[..count] {
-            if n.id == id || n.d2 <= 0.0 {
-                continue;
-            }
-            // (p − q)/|p − q|²: the lecture's normalised difference over the distance. Masked,
-            // not branched: the test is unpredictable, and adding +0 leaves the sum exact.
-            let close = n.d2 < sep_r2;
-            sep += keep_if(close, (p - n.pos) / n.d2);
-            n_sep += u32::from(close);
-            // Alignment and cohesion only with the agent's own group.
-            if n.id >= first && n.id < end {
-                sum_vel += n.vel;
-                sum_pos += n.pos;
-                n_flock += 1;
-            }
-        }
-
-        let separation = if n_sep > 0 { self.steer_towards(sep, vel) } else { Vec2::ZERO };
+        let separation = if sums.separating { self.steer_towards(sep, vel) } else { Vec2::ZERO };
         let (alignment, cohesion) = if n_flock > 0 {
             let inv = 1.0 / n_flock as f32;
             (self.steer_towards(sum_vel * inv, vel), self.steer_towards(sum_pos * inv - p, vel))
@@ -923,8 +938,7 @@ impl Boids {
         };
         let (alignment, cohesion) =
             if parked || !flock { (Vec2::ZERO, Vec2::ZERO) } else { (alignment, cohesion) };
-        let avoid = self.avoid_obstacles(ctx, p, vel, ctx.radii[i], unit_or(to_goal, Vec2::X))
-            + self.contain(ctx, p, vel);
+        let avoid = self.avoid_obstacles(ctx, p, vel, ctx.radii[i], to_goal) + self.contain(ctx, p, vel);
 
         let mut weighted = [("", Vec2::ZERO); 6];
         let mut used = 0;
@@ -961,14 +975,67 @@ impl Boids {
                 acc
             }
         };
-        AgentForces { weighted, used, acceleration, parked, fleeing, neighbours: count }
+        AgentForces { weighted, used, acceleration, parked, fleeing }
     }
 }
 
-/// `v` if `keep`, else `+0` in both lanes, without a branch (a NaN from a skipped `0/0` is
-/// masked out too). Sums start at `+0`, so adding the `+0` is exact.
-#[inline(always)]
-fn keep_if(keep: bool, v: Vec2) -> Vec2 {
-    let mask = 0u32.wrapping_sub(u32::from(keep));
-    Vec2::new(f32::from_bits(v.x.to_bits() & mask), f32::from_bits(v.y.to_bits() & mask))
+/// The neighbour sums of the agent at `p` over the candidates in `block`: every agent within
+/// `reach` of it except those at exactly its position (itself), the separation terms of those
+/// closer than `separation_radius`, velocity and position sums of those in `own_group`.
+///
+/// The candidates are tested four at a time (one SIMD register natively and in wasm) without a
+/// branch: whether a candidate is within reach is a coin flip the CPU cannot predict. Each lane
+/// keeps its own partial sums, added up in a fixed order at the end; every lane operation is
+/// one correctly rounded IEEE operation, so the result is the same with or without SIMD,
+/// natively and in wasm.
+#[inline]
+fn flock_sums(
+    block: &CandidateBlock,
+    p: Vec2,
+    reach: f32,
+    separation_radius: f32,
+    own_group: &Range<u32>,
+    everyone_is_own: bool,
+) -> FlockSums {
+    let (px, py) = (Vec4::splat(p.x), Vec4::splat(p.y));
+    let (reach2, sep2) = (Vec4::splat(reach * reach), Vec4::splat(separation_radius * separation_radius));
+    let [mut sep_x, mut sep_y, mut vel_x, mut vel_y, mut pos_x, mut pos_y] = [Vec4::ZERO; 6];
+    // The flocking count as floats (exact up to 2^24): a lane add, where a population count
+    // is a dozen instructions on the x86-64 baseline. Separation only needs "any".
+    let mut flocking = Vec4::ZERO;
+    let mut any_close = BVec4A::FALSE;
+    let lanes = block.x.len().min(block.y.len()).min(block.vx.len()).min(block.vy.len()).min(block.ids.len());
+    for at in (0..lanes / LANES * LANES).step_by(LANES) {
+        let load = |s: &[f32]| Vec4::from_slice(&s[at..at + LANES]);
+        let (x, y) = (load(&block.x), load(&block.y));
+        let (dx, dy) = (px - x, py - y);
+        let d2 = dx * dx + dy * dy;
+        // Padding lanes are NaN: no comparison holds.
+        let within = d2.cmple(reach2) & d2.cmpgt(Vec4::ZERO);
+        let close = within & d2.cmplt(sep2);
+        let own = if everyone_is_own {
+            within
+        } else {
+            let is_own = |j: usize| own_group.contains(&block.ids[at + j]);
+            within & BVec4A::new(is_own(0), is_own(1), is_own(2), is_own(3))
+        };
+        // One division for both axes (division is the slowest lane operation).
+        let inv_d2 = d2.recip();
+        sep_x += Vec4::select(close, dx * inv_d2, Vec4::ZERO);
+        sep_y += Vec4::select(close, dy * inv_d2, Vec4::ZERO);
+        vel_x += Vec4::select(own, load(&block.vx), Vec4::ZERO);
+        vel_y += Vec4::select(own, load(&block.vy), Vec4::ZERO);
+        pos_x += Vec4::select(own, x, Vec4::ZERO);
+        pos_y += Vec4::select(own, y, Vec4::ZERO);
+        flocking += Vec4::select(own, Vec4::ONE, Vec4::ZERO);
+        any_close |= close;
+    }
+    let total = |l: Vec4| (l.x + l.y) + (l.z + l.w);
+    FlockSums {
+        separation: Vec2::new(total(sep_x), total(sep_y)),
+        separating: any_close.any(),
+        velocity: Vec2::new(total(vel_x), total(vel_y)),
+        position: Vec2::new(total(pos_x), total(pos_y)),
+        flocking: total(flocking) as u32,
+    }
 }
