@@ -364,8 +364,10 @@ impl Firefly {
             let their_radius = ctx.radii.get(nb.id as usize).copied().unwrap_or(0.0);
             // Each of the two moves at most half the gap (less a margin) towards the other per
             // step, whatever the other does, so together they cannot close it in one step.
-            let allowed = 0.5 * (nb.d2.sqrt() - my_radius - their_radius - CONTACT_MARGIN);
-            if allowed < prm.max_velocity {
+            // The limit binds only within 2 × max_velocity of touching: the square root only then.
+            let reach = my_radius + their_radius + CONTACT_MARGIN + 2.0 * prm.max_velocity;
+            if nb.d2 < reach * reach {
+                let allowed = 0.5 * (nb.d2.sqrt() - my_radius - their_radius - CONTACT_MARGIN);
                 // Coincident bodies part along x, the lower id to the left.
                 let apart = if nb.id < id { Vec2::NEG_X } else { Vec2::X };
                 contacts.push(Contact { towards: unit_or(nb.pos - p, apart), allowed });
