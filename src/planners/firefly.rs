@@ -34,6 +34,37 @@
 //!   product with the direction into the obstacle. For a circle that direction is
 //!   `centre − position`, as in the paper; for rectangles and polygons it is minus the outward
 //!   surface normal nearest the position, which equals it for circles and works for any shape.
+//! * No interpenetration (our resolution; the paper claims the result but the feeler alone does
+//!   not give it: its disc, r_safe round a tip h ahead, comes no nearer than h − r_safe = 10 px
+//!   and only straight ahead, so a firefly beside another, or one turning onto a leader, sees
+//!   nothing; with the rules above 3,000–5,100 pair-steps overlapped by step 300 and the whole
+//!   flock piled onto the target point, 330,000–390,000 by step 1,500). After the
+//!   feeler and the avoidance, the velocity is cut by a **contact rule**: towards every agent
+//!   whose body it could reach this step (any group, found in the same grid query) a firefly may
+//!   move at most half the gap between the bodies less [`CONTACT_MARGIN`], whatever the other does,
+//!   so a pair can never close its gap within one step (bodies already too close may not approach
+//!   at all); towards an obstacle surface it may use the whole clearance less [`OBSTACLE_MARGIN`],
+//!   so the world never has to push it out sideways into a neighbour. Only the component towards
+//!   the body is cut: the nearest velocity that meets every limit is taken ([`keep_apart`]), so a
+//!   firefly slides along a body and the files keep flowing. Measured on the preset, seeds 1–10,
+//!   1,500 steps: 0 overlapping pairs after step 1 (step 1 keeps 0–2 pairs that spawned more than
+//!   2 × max_velocity deep); queue order 0.72–0.80 at step 1, 0.79–0.94 at step 300 (0.89–0.97
+//!   before); arrival 0.96–1.00 (1.00 before). Alternatives measured (seeds 1–5 unless stated):
+//!   three projection passes and a scale over non-negative limits only, margin 0.5 — 55–1,446
+//!   pair-steps by 1,500 (bodies inside the margin were still pushed together in the jam at the
+//!   target); with obstacles as contacts and bodies inside the margin not approached — only the
+//!   spawn pairs left, arrival 0.90–1.00, 0.97–1.00 with ten passes, 0.96–1.00 with the exact
+//!   nearest velocity (kept: nothing to tune, and sliding is what lets the crowd pack); margin 0.1 / 0.25 / 0.5 / 2 px (seeds 1–10): queue order at step 300 down
+//!   to 0.76 (below step 1 on one seed) / 0.79 / 0.79 / 0.69, arrival down to 0.96 / 0.91 / 0.93
+//!   / 0.66; saturating the brightness inside the goal radius (every firefly there drives for the
+//!   centre) jams the crowd at the goal: arrival 0.68–0.74; capping the braked speed instead of
+//!   setting it: 0.56–0.68; scaling the whole velocity (not only its component) for bodies within
+//!   45° ahead deadlocks: 0.17–0.19; an extra brake (× `brake`) near a brighter firefly in front,
+//!   meant to turn side-by-side pairs into files, lifts queue order to 0.91–0.97 but slows the
+//!   files and the gathering: arrival 0.49–0.55 (0.51–0.90 when limited to bodies 30–90° aside,
+//!   to moving ones or to gaps under 1–3 px); a gap ramp (speed towards a brighter body ahead ∝
+//!   gap over 1–2 body diameters): arrival 0.56–0.78, queue order 0.57–0.89; the feeler against
+//!   any firefly of the group, not only brighter ones: queue order 0.64–0.94, no gain.
 
 use super::{limit, GroupView, ParamSpec, Planner, StepContext};
 use crate::diagnose::{Explanation, NamedPoint, NamedVector};
@@ -166,12 +197,14 @@ impl FireflyParams {
 pub struct Firefly {
     params: FireflyParams,
     mass: Vec<f32>,
+    /// Scratch list of the bodies one firefly could reach this step, reused across agents.
+    contacts: Vec<Contact>,
 }
 
 impl Firefly {
     /// A planner with these parameters.
     pub fn new(params: FireflyParams) -> Self {
-        Self { params, mass: Vec::new() }
+        Self { params, mass: Vec::new(), contacts: Vec::new() }
     }
 
     /// `β(r) = β0 exp(−γ (r / r_safe)^m)`.
@@ -204,6 +237,157 @@ impl Firefly {
     }
 }
 
+/// What one grid query around a firefly finds.
+struct Survey {
+    /// The nearest brighter firefly of the group in view: `(squared distance, id, position)`.
+    nearest: Option<(f32, u32, Vec2)>,
+    /// The brighter firefly nearest the feeler tip, within r_safe of it.
+    blocker: Option<(f32, u32, Vec2)>,
+}
+
+/// A body close enough to be reached this step: the unit direction towards it and the largest
+/// speed allowed towards it (negative: the firefly must move away).
+#[derive(Clone, Copy, Debug)]
+struct Contact {
+    towards: Vec2,
+    allowed: f32,
+}
+
+/// Gap (px) the contact rule keeps between two bodies, so rounding never makes them touch.
+const CONTACT_MARGIN: f32 = 0.3;
+
+/// Clearance (px) the contact rule keeps from obstacle surfaces: a 2 px step along the tangent of
+/// an 18 px tree dips about 0.1 px into it.
+const OBSTACLE_MARGIN: f32 = 0.5;
+
+/// Rounding allowance (px/step) when checking a candidate velocity against the contacts.
+const FEASIBLE_SLACK: f32 = 1e-4;
+
+/// Projection passes of the fallback in [`keep_apart`].
+const FALLBACK_PASSES: usize = 10;
+
+/// The velocity nearest `v` whose speed towards every contact is within that contact's
+/// allowance: `v` itself, its projection onto one contact's limit, or a corner of two (a 2-D
+/// quadratic programme over a handful of half-planes, solved by trying each candidate). The
+/// sideways part is kept, so a firefly slides along a body instead of stopping at it. When no
+/// candidate meets every limit (bodies already inside the margin on opposite sides), projection
+/// passes and then a uniform scale make sure no body is approached any further.
+fn keep_apart(v: Vec2, contacts: &[Contact]) -> Vec2 {
+    let feasible = |w: Vec2| contacts.iter().all(|c| w.dot(c.towards) <= c.allowed + FEASIBLE_SLACK);
+    if feasible(v) {
+        return v;
+    }
+    let mut best: Option<(f32, Vec2)> = None;
+    let mut consider = |w: Vec2| {
+        let d2 = w.distance_squared(v);
+        if feasible(w) && best.is_none_or(|(best_d2, _)| d2 < best_d2) {
+            best = Some((d2, w));
+        }
+    };
+    for (k, a) in contacts.iter().enumerate() {
+        consider(v - a.towards * (v.dot(a.towards) - a.allowed));
+        for b in &contacts[k + 1..] {
+            let det = a.towards.perp_dot(b.towards);
+            if det.abs() > 1e-6 {
+                // The corner w·a.towards = a.allowed, w·b.towards = b.allowed (Cramer's rule).
+                consider(Vec2::new(
+                    (a.allowed * b.towards.y - b.allowed * a.towards.y) / det,
+                    (a.towards.x * b.allowed - b.towards.x * a.allowed) / det,
+                ));
+            }
+        }
+    }
+    if let Some((_, w)) = best {
+        return w;
+    }
+    let mut w = v;
+    for _ in 0..FALLBACK_PASSES {
+        for c in contacts {
+            let along = w.dot(c.towards);
+            if along > c.allowed {
+                w -= c.towards * (along - c.allowed);
+            }
+        }
+    }
+    // Zero speed meets every limit clamped at zero: bodies inside the margin are not approached.
+    let mut scale = 1.0f32;
+    for c in contacts {
+        let allowed = c.allowed.max(0.0);
+        let along = w.dot(c.towards);
+        if along > allowed {
+            scale = scale.min(allowed / along);
+        }
+    }
+    w * scale
+}
+
+impl Firefly {
+    /// One grid query around firefly `id`: the nearest brighter firefly in view and the one
+    /// blocking the feeler tip (none without a target: all are equally bright), and, into
+    /// `contacts`, every agent whose body it could reach this step.
+    fn survey(
+        &self,
+        ctx: &StepContext,
+        group: &GroupView,
+        id: u32,
+        target: Option<Vec2>,
+        contacts: &mut Vec<Contact>,
+    ) -> Survey {
+        let prm = &self.params;
+        let i = id as usize;
+        let p = ctx.positions[i];
+        let my2 = target.map_or(0.0, |t| p.distance_squared(t));
+        let heading = unit_or(ctx.velocities[i], unit_or(target.unwrap_or(p) - p, Vec2::X));
+        let tip = p + heading * prm.feeler_length;
+        let (view2, safe2) = (prm.view_radius * prm.view_radius, prm.safe_distance * prm.safe_distance);
+        let my_radius = ctx.radii.get(i).copied().unwrap_or(0.0);
+        let mut survey = Survey { nearest: None, blocker: None };
+        contacts.clear();
+        // Obstacles do not move: the whole clearance (less a margin that covers the curvature of
+        // a sideways step) may be used, so the world never has to push the firefly out sideways
+        // into a neighbour.
+        let reach = my_radius + OBSTACLE_MARGIN + prm.max_velocity;
+        ctx.obstacles.for_each_near(
+            Aabb { min: p - Vec2::splat(reach), max: p + Vec2::splat(reach) },
+            |_, o| {
+                let s = o.surface(p);
+                let allowed = s.signed_distance - my_radius - OBSTACLE_MARGIN;
+                if allowed < prm.max_velocity {
+                    contacts.push(Contact { towards: -s.normal, allowed });
+                }
+            },
+        );
+        ctx.grid.for_each_within(p, self.interaction_radius(), |nb| {
+            if nb.id == id {
+                return;
+            }
+            let their_radius = ctx.radii.get(nb.id as usize).copied().unwrap_or(0.0);
+            // Each of the two moves at most half the gap (less a margin) towards the other per
+            // step, whatever the other does, so together they cannot close it in one step.
+            // The limit binds only within 2 × max_velocity of touching: the square root only then.
+            let reach = my_radius + their_radius + CONTACT_MARGIN + 2.0 * prm.max_velocity;
+            if nb.d2 < reach * reach {
+                let allowed = 0.5 * (nb.d2.sqrt() - my_radius - their_radius - CONTACT_MARGIN);
+                // Coincident bodies part along x, the lower id to the left.
+                let apart = if nb.id < id { Vec2::NEG_X } else { Vec2::X };
+                contacts.push(Contact { towards: unit_or(nb.pos - p, apart), allowed });
+            }
+            let Some(target) = target else { return };
+            if !group.agents.contains(&nb.id) || nb.pos.distance_squared(target) >= my2 {
+                return;
+            }
+            let at_tip = nb.pos.distance_squared(tip);
+            if at_tip < safe2 && survey.blocker.is_none_or(|(d2, j, _)| (at_tip, nb.id) < (d2, j)) {
+                survey.blocker = Some((at_tip, nb.id, nb.pos));
+            }
+            if nb.d2 <= view2 && survey.nearest.is_none_or(|(d2, j, _)| (nb.d2, nb.id) < (d2, j)) {
+                survey.nearest = Some((nb.d2, nb.id, nb.pos));
+            }
+        });
+        survey
+    }
+}
+
 impl Planner for Firefly {
     fn interaction_radius(&self) -> f32 {
         self.params.view_radius.max(self.params.feeler_length + self.params.safe_distance)
@@ -214,7 +398,8 @@ impl Planner for Firefly {
     }
 
     /// The same terms as `plan` without the random step (its expectation is zero): the brighter
-    /// firefly followed, the feeler and whether a brighter one blocks its tip, the avoidance.
+    /// firefly followed, the feeler and whether a brighter one blocks its tip, the avoidance and
+    /// the cut that keeps bodies apart.
     fn explain(&self, ctx: &StepContext, group: &GroupView, agent: u32) -> Explanation {
         let prm = &self.params;
         let mut e = Explanation { scale: 15.0, ..Explanation::default() };
@@ -227,30 +412,22 @@ impl Planner for Firefly {
             e.state = "no target: every firefly equally bright, drifting".into();
             return e;
         };
-        let my2 = p.distance_squared(target);
-        e.values.push(("brightness 1/|x − target|".into(), 1.0 / my2.sqrt().max(1e-3)));
+        e.values.push(("brightness 1/|x − target|".into(), 1.0 / p.distance(target).max(1e-3)));
         let heading = unit_or(vel, unit_or(target - p, Vec2::X));
-        let tip = p + heading * prm.feeler_length;
-        let (view2, safe2) = (prm.view_radius * prm.view_radius, prm.safe_distance * prm.safe_distance);
-        let mut nearest: Option<(f32, u32, Vec2)> = None;
-        let mut blocker: Option<(f32, u32, Vec2)> = None;
-        ctx.grid.for_each_within(p, self.interaction_radius(), |nb| {
-            if nb.id == agent || !group.agents.contains(&nb.id) || nb.pos.distance_squared(target) >= my2 {
-                return;
-            }
-            let at_tip = nb.pos.distance_squared(tip);
-            if at_tip < safe2 && blocker.is_none_or(|(d2, j, _)| (at_tip, nb.id) < (d2, j)) {
-                blocker = Some((at_tip, nb.id, nb.pos));
-            }
-            if nb.d2 <= view2 {
+        let mut contacts = Vec::new();
+        let survey = self.survey(ctx, group, agent, Some(target), &mut contacts);
+        let view2 = prm.view_radius * prm.view_radius;
+        ctx.grid.for_each_within(p, prm.view_radius, |nb| {
+            if nb.id != agent
+                && nb.d2 <= view2
+                && group.agents.contains(&nb.id)
+                && nb.pos.distance_squared(target) < p.distance_squared(target)
+            {
                 e.neighbours.push(nb.id);
-                if nearest.is_none_or(|(d2, j, _)| (nb.d2, nb.id) < (d2, j)) {
-                    nearest = Some((nb.d2, nb.id, nb.pos));
-                }
             }
         });
         e.vectors.push(NamedVector::px("feeler", heading * prm.feeler_length));
-        let acceleration = match nearest {
+        let acceleration = match survey.nearest {
             Some((d2, j, q)) => {
                 let beta = self.attractiveness(d2.sqrt());
                 e.values.push(("attractiveness β".into(), beta));
@@ -266,11 +443,11 @@ impl Planner for Firefly {
                 a
             }
         };
-        if let Some((_, _, q)) = blocker {
+        if let Some((_, _, q)) = survey.blocker {
             e.points.push(NamedPoint::new("brighter firefly at the feeler tip", q));
         }
         let forced = limit(vel + acceleration, prm.max_velocity);
-        let v = if blocker.is_some() {
+        let v = if survey.blocker.is_some() {
             unit_or(forced, heading) * (prm.max_velocity * prm.brake)
         } else {
             forced
@@ -279,11 +456,17 @@ impl Planner for Firefly {
         if avoid != Vec2::ZERO {
             e.vectors.push(NamedVector::new("obstacle avoidance", avoid));
         }
-        e.applied = limit(v + avoid, prm.max_velocity) - vel;
-        e.state = match (blocker.is_some(), nearest.is_some()) {
-            (true, _) => "queued: a brighter firefly is at the feeler tip (braking)".into(),
-            (false, true) => "attracted by the nearest brighter firefly".into(),
-            (false, false) => "brightest in view: max-speed force to the target".into(),
+        let free = limit(v + avoid, prm.max_velocity);
+        let kept = keep_apart(free, &contacts);
+        if kept != free {
+            e.vectors.push(NamedVector::new("kept apart from touching bodies", kept - free));
+        }
+        e.applied = limit(kept, prm.max_velocity) - vel;
+        e.state = match (kept != free, survey.blocker.is_some(), survey.nearest.is_some()) {
+            (true, _, _) => "slowed towards a body it would touch".into(),
+            (false, true, _) => "queued: a brighter firefly is at the feeler tip (braking)".into(),
+            (false, false, true) => "attracted by the nearest brighter firefly".into(),
+            (false, false, false) => "brightest in view: max-speed force to the target".into(),
         };
         e
     }
@@ -295,41 +478,24 @@ impl Planner for Firefly {
             let (lo, hi) = (prm.mass_min.min(prm.mass_max), prm.mass_min.max(prm.mass_max));
             self.mass = (0..n).map(|_| rng.range(lo, hi)).collect();
         }
-        let look = self.interaction_radius();
-        let view2 = prm.view_radius * prm.view_radius;
-        let safe2 = prm.safe_distance * prm.safe_distance;
         let unit_len = prm.safe_distance;
+        let target = group.goal.map(|(t, _)| t);
+        let mut contacts = std::mem::take(&mut self.contacts);
         for (k, id) in group.agents.clone().enumerate() {
             let i = id as usize;
             let p = ctx.positions[i];
             let vel = ctx.velocities[i];
             let mass = self.mass[k].max(1e-3);
-            let Some((target, _)) = group.goal else {
+            let survey = self.survey(ctx, &group, id, target, &mut contacts);
+            let Some(target) = target else {
                 // No target: every firefly is equally bright; drift with a little noise.
                 let noise = Vec2::new(rng.unit() - 0.5, rng.unit() - 0.5) * (prm.alpha * unit_len);
-                new_velocities[k] = limit(vel + noise / mass, prm.max_velocity);
+                let v = limit(vel + noise / mass, prm.max_velocity);
+                new_velocities[k] = limit(keep_apart(v, &contacts), prm.max_velocity);
                 continue;
             };
-            let my2 = p.distance_squared(target);
             let heading = unit_or(vel, unit_or(target - p, Vec2::X));
-            let tip = p + heading * prm.feeler_length;
-
-            // One grid query: the nearest brighter firefly in view, and whether one sits at the tip.
-            let mut nearest: Option<(f32, u32, Vec2)> = None;
-            let mut blocked = false;
-            ctx.grid.for_each_within(p, look, |nb| {
-                if nb.id == id || !group.agents.contains(&nb.id) || nb.pos.distance_squared(target) >= my2 {
-                    return;
-                }
-                if nb.pos.distance_squared(tip) < safe2 {
-                    blocked = true;
-                }
-                if nb.d2 <= view2 && nearest.is_none_or(|(d2, j, _)| (nb.d2, nb.id) < (d2, j)) {
-                    nearest = Some((nb.d2, nb.id, nb.pos));
-                }
-            });
-
-            let acceleration = match nearest {
+            let acceleration = match survey.nearest {
                 Some((d2, _, q)) => {
                     let beta = self.attractiveness(d2.sqrt());
                     let noise = Vec2::new(rng.unit() - 0.5, rng.unit() - 0.5) * (prm.alpha * unit_len);
@@ -341,10 +507,15 @@ impl Planner for Firefly {
             // §2.4 step 4: the velocity force while the safe distance holds; otherwise the speed
             // is scaled to `brake × max_velocity`, still steering by the force.
             let forced = limit(vel + acceleration, prm.max_velocity);
-            let mut v =
-                if blocked { unit_or(forced, heading) * (prm.max_velocity * prm.brake) } else { forced };
+            let mut v = if survey.blocker.is_some() {
+                unit_or(forced, heading) * (prm.max_velocity * prm.brake)
+            } else {
+                forced
+            };
             v += self.avoid(ctx, p, unit_or(v, heading));
-            new_velocities[k] = limit(v, prm.max_velocity);
+            let free = limit(v, prm.max_velocity);
+            new_velocities[k] = limit(keep_apart(free, &contacts), prm.max_velocity);
         }
+        self.contacts = contacts;
     }
 }
