@@ -4,6 +4,7 @@
 //! "Rule 1–3" pseudocode); the rules are combined by a weighted sum or by priority allocation
 //! ("Arbitration"), then `v += a; v = limit(v, max_speed); p += v` (lecture, `Boid::update`).
 
+use super::lanes::{self, Lanes2};
 use super::{limit, GroupView, ParamSpec, Planner, StepContext};
 use crate::diagnose::{Explanation, NamedVector};
 use crate::flow_field::{self, FlowField};
@@ -407,8 +408,8 @@ const MAX_PREDICTION_STEPS: f32 = 40.0;
 const MIN_HEADING_SPEED: f32 = 0.05;
 
 /// Candidates tested at once by [`flock_sums`] (one 128-bit SIMD register of f32).
-const LANES: usize = crate::spatial::CANDIDATE_LANES;
-const _: () = assert!(LANES == 4, "flock_sums works on Vec4");
+const LANES: usize = lanes::LANES;
+const _: () = assert!(LANES == crate::spatial::CANDIDATE_LANES, "flock_sums reads whole Vec4s");
 
 /// What separation, alignment and cohesion need from an agent's neighbours.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -792,8 +793,18 @@ impl Planner for Boids {
                 sum_one(id, p, &block);
             }
         }
+        // Plain rules four agents at a time (the same arithmetic lane by lane), the rest and
+        // every extension one at a time.
+        let four_at_a_time = if self.is_plain(ctx) { sums.len() / LANES * LANES } else { 0 };
+        for k in (0..four_at_a_time).step_by(LANES) {
+            if let (Some(out), Some(neighbours)) =
+                (new_velocities.get_mut(k..k + LANES), sums.get(k..k + LANES))
+            {
+                out.copy_from_slice(&self.plan_four(ctx, &group, k, neighbours));
+            }
+        }
         for ((k, id), (out, &neighbours)) in
-            group.agents.clone().enumerate().zip(new_velocities.iter_mut().zip(&sums))
+            group.agents.clone().enumerate().zip(new_velocities.iter_mut().zip(&sums)).skip(four_at_a_time)
         {
             let forces = self.agent_forces(ctx, &group, k, id, neighbours);
             *out = limit(ctx.velocities[id as usize] + forces.acceleration, self.params.max_speed);
@@ -979,6 +990,105 @@ impl Boids {
     }
 }
 
+impl Boids {
+    /// Whether the group steers by the plain rules [`Self::plan_four`] computes: no predator or
+    /// prey role, no leader, no path, no flow field.
+    fn is_plain(&self, ctx: &StepContext) -> bool {
+        let prm = &self.params;
+        prm.role == Role::None
+            && prm.leader == Leader::None
+            && prm.flow_field != FlowGuide::Goal
+            && self.followed_path(ctx).is_none()
+    }
+
+    /// [`Self::steer_towards`] per lane.
+    #[inline]
+    fn steer_four(&self, direction: Lanes2, velocity: Lanes2) -> Lanes2 {
+        let len = direction.length();
+        let steer = (direction.scale(Vec4::splat(self.params.max_speed) / len) - velocity)
+            .limit(self.params.max_force);
+        Lanes2::select(len.cmple(Vec4::splat(1e-9)), Lanes2::ZERO, steer)
+    }
+
+    /// The new velocities of the four agents `group.agents.start + k ..` with neighbour sums
+    /// `sums`, for plain rules ([`Self::is_plain`]): what [`Self::agent_forces`] and `plan` give
+    /// one agent at a time, bit for bit, with the square roots and divisions of four agents in
+    /// one go instead of four chains of them.
+    fn plan_four(&self, ctx: &StepContext, group: &GroupView, k: usize, sums: &[FlockSums]) -> [Vec2; LANES] {
+        let prm = &self.params;
+        let id = |j: usize| group.agents.start as usize + k + j;
+        let p = Lanes2::from_fn(|j| ctx.positions[id(j)]);
+        let vel = Lanes2::from_fn(|j| ctx.velocities[id(j)]);
+        let separating =
+            BVec4A::new(sums[0].separating, sums[1].separating, sums[2].separating, sums[3].separating);
+        let count = Vec4::new(
+            sums[0].flocking as f32,
+            sums[1].flocking as f32,
+            sums[2].flocking as f32,
+            sums[3].flocking as f32,
+        );
+        let flocking = count.cmpgt(Vec4::ZERO);
+
+        let separation = Lanes2::select(
+            separating,
+            self.steer_four(Lanes2::from_fn(|j| sums[j].separation), vel),
+            Lanes2::ZERO,
+        );
+        let inv = Vec4::ONE / count;
+        let alignment = self.steer_four(Lanes2::from_fn(|j| sums[j].velocity).scale(inv), vel);
+        let cohesion = self.steer_four(Lanes2::from_fn(|j| sums[j].position).scale(inv) - p, vel);
+        // Seek with arrival, as `seek_goal`.
+        let (seek, to_goal, parked) = match group.goal {
+            Some((goal, goal_radius)) => {
+                let to = Lanes2::splat(goal) - p;
+                let d = to.length();
+                let parked = d.cmple(Vec4::splat(goal_radius));
+                let ramp =
+                    lanes::clamp((d - Vec4::splat(goal_radius)) / Vec4::splat(prm.arrival_radius), 0.1, 1.0);
+                let speed = Vec4::select(parked, Vec4::ZERO, Vec4::splat(prm.max_speed) * ramp);
+                let desired = Lanes2::select(d.cmpgt(Vec4::splat(1e-6)), to.scale(speed / d), Lanes2::ZERO);
+                ((desired - vel).limit(prm.max_force), to, parked)
+            }
+            None => (Lanes2::ZERO, Lanes2::splat(Vec2::X), BVec4A::FALSE),
+        };
+        let flock = flocking & !parked;
+        let alignment = Lanes2::select(flock, alignment, Lanes2::ZERO);
+        let cohesion = Lanes2::select(flock, cohesion, Lanes2::ZERO);
+        // Obstacles and borders: per agent (whisker queries), as `agent_forces`.
+        let avoid = Lanes2::from_fn(|j| {
+            let (pj, vj) = (p.lane(j), vel.lane(j));
+            self.avoid_obstacles(ctx, pj, vj, ctx.radii[id(j)], to_goal.lane(j)) + self.contain(ctx, pj, vj)
+        });
+        let weighted = [
+            avoid.scale(Vec4::splat(prm.avoid_weight)),
+            separation.scale(Vec4::splat(prm.separation_weight)),
+            seek.scale(Vec4::splat(prm.seek_weight)),
+            alignment.scale(Vec4::splat(prm.alignment_weight)),
+            cohesion.scale(Vec4::splat(prm.cohesion_weight)),
+        ];
+        let acceleration = match prm.arbitration {
+            Arbitration::Weighted => {
+                weighted.iter().fold(Lanes2::ZERO, |acc, &f| acc + f).limit(prm.max_force)
+            }
+            Arbitration::Priority => {
+                let (mut acc, mut budget, mut done) =
+                    (Lanes2::ZERO, Vec4::splat(prm.max_force), BVec4A::FALSE);
+                for f in weighted {
+                    let len = f.length();
+                    let fits = len.cmple(budget);
+                    let share = Lanes2::select(fits, f, f.scale(budget / len));
+                    acc = Lanes2::select(done, acc, acc + share);
+                    budget = Vec4::select(done | !fits, budget, budget - len);
+                    done |= !fits;
+                }
+                acc
+            }
+        };
+        let new_velocity = (vel + acceleration).limit(prm.max_speed);
+        std::array::from_fn(|j| new_velocity.lane(j))
+    }
+}
+
 /// The neighbour sums of the agent at `p` over the candidates in `block`: every agent within
 /// `reach` of it except those at exactly its position (itself), the separation terms of those
 /// closer than `separation_radius`, velocity and position sums of those in `own_group`.
@@ -1037,5 +1147,55 @@ fn flock_sums(
         velocity: Vec2::new(total(vel_x), total(vel_y)),
         position: Vec2::new(total(pos_x), total(pos_y)),
         flocking: total(flocking) as u32,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{presets, PlannerConfig, World};
+
+    /// `plan` (plain rules four agents at a time) gives every agent the velocity that the
+    /// one-at-a-time forces (`explain`, hence `agent_forces`) give, bit for bit: both
+    /// arbitrations, with a goal, obstacles and borders.
+    #[test]
+    fn four_at_a_time_equals_one_at_a_time() {
+        for arbitration in [Arbitration::Priority, Arbitration::Weighted] {
+            let mut scene = presets::pillars();
+            for g in &mut scene.groups {
+                if let PlannerConfig::Boids(p) = &mut g.planner {
+                    p.arbitration = arbitration;
+                }
+                g.count = 203; // not a multiple of four: the tail goes one at a time
+            }
+            let mut world = World::new(scene).expect("valid");
+            let mut checked = 0;
+            for _ in 0..6 {
+                world.step_n(40);
+                let ctx = world.step_context();
+                for g in 0..world.scene().groups.len() {
+                    let PlannerConfig::Boids(params) = world.scene().groups[g].planner.clone() else {
+                        continue;
+                    };
+                    let view = world.group_view(g).expect("group");
+                    let mut planner = Boids::new(params);
+                    assert!(planner.is_plain(&ctx));
+                    let mut planned = vec![Vec2::ZERO; view.agents.len()];
+                    planner.plan(&ctx, view.clone(), &mut Rng::new(1, 1), &mut planned);
+                    for (k, id) in view.agents.clone().enumerate() {
+                        let e = planner.explain(&ctx, &view, id);
+                        let one = limit(ctx.velocities[id as usize] + e.applied, planner.params.max_speed);
+                        assert_eq!(
+                            planned[k].to_array().map(f32::to_bits),
+                            one.to_array().map(f32::to_bits),
+                            "{arbitration:?} agent {id}: {:?} vs {one:?}",
+                            planned[k]
+                        );
+                        checked += 1;
+                    }
+                }
+            }
+            assert!(checked >= 6 * 200, "{checked} agents checked");
+        }
     }
 }

@@ -4,6 +4,7 @@ pub mod boids;
 pub mod firefly;
 pub mod forces;
 pub mod igsa;
+mod lanes;
 pub mod pso;
 
 use crate::diagnose::Explanation;
