@@ -5,6 +5,7 @@
 
 use crate::geometry::{Aabb, Obstacle};
 use glam::Vec2;
+use std::ops::Range;
 
 /// A uniform grid over a rectangle `[0, width] × [0, height]`. Points outside fall in edge cells.
 #[derive(Clone, Debug)]
@@ -21,6 +22,9 @@ pub struct SpatialGrid {
     scratch_cell: Vec<u32>,
     /// Scratch: the next free slot of each cell while scattering.
     scratch_next: Vec<u32>,
+    /// `ids`, `pos` and `vel` as [`Columns`] (ids, x, y, vx, vy), padded.
+    column_ids: Vec<u32>,
+    columns: [Vec<f32>; 4],
 }
 
 /// One agent found by a query.
@@ -40,50 +44,38 @@ pub struct Neighbour {
 const MAX_CELLS_PER_AGENT: usize = 4;
 const MIN_CELL_BUDGET: usize = 16_384;
 
-/// Candidates gathered into one array per coordinate, padded with NaN positions (and id
-/// `u32::MAX`) to a whole number of [`CANDIDATE_LANES`], so a kernel reads whole groups of lanes
-/// and no comparison with a padding lane holds. Filled by
-/// [`SpatialGrid::for_each_candidate_block`] and [`SpatialGrid::gather_candidates`]; reused
-/// between calls to avoid allocating.
-#[derive(Clone, Debug, Default)]
-pub struct CandidateBlock {
+/// The grid's agents in storage order, one array per coordinate, each followed by
+/// [`CANDIDATE_LANES`] padding entries (id `u32::MAX`, NaN coordinates): a kernel may read
+/// [`CANDIDATE_LANES`] entries from any index of a run and mask out those past the run's end.
+#[derive(Clone, Copy, Debug)]
+pub struct Columns<'a> {
     /// Agent ids.
-    pub ids: Vec<u32>,
+    pub ids: &'a [u32],
     /// Positions, x (px).
-    pub x: Vec<f32>,
+    pub x: &'a [f32],
     /// Positions, y (px).
-    pub y: Vec<f32>,
+    pub y: &'a [f32],
     /// Velocities, x (px/step).
-    pub vx: Vec<f32>,
+    pub vx: &'a [f32],
     /// Velocities, y (px/step).
-    pub vy: Vec<f32>,
+    pub vy: &'a [f32],
 }
 
-/// How many candidates a [`CandidateBlock`] is padded to a multiple of.
+/// How many entries past a run [`Columns`] lets a kernel read.
 pub const CANDIDATE_LANES: usize = 4;
 
-impl CandidateBlock {
-    fn clear(&mut self) {
-        for c in [&mut self.x, &mut self.y, &mut self.vx, &mut self.vy] {
-            c.clear();
-        }
-        self.ids.clear();
-    }
+/// The candidates of a query as runs of storage indexes into [`Columns`], in the grid's
+/// storage order: filled by [`SpatialGrid::candidate_runs`] and
+/// [`SpatialGrid::for_each_candidate_block`]; reused between calls to avoid allocating.
+#[derive(Clone, Debug, Default)]
+pub struct CandidateRuns {
+    runs: Vec<Range<usize>>,
+}
 
-    fn push_run(&mut self, ids: &[u32], pos: &[Vec2], vel: &[Vec2]) {
-        self.ids.extend_from_slice(ids);
-        self.x.extend(pos.iter().map(|p| p.x));
-        self.y.extend(pos.iter().map(|p| p.y));
-        self.vx.extend(vel.iter().map(|v| v.x));
-        self.vy.extend(vel.iter().map(|v| v.y));
-    }
-
-    fn pad(&mut self) {
-        let padding = self.ids.len().next_multiple_of(CANDIDATE_LANES) - self.ids.len();
-        self.ids.extend(std::iter::repeat_n(u32::MAX, padding));
-        for c in [&mut self.x, &mut self.y, &mut self.vx, &mut self.vy] {
-            c.extend(std::iter::repeat_n(f32::NAN, padding));
-        }
+impl CandidateRuns {
+    /// The runs, row by row.
+    pub fn runs(&self) -> &[Range<usize>] {
+        &self.runs
     }
 }
 
@@ -111,6 +103,8 @@ impl SpatialGrid {
             vel: Vec::new(),
             scratch_cell: Vec::new(),
             scratch_next: Vec::new(),
+            column_ids: Vec::new(),
+            columns: Default::default(),
         }
     }
 
@@ -162,6 +156,26 @@ impl SpatialGrid {
             self.pos[slot] = positions[i];
             self.vel[slot] = velocities.get(i).copied().unwrap_or(Vec2::ZERO);
         }
+        self.column_ids.clear();
+        self.column_ids.extend_from_slice(&self.ids);
+        self.column_ids.extend([u32::MAX; CANDIDATE_LANES]);
+        let [x, y, vx, vy] = &mut self.columns;
+        for c in [&mut *x, &mut *y, &mut *vx, &mut *vy] {
+            c.clear();
+        }
+        x.extend(self.pos.iter().map(|p| p.x));
+        y.extend(self.pos.iter().map(|p| p.y));
+        vx.extend(self.vel.iter().map(|v| v.x));
+        vy.extend(self.vel.iter().map(|v| v.y));
+        for c in [x, y, vx, vy] {
+            c.extend([f32::NAN; CANDIDATE_LANES]);
+        }
+    }
+
+    /// The agents in storage order as padded [`Columns`].
+    pub fn columns(&self) -> Columns<'_> {
+        let [x, y, vx, vy] = &self.columns;
+        Columns { ids: &self.column_ids, x, y, vx, vy }
     }
 
     /// Agent ids in storage order: cell by cell, by id inside a cell. Visiting agents in this
@@ -213,12 +227,12 @@ impl SpatialGrid {
         }
     }
 
-    /// Fills `block` with the candidates for a query of `radius` around `p`: a superset of
+    /// Sets `runs` to the candidates for a query of `radius` around `p`: a superset of
     /// [`Self::for_each_within`] in the grid's storage order. When cells are no larger than
     /// `2 × radius` that is every agent of the cells within `radius` of `p`'s cell, the same block
     /// for every point of the cell (what [`Self::for_each_candidate_block`] shares between them);
     /// on a coarser grid, the cells the disc's bounding box touches.
-    pub fn gather_candidates(&self, p: Vec2, radius: f32, block: &mut CandidateBlock) {
+    pub fn candidate_runs(&self, p: Vec2, radius: f32, runs: &mut CandidateRuns) {
         let cells = if self.shares_blocks(radius) {
             let rings = self.rings(radius);
             let (cx, cy) = (self.cell_coord(p.x, self.cols), self.cell_coord(p.y, self.rows));
@@ -236,18 +250,18 @@ impl SpatialGrid {
                 self.cell_coord(p.y + radius, self.rows),
             ]
         };
-        self.gather_cells(cells, block);
+        self.cell_runs(cells, runs);
     }
 
-    /// Calls `visit(agents, positions, block)` for every group of agents that share a candidate
-    /// block: each non-empty cell's agents (ids and positions in storage order) with the block
-    /// [`Self::gather_candidates`] gives every one of them, gathered once per cell. On a grid too
+    /// Calls `visit(agents, positions, runs)` for every group of agents that share candidates:
+    /// each non-empty cell's agents (ids and positions in storage order) with the runs
+    /// [`Self::candidate_runs`] gives every one of them, found once per cell. On a grid too
     /// coarse for `radius`, one agent at a time.
     pub fn for_each_candidate_block(
         &self,
         radius: f32,
-        block: &mut CandidateBlock,
-        mut visit: impl FnMut(&[u32], &[Vec2], &CandidateBlock),
+        runs: &mut CandidateRuns,
+        mut visit: impl FnMut(&[u32], &[Vec2], &CandidateRuns),
     ) {
         let shared = self.shares_blocks(radius);
         for cell in 0..(self.cols * self.rows) as usize {
@@ -257,12 +271,12 @@ impl SpatialGrid {
             };
             let Some(&first) = positions.first() else { continue };
             if shared {
-                self.gather_candidates(first, radius, block);
-                visit(ids, positions, block);
+                self.candidate_runs(first, radius, runs);
+                visit(ids, positions, runs);
             } else {
                 for (id, p) in ids.iter().zip(positions) {
-                    self.gather_candidates(*p, radius, block);
-                    visit(std::slice::from_ref(id), std::slice::from_ref(p), block);
+                    self.candidate_runs(*p, radius, runs);
+                    visit(std::slice::from_ref(id), std::slice::from_ref(p), runs);
                 }
             }
         }
@@ -280,21 +294,18 @@ impl SpatialGrid {
         (radius * self.inv_cell).ceil() as u32
     }
 
-    /// Fills `block` with the agents of cells `[x0, y0, x1, y1]` (inclusive), row by row.
-    fn gather_cells(&self, [x0, y0, x1, y1]: [u32; 4], block: &mut CandidateBlock) {
-        block.clear();
+    /// Sets `runs` to the agents of cells `[x0, y0, x1, y1]` (inclusive), row by row.
+    fn cell_runs(&self, [x0, y0, x1, y1]: [u32; 4], runs: &mut CandidateRuns) {
+        runs.runs.clear();
         for cy in y0..=y1 {
             let row = cy * self.cols;
             // Cells x0..=x1 of one row are contiguous in the sorted arrays.
-            let run = self.cell_start[(row + x0) as usize] as usize
-                ..self.cell_start[(row + x1 + 1) as usize] as usize;
-            if let (Some(ids), Some(pos), Some(vel)) =
-                (self.ids.get(run.clone()), self.pos.get(run.clone()), self.vel.get(run))
-            {
-                block.push_run(ids, pos, vel);
+            let start = self.cell_start[(row + x0) as usize] as usize;
+            let end = self.cell_start[(row + x1 + 1) as usize] as usize;
+            if start < end {
+                runs.runs.push(start..end);
             }
         }
-        block.pad();
     }
 
     /// Ids of agents within `radius` of `p`, sorted by `(distance², id)`.

@@ -11,7 +11,7 @@ use crate::flow_field::{self, FlowField};
 use crate::geometry::{unit_or, Aabb, Obstacle};
 use crate::rng::Rng;
 use crate::scene::PathSpec;
-use crate::spatial::{CandidateBlock, Neighbour};
+use crate::spatial::{CandidateRuns, Columns, Neighbour};
 use glam::{BVec4A, Vec2, Vec4};
 use serde::{Deserialize, Serialize};
 use std::ops::Range;
@@ -378,7 +378,7 @@ pub struct Boids {
     /// The left side whisker's direction relative to the heading (computed once: `sin`/`cos`).
     side_whisker: Vec2,
     /// Scratch: the candidate neighbours being tested (reused to avoid allocating).
-    candidates: CandidateBlock,
+    candidates: CandidateRuns,
     /// Scratch: each agent's neighbour sums in this step.
     sums: Vec<FlockSums>,
     /// The flow field towards the goal and what it was built from (flow field guidance).
@@ -410,6 +410,8 @@ const MIN_HEADING_SPEED: f32 = 0.05;
 /// Candidates tested at once by [`flock_sums`] (one 128-bit SIMD register of f32).
 const LANES: usize = lanes::LANES;
 const _: () = assert!(LANES == crate::spatial::CANDIDATE_LANES, "flock_sums reads whole Vec4s");
+/// Each lane's index, to mask the lanes past the end of a run.
+const LANE_INDEX: Vec4 = Vec4::new(0.0, 1.0, 2.0, 3.0);
 
 /// What separation, alignment and cohesion need from an agent's neighbours.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -434,7 +436,7 @@ impl Boids {
         Self {
             params,
             side_whisker: Vec2::from_angle(SIDE_WHISKER_ANGLE),
-            candidates: CandidateBlock::default(),
+            candidates: CandidateRuns::default(),
             sums: Vec::new(),
             flow: None,
             path_segment: Vec::new(),
@@ -769,19 +771,20 @@ impl Planner for Boids {
         let reach = self.interaction_radius();
         let everyone_is_own = group.agents.start == 0 && group.agents.end as usize >= ctx.positions.len();
         let sep_r = self.params.separation_radius;
-        let mut sum_one = |id: u32, p: Vec2, block: &CandidateBlock| {
+        let columns = ctx.grid.columns();
+        let mut sum_one = |id: u32, p: Vec2, runs: &CandidateRuns| {
             if let Some(out) = sums.get_mut((id - group.agents.start) as usize) {
-                *out = flock_sums(block, p, reach, sep_r, &group.agents, everyone_is_own);
+                *out = flock_sums(columns, runs, p, reach, sep_r, &group.agents, everyone_is_own);
             }
         };
         let grid_agents = ctx.grid.ids_in_cell_order().len();
         if grid_agents == ctx.positions.len() && group.agents.len() * 4 >= grid_agents {
             // Cell by cell: the agents of a cell share one gathered block of candidates, and
             // the cells they read stay in the cache.
-            ctx.grid.for_each_candidate_block(reach, &mut block, |agents, positions, block| {
+            ctx.grid.for_each_candidate_block(reach, &mut block, |agents, positions, runs| {
                 for (&id, &p) in agents.iter().zip(positions) {
                     if group.agents.contains(&id) {
-                        sum_one(id, p, block);
+                        sum_one(id, p, runs);
                     }
                 }
             });
@@ -789,7 +792,7 @@ impl Planner for Boids {
             // A small group among many agents: gather for its own agents only.
             for id in group.agents.clone() {
                 let p = ctx.positions[id as usize];
-                ctx.grid.gather_candidates(p, reach, &mut block);
+                ctx.grid.candidate_runs(p, reach, &mut block);
                 sum_one(id, p, &block);
             }
         }
@@ -817,11 +820,20 @@ impl Planner for Boids {
         let k = agent.saturating_sub(group.agents.start) as usize;
         let mut sums = FlockSums::default();
         if let Some(&p) = ctx.positions.get(agent as usize) {
-            let mut block = CandidateBlock::default();
-            ctx.grid.gather_candidates(p, self.interaction_radius(), &mut block);
+            let mut runs = CandidateRuns::default();
+            ctx.grid.candidate_runs(p, self.interaction_radius(), &mut runs);
             let everyone_is_own = group.agents.start == 0 && group.agents.end as usize >= ctx.positions.len();
             let sep_r = self.params.separation_radius;
-            sums = flock_sums(&block, p, self.interaction_radius(), sep_r, &group.agents, everyone_is_own);
+            let columns = ctx.grid.columns();
+            sums = flock_sums(
+                columns,
+                &runs,
+                p,
+                self.interaction_radius(),
+                sep_r,
+                &group.agents,
+                everyone_is_own,
+            );
         }
         let forces = self.agent_forces(ctx, group, k, agent, sums);
         let mut e = Explanation::default();
@@ -1089,9 +1101,9 @@ impl Boids {
     }
 }
 
-/// The neighbour sums of the agent at `p` over the candidates in `block`: every agent within
-/// `reach` of it except those at exactly its position (itself), the separation terms of those
-/// closer than `separation_radius`, velocity and position sums of those in `own_group`.
+/// The neighbour sums of the agent at `p` over the candidates `runs` of `columns`: every agent
+/// within `reach` of it except those at exactly its position (itself), the separation terms of
+/// those closer than `separation_radius`, velocity and position sums of those in `own_group`.
 ///
 /// The candidates are tested four at a time (one SIMD register natively and in wasm) without a
 /// branch: whether a candidate is within reach is a coin flip the CPU cannot predict. Each lane
@@ -1100,7 +1112,8 @@ impl Boids {
 /// natively and in wasm.
 #[inline]
 fn flock_sums(
-    block: &CandidateBlock,
+    columns: Columns<'_>,
+    runs: &CandidateRuns,
     p: Vec2,
     reach: f32,
     separation_radius: f32,
@@ -1114,31 +1127,33 @@ fn flock_sums(
     // is a dozen instructions on the x86-64 baseline. Separation only needs "any".
     let mut flocking = Vec4::ZERO;
     let mut any_close = BVec4A::FALSE;
-    let lanes = block.x.len().min(block.y.len()).min(block.vx.len()).min(block.vy.len()).min(block.ids.len());
-    for at in (0..lanes / LANES * LANES).step_by(LANES) {
-        let load = |s: &[f32]| Vec4::from_slice(&s[at..at + LANES]);
-        let (x, y) = (load(&block.x), load(&block.y));
-        let (dx, dy) = (px - x, py - y);
-        let d2 = dx * dx + dy * dy;
-        // Padding lanes are NaN: no comparison holds.
-        let within = d2.cmple(reach2) & d2.cmpgt(Vec4::ZERO);
-        let close = within & d2.cmplt(sep2);
-        let own = if everyone_is_own {
-            within
-        } else {
-            let is_own = |j: usize| own_group.contains(&block.ids[at + j]);
-            within & BVec4A::new(is_own(0), is_own(1), is_own(2), is_own(3))
-        };
-        // One division for both axes (division is the slowest lane operation).
-        let inv_d2 = d2.recip();
-        sep_x += Vec4::select(close, dx * inv_d2, Vec4::ZERO);
-        sep_y += Vec4::select(close, dy * inv_d2, Vec4::ZERO);
-        vel_x += Vec4::select(own, load(&block.vx), Vec4::ZERO);
-        vel_y += Vec4::select(own, load(&block.vy), Vec4::ZERO);
-        pos_x += Vec4::select(own, x, Vec4::ZERO);
-        pos_y += Vec4::select(own, y, Vec4::ZERO);
-        flocking += Vec4::select(own, Vec4::ONE, Vec4::ZERO);
-        any_close |= close;
+    for run in runs.runs() {
+        for at in run.clone().step_by(LANES) {
+            let load = |s: &[f32]| s.get(at..at + LANES).map_or(Vec4::NAN, Vec4::from_slice);
+            let (x, y) = (load(columns.x), load(columns.y));
+            let (dx, dy) = (px - x, py - y);
+            let d2 = dx * dx + dy * dy;
+            // Lanes past the run's end hold the next cells' agents or padding.
+            let in_run = LANE_INDEX.cmplt(Vec4::splat((run.end - at) as f32));
+            let within = d2.cmple(reach2) & d2.cmpgt(Vec4::ZERO) & in_run;
+            let close = within & d2.cmplt(sep2);
+            let own = if everyone_is_own {
+                within
+            } else {
+                let is_own = |j: usize| columns.ids.get(at + j).is_some_and(|id| own_group.contains(id));
+                within & BVec4A::new(is_own(0), is_own(1), is_own(2), is_own(3))
+            };
+            // One division for both axes (division is the slowest lane operation).
+            let inv_d2 = d2.recip();
+            sep_x += Vec4::select(close, dx * inv_d2, Vec4::ZERO);
+            sep_y += Vec4::select(close, dy * inv_d2, Vec4::ZERO);
+            vel_x += Vec4::select(own, load(columns.vx), Vec4::ZERO);
+            vel_y += Vec4::select(own, load(columns.vy), Vec4::ZERO);
+            pos_x += Vec4::select(own, x, Vec4::ZERO);
+            pos_y += Vec4::select(own, y, Vec4::ZERO);
+            flocking += Vec4::select(own, Vec4::ONE, Vec4::ZERO);
+            any_close |= close;
+        }
     }
     let total = |l: Vec4| (l.x + l.y) + (l.z + l.w);
     FlockSums {
