@@ -135,6 +135,8 @@ pub struct Metrics {
 pub struct MetricsRecorder {
     prev_pos: Vec<Vec2>,
     prev_vel: Vec<Vec2>,
+    /// `prev_vel[i].length()`, kept so it is not taken twice.
+    prev_speed: Vec<f32>,
     path_length: Vec<f32>,
     arrived_step: Vec<u32>,
     best_goal_distance: Vec<f32>,
@@ -172,6 +174,7 @@ impl MetricsRecorder {
         Self {
             prev_pos: positions.to_vec(),
             prev_vel: vec![Vec2::ZERO; n],
+            prev_speed: vec![0.0; n],
             path_length: vec![0.0; n],
             arrived_step: vec![NOT_ARRIVED; n],
             best_goal_distance: vec![f32::INFINITY; n],
@@ -241,7 +244,7 @@ impl MetricsRecorder {
             acc.speed_samples += 1;
 
             let prev_v = self.prev_vel[i];
-            let prev_speed = prev_v.length();
+            let prev_speed = self.prev_speed[i];
             if speed > MIN_TURN_SPEED && prev_speed > MIN_TURN_SPEED {
                 let cos = (v.dot(prev_v) / (speed * prev_speed)).clamp(-1.0, 1.0);
                 let turn = f64::from(libm::acosf(cos)).to_degrees();
@@ -279,6 +282,7 @@ impl MetricsRecorder {
             }
             self.prev_pos[i] = p;
             self.prev_vel[i] = v;
+            self.prev_speed[i] = speed;
         }
 
         if self.fitness_every > 0 && step % self.fitness_every == 1 % self.fitness_every {

@@ -16,14 +16,14 @@ pub struct SpatialGrid {
     rows: u32,
     /// `cell_start[c]..cell_start[c + 1]` indexes `ids`/`pos` for cell `c`.
     cell_start: Vec<u32>,
+    /// Agents stored: `ids` and `columns` hold them, then [`CANDIDATE_LANES`] padding entries.
+    len: usize,
+    /// Agent ids in storage order (padding: `u32::MAX`).
     ids: Vec<u32>,
-    pos: Vec<Vec2>,
-    vel: Vec<Vec2>,
     scratch_cell: Vec<u32>,
     /// Scratch: the next free slot of each cell while scattering.
     scratch_next: Vec<u32>,
-    /// `ids`, `pos` and `vel` as [`Columns`] (ids, x, y, vx, vy), padded.
-    column_ids: Vec<u32>,
+    /// Position x, y and velocity x, y in storage order (padding: NaN).
     columns: [Vec<f32>; 4],
 }
 
@@ -98,12 +98,10 @@ impl SpatialGrid {
             cols,
             rows,
             cell_start: vec![0; (cols * rows + 1) as usize],
+            len: 0,
             ids: Vec::new(),
-            pos: Vec::new(),
-            vel: Vec::new(),
             scratch_cell: Vec::new(),
             scratch_next: Vec::new(),
-            column_ids: Vec::new(),
             columns: Default::default(),
         }
     }
@@ -142,46 +140,46 @@ impl SpatialGrid {
         for c in 1..self.cell_start.len() {
             self.cell_start[c] += self.cell_start[c - 1];
         }
-        self.ids.resize(n, 0);
-        self.pos.resize(n, Vec2::ZERO);
-        self.vel.resize(n, Vec2::ZERO);
         // Scatter in id order: stable, so each cell lists its agents by increasing id.
         self.scratch_next.clear();
         self.scratch_next.extend_from_slice(&self.cell_start);
+        // Every slot is written below; the padding after them stays.
+        let padded = n + CANDIDATE_LANES;
+        self.len = n;
+        self.ids.clear();
+        self.ids.resize(padded, u32::MAX);
+        let [x, y, vx, vy] = &mut self.columns;
+        for c in [&mut *x, &mut *y, &mut *vx, &mut *vy] {
+            c.clear();
+            c.resize(padded, f32::NAN);
+        }
         let next = &mut self.scratch_next;
         for (i, &c) in self.scratch_cell.iter().enumerate() {
             let slot = next[c as usize] as usize;
             next[c as usize] += 1;
+            let (p, v) = (positions[i], velocities.get(i).copied().unwrap_or(Vec2::ZERO));
             self.ids[slot] = i as u32;
-            self.pos[slot] = positions[i];
-            self.vel[slot] = velocities.get(i).copied().unwrap_or(Vec2::ZERO);
-        }
-        self.column_ids.clear();
-        self.column_ids.extend_from_slice(&self.ids);
-        self.column_ids.extend([u32::MAX; CANDIDATE_LANES]);
-        let [x, y, vx, vy] = &mut self.columns;
-        for c in [&mut *x, &mut *y, &mut *vx, &mut *vy] {
-            c.clear();
-        }
-        x.extend(self.pos.iter().map(|p| p.x));
-        y.extend(self.pos.iter().map(|p| p.y));
-        vx.extend(self.vel.iter().map(|v| v.x));
-        vy.extend(self.vel.iter().map(|v| v.y));
-        for c in [x, y, vx, vy] {
-            c.extend([f32::NAN; CANDIDATE_LANES]);
+            (x[slot], y[slot], vx[slot], vy[slot]) = (p.x, p.y, v.x, v.y);
         }
     }
 
     /// The agents in storage order as padded [`Columns`].
     pub fn columns(&self) -> Columns<'_> {
         let [x, y, vx, vy] = &self.columns;
-        Columns { ids: &self.column_ids, x, y, vx, vy }
+        Columns { ids: &self.ids, x, y, vx, vy }
     }
 
     /// Agent ids in storage order: cell by cell, by id inside a cell. Visiting agents in this
     /// order keeps the cells their queries touch hot in the cache.
     pub fn ids_in_cell_order(&self) -> &[u32] {
-        &self.ids
+        self.ids.get(..self.len).unwrap_or_default()
+    }
+
+    /// Position and velocity of the agent in storage slot `k`.
+    #[inline]
+    fn slot(&self, k: usize) -> (Vec2, Vec2) {
+        let [x, y, vx, vy] = &self.columns;
+        (Vec2::new(x[k], y[k]), Vec2::new(vx[k], vy[k]))
     }
 
     /// Calls `visit` for every agent within `radius` of `p`
@@ -189,41 +187,22 @@ impl SpatialGrid {
     #[inline]
     pub fn for_each_within(&self, p: Vec2, radius: f32, mut visit: impl FnMut(Neighbour)) {
         let r2 = radius * radius;
-        self.for_each_candidate_run(p, radius, |ids, pos, vel| {
-            for ((&id, &q), &v) in ids.iter().zip(pos).zip(vel) {
-                let d2 = p.distance_squared(q);
-                if d2 <= r2 {
-                    visit(Neighbour { id, pos: q, vel: v, d2 });
-                }
-            }
-        });
-    }
-
-    /// Calls `visit(ids, positions, velocities)` for each run of agents stored in the cells a
-    /// disc of `radius` around `p` touches: a superset of [`Self::for_each_within`], in the same
-    /// order. Hot loops use it to test the distance themselves without a branch per candidate.
-    #[inline]
-    pub fn for_each_candidate_run(
-        &self,
-        p: Vec2,
-        radius: f32,
-        mut visit: impl FnMut(&[u32], &[Vec2], &[Vec2]),
-    ) {
         let x0 = self.cell_coord(p.x - radius, self.cols);
         let x1 = self.cell_coord(p.x + radius, self.cols);
         let y0 = self.cell_coord(p.y - radius, self.rows);
         let y1 = self.cell_coord(p.y + radius, self.rows);
         for cy in y0..=y1 {
             let row = cy * self.cols;
+            // Cells x0..=x1 of one row are contiguous in storage.
             let start = self.cell_start[(row + x0) as usize] as usize;
             let end = self.cell_start[(row + x1 + 1) as usize] as usize;
-            // Cells x0..=x1 of one row are contiguous in the sorted arrays.
-            let (Some(ids), Some(pos), Some(vel)) =
-                (self.ids.get(start..end), self.pos.get(start..end), self.vel.get(start..end))
-            else {
-                continue;
-            };
-            visit(ids, pos, vel);
+            for k in start..end {
+                let (q, v) = self.slot(k);
+                let d2 = p.distance_squared(q);
+                if d2 <= r2 {
+                    visit(Neighbour { id: self.ids[k], pos: q, vel: v, d2 });
+                }
+            }
         }
     }
 
@@ -253,30 +232,29 @@ impl SpatialGrid {
         self.cell_runs(cells, runs);
     }
 
-    /// Calls `visit(agents, positions, runs)` for every group of agents that share candidates:
-    /// each non-empty cell's agents (ids and positions in storage order) with the runs
+    /// Calls `visit(agents, runs)` for every group of agents that share candidates: each
+    /// non-empty cell's agents (storage slots) with the runs
     /// [`Self::candidate_runs`] gives every one of them, found once per cell. On a grid too
     /// coarse for `radius`, one agent at a time.
     pub fn for_each_candidate_block(
         &self,
         radius: f32,
         runs: &mut CandidateRuns,
-        mut visit: impl FnMut(&[u32], &[Vec2], &CandidateRuns),
+        mut visit: impl FnMut(Range<usize>, &CandidateRuns),
     ) {
         let shared = self.shares_blocks(radius);
         for cell in 0..(self.cols * self.rows) as usize {
             let agents = self.cell_start[cell] as usize..self.cell_start[cell + 1] as usize;
-            let (Some(ids), Some(positions)) = (self.ids.get(agents.clone()), self.pos.get(agents)) else {
+            if agents.is_empty() {
                 continue;
-            };
-            let Some(&first) = positions.first() else { continue };
+            }
             if shared {
-                self.candidate_runs(first, radius, runs);
-                visit(ids, positions, runs);
+                self.candidate_runs(self.slot(agents.start).0, radius, runs);
+                visit(agents, runs);
             } else {
-                for (id, p) in ids.iter().zip(positions) {
-                    self.candidate_runs(*p, radius, runs);
-                    visit(std::slice::from_ref(id), std::slice::from_ref(p), runs);
+                for k in agents {
+                    self.candidate_runs(self.slot(k).0, radius, runs);
+                    visit(k..k + 1, runs);
                 }
             }
         }
@@ -333,8 +311,9 @@ impl SpatialGrid {
         let r2 = radius * radius;
         let (cols, rows) = (self.cols as usize, self.rows as usize);
         let mut test = |id: u32, p: Vec2, other: usize| {
-            if let (Some(&q), Some(&other_id)) = (self.pos.get(other), self.ids.get(other)) {
-                if p.distance_squared(q) < r2 {
+            if other < self.len {
+                let other_id = self.ids[other];
+                if p.distance_squared(self.slot(other).0) < r2 {
                     visit(id.min(other_id), id.max(other_id));
                 }
             }
@@ -352,7 +331,7 @@ impl SpatialGrid {
                 let bottom = (cy + 1 < rows).then(|| (cy + 1) as f32 * self.cell_size);
                 let left = cx as f32 * self.cell_size;
                 for k in here.clone() {
-                    let (p, id) = (self.pos[k], self.ids[k]);
+                    let (p, id) = (self.slot(k).0, self.ids[k]);
                     for other in k + 1..here.end {
                         test(id, p, other);
                     }
@@ -476,7 +455,11 @@ impl ObstacleIndex {
     }
 
     /// Whether `p` lies inside any obstacle.
+    #[inline]
     pub fn contains(&self, p: Vec2) -> bool {
+        if self.obstacles.is_empty() {
+            return false;
+        }
         let mut inside = false;
         self.for_each_near(Aabb { min: p, max: p }, |_, o| inside |= o.contains(p));
         inside

@@ -779,12 +779,13 @@ impl Planner for Boids {
         };
         let grid_agents = ctx.grid.ids_in_cell_order().len();
         if grid_agents == ctx.positions.len() && group.agents.len() * 4 >= grid_agents {
-            // Cell by cell: the agents of a cell share one gathered block of candidates, and
-            // the cells they read stay in the cache.
-            ctx.grid.for_each_candidate_block(reach, &mut block, |agents, positions, runs| {
-                for (&id, &p) in agents.iter().zip(positions) {
+            // Cell by cell: the agents of a cell share their candidates, and the cells they
+            // read stay in the cache.
+            ctx.grid.for_each_candidate_block(reach, &mut block, |slots, runs| {
+                for k in slots {
+                    let id = columns.ids[k];
                     if group.agents.contains(&id) {
-                        sum_one(id, p, runs);
+                        sum_one(id, Vec2::new(columns.x[k], columns.y[k]), runs);
                     }
                 }
             });
