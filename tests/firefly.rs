@@ -63,7 +63,9 @@ fn fireflies_line_up_in_file_then_reach_the_target() {
              collisions to step 300 {}, to 1500 {}",
             end.overall.arrived_share, m.overall.collisions_agent_agent, end.overall.collisions_agent_agent
         );
-        assert!(queued >= 0.7, "seed {seed}: queue order {queued}");
+        // Falling in behind a brighter firefly in contact: 0.88–0.99 at step 300 on seeds 1–10
+        // (0.79–0.94 without it, so 0.85 fails on main's seeds 1, 2, 6, 7).
+        assert!(queued >= 0.85, "seed {seed}: queue order {queued}");
         // The first step already turns most fireflies at their nearest brighter one (measured
         // 0.72–0.81 after one step); the files keep tightening after that.
         assert!(queued > start && queued > RANDOM_QUEUE_ORDER, "seed {seed}: {start} → {queued}");
