@@ -157,8 +157,12 @@ impl SpatialGrid {
         for (i, &c) in self.scratch_cell.iter().enumerate() {
             let slot = next[c as usize] as usize;
             next[c as usize] += 1;
-            let (p, v) = (positions[i], velocities.get(i).copied().unwrap_or(Vec2::ZERO));
             self.ids[slot] = i as u32;
+        }
+        // Then the columns in storage order: one scattered write per agent above instead of
+        // five (at 100,000 agents the columns do not fit in the cache).
+        for (slot, &i) in self.ids[..n].iter().enumerate() {
+            let (p, v) = (positions[i as usize], velocities.get(i as usize).copied().unwrap_or(Vec2::ZERO));
             (x[slot], y[slot], vx[slot], vy[slot]) = (p.x, p.y, v.x, v.y);
         }
     }
