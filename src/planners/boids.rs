@@ -410,16 +410,21 @@ const MIN_HEADING_SPEED: f32 = 0.05;
 /// Candidates tested at once by [`flock_sums`] (one 128-bit SIMD register of f32).
 const LANES: usize = lanes::LANES;
 const _: () = assert!(LANES == crate::spatial::CANDIDATE_LANES, "flock_sums reads whole Vec4s");
-/// Each lane's index, to mask the lanes past the end of a run.
-const LANE_INDEX: Vec4 = Vec4::new(0.0, 1.0, 2.0, 3.0);
+/// The lanes holding candidates when `n` of them are left in a run (index `n`, at most 4).
+const RUN_MASKS: [BVec4A; LANES + 1] = [
+    BVec4A::new(false, false, false, false),
+    BVec4A::new(true, false, false, false),
+    BVec4A::new(true, true, false, false),
+    BVec4A::new(true, true, true, false),
+    BVec4A::new(true, true, true, true),
+];
 
 /// What separation, alignment and cohesion need from an agent's neighbours.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 struct FlockSums {
-    /// Σ (p − q)/|p − q|² over neighbours closer than the separation radius.
+    /// Σ (p − q)/|p − q|² over neighbours closer than the separation radius: exactly zero
+    /// without one, and steering towards zero is no force.
     separation: Vec2,
-    /// Whether there is one (the sum alone cannot say: two opposite neighbours cancel out).
-    separating: bool,
     /// Σ velocity and Σ position over neighbours of the agent's own group.
     velocity: Vec2,
     position: Vec2,
@@ -935,7 +940,7 @@ impl Boids {
         let vel = ctx.velocities[i];
         let (sep, sum_vel, sum_pos, n_flock) = (sums.separation, sums.velocity, sums.position, sums.flocking);
 
-        let separation = if sums.separating { self.steer_towards(sep, vel) } else { Vec2::ZERO };
+        let separation = self.steer_towards(sep, vel);
         let (alignment, cohesion) = if n_flock > 0 {
             let inv = 1.0 / n_flock as f32;
             (self.steer_towards(sum_vel * inv, vel), self.steer_towards(sum_pos * inv - p, vel))
@@ -1032,8 +1037,6 @@ impl Boids {
         let id = |j: usize| group.agents.start as usize + k + j;
         let p = Lanes2::from_fn(|j| ctx.positions[id(j)]);
         let vel = Lanes2::from_fn(|j| ctx.velocities[id(j)]);
-        let separating =
-            BVec4A::new(sums[0].separating, sums[1].separating, sums[2].separating, sums[3].separating);
         let count = Vec4::new(
             sums[0].flocking as f32,
             sums[1].flocking as f32,
@@ -1042,11 +1045,7 @@ impl Boids {
         );
         let flocking = count.cmpgt(Vec4::ZERO);
 
-        let separation = Lanes2::select(
-            separating,
-            self.steer_four(Lanes2::from_fn(|j| sums[j].separation), vel),
-            Lanes2::ZERO,
-        );
+        let separation = self.steer_four(Lanes2::from_fn(|j| sums[j].separation), vel);
         let inv = Vec4::ONE / count;
         let alignment = self.steer_four(Lanes2::from_fn(|j| sums[j].velocity).scale(inv), vel);
         let cohesion = self.steer_four(Lanes2::from_fn(|j| sums[j].position).scale(inv) - p, vel);
@@ -1125,9 +1124,8 @@ fn flock_sums(
     let (reach2, sep2) = (Vec4::splat(reach * reach), Vec4::splat(separation_radius * separation_radius));
     let [mut sep_x, mut sep_y, mut vel_x, mut vel_y, mut pos_x, mut pos_y] = [Vec4::ZERO; 6];
     // The flocking count as floats (exact up to 2^24): a lane add, where a population count
-    // is a dozen instructions on the x86-64 baseline. Separation only needs "any".
+    // is a dozen instructions on the x86-64 baseline.
     let mut flocking = Vec4::ZERO;
-    let mut any_close = BVec4A::FALSE;
     for run in runs.runs() {
         for at in run.clone().step_by(LANES) {
             let load = |s: &[f32]| s.get(at..at + LANES).map_or(Vec4::NAN, Vec4::from_slice);
@@ -1135,7 +1133,7 @@ fn flock_sums(
             let (dx, dy) = (px - x, py - y);
             let d2 = dx * dx + dy * dy;
             // Lanes past the run's end hold the next cells' agents or padding.
-            let in_run = LANE_INDEX.cmplt(Vec4::splat((run.end - at) as f32));
+            let in_run = RUN_MASKS[(run.end - at).min(LANES)];
             let within = d2.cmple(reach2) & d2.cmpgt(Vec4::ZERO) & in_run;
             let close = within & d2.cmplt(sep2);
             let own = if everyone_is_own {
@@ -1153,13 +1151,11 @@ fn flock_sums(
             pos_x += Vec4::select(own, x, Vec4::ZERO);
             pos_y += Vec4::select(own, y, Vec4::ZERO);
             flocking += Vec4::select(own, Vec4::ONE, Vec4::ZERO);
-            any_close |= close;
         }
     }
     let total = |l: Vec4| (l.x + l.y) + (l.z + l.w);
     FlockSums {
         separation: Vec2::new(total(sep_x), total(sep_y)),
-        separating: any_close.any(),
         velocity: Vec2::new(total(vel_x), total(vel_y)),
         position: Vec2::new(total(pos_x), total(pos_y)),
         flocking: total(flocking) as u32,
