@@ -314,17 +314,21 @@ impl SpatialGrid {
     pub fn for_each_pair_within(&self, radius: f32, mut visit: impl FnMut(u32, u32)) {
         let r2 = radius * radius;
         let (cols, rows) = (self.cols as usize, self.rows as usize);
-        let mut test = |id: u32, p: Vec2, other: usize| {
-            if other < self.len {
-                let other_id = self.ids[other];
-                if p.distance_squared(self.slot(other).0) < r2 {
-                    visit(id.min(other_id), id.max(other_id));
-                }
-            }
-        };
+        let [xs, ys, _, _] = &self.columns;
+        let (xs, ys, ids) = (&xs[..self.len], &ys[..self.len], &self.ids[..self.len]);
         let cell_range = |cx: usize, cy: usize| {
             let c = cy * cols + cx;
             self.cell_start[c] as usize..self.cell_start[c + 1] as usize
+        };
+        // Tests agent `k` (at `p`) against the agents stored in `others`.
+        let mut test = |k: usize, p: Vec2, others: Range<usize>| {
+            for other in others {
+                let d = p - Vec2::new(xs[other], ys[other]);
+                if d.dot(d) < r2 {
+                    let (a, b) = (ids[k], ids[other]);
+                    visit(a.min(b), a.max(b));
+                }
+            }
         };
         for cy in 0..rows {
             for cx in 0..cols {
@@ -335,15 +339,11 @@ impl SpatialGrid {
                 let bottom = (cy + 1 < rows).then(|| (cy + 1) as f32 * self.cell_size);
                 let left = cx as f32 * self.cell_size;
                 for k in here.clone() {
-                    let (p, id) = (self.slot(k).0, self.ids[k]);
-                    for other in k + 1..here.end {
-                        test(id, p, other);
-                    }
+                    let p = Vec2::new(xs[k], ys[k]);
+                    test(k, p, k + 1..here.end);
                     let near_right = right.is_some_and(|x| x - p.x < radius);
                     if near_right {
-                        for other in cell_range(cx + 1, cy) {
-                            test(id, p, other);
-                        }
+                        test(k, p, cell_range(cx + 1, cy));
                     }
                     if !bottom.is_some_and(|y| y - p.y < radius) {
                         continue;
@@ -352,10 +352,7 @@ impl SpatialGrid {
                     let first = if near_left { cx - 1 } else { cx };
                     let last = if near_right { cx + 1 } else { cx };
                     // Cells first..=last of the next row are contiguous in storage.
-                    let below = cell_range(first, cy + 1).start..cell_range(last, cy + 1).end;
-                    for other in below {
-                        test(id, p, other);
-                    }
+                    test(k, p, cell_range(first, cy + 1).start..cell_range(last, cy + 1).end);
                 }
             }
         }
