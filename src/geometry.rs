@@ -106,10 +106,25 @@ fn segment_hit(p: Vec2, d: Vec2, a: Vec2, b: Vec2) -> Option<f32> {
     ((0.0..=1.0).contains(&t) && (0.0..=1.0).contains(&u)).then_some(t)
 }
 
+/// `v.length()` with the hardware square root. glam's `length` goes through libm (its `libm`
+/// feature keeps sines and cosines the same on every platform), whose `sqrtf` is a software
+/// loop in wasm on stable Rust; a square root is correctly rounded either way, so this gives
+/// the same bits, several times faster in the browser. Use it in per-agent code.
+#[inline]
+pub fn length(v: Vec2) -> f32 {
+    v.dot(v).sqrt()
+}
+
+/// `a.distance(b)` with the hardware square root (see [`length`]).
+#[inline]
+pub fn distance(a: Vec2, b: Vec2) -> f32 {
+    length(a - b)
+}
+
 /// A unit vector, or `fallback` when `d` has no usable length.
 #[inline]
 pub fn unit_or(d: Vec2, fallback: Vec2) -> Vec2 {
-    let len = d.length();
+    let len = length(d);
     if len > 1e-6 {
         d / len
     } else {
@@ -163,7 +178,7 @@ impl Obstacle {
             Obstacle::Circle { center, radius } => {
                 let c = v(*center);
                 let normal = unit_or(p - c, Vec2::X);
-                SurfacePoint { point: c + normal * *radius, normal, signed_distance: p.distance(c) - radius }
+                SurfacePoint { point: c + normal * *radius, normal, signed_distance: distance(p, c) - radius }
             }
             Obstacle::Rect { min, max } => {
                 let (lo, hi) = (v(*min), v(*max));
@@ -185,7 +200,7 @@ impl Obstacle {
                 } else {
                     let q = p.clamp(lo, hi);
                     let d = p - q;
-                    SurfacePoint { point: q, normal: unit_or(d, Vec2::X), signed_distance: d.length() }
+                    SurfacePoint { point: q, normal: unit_or(d, Vec2::X), signed_distance: length(d) }
                 }
             }
             Obstacle::Polygon { points } => {
@@ -196,7 +211,7 @@ impl Obstacle {
                     let a = v(points[i]);
                     let b = v(points[(i + 1) % n]);
                     let q = closest_on_segment(p, a, b);
-                    let d = p.distance(q);
+                    let d = distance(p, q);
                     if d < best.signed_distance {
                         best.point = q;
                         best.signed_distance = d;

@@ -10,7 +10,7 @@
 //! are sampled on steps 1, 1 + [`FITNESS_SAMPLE_EVERY`], 1 + 2·[`FITNESS_SAMPLE_EVERY`], … only.
 
 use crate::fitness::{Behaviour, FitnessMeasures, FitnessRecorder};
-use crate::geometry::Aabb;
+use crate::geometry::{distance, length, Aabb};
 use crate::scene::Scene;
 use crate::spatial::{ObstacleIndex, SpatialGrid};
 use glam::Vec2;
@@ -238,8 +238,8 @@ impl MetricsRecorder {
             let acc = &mut self.groups[g];
             let p = pos[i];
             let v = vel[i];
-            self.path_length[i] += p.distance(self.prev_pos[i]);
-            let speed = v.length();
+            self.path_length[i] += distance(p, self.prev_pos[i]);
+            let speed = length(v);
             acc.speed_sum += f64::from(speed);
             acc.speed_samples += 1;
 
@@ -271,7 +271,7 @@ impl MetricsRecorder {
             }
 
             if let Some((goal, goal_radius)) = goals.get(g).copied().flatten() {
-                let d = p.distance(goal);
+                let d = distance(p, goal);
                 if self.arrived_step[i] == NOT_ARRIVED && d <= goal_radius {
                     self.arrived_step[i] = step;
                 }

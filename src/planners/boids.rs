@@ -8,7 +8,7 @@ use super::lanes::{self, Lanes2};
 use super::{limit, GroupView, ParamSpec, Planner, StepContext};
 use crate::diagnose::{Explanation, NamedVector};
 use crate::flow_field::{self, FlowField};
-use crate::geometry::{unit_or, Aabb, Obstacle};
+use crate::geometry::{length, unit_or, Aabb, Obstacle};
 use crate::rng::Rng;
 use crate::scene::PathSpec;
 use crate::spatial::{CandidateRuns, Columns, Neighbour};
@@ -478,7 +478,7 @@ impl Boids {
         if prm.leader == Leader::First {
             let leader = group.agents.start as usize;
             if let Some(&v) = ctx.velocities.get(leader).filter(|_| !group.agents.is_empty()) {
-                if v.length() > MIN_HEADING_SPEED {
+                if length(v) > MIN_HEADING_SPEED {
                     self.leader_heading = unit_or(v, Vec2::X);
                 } else if self.leader_heading == Vec2::ZERO {
                     let to = group.goal.map_or(Vec2::X, |(g, _)| g - ctx.positions[leader]);
@@ -522,7 +522,7 @@ impl Boids {
         match goal {
             Some((goal, goal_radius)) => {
                 let to = goal - p;
-                let d = to.length();
+                let d = length(to);
                 // Inside the goal the agent parks: it brakes and only keeps its distance, so
                 // an arrived group spreads over the goal instead of piling onto its centre.
                 let parked = d <= goal_radius;
@@ -679,7 +679,7 @@ impl Boids {
     /// `desired − velocity` with the desired velocity along `direction` at max speed, limited.
     #[inline]
     fn steer_towards(&self, direction: Vec2, velocity: Vec2) -> Vec2 {
-        let len = direction.length();
+        let len = length(direction);
         if len <= 1e-9 {
             return Vec2::ZERO;
         }
@@ -992,7 +992,7 @@ impl Boids {
                 let mut acc = Vec2::ZERO;
                 let mut budget = prm.max_force;
                 for f in forces {
-                    let len = f.length();
+                    let len = length(f);
                     if len <= budget {
                         acc += f;
                         budget -= len;

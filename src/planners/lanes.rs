@@ -49,10 +49,10 @@ impl Lanes2 {
         self.x * self.x + self.y * self.y
     }
 
-    /// `Vec2::length` per lane.
+    /// `Vec2::length` per lane (the hardware square root: see [`crate::geometry::length`]).
     #[inline]
     pub fn length(self) -> Vec4 {
-        self.length_squared().sqrt()
+        sqrt(self.length_squared())
     }
 
     /// `v * s` per lane.
@@ -72,7 +72,7 @@ impl Lanes2 {
     pub fn limit(self, max: f32) -> Self {
         let len2 = self.length_squared();
         let over = len2.cmpgt(Vec4::splat(max * max)) & len2.cmpgt(Vec4::ZERO);
-        Self::select(over, self.scale(Vec4::splat(max) / len2.sqrt()), self)
+        Self::select(over, self.scale(Vec4::splat(max) / sqrt(len2)), self)
     }
 }
 
@@ -90,6 +90,13 @@ impl std::ops::Sub for Lanes2 {
     fn sub(self, rhs: Self) -> Self {
         Self { x: self.x - rhs.x, y: self.y - rhs.y }
     }
+}
+
+/// The square root per lane, in hardware (glam's `Vec4::sqrt` goes through libm: see
+/// [`crate::geometry::length`]).
+#[inline]
+pub fn sqrt(x: Vec4) -> Vec4 {
+    Vec4::from_array(x.to_array().map(f32::sqrt))
 }
 
 /// `x.clamp(min, max)` per lane (`f32::clamp`: below `min` → `min`, then above `max` → `max`).
