@@ -244,6 +244,25 @@ impl Firefly {
 
     /// The sideways avoidance acceleration if the position, half feeler or feeler tip is inside
     /// an obstacle.
+    /// The velocity the force gives, braked as the survey says (`plan` and `explain` share it).
+    fn braked_velocity(&self, vel: Vec2, acceleration: Vec2, heading: Vec2, survey: &Survey) -> Vec2 {
+        let prm = &self.params;
+        // §2.4 step 4: the velocity force while the safe distance holds; otherwise the speed
+        // is scaled to `brake × max_velocity`, still steering by the force.
+        let forced = limit(vel + acceleration, prm.max_velocity);
+        let mut v = if survey.blocker.is_some() {
+            unit_or(forced, heading) * (prm.max_velocity * prm.brake)
+        } else {
+            forced
+        };
+        // Fall in behind: a brighter firefly touching ahead or beside is one the feeler cannot
+        // see (its zone starts 10 px ahead); braking lets it pull ahead into the file.
+        if survey.brighter_in_contact_ahead {
+            v *= prm.brake;
+        }
+        v
+    }
+
     fn avoid(&self, ctx: &StepContext, p: Vec2, heading: Vec2) -> Vec2 {
         if ctx.obstacles.is_empty() || self.params.avoid_strength <= 0.0 {
             return Vec2::ZERO;
@@ -498,14 +517,8 @@ impl Planner for Firefly {
         if let Some((_, _, q)) = survey.blocker {
             e.points.push(NamedPoint::new("brighter firefly at the feeler tip", q));
         }
-        let forced = limit(vel + acceleration, prm.max_velocity);
-        let mut v = if survey.blocker.is_some() {
-            unit_or(forced, heading) * (prm.max_velocity * prm.brake)
-        } else {
-            forced
-        };
+        let v = self.braked_velocity(vel, acceleration, heading, &survey);
         if survey.brighter_in_contact_ahead {
-            v *= prm.brake;
             e.values.push(("falling in behind a brighter firefly it touches".into(), 1.0));
         }
         let avoid = self.avoid(ctx, p, unit_or(v, heading));
@@ -560,19 +573,7 @@ impl Planner for Firefly {
                 }
                 None => unit_or(target - p, heading) * prm.max_velocity,
             };
-            // §2.4 step 4: the velocity force while the safe distance holds; otherwise the speed
-            // is scaled to `brake × max_velocity`, still steering by the force.
-            let forced = limit(vel + acceleration, prm.max_velocity);
-            let mut v = if survey.blocker.is_some() {
-                unit_or(forced, heading) * (prm.max_velocity * prm.brake)
-            } else {
-                forced
-            };
-            // Fall in behind: a brighter firefly touching ahead or beside is one the feeler cannot
-            // see (its zone starts 10 px ahead); braking lets it pull ahead into the file.
-            if survey.brighter_in_contact_ahead {
-                v *= prm.brake;
-            }
+            let mut v = self.braked_velocity(vel, acceleration, heading, &survey);
             v += self.avoid(ctx, p, unit_or(v, heading));
             let free = limit(v, prm.max_velocity);
             new_velocities[k] = limit(keep_apart(free, &contacts), prm.max_velocity);
