@@ -483,18 +483,25 @@ mod tests {
         v
     }
 
+    /// `count` random points in a `w × h` world, then points exactly on cell borders and corners,
+    /// just beside them, and outside the world (two close together).
+    fn scattered_points(seed: u64, count: usize, (w, h): (f32, f32), cell: f32) -> Vec<Vec2> {
+        let mut rng = rand_pcg::Pcg32::seed_from_u64(seed);
+        let mut unit = || (rng.next_u32() >> 8) as f32 / (1u32 << 24) as f32;
+        let mut points: Vec<Vec2> = (0..count).map(|_| Vec2::new(unit() * w, unit() * h)).collect();
+        let rows = (h / cell) as u32;
+        for i in 0..=(w / cell) as u32 {
+            let corner = Vec2::new(i as f32, (i % rows) as f32) * cell;
+            points.extend([corner, corner + Vec2::new(-0.5, 0.5)]);
+        }
+        points.extend([Vec2::new(-3.0, 5.0), Vec2::new(-2.0, 5.5), Vec2::new(w + 4.0, h + 4.0)]);
+        points
+    }
+
     #[test]
     fn grid_equals_brute_force_including_cell_borders() {
-        let mut rng = rand_pcg::Pcg32::seed_from_u64(7);
-        let mut unit = || (rng.next_u32() >> 8) as f32 / (1u32 << 24) as f32;
         let (w, h, cell) = (500.0, 300.0, 25.0);
-        let mut points: Vec<Vec2> = (0..2000).map(|_| Vec2::new(unit() * w, unit() * h)).collect();
-        // Exactly on cell borders and corners, and outside the world.
-        for i in 0..=20 {
-            points.push(Vec2::new(i as f32 * cell, (i % 12) as f32 * cell));
-        }
-        points.push(Vec2::new(-5.0, 10.0));
-        points.push(Vec2::new(w + 5.0, h + 5.0));
+        let points = scattered_points(7, 2000, (w, h), cell);
         let mut grid = SpatialGrid::new(w, h, cell, points.len());
         grid.rebuild(&points, &[]);
         let mut out = Vec::new();
@@ -520,16 +527,9 @@ mod tests {
 
     #[test]
     fn pairs_equal_brute_force_across_cell_borders() {
-        let mut rng = rand_pcg::Pcg32::seed_from_u64(11);
-        let mut unit = || (rng.next_u32() >> 8) as f32 / (1u32 << 24) as f32;
         let (w, h, cell) = (300.0, 200.0, 20.0);
-        // Dense enough for many pairs, plus points on borders and outside the world.
-        let mut points: Vec<Vec2> = (0..1500).map(|_| Vec2::new(unit() * w, unit() * h)).collect();
-        for i in 0..=15 {
-            points.push(Vec2::new(i as f32 * cell, (i % 10) as f32 * cell));
-            points.push(Vec2::new(i as f32 * cell - 0.5, (i % 10) as f32 * cell + 0.5));
-        }
-        points.extend([Vec2::new(-3.0, 5.0), Vec2::new(-2.0, 5.5), Vec2::new(w + 4.0, h + 4.0)]);
+        // Dense enough for many pairs.
+        let points = scattered_points(11, 1500, (w, h), cell);
         let mut grid = SpatialGrid::new(w, h, cell, points.len());
         grid.rebuild(&points, &[]);
         for radius in [3.0, 8.0, cell] {
