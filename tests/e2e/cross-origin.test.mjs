@@ -145,7 +145,8 @@ describe('the <flock-path> snippet on a page of another origin', () => {
   }
 
   test('served by serve.py, the element renders, fires flockpath-ready and its methods work', async () => {
-    const { page, errors } = await openHostPage(hostPage(snippet));
+    // Wrapped in <p> as a Markdown tool that does not know the tag does: its fallback stays inside.
+    const { page, errors } = await openHostPage(hostPage(`<p>${snippet}</p>`));
     try {
       await page.waitForFunction(() => window.flockpathEvents.some((e) => e.type === 'flockpath-ready'), null, { timeout: 30_000 });
       await page.waitForFunction(() => document.querySelector('flock-path').steps > 5);
@@ -168,8 +169,10 @@ describe('the <flock-path> snippet on a page of another origin', () => {
       assert.equal(result.digest, playgroundDigest, 'the same run as in the playground');
       assert.equal(typeof result.arrived, 'number');
       assert.ok(snippet.includes(result.string), 'the snippet carries the scene string');
-      // Upgraded: the fallback text is no longer shown, and no message is.
-      assert.equal(await page.locator('[data-flockpath-status]').isVisible(), false);
+      // Upgraded: the fallback text is no longer shown (nor left outside the element), and no message is.
+      assert.equal(await page.locator('flock-path > [data-flockpath-status]').count(), 1);
+      assert.equal(await page.getByText('Loading the flockpath simulation').isVisible(), false);
+      assert.equal(await page.getByText('Open this scene in flockpath').isVisible(), false);
       assert.equal(await page.evaluate(visibleMessage), null);
       assert.ok(!(await page.evaluate(() => window.flockpathEvents.some((e) => e.type === 'flockpath-error'))));
       await screenshot(page, 'cross-origin-works');

@@ -197,7 +197,7 @@ export class FlockPathElement extends HTMLElement {
   }
 
   applyLayout() {
-    this.$('.bar').hidden = !this.hasAttribute('controls') || this.failed;
+    this.$('.bar').hidden = !this.hasAttribute('controls');
     this.style.width = this.getAttribute('width') ?? '';
     this.style.height = this.getAttribute('height') ?? '';
     const stage = this.$('.stage');
@@ -295,7 +295,8 @@ export class FlockPathElement extends HTMLElement {
     this.showMessage(text);
     // It stays (nothing else would fill the box) and takes the room it needs in the box.
     this.failed = true;
-    this.$('.bar').hidden = true;
+    // Buttons that could only fail go; slotted actions (embed.html's "Open in flockpath") stay.
+    for (const button of this.shadowRoot.querySelectorAll('.bar button')) button.hidden = true;
     this.$('.message').classList.add('fatal');
     this.$('.message').title = '';
     this.dispatchEvent(new CustomEvent('flockpath-error', { detail: text, bubbles: true, composed: true }));

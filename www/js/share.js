@@ -46,12 +46,13 @@ export function snippets(sceneString, { autoplay = true, page = location.href } 
     `<iframe src="${attr(embed.href)}" width="720" height="480" style="border:0;max-width:100%" ` +
     'title="flockpath simulation" allowfullscreen loading="lazy"></iframe>';
   // The element's children are fallback content: shown until the module upgrades it (then its
-  // shadow DOM replaces them), and all a reader sees when scripts do not run at all.
+  // shadow DOM replaces them), and all a reader sees when scripts do not run at all. Inline
+  // elements only: a Markdown tool that wraps the element in <p> would end it at a child <p>.
   const component =
     `<script type="module" src="${attr(module.href)}" onerror="${attr(MODULE_ERROR_HANDLER)}"></script>\n` +
     `<flock-path scene="${attr(sceneString)}"${autoplay ? ' autoplay' : ''} controls height="400px">\n` +
-    '  <p data-flockpath-status>Loading the flockpath simulation…</p>\n' +
-    `  <p><a href="${attr(link)}">Open this scene in flockpath</a></p>\n` +
+    '  <span data-flockpath-status>Loading the flockpath simulation…</span>\n' +
+    `  <a href="${attr(link)}">Open this scene in flockpath</a>\n` +
     '</flock-path>';
   return { link, iframe, component };
 }
