@@ -3,7 +3,8 @@
 // Fails readably: no CORS at all, a wrong URL (the module never runs: the snippet's own fallback
 // text turns into the reason), CORS on the module only, the wasm blocked or missing, a CSP
 // without 'wasm-unsafe-eval' (the element says why in its box and fires `flockpath-error`), and a
-// bad scene (message in the box, `flockpath-error`, the first preset runs instead).
+// bad scene (message in the box, `flockpath-error`, the first preset runs instead). The iframe
+// snippet needs no CORS at all.
 
 import { after, before, describe, test } from 'node:test';
 import assert from 'node:assert/strict';
@@ -81,6 +82,7 @@ describe('the <flock-path> snippet on a page of another origin', () => {
   let browser;
   let context;
   let snippet;
+  let iframeSnippet;
   let playgroundDigest;
   /** Which paths the flockpath test server sends CORS headers for (changed per case). */
   let corsFor = () => true;
@@ -105,6 +107,7 @@ describe('the <flock-path> snippet on a page of another origin', () => {
     }, simpleScene());
     await page.locator('#share').click();
     snippet = await page.locator('#share-component').inputValue();
+    iframeSnippet = await page.locator('#share-iframe').inputValue();
     await page.close();
     assert.ok(snippet.includes(`src="${servePy.url}js/flock-path.js"`), snippet);
   });
@@ -307,6 +310,32 @@ describe('the <flock-path> snippet on a page of another origin', () => {
       }
     });
   }
+
+  test('the iframe snippet needs no CORS; when its wasm is missing it says so and keeps its link', async () => {
+    corsFor = () => false;
+    const iframe = onTestServer(iframeSnippet).replace('loading="lazy"', '');
+    for (const missingWasm of [false, true]) {
+      const notFound = { status: 404, body: 'not found' };
+      if (missingWasm) await context.route('**/pkg/flockpath_bg.wasm', (route) => route.fulfill(notFound));
+      const { page } = await openHostPage(hostPage(iframe));
+      try {
+        const frame = await (await page.waitForSelector('iframe')).contentFrame();
+        if (!missingWasm) {
+          await frame.waitForFunction(() => window.flockpathEmbed?.steps > 5, null, { timeout: 30_000 });
+          assert.equal(await frame.evaluate(() => window.flockpathEmbed.scene().name), 'e2e');
+        } else {
+          const message = frame.locator('flock-path .message');
+          await message.waitFor({ timeout: 30_000 });
+          assert.match(await message.textContent(), /flockpath_bg\.wasm could not be loaded \([^)]*404/);
+          assert.ok(await frame.locator('#open-full').isVisible(), 'the link to the full page stays');
+          assert.equal(await frame.locator('flock-path .play').isVisible(), false);
+        }
+      } finally {
+        await page.close();
+        if (missingWasm) await context.unroute('**/pkg/flockpath_bg.wasm');
+      }
+    }
+  });
 
   test('with a bad scene, the box shows the core message, flockpath-error fires and the first preset runs', async () => {
     const bad = snippet.replace(/ scene="[^"]*"/, ' scene="no-such-preset"');
