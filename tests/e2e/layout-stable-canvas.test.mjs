@@ -1,6 +1,7 @@
 // The canvas keeps its size while the page around it changes: a WebM recording (the REC badge
 // overlays the canvas corner, so the video has one frame size throughout), a preset with a longer
-// or shorter description, a message in the banner. Checked on a laptop screen and on a phone.
+// or shorter description, a message in the banner, the timeline's note. Checked on a laptop
+// screen and on a phone.
 
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
@@ -79,6 +80,26 @@ for (const viewport of [{ width: 1280, height: 800 }, { width: 390, height: 844 
       assert.ok(await page.isHidden('#recording-indicator'), 'the badge goes away');
       await frames(page, 2);
       assert.deepEqual(await canvasSize(page), before, 'and the canvas still has its size after');
+
+      if (viewport.width === 1280) {
+        // The timeline's note (its checkpoints thinned: 20,000 agents for 420 steps fill the
+        // budget) overlays the canvas area instead of adding a row above it.
+        const crowd = simpleScene({
+          name: 'crowd',
+          width: 4000,
+          height: 4000,
+          goals: [],
+          groups: [{ ...simpleScene().groups[0], count: 20000, goal: null, spawn: { min: [0, 0], max: [4000, 4000] } }],
+        });
+        await page.evaluate((scene) => {
+          window.flockpath.load(scene);
+          window.flockpath.pause();
+          window.flockpath.step(420);
+        }, crowd);
+        await page.waitForSelector('#timeline-note:not([hidden])');
+        await frames(page, 2);
+        assert.deepEqual(await canvasSize(page), before, 'the canvas keeps its size while the timeline note shows');
+      }
       assertNoUnexpectedErrors(errors);
     } finally {
       await close();
