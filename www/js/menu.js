@@ -18,9 +18,11 @@ if (toggle && menu) {
     setOpen(!isOpen());
     if (isOpen()) menu.querySelector('a, button')?.focus();
   });
-  // Choosing an item (a link, Share…, Export…) closes the menu; its dialog then has the screen.
+  // Choosing an item (a link, Share…, Export…) closes the menu; its dialog then has the screen. An
+  // item marked data-menu-stays (Copy link, which answers "Link copied" in place) keeps it open.
   menu.addEventListener('click', (e) => {
-    if (e.target.closest('a, button')) setOpen(false);
+    const item = e.target.closest('a, button');
+    if (item && !item.hasAttribute('data-menu-stays')) setOpen(false);
   });
   document.addEventListener('keydown', (e) => {
     if (e.key === 'Escape' && isOpen()) {
