@@ -237,9 +237,10 @@ export function assertNoUnexpectedErrors(errors, allowed = []) {
 
 /**
  * Like `openPage`, for any page of the folder: opens `SUB_PATH + pathAndHash` and waits until
- * `ready` (a function evaluated in the page) returns true. Returns the same handles.
+ * `ready` (a function evaluated in the page) returns true; `hasTouch` as in `openPage`. Returns the
+ * same handles.
  */
-export async function openPath(pathAndHash, { ready, viewport } = {}) {
+export async function openPath(pathAndHash, { ready, viewport, hasTouch = false } = {}) {
   const server = await startServer();
   const profile = await mkdtemp(path.join(tmpdir(), 'flockpath-e2e-'));
   const context = await chromium.launchPersistentContext(profile, {
@@ -247,6 +248,7 @@ export async function openPath(pathAndHash, { ready, viewport } = {}) {
     headless: true,
     args: CHROMIUM_ARGS,
     viewport: viewport ?? { width: 1280, height: 800 },
+    hasTouch,
     acceptDownloads: true,
   });
   const page = context.pages()[0] ?? (await context.newPage());

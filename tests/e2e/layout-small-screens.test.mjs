@@ -6,52 +6,10 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { assertNoUnexpectedErrors, openPage, screenshot } from './helpers.mjs';
+import { assertOnScreen, box, controlsBeyondRightEdge, openMenuIfCollapsed, screenSize } from './layout-helpers.mjs';
 
 /** Header controls that must be reachable at every size. */
 const HEADER_CONTROLS = ['#preset', '#compare-link', '#tune-link', '#to-lab', '#share', '#export'];
-
-/** Box of `selector` in CSS px, or null when it is not rendered. */
-const box = (page, selector) =>
-  page.evaluate((sel) => {
-    const el = document.querySelector(sel);
-    if (!el) return null;
-    const r = el.getBoundingClientRect();
-    return r.width === 0 && r.height === 0 ? null : { left: r.left, top: r.top, right: r.right, bottom: r.bottom };
-  }, selector);
-
-const screenSize = (page) => page.evaluate(() => ({ width: innerWidth, height: innerHeight }));
-
-function assertOnScreen(b, screen, what) {
-  assert.ok(b, `${what} is rendered`);
-  const eps = 0.5;
-  assert.ok(
-    b.left >= -eps && b.top >= -eps && b.right <= screen.width + eps && b.bottom <= screen.height + eps,
-    `${what} lies within the ${screen.width}×${screen.height} screen: ${JSON.stringify(b)}`,
-  );
-}
-
-/** Controls whose box reaches beyond the screen's right edge (outside scrolling boxes). */
-const controlsBeyondRightEdge = (page) =>
-  page.evaluate(() => {
-    const out = [];
-    for (const el of document.querySelectorAll('button, a, input, select, textarea, output, canvas')) {
-      if (el.closest('dialog:not([open]), .table-scroll')) continue;
-      const r = el.getBoundingClientRect();
-      if (r.width === 0 && r.height === 0) continue;
-      if (r.left < -0.5 || r.right > innerWidth + 0.5) out.push(`${el.tagName.toLowerCase()}#${el.id} ${r.left}…${r.right}`);
-    }
-    return out;
-  });
-
-/** Opens the header menu when the header is collapsed into one; returns whether it was. */
-async function openMenuIfCollapsed(page) {
-  const toggle = await box(page, '#menu-toggle');
-  if (toggle === null) return false;
-  assert.equal(await page.getAttribute('#menu-toggle', 'aria-expanded'), 'false');
-  await page.tap('#menu-toggle');
-  assert.equal(await page.getAttribute('#menu-toggle', 'aria-expanded'), 'true');
-  return true;
-}
 
 /** Opens a dialog from the header (through the menu when collapsed) and checks it fits. */
 async function checkDialog(page, button, dialog, screen, name) {
