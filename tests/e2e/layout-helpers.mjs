@@ -52,3 +52,16 @@ export async function openMenuIfCollapsed(page) {
   assert.equal(await page.getAttribute('#menu-toggle', 'aria-expanded'), 'true');
   return true;
 }
+
+/**
+ * The window is `viewport`, the page needs no horizontal scrolling and every control lies within
+ * the screen's width; returns the screen size.
+ */
+export async function assertFitsWidth(page, viewport) {
+  const screen = await screenSize(page);
+  assert.deepEqual(screen, viewport);
+  const scrollWidth = await page.evaluate(() => document.scrollingElement.scrollWidth);
+  assert.ok(scrollWidth <= screen.width, `no horizontal overflow: the page is ${scrollWidth} px wide`);
+  assert.deepEqual(await controlsBeyondRightEdge(page), [], 'every control within the screen width');
+  return screen;
+}

@@ -2,13 +2,13 @@
 // Compare, the embed view and the course-notes example fit the screen's width (no horizontal
 // scrolling, every control — also inside <flock-path>'s shadow bar — within the width), the
 // header's controls are on screen (Compare folds them behind the playground's Menu on a phone),
-// and where a page is about a canvas, that canvas is wholly on the first screen. The lab's map
-// stays put while its status line changes.
+// and where a page is about a canvas, that canvas is wholly on the first screen and stays put
+// when a message comes and goes, or (the lab's map) while its status line changes.
 
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { assertNoUnexpectedErrors, openPath, screenshot } from './helpers.mjs';
-import { assertOnScreen, box, controlsBeyondRightEdge, openMenuIfCollapsed, screenSize } from './layout-helpers.mjs';
+import { assertFitsWidth, assertOnScreen, box, openMenuIfCollapsed } from './layout-helpers.mjs';
 
 const PAGES = [
   {
@@ -16,12 +16,14 @@ const PAGES = [
     ready: () => window.flockpathLab !== undefined,
     canvas: '#lab-canvas',
     header: ['#to-playground'],
+    banner: true,
   },
   {
     path: 'tune.html',
     ready: () => window.flocktune !== undefined,
     canvas: '#preview-canvas',
     header: ['#playground-link'],
+    banner: true,
   },
   {
     path: 'compare.html',
@@ -31,6 +33,7 @@ const PAGES = [
     tabletCanvas: '.pane:nth-child(2) canvas',
     header: ['#preset', '#copy-link', '#playground-link'],
     menu: true,
+    banner: true,
   },
   {
     path: 'embed.html',
@@ -55,11 +58,7 @@ for (const viewport of [{ width: 390, height: 844 }, { width: 768, height: 1024 
     test(`${spec.path} at ${viewport.width}×${viewport.height} (touch) fits the screen`, async () => {
       const { page, context, errors, close } = await openPath(spec.path, { ready: spec.ready, viewport, hasTouch: true });
       try {
-        const screen = await screenSize(page);
-        assert.deepEqual(screen, viewport);
-        const scrollWidth = await page.evaluate(() => document.scrollingElement.scrollWidth);
-        assert.ok(scrollWidth <= screen.width, `no horizontal overflow: the page is ${scrollWidth} px wide`);
-        assert.deepEqual(await controlsBeyondRightEdge(page), [], 'every control within the screen width');
+        const screen = await assertFitsWidth(page, viewport);
         const name = spec.path.replace(/\W+/g, '-');
         await screenshot(page, `layout-pages-${name}-${screen.width}`);
 
@@ -68,6 +67,21 @@ for (const viewport of [{ width: 390, height: 844 }, { width: 768, height: 1024 
           assertOnScreen(canvas, screen, `${spec.canvas} (on the first screen)`);
           assert.ok(canvas.bottom - canvas.top >= 200, `${spec.canvas} is a usable size (${canvas.bottom - canvas.top} px high)`);
           if (spec.tabletCanvas && screen.width > 640) assertOnScreen(await box(page, spec.tabletCanvas), screen, spec.tabletCanvas);
+        }
+
+        if (spec.banner) {
+          // A message (the page's own showMessage) floats over the page: the canvas stays put and
+          // Dismiss is on screen.
+          const before = await box(page, spec.canvas);
+          await page.evaluate(() =>
+            import(new URL('js/errors.js', location.href).href).then((m) =>
+              m.showMessage('the scene could not be loaded: a message long enough to wrap onto a second line on a phone')));
+          assert.deepEqual(await box(page, spec.canvas), before, 'the canvas with the message shown');
+          assertOnScreen(await box(page, '#banner-close'), screen, 'the message\'s Dismiss button');
+          await screenshot(page, `layout-pages-${name}-message-${screen.width}`);
+          await page.tap('#banner-close');
+          assert.equal(await box(page, '#banner'), null, 'Dismiss hides the message');
+          assert.deepEqual(await box(page, spec.canvas), before, 'the canvas after Dismiss');
         }
 
         const collapsed = await openMenuIfCollapsed(page);

@@ -6,7 +6,7 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { assertNoUnexpectedErrors, openPage, screenshot } from './helpers.mjs';
-import { assertOnScreen, box, controlsBeyondRightEdge, openMenuIfCollapsed, screenSize } from './layout-helpers.mjs';
+import { assertFitsWidth, assertOnScreen, box, openMenuIfCollapsed } from './layout-helpers.mjs';
 
 /** Header controls that must be reachable at every size. */
 const HEADER_CONTROLS = ['#preset', '#compare-link', '#tune-link', '#to-lab', '#share', '#export'];
@@ -34,11 +34,7 @@ for (const viewport of [{ width: 390, height: 844 }, { width: 768, height: 1024 
   test(`at ${viewport.width}×${viewport.height} (touch) everything fits the screen`, async () => {
     const { page, errors, close } = await openPage({ viewport, hasTouch: true });
     try {
-      const screen = await screenSize(page);
-      assert.deepEqual(screen, viewport);
-      const scrollWidth = await page.evaluate(() => document.scrollingElement.scrollWidth);
-      assert.ok(scrollWidth <= screen.width, `no horizontal overflow: the page is ${scrollWidth} px wide`);
-      assert.deepEqual(await controlsBeyondRightEdge(page), [], 'every control within the screen width');
+      const screen = await assertFitsWidth(page, viewport);
 
       const canvas = await box(page, '#scene-canvas');
       assert.ok(canvas.top < screen.height / 2, `the canvas starts in the upper half of the first screen (top ${canvas.top})`);
