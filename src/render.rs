@@ -63,6 +63,11 @@ const TRAIL_ALPHA: u8 = 90;
 /// device px) from its last drawn point: the open end stays hidden under the agent, stationary
 /// agents cost nothing, and fewer, longer segments are cheaper and do not darken at the joins.
 const TRAIL_SEGMENT_PX: (f32, f32) = (1.0, 4.0);
+/// Between frames (steps of a multi-step advance, a rebuilt trail) a segment spans at least this
+/// many device px: half the segments of small agents, and a 2 px chord cannot cut through
+/// anything the agent went round. A frame after a single step draws exactly as before: what the
+/// step did not trace, the frame does with [`TRAIL_SEGMENT_PX`].
+const TRACED_SEGMENT_MIN_PX: f32 = 2.0;
 /// Agents are drawn in bands of 2^this device rows, top to bottom, so that consecutive sprites
 /// touch nearby frame memory (10,000 agents in id order hit the cache far less well).
 const BAND_SHIFT: u32 = 3;
@@ -363,7 +368,8 @@ impl Renderer {
         if !self.trails_on || self.trails_stale || self.last_drawn.len() != world.agent_count() {
             return;
         }
-        self.trace(world.scene(), world.positions(), world.group_of(), TRAIL_ALPHA);
+        let positions = world.positions();
+        self.trace(world.scene(), positions, world.group_of(), TRACED_SEGMENT_MIN_PX, TRAIL_ALPHA);
         if self.pending.len() >= PENDING_SEGMENTS_MAX {
             self.draw_pending();
         }
@@ -414,7 +420,7 @@ impl Renderer {
             }
             let frames_ago = (now - step) as f32 / TRAIL_REBUILD_STEPS_PER_FRAME;
             let alpha = (f32::from(TRAIL_ALPHA) * libm::powf(keep, frames_ago)).round() as u8;
-            self.trace(world.scene(), &positions, world.group_of(), alpha);
+            self.trace(world.scene(), &positions, world.group_of(), TRACED_SEGMENT_MIN_PX, alpha);
             if self.pending.len() >= PENDING_SEGMENTS_MAX {
                 self.draw_pending();
             }
@@ -453,7 +459,7 @@ impl Renderer {
             self.fade_trails();
             // The segments traced by the steps since the last frame, then those from the last
             // traced points to where the agents are now (all of them when nothing was traced).
-            self.trace(scene, world.positions(), world.group_of(), TRAIL_ALPHA);
+            self.trace(scene, world.positions(), world.group_of(), 0.0, TRAIL_ALPHA);
             self.draw_pending();
             self.frame.copy_from_slice(&self.trails);
         } else {
@@ -564,10 +570,13 @@ impl Renderer {
     }
 
     /// Queues the segment from each agent's last traced point to `positions` (scene px) when it
-    /// has moved far enough, with opacity `alpha`.
-    fn trace(&mut self, scene: &Scene, positions: &[Vec2], group_of: &[u32], alpha: u8) {
+    /// has moved its group's [`TRAIL_SEGMENT_PX`] and at least `min_px` (device px), with
+    /// opacity `alpha`.
+    fn trace(&mut self, scene: &Scene, positions: &[Vec2], group_of: &[u32], min_px: f32, alpha: u8) {
         let view = self.view;
         let (lo, hi) = TRAIL_SEGMENT_PX;
+        let lo = lo.max(min_px);
+        let hi = hi.max(lo);
         self.trail_groups.clear();
         self.trail_groups.extend(
             scene.groups.iter().map(|g| (parse_color(&g.color), (g.agent_radius * view.scale).clamp(lo, hi))),
