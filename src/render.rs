@@ -363,16 +363,24 @@ impl Renderer {
     /// through whatever the agents went round. An agent adds a segment only once it has moved
     /// a body radius (1–4 device px) from its last one, so the cost is a comparison per agent and
     /// step plus the segments, and memory does not grow with the steps. Does nothing with trails
-    /// off or before the first frame of a run (that frame starts the trails).
+    /// off. After a new run, a reset or a resize the trails start here, so a script that loads a
+    /// scene and steps it before any frame still gets the whole trail.
     pub fn trace_step(&mut self, world: &World) {
-        if !self.trails_on || self.trails_stale || self.last_drawn.len() != world.agent_count() {
+        if !self.trails_on {
             return;
         }
-        let positions = world.positions();
-        self.trace(world.scene(), positions, world.group_of(), TRACED_SEGMENT_MIN_PX, TRAIL_ALPHA);
-        if self.pending.len() >= PENDING_SEGMENTS_MAX {
-            self.draw_pending();
+        let n = world.agent_count();
+        if self.trails_stale || self.last_drawn.len() != n || world.step_count() < self.last_step {
+            self.fit_scene(world.scene());
+            self.restart_trails(world);
+        } else {
+            let positions = world.positions();
+            self.trace(world.scene(), positions, world.group_of(), TRACED_SEGMENT_MIN_PX, TRAIL_ALPHA);
+            if self.pending.len() >= PENDING_SEGMENTS_MAX {
+                self.draw_pending();
+            }
         }
+        self.last_step = world.step_count();
     }
 
     /// The first step whose recorded positions [`Renderer::rebuild_trails`] draws for `world`:
@@ -1229,8 +1237,10 @@ mod tests {
         let (mut traced, mut chords) = (Renderer::new(900, 560), Renderer::new(900, 560));
         for r in [&mut traced, &mut chords] {
             r.set_trail_fade(0.0);
-            r.render(&world);
         }
+        // The chords start at the first frame; the traced trails at the first step, with no
+        // frame before it (a script stepping a scene it just loaded).
+        chords.render(&world);
         let agents = world.agent_count();
         for _ in 0..2000 {
             world.step();

@@ -1,15 +1,36 @@
-// Trails that tell the truth: after `step(2000)` in one call the trails go round the pillars
-// (every step leaves its segment, no chord from the old to the new positions), and a timeline
-// jump redraws the trails of the recorded steps before it instead of erasing them. Both read the
-// canvas pixels; pillar interiors and agent positions come from the page API and its
-// scene → canvas transform.
+// Trails that tell the truth: after `reset(); step(2000)` in one call (no frame between) the
+// trails go round the pillars (every step leaves its segment, no chord from the old to the new
+// positions), and a timeline jump redraws the trails of the recorded steps before it instead of
+// erasing them. Both read the canvas pixels; pillar interiors and agent positions come from the
+// page API and its scene → canvas transform.
 
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { assertNoUnexpectedErrors, frames, openPage, screenshot, snapshotCanvas } from './helpers.mjs';
 
-/** Loads the `pillars` preset paused at step 0 and lets a frame start its trails. */
+/**
+ * Loads the `pillars` preset paused at step 0, lets a frame start its trails, and installs the
+ * pixel test both checks use: `__e2eTint(image, x, y, ground)` is whether canvas pixel (x, y)
+ * moved from the `ground` colour at least 6 levels in a direction within 60° of the first
+ * group's colour (a trail is that colour blended over whatever lies below).
+ */
 async function loadPillars(page) {
+  await page.evaluate(() => {
+    window.__e2eTint = (image, x, y, ground) => {
+      if (x < 0 || y < 0 || x >= image.width || y >= image.height) return false;
+      const hex = window.flockpath.scene().groups[0].color;
+      const group = [1, 3, 5].map((i) => parseInt(hex.slice(i, i + 2), 16));
+      const i = (y * image.width + x) * 4;
+      const d = [0, 1, 2].map((k) => image.data[i + k] - ground[k]);
+      const g = group.map((c, k) => c - ground[k]);
+      const dn = Math.hypot(...d);
+      return dn > 6 && d.reduce((s, c, k) => s + c * g[k], 0) > 0.5 * dn * Math.hypot(...g);
+    };
+    window.__e2ePixel = (image, x, y) => {
+      const i = (y * image.width + x) * 4;
+      return [image.data[i], image.data[i + 1], image.data[i + 2]];
+    };
+  });
   await page.selectOption('#preset', 'pillars');
   await page.evaluate(() => {
     window.flockpath.pause();
@@ -19,54 +40,55 @@ async function loadPillars(page) {
 }
 
 /**
- * In the page: counts the pixels of snapshot `name` inside each circular obstacle, at least
- * `inset` canvas px from its border, that are tinted towards the first group's colour (the
- * trail is that colour blended over the obstacle), and the group-tinted pixels over the
- * background in the whole canvas.
+ * In the page: counts the group-tinted pixels of snapshot `name` inside each circular obstacle,
+ * at least `inset` canvas px from its border, and over the background in the whole canvas.
  */
 async function tintedPixels(page, name, inset) {
   return page.evaluate(([key, insetPx]) => {
     const image = window.__e2eSnapshots[key];
     const api = window.flockpath;
-    const scene = api.scene();
     const { scale, offsetX, offsetY } = api.view();
-    const hex = scene.groups[0].color;
-    const group = [1, 3, 5].map((i) => parseInt(hex.slice(i, i + 2), 16));
-    const at = (x, y) => {
-      const i = (y * image.width + x) * 4;
-      return [image.data[i], image.data[i + 1], image.data[i + 2]];
-    };
-    // Moved from `ground` at least 6 levels, in a direction within 60° of the group's colour.
-    const tinted = (p, ground) => {
-      const d = p.map((c, k) => c - ground[k]);
-      const g = group.map((c, k) => c - ground[k]);
-      const dn = Math.hypot(...d);
-      const gn = Math.hypot(...g);
-      return dn > 6 && d.reduce((s, c, k) => s + c * g[k], 0) > 0.5 * dn * gn;
-    };
     let inside = 0;
     let interior = 0;
-    for (const o of scene.obstacles) {
+    for (const o of api.scene().obstacles) {
       if (o.shape !== 'circle') continue;
       const cx = o.center[0] * scale + offsetX;
       const cy = o.center[1] * scale + offsetY;
       const reach = o.radius * scale - insetPx;
-      const fill = at(Math.floor(cx), Math.floor(cy));
+      const fill = window.__e2ePixel(image, Math.floor(cx), Math.floor(cy));
       for (let y = Math.floor(cy - reach); y <= Math.ceil(cy + reach); y += 1) {
         for (let x = Math.floor(cx - reach); x <= Math.ceil(cx + reach); x += 1) {
           if (Math.hypot(x + 0.5 - cx, y + 0.5 - cy) > reach) continue;
           interior += 1;
-          if (tinted(at(x, y), fill)) inside += 1;
+          if (window.__e2eTint(image, x, y, fill)) inside += 1;
         }
       }
     }
-    const background = at(Math.floor(offsetX + 2), Math.floor(offsetY + 2));
+    const background = window.__e2ePixel(image, Math.floor(offsetX + 2), Math.floor(offsetY + 2));
     let outside = 0;
     for (let y = 0; y < image.height; y += 1) {
-      for (let x = 0; x < image.width; x += 1) if (tinted(at(x, y), background)) outside += 1;
+      for (let x = 0; x < image.width; x += 1) if (window.__e2eTint(image, x, y, background)) outside += 1;
     }
     return { inside, interior, outside };
   }, [name, inset]);
+}
+
+/** In the page: how many of `points` (scene px) have a group-tinted pixel of snapshot `name` within 3 px. */
+async function pointsOnTrails(page, name, points) {
+  return page.evaluate(([key, pts]) => {
+    const image = window.__e2eSnapshots[key];
+    const { scale, offsetX, offsetY } = window.flockpath.view();
+    const background = window.__e2ePixel(image, Math.floor(offsetX + 2), Math.floor(offsetY + 2));
+    const near = ([sx, sy]) => {
+      const cx = Math.round(sx * scale + offsetX);
+      const cy = Math.round(sy * scale + offsetY);
+      for (let y = cy - 3; y <= cy + 3; y += 1) {
+        for (let x = cx - 3; x <= cx + 3; x += 1) if (window.__e2eTint(image, x, y, background)) return true;
+      }
+      return false;
+    };
+    return pts.filter(near).length;
+  }, [name, points]);
 }
 
 test('after step(2000) in one call no trail lies inside a pillar', async () => {
@@ -79,7 +101,12 @@ test('after step(2000) in one call no trail lies inside a pillar', async () => {
     });
     assert.equal(shape.circles, 16, 'pillars has 16 circular pillars');
     assert.equal(shape.trails, true, 'trails are on');
-    assert.equal(await page.evaluate(() => window.flockpath.step(2000)), 2000);
+    // Reset and step in one go, no frame between: a course note scripting a scene.
+    const steps = await page.evaluate(() => {
+      window.flockpath.reset();
+      return window.flockpath.step(2000);
+    });
+    assert.equal(steps, 2000);
     await frames(page, 2);
     await snapshotCanvas(page, 'after-2000');
     await screenshot(page, 'trails-step-2000');
@@ -107,33 +134,7 @@ test('a timeline jump redraws the trails of the recorded steps before it', async
       return positions;
     });
     await frames(page, 2);
-    const count = () =>
-      page.evaluate((points) => {
-        const image = window.__e2eSnapshots.now;
-        const { scale, offsetX, offsetY } = window.flockpath.view();
-        const background = (() => {
-          const i = (Math.floor(offsetY + 2) * image.width + Math.floor(offsetX + 2)) * 4;
-          return [image.data[i], image.data[i + 1], image.data[i + 2]];
-        })();
-        const hex = window.flockpath.scene().groups[0].color;
-        const group = [1, 3, 5].map((i) => parseInt(hex.slice(i, i + 2), 16));
-        // A pixel within 3 px of where the agent was that is tinted towards the group's colour.
-        const near = ([sx, sy]) => {
-          const cx = Math.round(sx * scale + offsetX);
-          const cy = Math.round(sy * scale + offsetY);
-          for (let y = cy - 3; y <= cy + 3; y += 1) {
-            for (let x = cx - 3; x <= cx + 3; x += 1) {
-              const i = (y * image.width + x) * 4;
-              const d = [0, 1, 2].map((k) => image.data[i + k] - background[k]);
-              const g = group.map((c, k) => c - background[k]);
-              const dot = d.reduce((s, c, k) => s + c * g[k], 0);
-              if (Math.hypot(...d) > 6 && dot > 0.5 * Math.hypot(...d) * Math.hypot(...g)) return true;
-            }
-          }
-          return false;
-        };
-        return points.filter(near).length;
-      }, before);
+    const count = () => pointsOnTrails(page, 'now', before);
     await snapshotCanvas(page, 'now');
     const live = await count();
     assert.ok(live >= 0.8 * before.length, `before the jump ${live}/${before.length} step-200 positions have a trail`);
