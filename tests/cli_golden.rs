@@ -463,3 +463,70 @@ fn usage_mistakes_exit_2_and_failures_exit_1() {
         assert!(!stderr.trim().is_empty(), "{args:?} failed without a message");
     }
 }
+
+/// Every command has `--help`, and `flockpath help COMMAND` prints the same text (tune included).
+#[test]
+fn every_command_has_help() {
+    let run = |args: &[&str]| {
+        let output =
+            Command::new(env!("CARGO_BIN_EXE_flockpath")).args(args).output().expect("the binary runs");
+        assert!(output.status.success(), "{args:?}: {}", String::from_utf8_lossy(&output.stderr));
+        String::from_utf8(output.stdout).expect("UTF-8 help")
+    };
+    let top = run(&["--help"]);
+    assert!(
+        top.contains("Exit codes") && top.contains("2 usage mistake") && top.contains("1 failure"),
+        "{top}"
+    );
+    for command in ["presets", "preset", "run", "url", "scene", "bench", "optimize", "tune"] {
+        assert!(top.contains(command), "{command} missing from --help:\n{top}");
+        let help = run(&["help", command]);
+        assert!(help.contains(&format!("flockpath {command}")), "help {command}:\n{help}");
+        assert_eq!(run(&[command, "--help"]), help, "{command} --help differs from help {command}");
+    }
+}
+
+/// stderr is not a terminal here: no progress bar is drawn, while tune's log lines stay.
+#[test]
+fn no_progress_bar_off_a_terminal() {
+    let run =
+        |args: &[&str]| Command::new(env!("CARGO_BIN_EXE_flockpath")).args(args).output().expect("runs");
+    let optimize = run(&[
+        "optimize",
+        "--functions",
+        "sphere",
+        "--dim",
+        "2",
+        "--pop",
+        "4",
+        "--iters",
+        "2",
+        "--runs",
+        "3",
+    ]);
+    assert!(optimize.status.success());
+    assert!(
+        optimize.stderr.is_empty(),
+        "optimize drew on stderr: {:?}",
+        String::from_utf8_lossy(&optimize.stderr)
+    );
+    let tune = run(&[
+        "tune",
+        "--behaviour",
+        "b1",
+        "--environment",
+        "e1",
+        "--seed",
+        "1",
+        "--generations",
+        "2",
+        "--population",
+        "4",
+        "--frames",
+        "10",
+    ]);
+    let stderr = String::from_utf8_lossy(&tune.stderr);
+    assert!(tune.status.success(), "{stderr}");
+    assert_eq!(stderr.lines().filter(|l| l.starts_with("gen ")).count(), 2, "{stderr}");
+    assert!(!stderr.contains('\r') && !stderr.contains("\u{1b}["), "a bar was drawn: {stderr:?}");
+}
