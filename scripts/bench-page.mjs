@@ -21,13 +21,13 @@
 // density), goal scaled with it. A scene the page refuses prints "refused: <message>"; a case
 // whose one step would take seconds is skipped and says why.
 
-import { createServer } from 'node:http';
-import { chmod, mkdtemp, readFile, rm, stat, writeFile } from 'node:fs/promises';
+import { chmod, mkdtemp, rm, writeFile } from 'node:fs/promises';
 import { execFileSync } from 'node:child_process';
 import { tmpdir } from 'node:os';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
+import { serveStatic } from './static-server.mjs';
 
 const ROOT = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
 const args = process.argv.slice(2);
@@ -41,10 +41,6 @@ const CHROMIUM_ARGS = [
   '--no-sandbox', '--disable-dev-shm-usage', '--disable-gpu', '--disable-quic', '--no-first-run',
   '--disable-background-networking', '--disable-component-update', '--disable-sync',
 ];
-const MIME = {
-  '.html': 'text/html', '.js': 'text/javascript', '.css': 'text/css', '.json': 'application/json',
-  '.wasm': 'application/wasm',
-};
 const PLANNERS = ['boids', 'pso', 'firefly', 'forces', 'igsa'];
 const SIZES = [1000, 10000, 100000];
 const LAYOUTS = ['spread', 'packed'];
@@ -65,24 +61,8 @@ const profiling = !args.includes('--no-profile');
 const jsonFile = flag('--json', null);
 const BEFORE = flag('--before', null) && path.resolve(flag('--before'));
 
-const server = createServer(async (req, res) => {
-  let pathname = decodeURIComponent(new URL(req.url, 'http://x').pathname);
-  let root = WWW;
-  if (BEFORE && pathname.startsWith('/before/')) {
-    root = BEFORE;
-    pathname = pathname.slice('/before'.length);
-  }
-  const file = path.join(root, pathname);
-  try {
-    if (!file.startsWith(root) || !(await stat(file)).isFile()) throw new Error('not a file');
-    res.writeHead(200, { 'content-type': MIME[path.extname(file)] ?? 'application/octet-stream' });
-    res.end(await readFile(file));
-  } catch {
-    res.writeHead(404).end('not found');
-  }
-});
-await new Promise((resolve) => server.listen(0, '127.0.0.1', resolve));
-const origin = `http://127.0.0.1:${server.address().port}`;
+const server = await serveStatic(BEFORE ? { '/': WWW, '/before/': BEFORE } : { '/': WWW });
+const origin = server.origin;
 const VARIANTS = BEFORE ? [['before', `${origin}/before/index.html`], ['after', `${origin}/index.html`]] : [['', `${origin}/index.html`]];
 
 // Chromium through `taskset -c 0`: a wrapper script as the executable (Playwright appends its
@@ -417,7 +397,7 @@ try {
   failed = true;
 } finally {
   await context?.close().catch(() => {});
-  server.close();
+  await server.close();
   await rm(profileDir, { recursive: true, force: true });
 }
 process.exit(failed ? 1 : 0);
