@@ -201,24 +201,36 @@ async function playFor(ms) {
     });
     const elapsed = performance.now() - t0;
     const intervals = stamps.slice(1).map((t, i) => t - stamps[i]);
-    return { intervals, steps: stepNow() - steps0, elapsed };
+    return { intervals, frames: stamps.length, steps: stepNow() - steps0, elapsed };
   }, ms);
 }
 
-/** Pause-click latencies: plays, clicks Pause at the button's centre, repeats. */
+/**
+ * Pause-click latencies: plays, presses and releases the mouse on Pause at a random moment,
+ * repeats. The press and release go straight through CDP: Playwright's `click` moves the mouse
+ * first and waits for the move to be handled, which would time every press to the page's idle
+ * moment right after a frame.
+ */
 async function pauseClicks() {
   const box = await page.locator('#play').boundingBox();
   const x = box.x + box.width / 2;
   const y = box.y + box.height / 2;
+  await page.mouse.move(x, y);
+  const cdp = await page.context().newCDPSession(page);
+  const mouse = (type) => cdp.send('Input.dispatchMouseEvent', { type, x, y, button: 'left', clickCount: 1 });
   const results = [];
   for (let k = 0; k < CLICKS; k += 1) {
-    await page.evaluate(() => window.flockpath.play());
-    await sleep(600);
-    const before = await page.evaluate(() => window.__benchPage.clicks.length);
-    await page.mouse.click(x, y);
+    const before = await page.evaluate(() => {
+      window.flockpath.play();
+      return window.__benchPage.clicks.length;
+    });
+    await sleep(400 + Math.random() * 400);
+    await mouse('mousePressed');
+    await mouse('mouseReleased');
     await page.waitForFunction((n) => window.__benchPage.clicks.length > n, before, { polling: 50, timeout: 60_000 });
     results.push(await page.evaluate(() => window.__benchPage.clicks.at(-1)));
   }
+  await cdp.detach().catch(() => {});
   return results;
 }
 
@@ -305,7 +317,7 @@ async function runCase(planner, n, layout, skipReason, [variant, url]) {
   result.fps_p5 = played.intervals.length ? 1000 / quantile(played.intervals, 0.95) : 1000 / played.elapsed;
   result.frame_p95_ms = quantile(played.intervals, 0.95);
   result.steps_per_s = (played.steps * 1000) / played.elapsed;
-  result.steps_per_frame = played.intervals.length ? played.steps / played.intervals.length : played.steps;
+  result.steps_per_frame = played.steps / Math.max(1, played.frames);
   const clicks = await pauseClicks();
   result.pause_ms = clicks.map((c) => c.handled);
   result.pause_frame_ms = clicks.map((c) => c.frame);

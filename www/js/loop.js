@@ -1,8 +1,12 @@
-// The frame loop: requestAnimationFrame → step(stepsPerFrame) → render() → putImageData over a
-// view of the wasm pixel buffer. Rust owns simulated time; wall-clock time only feeds the FPS and
-// the frame budget below. A hidden tab does not step (Page Visibility), and a frame never
-// "catches up" on lost time: it steps at most `stepsPerFrame` fixed steps, however long the tab
-// was away.
+// The frame loop: requestAnimationFrame → render() → putImageData over a view of the wasm pixel
+// buffer, then the frame's steps in a task of their own right after it. Rust owns simulated
+// time; wall-clock time only feeds the FPS and the frame budget below. A hidden tab does not step
+// (Page Visibility), and a frame never "catches up" on lost time: it steps at most
+// `stepsPerFrame` fixed steps, however long the tab was away.
+//
+// Stepping apart from drawing: the browser runs waiting input (a click on Pause, a key) between
+// the two tasks, so a click waits for the longer of the two, not for both; and a Pause that
+// arrives between them stops the steps that were about to run.
 //
 // Frame budget: the Speed slider asks for `stepsPerFrame` steps per frame, but a frame runs a
 // further step only while the simulation work so far plus the last step's cost fits in
@@ -117,22 +121,27 @@ function setupPaceReadout(app) {
   };
 }
 
+const stepping = () => !document.hidden && document.visibilityState !== 'hidden';
+
 /** Starts the loop; `onFrame(now)` runs after every frame (metrics, FPS). */
 export function startLoop(app, canvas, onFrame) {
   const ctx = canvas.getContext('2d', { alpha: false });
   const pace = setupPaceReadout(app);
+  // The frame's steps run in a message task queued by the frame (not a timer: no clamping).
+  const channel = new MessageChannel();
+  let queued = false;
+  channel.port1.onmessage = () => {
+    queued = false;
+    if (app.crashed || !app.playing || !stepping()) return;
+    const wanted = app.stepsPerFrame;
+    const { done, ok } = stepWithinBudget(app, wanted);
+    // A refused step (not a panic) would repeat every frame: pause and let the banner explain.
+    if (!ok) app.setPlaying(false);
+    else pace.note(performance.now(), wanted, done);
+    app.dirty = true;
+  };
   const frame = (now) => {
     if (app.crashed) return;
-    if (app.playing && document.visibilityState !== 'hidden') {
-      const wanted = app.stepsPerFrame;
-      const { done, ok } = stepWithinBudget(app, wanted);
-      // A refused step (not a panic) would repeat every frame: pause and let the banner explain.
-      if (!ok) app.setPlaying(false);
-      else pace.note(now, wanted, done);
-      app.dirty = true;
-    } else {
-      pace.idle();
-    }
     if (app.dirty) {
       app.dirty = false;
       app.guard((sim) => {
@@ -141,6 +150,14 @@ export function startLoop(app, canvas, onFrame) {
       });
     }
     onFrame(now);
+    if (app.playing && stepping()) {
+      if (!queued) {
+        queued = true;
+        channel.port2.postMessage(null);
+      }
+    } else {
+      pace.idle();
+    }
     requestAnimationFrame(frame);
   };
   requestAnimationFrame(frame);
