@@ -3,7 +3,7 @@
 // same run. The crowd is chosen so that 20 steps can never fit in the budget: 20,000 Boids
 // agents on the 800×500 px field have ~400 neighbours each, so 20 steps are some 160 million
 // neighbour visits, far beyond 10 ms on any machine (no timing is asserted: only that fewer than
-// the requested steps ran, which is what the readout reports).
+// the requested steps ran, which is what the readout reports). Showing the readout moves nothing.
 
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
@@ -40,6 +40,8 @@ test('a crowd too big for the requested speed runs fewer steps per frame and say
       window.flockpath.pause();
       window.flockpath.load(scene);
     }, BIG);
+    const canvasBox = () => page.evaluate(() => JSON.stringify(document.getElementById('scene-canvas').getBoundingClientRect()));
+    const boxBefore = await canvasBox();
     await setSpeed(page, 20);
     assert.equal(await page.textContent('#spf-value'), '20×');
     const before = await page.evaluate(() => window.flockpath.timeline().step);
@@ -53,6 +55,7 @@ test('a crowd too big for the requested speed runs fewer steps per frame and say
     assert.ok(match, `readout text: ${shown.text}`);
     assert.ok(Number(match[1]) < 20, `fewer than the 20 requested steps per frame: ${shown.text}`);
     assert.match(await page.getAttribute('#spf-actual', 'title'), /Speed asks for 20 steps per frame/);
+    assert.equal(await canvasBox(), boxBefore, 'showing the readout does not move the canvas');
 
     // Steps per painted frame, counted over a few frames: fewer than asked, but the run goes on.
     const counted = await page.evaluate(

@@ -22,7 +22,10 @@ export const SIM_BUDGET_MS = 10;
 const PACE_REFRESH_MS = 500;
 
 const STYLE = `
-.spf-actual { display: inline-block; min-width: 9.5em; color: #8a5a00; font-variant-numeric: tabular-nums; }
+.slider-inline:has(.spf-actual) { position: relative; }
+.spf-actual { position: absolute; left: 0; top: 100%; z-index: 1; white-space: nowrap; pointer-events: none;
+  font-size: 0.75rem; color: #8a5a00; background: #fff6e0; border-radius: 4px; padding: 0 0.3em;
+  font-variant-numeric: tabular-nums; }
 .spf-actual.idle { visibility: hidden; }
 `;
 
@@ -61,15 +64,15 @@ export function stepWithinBudget(app, wanted, budgetMs = SIM_BUDGET_MS) {
 }
 
 /**
- * The "steps per frame run" readout beside the Speed slider: shown while frames run fewer steps
- * than Speed asks for. `app.pace` holds the last window's figures for the page API and tests.
+ * The "steps per frame run" readout under the Speed slider: shown while frames run fewer steps
+ * than Speed asks for. It floats over the page (absolute), so showing it never moves the layout.
+ * `app.pace` holds the last window's figures.
  */
 function setupPaceReadout(app) {
   const style = document.createElement('style');
   style.textContent = STYLE;
   document.head.append(style);
   const readout = Object.assign(document.createElement('output'), { id: 'spf-actual', className: 'spf-actual idle' });
-  readout.setAttribute('aria-live', 'polite');
   document.getElementById('spf-value')?.after(readout);
   let frames = 0;
   let wanted = 0;
