@@ -3,12 +3,12 @@
 // Usage: node scripts/bench-browser.mjs [--quick] [--native target/bench-native.json] [--json FILE]
 // Run it under `taskset -c 0` (scripts/bench.sh does): Chromium inherits the pinning.
 
-import { createServer } from 'node:http';
-import { mkdtemp, readFile, rm, stat, writeFile } from 'node:fs/promises';
+import { mkdtemp, readFile, rm, writeFile } from 'node:fs/promises';
 import { tmpdir } from 'node:os';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
+import { serveStatic } from './static-server.mjs';
 
 const ROOT = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
 const WWW = path.join(ROOT, 'www');
@@ -16,7 +16,6 @@ const CHROMIUM_ARGS = [
   '--no-sandbox', '--disable-dev-shm-usage', '--disable-gpu', '--disable-quic', '--no-first-run',
   '--disable-background-networking', '--disable-component-update', '--disable-sync',
 ];
-const MIME = { '.html': 'text/html', '.js': 'text/javascript', '.json': 'application/json', '.wasm': 'application/wasm' };
 
 const args = process.argv.slice(2);
 const flag = (name) => {
@@ -25,18 +24,8 @@ const flag = (name) => {
 };
 const quick = args.includes('--quick');
 
-const server = createServer(async (req, res) => {
-  const file = path.join(WWW, decodeURIComponent(new URL(req.url, 'http://x').pathname));
-  try {
-    if (!file.startsWith(WWW) || !(await stat(file)).isFile()) throw new Error('not a file');
-    res.writeHead(200, { 'content-type': MIME[path.extname(file)] ?? 'application/octet-stream' });
-    res.end(await readFile(file));
-  } catch {
-    res.writeHead(404).end('not found');
-  }
-});
-await new Promise((resolve) => server.listen(0, '127.0.0.1', resolve));
-const url = `http://127.0.0.1:${server.address().port}/bench.html${quick ? '#quick' : ''}`;
+const server = await serveStatic({ '/': WWW });
+const url = `${server.origin}/bench.html${quick ? '#quick' : ''}`;
 
 const profile = await mkdtemp(path.join(tmpdir(), 'flockpath-bench-'));
 let failed = false;
@@ -91,7 +80,7 @@ try {
   failed = true;
 } finally {
   await context.close().catch(() => {});
-  server.close();
+  await server.close();
   await rm(profile, { recursive: true, force: true });
 }
 process.exit(failed ? 1 : 0);

@@ -6,12 +6,12 @@
 //          [--population 200] [--generations 30] [--frames 400] [--json FILE]
 // Build the page first (bash scripts/build-wasm.sh); run under `taskset -c 0` to pin Chromium.
 
-import { createServer } from 'node:http';
-import { mkdtemp, readFile, rm, stat, writeFile } from 'node:fs/promises';
+import { mkdtemp, rm, writeFile } from 'node:fs/promises';
 import { tmpdir } from 'node:os';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
+import { serveStatic } from './static-server.mjs';
 
 const ROOT = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
 const WWW = path.join(ROOT, 'www');
@@ -19,10 +19,6 @@ const CHROMIUM_ARGS = [
   '--no-sandbox', '--disable-dev-shm-usage', '--disable-gpu', '--disable-quic', '--no-first-run',
   '--disable-background-networking', '--disable-component-update', '--disable-sync',
 ];
-const MIME = {
-  '.html': 'text/html', '.js': 'text/javascript', '.css': 'text/css', '.json': 'application/json',
-  '.wasm': 'application/wasm',
-};
 
 const args = process.argv.slice(2);
 const flag = (name, fallback) => {
@@ -38,19 +34,9 @@ const setup = {
   frames: flag('--frames', '400'),
 };
 
-const server = createServer(async (req, res) => {
-  const file = path.join(WWW, decodeURIComponent(new URL(req.url, 'http://x').pathname));
-  try {
-    if (!file.startsWith(WWW) || !(await stat(file)).isFile()) throw new Error('not a file');
-    res.writeHead(200, { 'content-type': MIME[path.extname(file)] ?? 'application/octet-stream' });
-    res.end(await readFile(file));
-  } catch {
-    res.writeHead(404).end('not found');
-  }
-});
-await new Promise((resolve) => server.listen(0, '127.0.0.1', resolve));
+const server = await serveStatic({ '/': WWW });
 const query = new URLSearchParams({ ...setup, autostart: '1' });
-const url = `http://127.0.0.1:${server.address().port}/tune.html?${query}`;
+const url = `${server.origin}/tune.html?${query}`;
 
 const profile = await mkdtemp(path.join(tmpdir(), 'flockpath-tune-bench-'));
 let failed = false;
@@ -106,7 +92,7 @@ try {
   failed = true;
 } finally {
   await context.close();
-  server.close();
+  await server.close();
   await rm(profile, { recursive: true, force: true });
 }
 process.exit(failed ? 1 : 0);

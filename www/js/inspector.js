@@ -43,12 +43,14 @@ export function setupInspector(app) {
   const refresh = () => {
     const stuck = app.guard((sim) => sim.stuck_agents().length);
     if (stuck.ok) {
-      stuckCount.textContent = stuck.value === 0 ? '' : `${stuck.value} agent${stuck.value === 1 ? '' : 's'} stuck`;
+      const text = stuck.value === 0 ? '' : `${stuck.value} agent${stuck.value === 1 ? '' : 's'} stuck`;
+      // Written only when it changed: a write restyles the page (this runs four times a second).
+      if (stuckCount.textContent !== text) stuckCount.textContent = text;
     }
     const result = app.guard((sim) => JSON.parse(sim.explanation_json()));
     const e = result.ok ? result.value : null;
-    panel.hidden = e === null;
-    hint.hidden = e !== null;
+    if (panel.hidden !== (e === null)) panel.hidden = e === null;
+    if (hint.hidden !== (e !== null)) hint.hidden = e !== null;
     if (e === null) return;
     const group = app.scene.groups?.[e.group];
     title.textContent = `Agent ${e.agent} · ${group?.name ?? `group ${e.group + 1}`} (${e.planner})`;

@@ -1,7 +1,33 @@
-// The frame loop: requestAnimationFrame → step(stepsPerFrame) → render() → putImageData over a
-// view of the wasm pixel buffer. Rust owns simulated time; wall-clock time only feeds the FPS.
-// A hidden tab does not step (Page Visibility), and a frame never "catches up" on lost time: it
-// always steps `stepsPerFrame` fixed steps, however long the tab was away.
+// The frame loop: requestAnimationFrame → render() → putImageData over a view of the wasm pixel
+// buffer, then the frame's steps in a task of their own right after it. Rust owns simulated
+// time; wall-clock time only feeds the FPS and the frame budget below. A hidden tab does not step
+// (Page Visibility), and a frame never "catches up" on lost time: it steps at most
+// `stepsPerFrame` fixed steps, however long the tab was away.
+//
+// Stepping apart from drawing: the browser runs waiting input (a click on Pause, a key) between
+// the two tasks, so a click waits for the longer of the two, not for both; and a Pause that
+// arrives between them stops the steps that were about to run.
+//
+// Frame budget: the Speed slider asks for `stepsPerFrame` steps per frame, but a frame runs a
+// further step only while the simulation work so far plus the last step's cost fits in
+// SIM_BUDGET_MS (and no input is waiting), so a big crowd at 10× never freezes the page: it runs
+// fewer steps per frame, and the toolbar says so ("→ 1.3× (frame budget)"). The first step of a
+// frame always runs. Which steps run is unchanged (fixed steps, same seed, same run); only how
+// many run per wall-clock frame.
+
+/** Simulation work a frame may do before it stops stepping (ms): with the render and the panels
+ * a 60 Hz frame (16.7 ms) keeps room to spare. */
+export const SIM_BUDGET_MS = 10;
+/** How often the "steps per frame run" readout may change (ms). */
+const PACE_REFRESH_MS = 500;
+
+const STYLE = `
+.slider-inline:has(.spf-actual) { position: relative; }
+.spf-actual { position: absolute; left: 0; top: 100%; z-index: 1; white-space: nowrap; pointer-events: none;
+  font-size: 0.75rem; color: #8a5a00; background: #fff6e0; border-radius: 4px; padding: 0 0.3em;
+  font-variant-numeric: tabular-nums; }
+.spf-actual.idle { visibility: hidden; }
+`;
 
 /** Copies the Sim's RGBA frame to the canvas (the view is rebuilt: wasm memory may have grown). */
 export function blit(app, ctx) {
@@ -14,16 +40,111 @@ export function blit(app, ctx) {
   ctx.putImageData(new ImageData(pixels, width, height), 0, 0);
 }
 
+/** Whether the browser has input waiting (Chromium's `isInputPending`; false elsewhere). */
+function inputPending() {
+  return navigator.scheduling?.isInputPending?.() === true;
+}
+
+/**
+ * Runs up to `wanted` steps within the frame budget; returns `{ done, ok }` (`ok` false when the
+ * core refused a step).
+ */
+export function stepWithinBudget(app, wanted, budgetMs = SIM_BUDGET_MS) {
+  const start = performance.now();
+  let done = 0;
+  while (done < wanted) {
+    const before = performance.now();
+    if (!app.guard((sim) => sim.step(1)).ok) return { done, ok: false };
+    done += 1;
+    const after = performance.now();
+    // Predict the next step from this one: never start a step that would overrun the budget.
+    if (after - start + (after - before) > budgetMs || inputPending()) break;
+  }
+  return { done, ok: true };
+}
+
+/**
+ * The "steps per frame run" readout under the Speed slider: shown while frames run fewer steps
+ * than Speed asks for. It floats over the page (absolute), so showing it never moves the layout.
+ * `app.pace` holds the last window's figures.
+ */
+function setupPaceReadout(app) {
+  const style = document.createElement('style');
+  style.textContent = STYLE;
+  document.head.append(style);
+  const readout = Object.assign(document.createElement('output'), { id: 'spf-actual', className: 'spf-actual idle' });
+  document.getElementById('spf-value')?.after(readout);
+  let frames = 0;
+  let wanted = 0;
+  let done = 0;
+  let since = null;
+  app.pace = { wanted: app.stepsPerFrame, run: app.stepsPerFrame, limited: false };
+  const show = (limited, text, title) => {
+    readout.classList.toggle('idle', !limited);
+    readout.dataset.limited = String(limited);
+    if (readout.textContent !== text) readout.textContent = text;
+    if (readout.title !== title) readout.title = title;
+  };
+  show(false, '', '');
+  return {
+    /** Notes a frame that stepped `ran` of `asked` steps. */
+    note(now, asked, ran) {
+      frames += 1;
+      wanted += asked;
+      done += ran;
+      if (since === null) since = now;
+      if (now - since < PACE_REFRESH_MS) return;
+      const run = done / frames;
+      const limited = done < wanted;
+      app.pace = { wanted: asked, run, limited };
+      show(
+        limited,
+        limited ? `→ ${run.toFixed(1)}× (frame budget)` : '',
+        limited
+          ? `Speed asks for ${asked} steps per frame; ${run.toFixed(1)} fit in this frame budget ` +
+              `(${SIM_BUDGET_MS} ms of simulation per frame), so the page stays responsive. ` +
+              'The run is the same, it only advances more slowly.'
+          : '',
+      );
+      frames = 0;
+      wanted = 0;
+      done = 0;
+      since = now;
+    },
+    /** Paused: nothing is limited. */
+    idle() {
+      if (!app.pace.limited && since === null) return;
+      frames = 0;
+      wanted = 0;
+      done = 0;
+      since = null;
+      app.pace = { wanted: app.stepsPerFrame, run: app.stepsPerFrame, limited: false };
+      show(false, '', '');
+    },
+  };
+}
+
+const stepping = () => !document.hidden && document.visibilityState !== 'hidden';
+
 /** Starts the loop; `onFrame(now)` runs after every frame (metrics, FPS). */
 export function startLoop(app, canvas, onFrame) {
   const ctx = canvas.getContext('2d', { alpha: false });
+  const pace = setupPaceReadout(app);
+  // The frame's steps run in a message task queued by the frame (not a timer: no clamping).
+  const channel = new MessageChannel();
+  let queued = false;
+  channel.port1.onmessage = () => {
+    queued = false;
+    if (app.crashed || !app.playing || !stepping()) return;
+    const wanted = app.stepsPerFrame;
+    const { done, ok } = stepWithinBudget(app, wanted);
+    // A refused step (not a panic) would repeat every frame: pause and let the banner explain.
+    if (!ok) app.setPlaying(false);
+    else pace.note(performance.now(), wanted, done);
+    app.dirty = true;
+  };
   const frame = (now) => {
     if (app.crashed) return;
-    if (app.playing && document.visibilityState !== 'hidden') {
-      // A refused step (not a panic) would repeat every frame: pause and let the banner explain.
-      if (!app.guard((sim) => sim.step(app.stepsPerFrame)).ok) app.setPlaying(false);
-      app.dirty = true;
-    }
     if (app.dirty) {
       app.dirty = false;
       app.guard((sim) => {
@@ -32,6 +153,14 @@ export function startLoop(app, canvas, onFrame) {
       });
     }
     onFrame(now);
+    if (app.playing && stepping()) {
+      if (!queued) {
+        queued = true;
+        channel.port2.postMessage(null);
+      }
+    } else {
+      pace.idle();
+    }
     requestAnimationFrame(frame);
   };
   requestAnimationFrame(frame);

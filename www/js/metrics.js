@@ -1,6 +1,12 @@
 // The live metrics readout, the per-group table, the time-series plots and the FPS counter.
 // Values come from `metrics_json()` (DESIGN §4 keys) and the core's metrics history
 // (`history_series`); wall-clock time is used only to throttle the readout and to count frames.
+//
+// The readout is on the page's refresh path, so it is kept cheap: it refreshes every REFRESH_MS
+// but never takes more than READOUT_SHARE of the main thread (a refresh that cost c ms waits
+// c / READOUT_SHARE ms before the next one), the plots are redrawn only when the history gained
+// a sample, and a cell is written only when its text changed (a write costs a style and layout
+// pass of the whole page).
 
 import { drawPlot } from './plots.js';
 
@@ -25,6 +31,13 @@ const TIPS = {
 
 /** How often the readout refreshes (ms): fast enough to feel live, slow enough to read. */
 const REFRESH_MS = 250;
+/** Most of the main thread the readout may use: an expensive refresh comes less often. */
+const READOUT_SHARE = 0.05;
+
+/** Sets a node's text only when it changed. */
+function setText(node, text) {
+  if (node.textContent !== text) node.textContent = text;
+}
 
 /** Per-group table columns: [key, heading, format, tooltip]. */
 const GROUP_COLUMNS = [
@@ -54,6 +67,7 @@ export function setupMetrics(app) {
     cells.set(key, dd);
   }
   let lastRefresh = -Infinity;
+  let refreshEvery = REFRESH_MS;
   let frames = 0;
   let fpsSince = null;
   let forced = true;
@@ -65,10 +79,13 @@ export function setupMetrics(app) {
   const plotBox = document.getElementById('plots');
   let plots = [];
   let plotGroups = [];
+  /** What the plots show now (samples, last step, groups): unchanged history, no redraw. */
+  let plotted = null;
   const buildPlots = () => {
     const meta = app.guard((sim) => JSON.parse(sim.history_json()));
     if (!meta.ok || !plotBox) return;
     plotGroups = meta.value.groups;
+    plotted = null;
     const keys = meta.value.series.map((s) => s.key).join();
     if (plots.map((p) => p.key).join() === keys) return;
     plotBox.replaceChildren();
@@ -82,9 +99,15 @@ export function setupMetrics(app) {
     });
   };
   const drawPlots = () => {
-    if (!plotBox || plotBox.closest('details')?.open === false) return;
+    if (!plotBox || plotBox.closest('details')?.open === false) {
+      plotted = null;
+      return;
+    }
     const result = app.guard((sim) => {
       const steps = sim.history_steps();
+      const shown = `${steps.length}:${steps.at(-1)}:${plotGroups.map((g) => g.color).join()}`;
+      if (shown === plotted) return [];
+      plotted = shown;
       return plots.map((p) => {
         const lines = plotGroups.map((g, i) => ({ values: sim.history_series(p.key, i), color: g.color }));
         if (plotGroups.length > 1) lines.push({ values: sim.history_series(p.key, -1), color: OVERALL_COLOR, width: 1 });
@@ -118,14 +141,19 @@ export function setupMetrics(app) {
       row.dataset.group = String(i);
       const color = app.scene.groups?.[i]?.color ?? '#888';
       const name = row.cells[0];
-      name.replaceChildren();
-      const swatch = document.createElement('span');
-      swatch.className = 'swatch';
-      swatch.style.background = color;
-      name.append(swatch, `${g.name ?? i + 1} (${g.planner ?? ''})`);
+      const label = `${g.name ?? i + 1} (${g.planner ?? ''})`;
+      if (name.dataset.color !== color || name.dataset.label !== label) {
+        name.dataset.color = color;
+        name.dataset.label = label;
+        name.replaceChildren();
+        const swatch = document.createElement('span');
+        swatch.className = 'swatch';
+        swatch.style.background = color;
+        name.append(swatch, label);
+      }
       GROUP_COLUMNS.forEach(([key, , format], c) => {
         const value = g[key];
-        row.cells[c + 1].textContent = value === undefined ? '–' : format(value);
+        setText(row.cells[c + 1], value === undefined ? '–' : format(value));
         row.cells[c + 1].classList.toggle('bad', (key === 'stuck_agents' || key === 'penetrations_agent_obstacle') && value > 0);
       });
     });
@@ -138,15 +166,17 @@ export function setupMetrics(app) {
     const result = app.guard((sim) => JSON.parse(sim.metrics_json()));
     if (!result.ok) return;
     const m = result.value;
-    fillGroups(m);
+    // The plots read their canvas sizes: draw them before any text write, or the read would
+    // force a second layout pass in this frame.
     drawPlots();
+    fillGroups(m);
     for (const [key, , format, badWhenPositive] of ROWS) {
       const cell = cells.get(key);
       if (typeof m[key] !== 'number') {
-        cell.textContent = '–';
+        setText(cell, '–');
         continue;
       }
-      cell.textContent = format(m);
+      setText(cell, format(m));
       cell.classList.toggle('bad', Boolean(badWhenPositive) && m[key] > 0);
     }
   };
@@ -156,14 +186,16 @@ export function setupMetrics(app) {
     frames += 1;
     if (fpsSince === null) fpsSince = now;
     if (now - fpsSince >= 1000) {
-      fps.textContent = `${Math.round((frames * 1000) / (now - fpsSince))} fps`;
+      setText(fps, `${Math.round((frames * 1000) / (now - fpsSince))} fps`);
       frames = 0;
       fpsSince = now;
     }
-    if (forced || (app.playing && now - lastRefresh >= REFRESH_MS)) {
+    if (forced || (app.playing && now - lastRefresh >= refreshEvery)) {
       forced = false;
       lastRefresh = now;
+      const started = performance.now();
       refresh();
+      refreshEvery = Math.max(REFRESH_MS, (performance.now() - started) / READOUT_SHARE);
     }
   };
 }

@@ -67,17 +67,24 @@ export function setupTimeline(app) {
   let resumeAfterDrag = false;
   let pending = null;
 
+  // Attributes and text are written only when they change: every write restyles the page.
+  const set = (node, key, value) => {
+    if (node[key] !== value) node[key] = value;
+  };
   const show = () => {
     const info = timelineInfo(app);
     if (!info) return;
-    slider.min = String(info.first_step);
-    slider.max = String(info.end_step);
-    if (!dragging) slider.value = String(info.step);
-    readout.textContent = `step ${info.step.toLocaleString('en-US')} of ${info.end_step.toLocaleString('en-US')}`;
-    readout.title =
+    set(slider, 'min', String(info.first_step));
+    set(slider, 'max', String(info.end_step));
+    if (!dragging) set(slider, 'value', String(info.step));
+    set(readout, 'textContent', `step ${info.step.toLocaleString('en-US')} of ${info.end_step.toLocaleString('en-US')}`);
+    set(
+      readout,
+      'title',
       `Positions: ${(info.frame_bytes / 1e6).toFixed(1)} of ${(info.frame_budget_bytes / 1e6).toFixed(0)} MB ` +
-      `(${info.capacity_steps.toLocaleString('en-US')} steps of this run at every step); ` +
-      `${info.checkpoints} checkpoints every ${info.checkpoint_every} steps`;
+        `(${info.capacity_steps.toLocaleString('en-US')} steps of this run at every step); ` +
+        `${info.checkpoints} checkpoints every ${info.checkpoint_every} steps`,
+    );
     note.hidden = info.note === null;
     if (info.note !== null && note.textContent !== info.note) note.textContent = info.note;
   };
