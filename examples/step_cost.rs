@@ -1,8 +1,8 @@
 //! Measures what the cost limits in `src/cost.rs` are set from: ns per agent-step of every
 //! planner in its worst valid scene (a square crowd packed at the spawn density limit, heading
 //! for a goal in its middle) against the constant-density scene of the benchmarks, natively.
-//! `taskset -c 0 cargo run --release --example step_cost [N]`. Timing lives here, never in the
-//! core.
+//! `taskset -c 0 cargo run --release --example step_cost [N] [PLANNER]`. Timing lives here, never
+//! in the core.
 
 use flockpath::{presets, Goal, PlannerKind, Region, Scene, World};
 use std::time::Instant;
@@ -63,7 +63,8 @@ fn main() {
         "{:>8}  {:>20}  {:>20}  {:>20}",
         "planner", "spread (steps 0-100)", "packed (0-100)", "packed (300-400)"
     );
-    for &kind in PlannerKind::ALL {
+    let only = std::env::args().nth(2).and_then(|name| PlannerKind::from_name(&name));
+    for &kind in PlannerKind::ALL.iter().filter(|&&k| only.is_none_or(|o| o == k)) {
         let (sm, sw) = time(spread(n, kind), 0, 10, 10);
         let (pm, pw) = time(packed(n, kind), 0, 10, 10);
         let (lm, lw) = time(packed(n, kind), 300, 10, 10);

@@ -54,12 +54,18 @@ pub struct World {
 impl World {
     /// Validates the scene, spawns its agents from the scene's seed and builds the planners.
     pub fn new(scene: Scene) -> Result<Self, SceneError> {
+        Self::build(scene, true)
+    }
+
+    fn build(scene: Scene, cost_limit: bool) -> Result<Self, SceneError> {
         scene.validate()?;
         let obstacles = ObstacleIndex::new(scene.obstacles.clone(), scene.width, scene.height);
         let total = scene.agent_count() as usize;
         // Placement first: a scene too dense to spawn is refused before any planning.
         let Spawn { positions: pos, directions: mut vel, .. } = spawn(&scene, &obstacles)?;
-        crate::cost::check(&scene)?;
+        if cost_limit {
+            crate::cost::check(&scene)?;
+        }
         let planners: Vec<Box<dyn Planner>> =
             (0..scene.groups.len()).map(|gi| scene.groups[gi].planner.build_for_group(&scene, gi)).collect();
         let mut group_of = Vec::with_capacity(total);
@@ -100,6 +106,13 @@ impl World {
         };
         world.grid.rebuild(&world.pos, &world.vel);
         Ok(world)
+    }
+
+    /// [`World::new`] without the step-cost limit of [`crate::cost`] (the spawn density limit
+    /// still holds): for native benchmarks that time scenes bigger than the page may run.
+    #[doc(hidden)]
+    pub fn new_beyond_cost_limit(scene: Scene) -> Result<Self, SceneError> {
+        Self::build(scene, false)
     }
 
     /// The scene this world was built from.
@@ -196,10 +209,17 @@ impl World {
         let group = self
             .scene
             .groups
-            .get_mut(g)
+            .get(g)
             .ok_or_else(|| SceneError::BadReference(format!("there is no group {}", g + 1)))?;
         config.validate().map_err(SceneError::OutOfRange)?;
-        group.planner = config;
+        if group.planner != config {
+            // Another planner or larger IGSA settings may break a cost limit: then the run keeps
+            // its planner.
+            let mut changed = Scene { groups: self.scene.groups.clone(), ..Scene::empty(10.0, 10.0) };
+            changed.groups[g].planner = config.clone();
+            crate::cost::check(&changed)?;
+        }
+        self.scene.groups[g].planner = config;
         let planner = self.scene.groups[g].planner.build_for_group(&self.scene, g);
         let cell = planner.interaction_radius().max(self.grid.cell_size());
         if cell > self.grid.cell_size() {
