@@ -18,6 +18,7 @@
 
 pub mod codec;
 pub mod compare;
+pub mod cost;
 pub mod diagnose;
 pub mod edit;
 pub mod export;

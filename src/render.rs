@@ -1170,8 +1170,9 @@ mod tests {
         // 0.1 device px per scene px: the 5 px agent is half a pixel across.
         let mut r = Renderer::new(40, 20);
         r.render(&world);
-        let (x, y) = canvas_of(&r, world.positions()[0]);
-        assert_eq!(pixel(&r, x, y), [255, 0, 0, 255]);
+        // A dot is written to the pixel nearest the centre (rounded, not truncated).
+        let c = r.view().to_canvas(world.positions()[0]);
+        assert_eq!(pixel(&r, c.x.round() as u32, c.y.round() as u32), [255, 0, 0, 255]);
     }
 
     #[test]

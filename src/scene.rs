@@ -366,6 +366,8 @@ pub enum SceneError {
     BadReference(String),
     /// The geometry makes the scene unusable (goal inside an obstacle, no room to spawn).
     Blocked(String),
+    /// One step of the scene would cost more than the stated limit ([`crate::cost`]).
+    TooCostly(String),
 }
 
 impl fmt::Display for SceneError {
@@ -373,7 +375,10 @@ impl fmt::Display for SceneError {
         match self {
             SceneError::Parse(m) => write!(f, "cannot read the scene: {m}"),
             SceneError::NotFinite(m) => write!(f, "{m} is not a finite number"),
-            SceneError::OutOfRange(m) | SceneError::BadReference(m) | SceneError::Blocked(m) => {
+            SceneError::OutOfRange(m)
+            | SceneError::BadReference(m)
+            | SceneError::Blocked(m)
+            | SceneError::TooCostly(m) => {
                 write!(f, "{m}")
             }
         }

@@ -1,6 +1,6 @@
 //! The running simulation: agent state as struct-of-arrays, the two-phase step, seeded spawn.
 
-use crate::geometry::{Aabb, Obstacle};
+use crate::geometry::{v, Aabb, Obstacle};
 use crate::metrics::{Metrics, MetricsRecorder};
 use crate::planners::{GroupView, Planner, PlannerConfig, StepContext};
 use crate::rng::Rng;
@@ -12,11 +12,13 @@ use std::ops::Range;
 /// Seconds per step: the fixed time step (JS owns the frame loop, Rust owns time).
 pub const DT: f32 = 1.0 / 60.0;
 
-/// Random stream used for spawning; planners draw from [`STREAM_PLAN`].
-const STREAM_SPAWN: u32 = 0;
+/// Random stream of group `g`'s placement is `STREAM_SPAWN + g` (a group's start does not
+/// depend on the draws of the groups before it); planners draw from [`STREAM_PLAN`].
+const STREAM_SPAWN: u32 = 0x100;
 const STREAM_PLAN: u32 = 1;
-/// Attempts per agent to find a spawn point outside every obstacle.
-const SPAWN_TRIES: u32 = 200;
+/// Most lattice places examined per group while spawning: bounds spawn time and memory for a
+/// huge region mostly covered by obstacles (its finest lattice is coarsened to this many).
+pub const MAX_SPAWN_PLACES: u64 = 1 << 21;
 /// How far outside a surface a pushed-out agent is placed (px).
 const PUSH_EPSILON: f32 = 0.01;
 
@@ -52,41 +54,36 @@ pub struct World {
 impl World {
     /// Validates the scene, spawns its agents from the scene's seed and builds the planners.
     pub fn new(scene: Scene) -> Result<Self, SceneError> {
+        Self::build(scene, true)
+    }
+
+    fn build(scene: Scene, cost_limit: bool) -> Result<Self, SceneError> {
         scene.validate()?;
         let obstacles = ObstacleIndex::new(scene.obstacles.clone(), scene.width, scene.height);
         let total = scene.agent_count() as usize;
-        let mut spawn_rng = Rng::new(scene.seed, STREAM_SPAWN);
-        let mut pos = Vec::with_capacity(total);
-        let mut vel = Vec::with_capacity(total);
+        // Placement first: a scene too dense to spawn is refused before any planning.
+        let Spawn { positions: pos, directions: mut vel, .. } = spawn(&scene, &obstacles)?;
+        if cost_limit {
+            crate::cost::check(&scene)?;
+        }
+        let planners: Vec<Box<dyn Planner>> =
+            (0..scene.groups.len()).map(|gi| scene.groups[gi].planner.build_for_group(&scene, gi)).collect();
         let mut group_of = Vec::with_capacity(total);
         let mut radius = Vec::with_capacity(total);
         let mut groups = Vec::with_capacity(scene.groups.len());
         let mut interaction = 0.0f32;
         let mut max_radius = 0.0f32;
-        for (gi, g) in scene.groups.iter().enumerate() {
-            let start = pos.len() as u32;
-            let planner = g.planner.build_for_group(&scene, gi);
+        for ((gi, g), planner) in scene.groups.iter().enumerate().zip(planners) {
+            let start = group_of.len() as u32;
             let speed = planner.max_speed() * 0.25;
-            for a in 0..g.count {
-                let p =
-                    spawn_point(&scene, &obstacles, gi, g.agent_radius, &mut spawn_rng).ok_or_else(|| {
-                        SceneError::Blocked(format!(
-                            "group {} ({}): no room to place agent {} of {} outside the obstacles",
-                            gi + 1,
-                            g.name,
-                            a + 1,
-                            g.count
-                        ))
-                    })?;
-                let angle = spawn_rng.range(-std::f32::consts::PI, std::f32::consts::PI);
-                pos.push(p);
-                vel.push(Vec2::from_angle(angle) * speed);
-                group_of.push(gi as u32);
-                radius.push(g.agent_radius);
+            for v in &mut vel[start as usize..start as usize + g.count as usize] {
+                *v *= speed;
             }
+            group_of.resize(group_of.len() + g.count as usize, gi as u32);
+            radius.resize(radius.len() + g.count as usize, g.agent_radius);
             interaction = interaction.max(planner.interaction_radius());
             max_radius = max_radius.max(g.agent_radius);
-            groups.push(GroupRuntime { agents: start..pos.len() as u32, planner });
+            groups.push(GroupRuntime { agents: start..group_of.len() as u32, planner });
         }
         let cell = interaction.max(2.0 * max_radius).max(1.0);
         let grid = SpatialGrid::new(scene.width, scene.height, cell, total);
@@ -109,6 +106,13 @@ impl World {
         };
         world.grid.rebuild(&world.pos, &world.vel);
         Ok(world)
+    }
+
+    /// [`World::new`] without the step-cost limit of [`crate::cost`] (the spawn density limit
+    /// still holds): for native benchmarks that time scenes bigger than the page may run.
+    #[doc(hidden)]
+    pub fn new_beyond_cost_limit(scene: Scene) -> Result<Self, SceneError> {
+        Self::build(scene, false)
     }
 
     /// The scene this world was built from.
@@ -205,10 +209,17 @@ impl World {
         let group = self
             .scene
             .groups
-            .get_mut(g)
+            .get(g)
             .ok_or_else(|| SceneError::BadReference(format!("there is no group {}", g + 1)))?;
         config.validate().map_err(SceneError::OutOfRange)?;
-        group.planner = config;
+        if group.planner != config {
+            // Another planner or larger IGSA settings may break a cost limit: then the run keeps
+            // its planner.
+            let mut changed = Scene { groups: self.scene.groups.clone(), ..Scene::empty(10.0, 10.0) };
+            changed.groups[g].planner = config.clone();
+            crate::cost::check(&changed)?;
+        }
+        self.scene.groups[g].planner = config;
         let planner = self.scene.groups[g].planner.build_for_group(&self.scene, g);
         let cell = planner.interaction_radius().max(self.grid.cell_size());
         if cell > self.grid.cell_size() {
@@ -314,21 +325,22 @@ impl World {
             if solid {
                 resolve_obstacles(&self.obstacles, &mut p, &mut v, self.radius[i]);
             }
-            if solid && self.obstacles.contains(p) {
-                // Pushing out failed (overlapping obstacles): stay where it was valid.
-                p = previous;
-                v = Vec2::ZERO;
-            }
-            let r = self.radius[i].min(0.5 * bounds.x.min(bounds.y));
-            let clamped = p.clamp(Vec2::splat(r), bounds - Vec2::splat(r));
+            // The centre always ends inside the world (a world narrower than the body holds
+            // it on the middle line), also when an obstacle touches the border.
+            let (lo, hi) = centre_bounds(self.radius[i], bounds);
+            let clamped = p.clamp(lo, hi);
             if clamped.x != p.x {
                 v.x = 0.0;
             }
             if clamped.y != p.y {
                 v.y = 0.0;
             }
-            if !solid || !self.obstacles.contains(clamped) {
-                p = clamped;
+            p = clamped;
+            if solid && self.obstacles.contains(p) {
+                // Pushing out failed (overlapping obstacles, or the border pushed it back in):
+                // stay where it was, inside the world and outside the obstacles.
+                p = previous;
+                v = Vec2::ZERO;
             }
             self.pos[i] = p;
             self.vel[i] = v;
@@ -408,22 +420,246 @@ fn resolve_obstacles(obstacles: &ObstacleIndex, p: &mut Vec2, v: &mut Vec2, radi
     }
 }
 
-fn spawn_point(
-    scene: &Scene,
-    obstacles: &ObstacleIndex,
-    group: usize,
-    radius: f32,
-    rng: &mut Rng,
-) -> Option<Vec2> {
-    let region = scene.groups.get(group)?.spawn;
-    for _ in 0..SPAWN_TRIES {
-        let p = Vec2::new(rng.range(region.min[0], region.max[0]), rng.range(region.min[1], region.max[1]));
-        let mut clear = true;
-        let query = Aabb { min: p - Vec2::splat(radius), max: p + Vec2::splat(radius) };
-        obstacles.for_each_near(query, |_, o| clear &= o.surface(p).signed_distance >= radius);
-        if clear {
-            return Some(p);
+/// The corners of the rectangle of centres that keeps a body of `radius` inside a world of
+/// size `bounds`. Along a side shorter than the body the range is the middle point: the body
+/// stays centred there, overhanging both borders equally.
+pub fn centre_bounds(radius: f32, bounds: Vec2) -> (Vec2, Vec2) {
+    let r = Vec2::splat(radius).min(0.5 * bounds);
+    (r, bounds - r)
+}
+
+/// Body radii grouped by powers of two: class `k` holds radii below `2^k` px (k = 0 for radii
+/// under 1 px), bucketed in cells of `2^(k+1)` px, so a body touches at most 3×3 cells of its
+/// class and any class above it: the check of a new body costs a bounded number of cells.
+const SIZE_CLASSES: usize = 8;
+
+fn size_class(radius: f32) -> usize {
+    let mut k = 0;
+    while k + 1 < SIZE_CLASSES && radius >= (1u32 << k) as f32 {
+        k += 1;
+    }
+    k
+}
+
+/// Bodies placed so far, for the overlap check of the next ones.
+struct PlacedBodies {
+    /// First body of each `(class, cell)` bucket; `next` chains the rest.
+    head: std::collections::HashMap<u64, u32>,
+    next: Vec<u32>,
+    pos: Vec<Vec2>,
+    radius: Vec<f32>,
+    in_class: [u32; SIZE_CLASSES],
+}
+
+impl PlacedBodies {
+    fn new() -> Self {
+        Self {
+            head: std::collections::HashMap::new(),
+            next: Vec::new(),
+            pos: Vec::new(),
+            radius: Vec::new(),
+            in_class: [0; SIZE_CLASSES],
         }
     }
-    None
+
+    fn key(class: usize, p: Vec2) -> u64 {
+        let cell = (2u32 << class) as f32;
+        let (cx, cy) = ((p.x / cell).max(0.0) as u64, (p.y / cell).max(0.0) as u64);
+        ((class as u64) << 48) | (cx << 24) | cy
+    }
+
+    fn insert(&mut self, p: Vec2, radius: f32) {
+        let class = size_class(radius);
+        let id = self.pos.len() as u32;
+        let previous = self.head.insert(Self::key(class, p), id).unwrap_or(u32::MAX);
+        self.next.push(previous);
+        self.pos.push(p);
+        self.radius.push(radius);
+        self.in_class[class] += 1;
+    }
+
+    /// Whether a body of `radius` at `p` stays clear of every placed body. Groups are placed
+    /// largest radius first, so every placed body is in `p`'s class or above: 3×3 cells each.
+    fn clear(&self, p: Vec2, radius: f32) -> bool {
+        for class in 0..SIZE_CLASSES {
+            if self.in_class[class] == 0 {
+                continue;
+            }
+            let cell = (2u32 << class) as f32;
+            let reach = ((radius + (1u32 << class) as f32) / cell).ceil() as i64;
+            let (cx, cy) = ((p.x / cell).max(0.0) as i64, (p.y / cell).max(0.0) as i64);
+            for y in (cy - reach).max(0)..=cy + reach {
+                for x in (cx - reach).max(0)..=cx + reach {
+                    let key = ((class as u64) << 48) | ((x as u64) << 24) | y as u64;
+                    let mut id = self.head.get(&key).copied().unwrap_or(u32::MAX);
+                    while id != u32::MAX {
+                        let gap = radius + self.radius[id as usize];
+                        if p.distance_squared(self.pos[id as usize]) < gap * gap {
+                            return false;
+                        }
+                        id = self.next[id as usize];
+                    }
+                }
+            }
+        }
+        true
+    }
+}
+
+/// Whether a body of `radius` at `p` keeps clear of every obstacle.
+fn clear_of_obstacles(obstacles: &ObstacleIndex, p: Vec2, radius: f32) -> bool {
+    let mut clear = true;
+    let query = Aabb { min: p - Vec2::splat(radius), max: p + Vec2::splat(radius) };
+    obstacles.for_each_near(query, |_, o| clear &= o.surface(p).signed_distance >= radius);
+    clear
+}
+
+/// A lattice of `cols × rows` places tiling a rectangle: one body per place, its centre drawn
+/// in the place shrunk by the body radius, so bodies of two places never overlap.
+struct Lattice {
+    origin: Vec2,
+    place: Vec2,
+    cols: u32,
+    rows: u32,
+}
+
+impl Lattice {
+    /// Places of side at least `spacing` (≥ 2 × radius) over `size`.
+    fn new(origin: Vec2, size: Vec2, spacing: f32) -> Self {
+        let cols = ((size.x / spacing) as u32).max(1);
+        let rows = ((size.y / spacing) as u32).max(1);
+        Self { origin, place: Vec2::new(size.x / cols as f32, size.y / rows as f32), cols, rows }
+    }
+
+    fn corner(&self, place: u32) -> Vec2 {
+        let (i, j) = (place % self.cols, place / self.cols);
+        self.origin + Vec2::new(i as f32 * self.place.x, j as f32 * self.place.y)
+    }
+
+    fn centre(&self, place: u32) -> Vec2 {
+        self.corner(place) + 0.5 * self.place
+    }
+}
+
+/// Spawns every group without overlap, in O(N): each group is laid on a jittered lattice over
+/// its spawn region whose places are at least a body diameter apart, coarse enough to spread
+/// the group over the whole region and refined until enough places are clear of obstacles and
+/// of the groups placed before (largest bodies first). Returns the positions and the unit
+/// start directions, agent by agent; refuses a group its region cannot hold (the density
+/// limit), naming the group, its count and the most the region holds.
+///
+/// Work: the lattice places examined, each a constant number of cell lookups. Without
+/// obstacles the first lattice has at most about as many places as agents; obstacles refine it,
+/// by at least 0.9 in spacing a time, up to [`MAX_SPAWN_PLACES`] places per group.
+pub fn spawn(scene: &Scene, obstacles: &ObstacleIndex) -> Result<Spawn, SceneError> {
+    let mut offsets = Vec::with_capacity(scene.groups.len());
+    let mut total = 0usize;
+    for g in &scene.groups {
+        offsets.push(total);
+        total += g.count as usize;
+    }
+    let mut pos = vec![Vec2::ZERO; total];
+    let mut dir = vec![Vec2::ZERO; total];
+    let mut order: Vec<usize> = (0..scene.groups.len()).collect();
+    order.sort_by(|&a, &b| scene.groups[b].agent_radius.total_cmp(&scene.groups[a].agent_radius));
+    let mut placed = PlacedBodies::new();
+    let mut places_examined = 0u64;
+    for gi in order {
+        let g = &scene.groups[gi];
+        if g.count == 0 {
+            continue;
+        }
+        let mut rng = Rng::new(scene.seed, STREAM_SPAWN.wrapping_add(gi as u32));
+        let start = offsets[gi];
+        let out = start..start + g.count as usize;
+        places_examined += place_group(scene, obstacles, &placed, gi, &mut rng, &mut pos[out.clone()])?;
+        for (p, d) in pos[out.clone()].iter().zip(&mut dir[out]) {
+            placed.insert(*p, g.agent_radius);
+            *d = Vec2::from_angle(rng.range(-std::f32::consts::PI, std::f32::consts::PI));
+        }
+    }
+    Ok(Spawn { positions: pos, directions: dir, places_examined })
+}
+
+/// Where [`spawn`] put the agents, and the work it did.
+#[derive(Clone, Debug)]
+pub struct Spawn {
+    /// Start position of every agent, in agent order (px).
+    pub positions: Vec<Vec2>,
+    /// Unit start heading of every agent (the world scales it by a quarter of the speed limit).
+    pub directions: Vec<Vec2>,
+    /// Lattice places examined over all groups and refinements (the spawn's work).
+    pub places_examined: u64,
+}
+
+/// Places the agents of group `gi` (see [`spawn`]) into `out`; returns the places examined.
+fn place_group(
+    scene: &Scene,
+    obstacles: &ObstacleIndex,
+    placed: &PlacedBodies,
+    gi: usize,
+    rng: &mut Rng,
+    out: &mut [Vec2],
+) -> Result<u64, SceneError> {
+    let g = &scene.groups[gi];
+    let r = g.agent_radius;
+    // Centres lie in the spawn region, moved in where it reaches closer to a border than a
+    // radius (see `centre_bounds`).
+    let (lo, hi) = centre_bounds(r, Vec2::new(scene.width, scene.height));
+    let first = v(g.spawn.min).clamp(lo, hi);
+    let last = v(g.spawn.max).clamp(lo, hi);
+    // The lattice tiles the centres' rectangle grown by a radius: its first and last places put
+    // centres on the rectangle's sides, and a single place fits a side shorter than a body.
+    let origin = first - Vec2::splat(r);
+    let size = last - first + Vec2::splat(2.0 * r);
+    let wanted = out.len();
+    let area = f64::from(size.x) * f64::from(size.y);
+    let finest = (2.0 * r).max((area / MAX_SPAWN_PLACES as f64).sqrt() as f32);
+    let mut spacing = finest.max((area / wanted as f64).sqrt() as f32);
+    let mut examined = 0u64;
+    let (lattice, mut free) = loop {
+        let lattice = Lattice::new(origin, size, spacing);
+        examined += u64::from(lattice.cols) * u64::from(lattice.rows);
+        let free: Vec<u32> = (0..lattice.cols * lattice.rows)
+            .filter(|&k| {
+                let c = lattice.centre(k);
+                clear_of_obstacles(obstacles, c, r) && placed.clear(c, r)
+            })
+            .collect();
+        if free.len() >= wanted {
+            break (lattice, free);
+        }
+        if spacing <= finest {
+            return Err(SceneError::Blocked(format!(
+                "group {} ({}): {} agents of radius {r} px do not fit in its spawn region \
+                 ({}×{} px): it holds at most {} apart from each other, the obstacles and the \
+                 other groups (the density limit)",
+                gi + 1,
+                g.name,
+                g.count,
+                g.spawn.max[0] - g.spawn.min[0],
+                g.spawn.max[1] - g.spawn.min[1],
+                free.len()
+            )));
+        }
+        // Refine towards the spacing the free share suggests, at least a little each time.
+        let ratio = (free.len() as f32 / (1.1 * wanted as f32)).sqrt().clamp(0.25, 0.9);
+        spacing = finest.max(spacing * ratio);
+    };
+    // A seeded partial shuffle picks which free places get an agent.
+    for a in 0..wanted {
+        let j = a + rng.below((free.len() - a) as u32) as usize;
+        free.swap(a, j);
+    }
+    let room = lattice.place - Vec2::splat(2.0 * r);
+    for (p, &k) in out.iter_mut().zip(&free) {
+        let jittered =
+            lattice.corner(k) + Vec2::splat(r) + room.max(Vec2::ZERO) * Vec2::new(rng.unit(), rng.unit());
+        *p = if clear_of_obstacles(obstacles, jittered, r) && placed.clear(jittered, r) {
+            jittered
+        } else {
+            lattice.centre(k)
+        };
+    }
+    Ok(examined)
 }

@@ -66,9 +66,10 @@ fn fireflies_line_up_in_file_then_reach_the_target() {
         // Falling in behind a brighter firefly in contact: 0.88–0.99 at step 300 on seeds 1–10
         // (0.79–0.94 without it, so 0.85 fails on main's seeds 1, 2, 6, 7).
         assert!(queued >= 0.85, "seed {seed}: queue order {queued}");
-        // The first step already turns most fireflies at their nearest brighter one (measured
-        // 0.72–0.81 after one step); the files keep tightening after that.
-        assert!(queued > start && queued > RANDOM_QUEUE_ORDER, "seed {seed}: {start} → {queued}");
+        // The first step already turns most fireflies at their nearest brighter one: measured
+        // 0.89–0.95 after one step from the spawn lattice (0.72–0.81 from the former random,
+        // overlapping spawn, after which the files tightened to 0.88–0.99), 0.86–0.93 at step 300.
+        assert!(start > RANDOM_QUEUE_ORDER && queued > RANDOM_QUEUE_ORDER, "seed {seed}: {start} → {queued}");
         assert!(end.overall.arrived_share >= 0.9, "seed {seed}");
     }
 }

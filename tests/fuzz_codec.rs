@@ -9,23 +9,37 @@
 //!
 //! `FLOCKPATH_FUZZ_ITERS=1000000 cargo test --release --test fuzz_codec` runs longer locally
 //! (default 20,000 iterations); `FLOCKPATH_FUZZ_SEED` picks another sequence.
+//!
+//! Cost, not only panics: the corpus holds valid-but-expensive scenes (`cost-*`: the dense
+//! spawns, packed crowds, huge populations and heavy IGSA planning of issue 12), and every
+//! decoded input's work is counted by `flockpath::cost::work` (lattice places the spawn
+//! examined, the step estimate, the IGSA segments to plan): an accepted scene must stay within
+//! the stated budgets, and every `cost-*` entry must be refused or within them, without timing.
 
 use base64::engine::general_purpose::URL_SAFE_NO_PAD;
 use base64::Engine as _;
+use flockpath::cost::{self, Work, MAX_PLANNING_SEGMENT_CHECKS, STEP_BUDGET_NS};
 use flockpath::rng::Rng;
-use flockpath::scene_from_any;
+use flockpath::world::MAX_SPAWN_PLACES;
+use flockpath::{scene_from_any, PlannerConfig, PlannerKind, Region, Scene, SceneError};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
 const DEFAULT_ITERATIONS: u64 = 20_000;
+/// Mutated inputs whose work is counted (each decoded one is spawned).
+const DEFAULT_COST_ITERATIONS: u64 = 3_000;
 
-fn corpus() -> Vec<Vec<u8>> {
+fn corpus_files() -> Vec<std::path::PathBuf> {
     let mut files: Vec<_> = std::fs::read_dir("tests/data/fuzz-corpus")
         .expect("the corpus folder exists")
         .flatten()
         .map(|e| e.path())
         .collect();
     files.sort();
-    files.iter().map(|p| std::fs::read(p).expect("corpus file reads")).collect()
+    files
+}
+
+fn corpus() -> Vec<Vec<u8>> {
+    corpus_files().iter().map(|p| std::fs::read(p).expect("corpus file reads")).collect()
 }
 
 fn env_number(name: &str, default: u64) -> u64 {
@@ -117,6 +131,23 @@ fn mutate(rng: &mut Rng, input: &mut Vec<u8>, corpus: &[Vec<u8>]) {
     }
 }
 
+/// A corpus entry picked at random and mutated: half the time its decompressed payload,
+/// repacked, so the parsers behind the decompressor see damaged input too.
+fn mutated_input(rng: &mut Rng, corpus: &[Vec<u8>]) -> Vec<u8> {
+    let base = &corpus[rng.below(corpus.len() as u32) as usize];
+    match unpacked(base) {
+        Some((version, mut payload)) if rng.below(2) == 0 => {
+            mutate(rng, &mut payload, corpus);
+            repacked(&version, &payload)
+        }
+        _ => {
+            let mut bytes = base.clone();
+            mutate(rng, &mut bytes, corpus);
+            bytes
+        }
+    }
+}
+
 #[test]
 fn decoding_mutated_input_never_panics() {
     let corpus = corpus();
@@ -126,18 +157,7 @@ fn decoding_mutated_input_never_panics() {
     let mut rng = Rng::new(seed, 7);
     let (mut accepted, mut refused) = (0u64, 0u64);
     for iteration in 0..iterations {
-        let base = &corpus[rng.below(corpus.len() as u32) as usize];
-        let input = match unpacked(base) {
-            Some((version, mut payload)) if rng.below(2) == 0 => {
-                mutate(&mut rng, &mut payload, &corpus);
-                repacked(&version, &payload)
-            }
-            _ => {
-                let mut bytes = base.clone();
-                mutate(&mut rng, &mut bytes, &corpus);
-                bytes
-            }
-        };
+        let input = mutated_input(&mut rng, &corpus);
         let text = String::from_utf8_lossy(&input).into_owned();
         match catch_unwind(AssertUnwindSafe(|| scene_from_any(&text))) {
             Ok(Ok(_)) => accepted += 1,
@@ -165,4 +185,148 @@ fn every_corpus_entry_decodes_or_is_refused_without_panicking() {
         let result = catch_unwind(AssertUnwindSafe(|| scene_from_any(&text)));
         assert!(result.is_ok(), "corpus entry {i} panicked");
     }
+}
+
+/// Checks the counted work of a decoded scene against the budgets: `Ok` when it is within them
+/// (or refused with a message), `Err` naming the budget it breaks.
+fn within_budget(scene: &Scene) -> Result<Option<Work>, String> {
+    let work = match cost::work(scene) {
+        Ok(work) => work,
+        Err(e) => {
+            assert!(!e.to_string().trim().is_empty(), "a refusal without a message");
+            return Ok(None);
+        }
+    };
+    let agents = scene.agent_count();
+    let groups = scene.groups.iter().filter(|g| g.count > 0).count() as u64;
+    // O(N) placement: the first lattices hold about as many places as agents; refinements
+    // around obstacles grow geometrically (0.9 in spacing) up to the per-group cap.
+    let spawn_bound = 8 * agents + groups * 6 * MAX_SPAWN_PLACES;
+    if work.spawn_places > spawn_bound {
+        return Err(format!("spawn examined {} places, over {spawn_bound}", work.spawn_places));
+    }
+    if work.step_ns > STEP_BUDGET_NS {
+        return Err(format!("a step costs about {:.0} ms", work.step_ns / 1e6));
+    }
+    if work.planning_segment_checks > MAX_PLANNING_SEGMENT_CHECKS {
+        return Err(format!("planning checks {} segments", work.planning_segment_checks));
+    }
+    Ok(Some(work))
+}
+
+#[test]
+fn every_expensive_corpus_scene_is_refused_or_within_the_budgets() {
+    let mut expensive = 0;
+    for path in corpus_files() {
+        let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+        if !name.starts_with("cost-") {
+            continue;
+        }
+        expensive += 1;
+        let text = std::fs::read_to_string(&path).expect("reads");
+        let scene = scene_from_any(&text).unwrap_or_else(|e| panic!("{name} is a valid scene: {e}"));
+        let verdict = within_budget(&scene).unwrap_or_else(|why| panic!("{name}: {why}"));
+        println!("{name}: {}", verdict.map_or("refused".to_string(), |w| format!("{w:?}")));
+    }
+    assert!(expensive >= 8, "the corpus holds {expensive} expensive scenes");
+}
+
+#[test]
+fn the_expensive_scenes_of_the_issue_are_refused_with_the_limit_named() {
+    let refusal = |file: &str| {
+        let text = std::fs::read_to_string(format!("tests/data/fuzz-corpus/{file}")).expect("reads");
+        let scene = scene_from_any(&text).expect("valid");
+        cost::work(&scene).expect_err(file)
+    };
+    for (file, words) in [
+        ("cost-crash-200k-in-120x200.json", &["200000 agents", "at most 416", "density limit"][..]),
+        ("cost-firefly-1000-in-10x10.json", &["1000 agents", "density limit"]),
+        ("cost-pso-2000-in-50x100.json", &["2000 agents", "density limit"]),
+        ("cost-forces-10x10-circle.json", &["1000 agents", "at most 0", "density limit"]),
+        ("cost-firefly-200k-spread.json", &["200000 firefly agents", "100 ms limit"]),
+        ("cost-igsa-max-params-three-groups.json", &["igsa", "16200000 path segments"]),
+    ] {
+        let e = refusal(file);
+        let text = e.to_string();
+        assert!(matches!(e, SceneError::Blocked(_) | SceneError::TooCostly(_)), "{file}: {e:?}");
+        for w in words {
+            assert!(text.contains(w), "{file}: {w:?} missing from {text:?}");
+        }
+    }
+}
+
+#[test]
+fn mutated_scenes_that_decode_stay_within_the_work_budgets() {
+    let corpus = corpus();
+    let iterations = env_number("FLOCKPATH_FUZZ_COST_ITERS", DEFAULT_COST_ITERATIONS);
+    let seed = env_number("FLOCKPATH_FUZZ_SEED", 1) as u32;
+    let mut rng = Rng::new(seed, 8);
+    let (mut counted, mut refused) = (0u64, 0u64);
+    for iteration in 0..iterations {
+        let input = mutated_input(&mut rng, &corpus);
+        let Ok(scene) = scene_from_any(&String::from_utf8_lossy(&input)) else { continue };
+        match within_budget(&scene) {
+            Ok(Some(_)) => counted += 1,
+            Ok(None) => refused += 1,
+            Err(why) => panic!("iteration {iteration} (FLOCKPATH_FUZZ_SEED={seed}): accepted, but {why}"),
+        }
+    }
+    println!("cost fuzz: {iterations} inputs, {counted} accepted within the budgets, {refused} refused");
+    assert!(counted > 0, "no mutated scene was accepted: the cost check is not reached");
+}
+
+/// Scales what drives the work of a decoded scene: counts (log-uniform up to the maximum),
+/// spawn regions, the world, planners and IGSA's optimizer size.
+fn scale_work(rng: &mut Rng, scene: &mut Scene) {
+    if rng.below(4) == 0 {
+        let k = rng.range(0.2, 20.0);
+        scene.width = (scene.width * k).clamp(10.0, 20_000.0);
+        scene.height = (scene.height * k).clamp(10.0, 20_000.0);
+    }
+    let (w, h) = (scene.width, scene.height);
+    for g in &mut scene.groups {
+        g.count = rng.range(0.0, 200_000f32.ln()).exp() as u32;
+        if rng.below(2) == 0 {
+            let (x0, y0) = (rng.range(0.0, w), rng.range(0.0, h));
+            g.spawn = Region { min: [x0, y0], max: [rng.range(x0, w), rng.range(y0, h)] };
+        }
+        g.spawn.min = [g.spawn.min[0].min(w), g.spawn.min[1].min(h)];
+        g.spawn.max = [g.spawn.max[0].min(w), g.spawn.max[1].min(h)];
+        if rng.below(3) == 0 {
+            g.agent_radius = rng.range(0.5, 20.0);
+        }
+        if rng.below(2) == 0 {
+            let kind = PlannerKind::ALL[rng.below(PlannerKind::ALL.len() as u32) as usize];
+            g.planner = kind.default_config();
+        }
+        if let PlannerConfig::Igsa(p) = &mut g.planner {
+            (p.population, p.iterations) = (5 + rng.below(196), 10 * (1 + rng.below(300)));
+            p.waypoint_count = 1 + rng.below(8);
+        }
+    }
+    scene.goals.retain(|goal| goal.position[0] <= w && goal.position[1] <= h);
+    for g in &mut scene.groups {
+        g.goal = g.goal.filter(|&k| (k as usize) < scene.goals.len());
+    }
+}
+
+#[test]
+fn scenes_scaled_towards_the_limits_are_refused_or_within_the_work_budgets() {
+    let scenes: Vec<Scene> =
+        corpus().iter().filter_map(|entry| scene_from_any(&String::from_utf8_lossy(entry)).ok()).collect();
+    let iterations =
+        env_number("FLOCKPATH_FUZZ_SCALE_ITERS", if cfg!(debug_assertions) { 150 } else { 1_000 });
+    let mut rng = Rng::new(env_number("FLOCKPATH_FUZZ_SEED", 1) as u32, 9);
+    let (mut counted, mut refused) = (0u64, 0u64);
+    for iteration in 0..iterations {
+        let mut scene = scenes[rng.below(scenes.len() as u32) as usize].clone();
+        scale_work(&mut rng, &mut scene);
+        match within_budget(&scene) {
+            Ok(Some(_)) => counted += 1,
+            Ok(None) => refused += 1,
+            Err(why) => panic!("scaled scene {iteration}: accepted, but {why}"),
+        }
+    }
+    println!("scaled: {iterations} scenes, {counted} accepted within the budgets, {refused} refused");
+    assert!(counted > 0 && refused > 0, "{counted} accepted, {refused} refused: the limits are not reached");
 }

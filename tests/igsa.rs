@@ -63,10 +63,12 @@ fn the_followers_reach_the_goal_without_entering_obstacles() {
 
 #[test]
 fn collisions_counted_by_the_metric_equal_a_brute_force_count() {
-    // Two igsa groups that cross each other's way, dense spawns: many overlaps to count.
+    // An igsa group and a group of weighted-sum Boids crossing each other's way head-on: many
+    // overlaps to count (spawns never overlap, so the crossing must make them).
     let mut scene = presets::igsa_path_1();
     let mut other = scene.groups[0].clone();
     other.name = "back".into();
+    other.planner = flockpath::PlannerKind::Boids.default_config();
     other.spawn.min = [660.0, 200.0];
     other.spawn.max = [730.0, 300.0];
     other.count = 60;

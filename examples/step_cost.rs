@@ -1,0 +1,79 @@
+//! Measures what the cost limits in `src/cost.rs` are set from: ns per agent-step of every
+//! planner in its worst valid scene (a square crowd packed at the spawn density limit, heading
+//! for a goal in its middle) against the constant-density scene of the benchmarks, natively.
+//! `taskset -c 0 cargo run --release --example step_cost [N] [PLANNER]`. Timing lives here, never
+//! in the core.
+
+use flockpath::{presets, Goal, PlannerKind, Region, Scene, World};
+use std::time::Instant;
+
+/// A square of `n` bodies packed at the density limit (one per 2r × 2r place) in a world with
+/// room around it, all heading for a goal at the square's centre.
+fn packed(n: u32, kind: PlannerKind) -> Scene {
+    let radius = 4.0;
+    let side = (f64::from(n).sqrt().ceil() as f32) * 2.0 * radius;
+    let world = side + 200.0;
+    let mut s = Scene::empty(world, world);
+    let (lo, hi) = (100.0 + radius, 100.0 + side - radius);
+    s.goals.push(Goal::fixed([0.5 * world, 0.5 * world], 20.0));
+    let mut g = presets::constant_density(1, 1.0).groups.remove(0);
+    g.count = n;
+    g.spawn = Region { min: [lo, lo], max: [hi, hi] };
+    g.goal = Some(0);
+    g.agent_radius = radius;
+    g.planner = kind.default_config();
+    s.groups.push(g);
+    s
+}
+
+fn spread(n: u32, kind: PlannerKind) -> Scene {
+    let mut s = presets::constant_density(n, 9.0);
+    s.goals.push(Goal::fixed([0.5 * s.width, 0.5 * s.height], 20.0));
+    s.groups[0].goal = Some(0);
+    s.groups[0].planner = kind.default_config();
+    s
+}
+
+/// Median and worst ns per agent-step over `windows` windows of `steps` steps after `skip`.
+fn time(scene: Scene, skip: u32, windows: u32, steps: u32) -> (f64, f64) {
+    let n = scene.agent_count() as f64;
+    let mut world = match World::new(scene) {
+        Ok(w) => w,
+        Err(e) => {
+            println!("  refused: {e}");
+            return (f64::NAN, f64::NAN);
+        }
+    };
+    world.step_n(skip);
+    let mut samples: Vec<f64> = (0..windows)
+        .map(|_| {
+            let start = Instant::now();
+            world.step_n(steps);
+            start.elapsed().as_nanos() as f64 / (n * f64::from(steps))
+        })
+        .collect();
+    samples.sort_by(f64::total_cmp);
+    (samples[samples.len() / 2], samples[samples.len() - 1])
+}
+
+fn main() {
+    let n: u32 = std::env::args().nth(1).and_then(|a| a.parse().ok()).unwrap_or(2_000);
+    println!("{n} agents, ns per agent-step (median / worst of 10-step windows), native release");
+    println!(
+        "{:>8}  {:>20}  {:>20}  {:>20}",
+        "planner", "spread (steps 0-100)", "packed (0-100)", "packed (300-400)"
+    );
+    let only = std::env::args().nth(2).and_then(|name| PlannerKind::from_name(&name));
+    for &kind in PlannerKind::ALL.iter().filter(|&&k| only.is_none_or(|o| o == k)) {
+        let (sm, sw) = time(spread(n, kind), 0, 10, 10);
+        let (pm, pw) = time(packed(n, kind), 0, 10, 10);
+        let (lm, lw) = time(packed(n, kind), 300, 10, 10);
+        println!(
+            "{:>8}  {:>20}  {:>20}  {:>20}",
+            kind.name(),
+            format!("{sm:.0} / {sw:.0}"),
+            format!("{pm:.0} / {pw:.0}"),
+            format!("{lm:.0} / {lw:.0}")
+        );
+    }
+}

@@ -1,0 +1,195 @@
+//! Scene cost limits: a scene is refused up front when one step of it would take more than
+//! [`STEP_BUDGET_NS`] in the browser, or when its IGSA groups would plan more than
+//! [`MAX_PLANNING_SEGMENT_CHECKS`], so no valid link can stall or crash the page.
+//!
+//! Per step the model is linear: every agent costs its planner's worst measured time per
+//! agent-step ([`ns_per_agent_step`]). "Worst" is the densest crowd the spawn allows (bodies
+//! packed at the density limit of [`crate::world::spawn`]) heading for a goal in its middle,
+//! measured natively (`cargo run --release --example step_cost`) and scaled by [`WASM_FACTOR`].
+//! The spawn itself is O(N) and refuses regions that cannot hold their count.
+//!
+//! IGSA plans its path once per group (and again on edits): population × iterations objective
+//! evaluations, each checking `waypoint_count + 1` segments against the obstacles. The page
+//! plans in slices, so planning never blocks it; this limit keeps the total finite.
+
+use crate::planners::{PlannerConfig, PlannerKind};
+use crate::scene::{Group, Scene, SceneError};
+use crate::spatial::ObstacleIndex;
+
+/// Most time one step may take in the browser (ns): 100 ms.
+pub const STEP_BUDGET_NS: f64 = 100e6;
+
+/// How much slower a step runs in wasm than natively (measured 1.2–1.5×; the upper end).
+pub const WASM_FACTOR: f64 = 1.5;
+
+/// Most path segments all IGSA groups of a scene may check while planning: population ×
+/// iterations × (waypoints + 1), summed over groups. Two groups at the largest parameters
+/// (200 × 3000 × 9 = 5.4 million each).
+pub const MAX_PLANNING_SEGMENT_CHECKS: u64 = 10_800_000;
+
+/// Worst native time per agent-step of each planner (ns): a packed crowd heading for a goal in
+/// its middle, world step with metrics (see the module docs).
+///
+/// Measured with `examples/step_cost.rs` (taskset -c 0, machine loaded, so as ratios): packed
+/// over the constant-density scene of the benchmarks at 2,000 agents, the worse of steps 0–100
+/// and 300–400: pso 6.5× (also 6.5× at 4,000), firefly 12.7×, forces 9.2×, igsa 4.5×; applied
+/// to the unloaded constant-density figures (pso 800, firefly 2,500, forces 1,400, igsa 220 ns)
+/// and rounded up. Boids: 7.6× over 105 ns, the worst of steps 0–100 at 2,000 to 10,000 agents.
+/// Later, a weighted-sum Boids crowd piled on its goal grows with N (11× at 2,000, 57× at
+/// 10,000 by steps 300–400): bounding per-agent neighbour work is the planners' part; this
+/// figure assumes it. Re-measure when a planner's cost changes.
+pub fn native_ns_per_agent_step(kind: PlannerKind) -> f64 {
+    match kind {
+        PlannerKind::Boids => 800.0,
+        PlannerKind::Pso => 5_200.0,
+        PlannerKind::Firefly => 32_000.0,
+        PlannerKind::Forces => 13_000.0,
+        PlannerKind::Igsa => 1_000.0,
+    }
+}
+
+/// Worst time per agent-step of each planner in the browser (ns).
+pub fn ns_per_agent_step(kind: PlannerKind) -> f64 {
+    native_ns_per_agent_step(kind) * WASM_FACTOR
+}
+
+/// The most agents of one planner a scene may hold alone under the step budget.
+pub fn max_agents(kind: PlannerKind) -> u64 {
+    (STEP_BUDGET_NS / ns_per_agent_step(kind)) as u64
+}
+
+fn group_step_ns(g: &Group) -> f64 {
+    f64::from(g.count) * ns_per_agent_step(g.planner.kind())
+}
+
+/// Estimated time of one step of `scene` in the browser (ns).
+pub fn step_cost_ns(scene: &Scene) -> f64 {
+    scene.groups.iter().map(group_step_ns).sum()
+}
+
+/// Segments group `g` checks while planning its path (0 unless it is an IGSA group that plans).
+pub fn planning_segment_checks(g: &Group) -> u64 {
+    match &g.planner {
+        PlannerConfig::Igsa(p) if p.waypoints.is_empty() && g.goal.is_some() => {
+            let s = p.settings();
+            s.population as u64 * u64::from(s.iterations) * (p.path_params().waypoints as u64 + 1)
+        }
+        _ => 0,
+    }
+}
+
+/// Refuses a scene over a limit: a step over [`STEP_BUDGET_NS`] names the group that costs
+/// the most, its planner, its count and how many agents of that planner would fit beside the
+/// others; planning over [`MAX_PLANNING_SEGMENT_CHECKS`] names the IGSA group that plans most.
+pub fn check(scene: &Scene) -> Result<(), SceneError> {
+    let total = step_cost_ns(scene);
+    let costliest = |cost: &dyn Fn(&Group) -> f64| {
+        scene.groups.iter().enumerate().max_by(|a, b| cost(a.1).total_cmp(&cost(b.1)))
+    };
+    if total > STEP_BUDGET_NS {
+        if let Some((i, g)) = costliest(&group_step_ns) {
+            let kind = g.planner.kind().name();
+            let fit = ((STEP_BUDGET_NS - (total - group_step_ns(g))).max(0.0)
+                / ns_per_agent_step(g.planner.kind())) as u64;
+            return Err(SceneError::TooCostly(format!(
+                "group {} ({}): {} {kind} agents would make a step take about {:.0} ms in the \
+                 browser, over the {:.0} ms limit; at most {fit} {kind} agents fit beside the \
+                 other groups ({} alone)",
+                i + 1,
+                g.name,
+                g.count,
+                total / 1e6,
+                STEP_BUDGET_NS / 1e6,
+                max_agents(g.planner.kind()),
+            )));
+        }
+    }
+    let planning: u64 = scene.groups.iter().map(planning_segment_checks).sum();
+    if planning > MAX_PLANNING_SEGMENT_CHECKS {
+        if let Some((i, g)) = costliest(&|g| planning_segment_checks(g) as f64) {
+            return Err(SceneError::TooCostly(format!(
+                "group {} ({}): igsa path planning of all groups would check {planning} path \
+                 segments (population × iterations × (waypoints + 1), this group {}), over the \
+                 limit of {MAX_PLANNING_SEGMENT_CHECKS}: lower the population or the iterations",
+                i + 1,
+                g.name,
+                planning_segment_checks(g),
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// The work a scene asks for, counted where it is done and estimated where it is timed.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Work {
+    /// Lattice places the spawn examined (counted).
+    pub spawn_places: u64,
+    /// Estimated time of one step in the browser (ns).
+    pub step_ns: f64,
+    /// Path segments IGSA planning will check (counted from the parameters).
+    pub planning_segment_checks: u64,
+}
+
+/// Validates `scene`, spawns it and checks the limits, without building planners (no IGSA
+/// planning): the work it would ask for, or the refusal [`crate::World::new`] would give.
+pub fn work(scene: &Scene) -> Result<Work, SceneError> {
+    scene.validate()?;
+    let obstacles = ObstacleIndex::new(scene.obstacles.clone(), scene.width, scene.height);
+    let spawn = crate::world::spawn(scene, &obstacles)?;
+    check(scene)?;
+    Ok(Work {
+        spawn_places: spawn.places_examined,
+        step_ns: step_cost_ns(scene),
+        planning_segment_checks: scene.groups.iter().map(planning_segment_checks).sum(),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::presets;
+
+    #[test]
+    fn every_preset_is_within_the_limits() {
+        for p in presets::ALL {
+            let w = work(&(p.build)()).unwrap_or_else(|e| panic!("{}: {e}", p.name));
+            assert!(w.step_ns <= STEP_BUDGET_NS && w.planning_segment_checks <= MAX_PLANNING_SEGMENT_CHECKS);
+        }
+    }
+
+    #[test]
+    fn too_many_fireflies_are_refused_naming_group_planner_count_and_limit() {
+        let mut s = Scene::empty(20_000.0, 20_000.0);
+        let mut g = presets::open_field().groups.remove(0);
+        g.goal = None;
+        g.spawn = crate::Region { min: [0.0, 0.0], max: [20_000.0, 20_000.0] };
+        g.planner = PlannerKind::Firefly.default_config();
+        g.count = max_agents(PlannerKind::Firefly) as u32;
+        s.groups.push(g);
+        assert_eq!(check(&s), Ok(()), "exactly the limit is accepted");
+        s.groups[0].count += 1;
+        let e = check(&s).expect_err("one more is refused");
+        let text = e.to_string();
+        assert!(matches!(e, SceneError::TooCostly(_)));
+        let count = format!("{} firefly agents", s.groups[0].count);
+        let limit = format!("at most {} firefly agents", max_agents(PlannerKind::Firefly));
+        for part in ["group 1 (flock)", count.as_str(), "100 ms limit", limit.as_str()] {
+            assert!(text.contains(part), "{part:?} missing from {text:?}");
+        }
+    }
+
+    #[test]
+    fn planning_beyond_the_limit_is_refused() {
+        let mut s = presets::igsa_path_1();
+        if let PlannerConfig::Igsa(p) = &mut s.groups[0].planner {
+            (p.population, p.iterations, p.waypoint_count) = (200, 3000, 8);
+        }
+        assert_eq!(planning_segment_checks(&s.groups[0]), 5_400_000);
+        s.groups.push(s.groups[0].clone());
+        assert_eq!(check(&s), Ok(()));
+        s.groups.push(s.groups[0].clone());
+        let e = check(&s).expect_err("three groups at the largest parameters plan too much");
+        assert!(e.to_string().contains("16200000 path segments"), "{e}");
+    }
+}
