@@ -205,14 +205,14 @@ fn write_curves(table: &Table, path: &Path) -> Result<(), CliError> {
 
 #[cfg(test)]
 mod tests {
-    use crate::Cli;
+    use crate::cli::Cli;
     use clap::Parser as _;
 
     fn parse(args: &[&str]) -> Result<flockpath::optim::report::OptimizeArgs, String> {
         let cli =
             Cli::try_parse_from(["flockpath", "optimize"].iter().chain(args)).map_err(|e| e.to_string())?;
         match cli.command {
-            crate::Command::Optimize(args) => args.settings().map_err(|e| e.to_string()),
+            crate::cli::Command::Optimize(args) => args.settings().map_err(|e| e.to_string()),
             other => Err(format!("parsed as {other:?}")),
         }
     }

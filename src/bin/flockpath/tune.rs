@@ -206,7 +206,7 @@ pub fn tune(args: &TuneArgs) -> Result<(), CliError> {
 
 #[cfg(test)]
 mod tests {
-    use crate::{Cli, Command};
+    use crate::cli::{Cli, Command};
     use clap::Parser as _;
     use flockpath::fitness::{Behaviour, Environment};
 
