@@ -202,13 +202,13 @@ impl World {
 
     /// Replaces the planner parameters of group `g` without restarting the run.
     pub fn set_group_planner(&mut self, g: usize, config: PlannerConfig) -> Result<(), SceneError> {
-        let group = self
-            .scene
-            .groups
-            .get_mut(g)
-            .ok_or_else(|| SceneError::BadReference(format!("there is no group {}", g + 1)))?;
-        config.validate().map_err(SceneError::OutOfRange)?;
-        group.planner = config;
+        if g >= self.scene.groups.len() {
+            return Err(SceneError::BadReference(format!("there is no group {}", g + 1)));
+        }
+        // Checked against the scene too (a Boids group follows a path that exists), so the
+        // scene's link stays loadable.
+        self.scene.validate_planner(g, &config)?;
+        self.scene.groups[g].planner = config;
         let planner = self.scene.groups[g].planner.build_for_group(&self.scene, g);
         let cell = planner.interaction_radius().max(self.grid.cell_size());
         if cell > self.grid.cell_size() {

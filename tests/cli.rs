@@ -204,7 +204,7 @@ fn bad_inputs_fail_with_a_message_naming_the_problem() {
     scene["goals"][0]["radius"] = serde_json::json!(-1.0);
     fails_naming(
         flockpath_with_stdin(&["run", "--scene", "-", "--steps", "5"], &scene.to_string()),
-        "goal 1 radius",
+        "goals[0].radius is -1",
     );
     scene["goals"][0]["radius"] = serde_json::json!(1e39);
     fails_naming(flockpath_with_stdin(&["run", "--scene", "-", "--steps", "5"], &scene.to_string()), "goal");

@@ -170,9 +170,8 @@ fn dispatch(args: &[String]) -> Result<(), CliError> {
         }
         "preset" => {
             let name = one_arg("preset", "NAME", rest)?;
-            let preset = presets::find(name).ok_or_else(|| {
-                usage(format!("unknown preset {name:?}; `flockpath presets` lists them ({})", preset_names()))
-            })?;
+            let preset = presets::lookup(name)
+                .map_err(|e| usage(format!("{e}; `flockpath presets` describes them")))?;
             out(&format!("{}\n", scene_to_json(&(preset.build)())))
         }
         "url" => {
@@ -272,10 +271,6 @@ fn out(text: &str) -> Result<(), CliError> {
         Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
         Err(e) => Err(failed(format!("cannot write to stdout: {e}"))),
     }
-}
-
-fn preset_names() -> String {
-    presets::ALL.iter().map(|p| p.name).collect::<Vec<_>>().join(", ")
 }
 
 fn no_more_args(command: &str, rest: &[String]) -> Result<(), CliError> {

@@ -351,10 +351,7 @@ pub fn presets_json() -> Result<String, JsError> {
 /// The scene JSON of a preset; throws for an unknown name.
 #[wasm_bindgen]
 pub fn preset_scene_json(name: &str) -> Result<String, JsError> {
-    let preset = presets::find(name).ok_or_else(|| {
-        let names: Vec<&str> = presets::ALL.iter().map(|p| p.name).collect();
-        js_error(format!("unknown preset {name:?}; known: {}", names.join(", ")))
-    })?;
+    let preset = presets::lookup(name).map_err(js_error)?;
     Ok(codec::scene_to_json(&(preset.build)()))
 }
 
