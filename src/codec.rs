@@ -155,6 +155,7 @@ pub fn scene_from_fragment(input: &str) -> Result<Scene, SceneError> {
 /// or a preset name (`pillars`).
 pub fn scene_from_any(input: &str) -> Result<Scene, SceneError> {
     let input = input.strip_prefix(BYTE_ORDER_MARK).unwrap_or(input);
+    check_input_size(input)?;
     let trimmed = input.trim();
     if trimmed.starts_with('{') {
         scene_from_json(trimmed)
@@ -431,7 +432,7 @@ fn planner_with(name: &str, values: &[serde_json::Value]) -> Result<PlannerConfi
     let keyed = serde_json::json!({ "kind": kind.name(), "params": params });
     let config: PlannerConfig = serde_path_to_error::deserialize(&keyed).map_err(|e| {
         let segments: Vec<Segment> = e.path().iter().cloned().collect();
-        let path = format!("planner{}", keyed_path(&segments));
+        let path = format!("planner.{}", keyed_path(&segments));
         let value = walk(&keyed, &segments).map_or_else(|| "refused".to_string(), render);
         let message = e.inner().to_string();
         let hint = param_allowed(kind, &path);
@@ -476,6 +477,13 @@ fn refusal(error: &serde_path_to_error::Error<serde_json::Error>, text: &str, la
     }
     let mut segments: Vec<Segment> = error.path().iter().cloned().collect();
     let json: Option<serde_json::Value> = serde_json::from_str(text).ok();
+    let token = token_at(text, inner.line(), inner.column());
+    // The text's structure with a word JSON cannot hold (NaN) replaced by 0: it tells a compact
+    // circle [x, y, r] from a polygon and finds a group's planner.
+    let structure = json.clone().or_else(|| {
+        let (start, end, _) = token.as_ref()?;
+        serde_json::from_str(&format!("{}0{}", &text[..*start], &text[*end..])).ok()
+    });
     let message = raw.rsplit_once(" at line ").map_or(raw.as_str(), |(m, _)| m).to_string();
     // Internally tagged obstacles report type errors at the obstacle: find the key that holds
     // the value the parser names.
@@ -488,20 +496,21 @@ fn refusal(error: &serde_path_to_error::Error<serde_json::Error>, text: &str, la
     }
     let path = match layout {
         Layout::Keyed => keyed_path(&segments),
-        Layout::Compact => compact_path(&segments, json.as_ref()),
+        Layout::Compact => compact_path(&segments, structure.as_ref()),
     };
-    if path.is_empty() {
+    let about_a_key = message.starts_with("missing field") || message.starts_with("unknown field");
+    if path.is_empty() && !about_a_key {
         return SceneError::Parse(match layout {
             Layout::Keyed => format!("the text is not a scene object ({message}, {at})"),
             Layout::Compact => format!("the scene string does not hold a version 2 scene ({message})"),
         });
     }
-    let hint = planner_param_allowed(&path, json.as_ref());
+    let hint = planner_param_allowed(&path, structure.as_ref());
     let value = json.as_ref().and_then(|j| walk(j, &segments)).map(render);
     let (value, hint) = match value {
         Some(v) => (v, hint),
         // Not JSON at all (NaN, Infinity, 1e999): show the word at the error's position.
-        None => match token_at(text, inner.line(), inner.column()) {
+        None => match token.map(|(_, _, word)| word) {
             Some(token) => {
                 let hint = hint.or_else(|| allowed_for(&path));
                 (token, hint.or_else(|| Some("a finite number (JSON has no NaN or Infinity)".into())))
@@ -552,6 +561,10 @@ fn field_refusal(
         let allowed =
             if known.is_empty() { "no keys here".to_string() } else { format!("one of the keys {known}") };
         let path = if path.ends_with(&key) { path } else { format!("{path}.{key}") };
+        return with_detail(SceneError::field(path, "an unknown key", allowed), detail);
+    } else if message.ends_with("expected \"kind\" or \"params\"") {
+        // serde's words for an unknown key beside a planner's kind and params.
+        let allowed = "one of the keys \"kind\", \"params\"";
         return with_detail(SceneError::field(path, "an unknown key", allowed), detail);
     } else if let Some(key) = between(message, "missing field `", "`") {
         let path = if path.is_empty() { key.clone() } else { format!("{path}.{key}") };
@@ -645,10 +658,12 @@ fn render(value: &serde_json::Value) -> String {
 }
 
 /// The word around (1-based) `line`, `column` of `text`: the number or name the parser stopped
-/// at (`NaN`, `Infinity`, `1e999`).
-fn token_at(text: &str, line: usize, column: usize) -> Option<String> {
-    let row = text.lines().nth(line.checked_sub(1)?)?;
-    let chars: Vec<char> = row.chars().collect();
+/// at (`NaN`, `Infinity`, `1e999`), with its byte range in `text`.
+fn token_at(text: &str, line: usize, column: usize) -> Option<(usize, usize, String)> {
+    let row_start: usize = text.split_inclusive('\n').take(line.checked_sub(1)?).map(str::len).sum();
+    let row = text.lines().nth(line - 1)?;
+    // serde_json counts columns in bytes; the word is ASCII, so bytes serve as characters.
+    let chars: Vec<char> = row.bytes().map(char::from).collect();
     let word = |c: char| c.is_ascii_alphanumeric() || matches!(c, '.' | '+' | '-');
     let mut at = column.min(chars.len());
     // The column names the character after the token or the token's first character.
@@ -661,7 +676,7 @@ fn token_at(text: &str, line: usize, column: usize) -> Option<String> {
     let start = chars[..at].iter().rposition(|&c| !word(c)).map_or(0, |k| k + 1);
     let end = chars[at..].iter().position(|&c| !word(c)).map_or(chars.len(), |k| at + k);
     let token: String = chars[start..end].iter().take(40).collect();
-    (!token.is_empty()).then_some(token)
+    (!token.is_empty()).then_some((row_start + start, row_start + end, token))
 }
 
 /// A keyed path: `groups[2].planner.params.max_speed`.

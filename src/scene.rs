@@ -845,8 +845,8 @@ fn count_in(path: impl Fn() -> String, n: usize, lo: usize, hi: usize) -> Result
     Ok(())
 }
 
-/// Checks that `points` form a simple polygon: non-zero area, and no two edges meet except
-/// neighbours at their shared corner. Repeated consecutive points count once (an editor's
+/// Checks that `points` form a simple polygon: not all on one line, and no two edges meet except
+/// neighbours at their shared corner (which also rules out zero area). Repeated consecutive points count once (an editor's
 /// double click). Edges are swept in order of their left end, so only edges whose x ranges
 /// overlap are compared. The problem is described in words, naming the points (from 0).
 fn check_simple_polygon(points: &[[f32; 2]]) -> Result<(), String> {
@@ -864,13 +864,7 @@ fn check_simple_polygon(points: &[[f32; 2]]) -> Result<(), String> {
     if n < 3 {
         return Err(format!("a polygon of {n} distinct point(s)"));
     }
-    let twice_area: f64 = (0..n)
-        .map(|k| {
-            let (a, b) = (corners[k].1, corners[(k + 1) % n].1);
-            a[0] * b[1] - b[0] * a[1]
-        })
-        .sum();
-    if twice_area == 0.0 {
+    if corners.iter().all(|c| orientation(corners[0].1, corners[1].1, c.1) == 0.0) {
         return Err("a polygon with no area (its points lie on one line)".into());
     }
     let edge = |k: usize| (corners[k].1, corners[(k + 1) % n].1);
