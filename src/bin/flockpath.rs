@@ -335,7 +335,7 @@ fn flag_pairs(
     Ok(pairs)
 }
 
-/// Loads a scene from a file, stdin (`-`), inline JSON, a fragment value or a URL.
+/// Loads a scene from a file, stdin (`-`), inline JSON, a fragment value, a URL or a preset name.
 fn load_scene(source: &str) -> Result<Scene, CliError> {
     let path = Path::new(source);
     let text = if source == "-" {
@@ -345,8 +345,16 @@ fn load_scene(source: &str) -> Result<Scene, CliError> {
     } else if path.is_file() {
         std::fs::read_to_string(path)
             .map_err(|e| failed(format!("cannot read scene file {source:?}: {e}")))?
+    } else if presets::find(source).is_some() {
+        // A preset name: `scene_from_any` builds it.
+        source.to_string()
     } else if looks_like_path(source) {
-        return Err(failed(format!("cannot read scene file {source:?}: no such file")));
+        let hint = if source.contains(['/', '\\', '.']) {
+            String::new()
+        } else {
+            format!(", and no preset has that name (known: {})", presets::ALL.iter().map(|p| p.name).collect::<Vec<_>>().join(", "))
+        };
+        return Err(failed(format!("cannot read scene file {source:?}: no such file{hint}")));
     } else {
         source.to_string()
     };
