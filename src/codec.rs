@@ -14,6 +14,11 @@
 //! - `1.` (read only): the deflated keyed scene JSON.
 //!
 //! Every released version keeps decoding: fixtures of each live in `tests/data/fragments/`.
+//!
+//! A refusal names the field by its path in the keyed scene JSON (`groups[2].planner.params.
+//! max_speed`), in both forms (the compact form's positions are translated), with the value as
+//! written and what is allowed; the parser's own words and position ride along as details.
+//! Scene text and fragments may start with a UTF-8 byte-order mark; a bare name is a preset.
 
 use crate::geometry::Obstacle;
 use crate::planners::{PlannerConfig, PlannerKind};
@@ -48,6 +53,9 @@ pub fn scene_from_json(text: &str) -> Result<Scene, SceneError> {
 /// and the message should show what the user typed.
 fn as_written(error: SceneError, text: &str) -> SceneError {
     let SceneError::Field(mut field) = error else { return error };
+    if !field.value.contains("infinite") {
+        return SceneError::Field(field);
+    }
     let json: Option<serde_json::Value> = serde_json::from_str(text).ok();
     let mut node = json.as_ref();
     for part in field.path.split('.') {

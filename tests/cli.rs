@@ -98,7 +98,8 @@ fn preset_prints_valid_json_that_run_accepts_from_stdin_and_from_a_file() {
     }
     // A preset name is a scene too.
     let by_name = ok(flockpath(&["run", "--scene", "pillars", "--steps", "20"]));
-    let from_json = ok(flockpath_with_stdin(&["run", "--scene", "-", "--steps", "20"], &preset_json("pillars")));
+    let from_json =
+        ok(flockpath_with_stdin(&["run", "--scene", "-", "--steps", "20"], &preset_json("pillars")));
     assert_eq!(by_name, from_json);
 }
 

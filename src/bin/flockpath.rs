@@ -352,7 +352,10 @@ fn load_scene(source: &str) -> Result<Scene, CliError> {
         let hint = if source.contains(['/', '\\', '.']) {
             String::new()
         } else {
-            format!(", and no preset has that name (known: {})", presets::ALL.iter().map(|p| p.name).collect::<Vec<_>>().join(", "))
+            format!(
+                ", and no preset has that name (known: {})",
+                presets::ALL.iter().map(|p| p.name).collect::<Vec<_>>().join(", ")
+            )
         };
         return Err(failed(format!("cannot read scene file {source:?}: no such file{hint}")));
     } else {

@@ -407,12 +407,7 @@ impl ParamSpec {
             } else {
                 format!(" {}", self.unit)
             };
-            let whole = if self.step.fract() == 0.0 && self.min.fract() == 0.0 {
-                "a whole number"
-            } else {
-                "a number"
-            };
-            format!("{whole} in {}…{}{unit}", self.min, self.max)
+            format!("a number in {}…{}{unit}", self.min, self.max)
         } else {
             let quoted: Vec<String> = self.choices.iter().map(|c| format!("\"{c}\"")).collect();
             format!("one of {}", quoted.join(", "))

@@ -90,6 +90,8 @@ test('refused scenes keep the previous scene running unchanged', async () => {
       const shown = await bannerText(page);
       assert.ok(shown && shown.toLowerCase() === message.toLowerCase(),
         `${what}: the page shows "${message}" (banner: ${shown})`);
+      // A field's path is shown as the JSON spells it (not capitalised into `Groups[0]`).
+      if (/^[^\s]*[[._]/.test(message)) assert.equal(shown, message, `${what}: the path as written`);
       const disclosure = await bannerDetails(page);
       if (details) {
         assert.match(thrown.details ?? '', details, `${what}: the error carries the parser's words`);

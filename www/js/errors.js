@@ -43,8 +43,10 @@ export function showMessage(text, details = null) {
   lastDetails = null;
   const el = banner();
   if (!el) return;
-  // Rust messages start in lower case (they compose); a sentence on a projector should not.
-  document.getElementById('banner-text').textContent = text.charAt(0).toUpperCase() + text.slice(1);
+  // Rust messages start in lower case (they compose); a sentence on a projector should not. A
+  // message that starts with a field's path (`groups[0].count is -5`) keeps it as the JSON spells it.
+  const startsWithPath = /^[^\s]*[[._]/.test(text);
+  document.getElementById('banner-text').textContent = startsWithPath ? text : text.charAt(0).toUpperCase() + text.slice(1);
   showDetails(details ?? quoted);
   el.hidden = false;
 }
