@@ -493,14 +493,10 @@ fn refusal(error: &serde_path_to_error::Error<serde_json::Error>, text: &str, la
         serde_json::from_str(&format!("{}0{}", &text[..*start], &text[*end..])).ok()
     });
     let message = raw.rsplit_once(" at line ").map_or(raw.as_str(), |(m, _)| m).to_string();
-    // Internally tagged obstacles report type errors at the obstacle: find the key that holds
-    // the value the parser names.
-    if let (Some(json), Some(literal)) = (&json, named_value(&message)) {
-        if let Some(serde_json::Value::Object(fields)) = walk(json, &segments) {
-            if let Some((key, _)) = fields.iter().find(|(_, v)| render(v) == literal) {
-                segments.push(Segment::Map { key: key.clone() });
-            }
-        }
+    // Internally tagged obstacles and goal motions report errors at the object: read it again
+    // as its variant's fields to find the field.
+    if let Some(inner) = json.as_ref().and_then(|j| walk(j, &segments)).and_then(tagged_field_path) {
+        segments.extend(inner);
     }
     let path = match layout {
         Layout::Keyed => keyed_path(&segments),
@@ -632,13 +628,74 @@ fn expected_in_words(expected: &str) -> String {
     }
 }
 
-/// The literal a serde message names (`string "abc"` → `"abc"`, ``integer `4` `` → `4`).
-fn named_value(message: &str) -> Option<String> {
-    let described = message.split_once(": ")?.1.split(", expected").next()?;
-    if let Some(rest) = described.strip_prefix("string ") {
-        return Some(rest.to_string());
+/// The fields of an obstacle or a goal motion, without their tag: serde reads internally tagged
+/// enums from a buffer, which loses the path below the object, so a refused one is read again
+/// as one of these to name the field.
+mod tagged {
+    use serde::Deserialize;
+
+    #[derive(Deserialize)]
+    #[serde(deny_unknown_fields)]
+    #[expect(dead_code, reason = "read only to find the refused field")]
+    pub struct Circle {
+        pub center: [f32; 2],
+        pub radius: f32,
     }
-    between(described, "`", "`")
+
+    #[derive(Deserialize)]
+    #[serde(deny_unknown_fields)]
+    #[expect(dead_code, reason = "read only to find the refused field")]
+    pub struct Rect {
+        pub min: [f32; 2],
+        pub max: [f32; 2],
+    }
+
+    #[derive(Deserialize)]
+    #[serde(deny_unknown_fields)]
+    #[expect(dead_code, reason = "read only to find the refused field")]
+    pub struct Polygon {
+        pub points: Vec<[f32; 2]>,
+    }
+
+    #[derive(Deserialize)]
+    #[serde(deny_unknown_fields)]
+    #[expect(dead_code, reason = "read only to find the refused field")]
+    pub struct CircleMotion {
+        pub center: [f32; 2],
+        pub radius: f32,
+        pub period_steps: f32,
+    }
+
+    #[derive(Deserialize)]
+    #[serde(deny_unknown_fields)]
+    #[expect(dead_code, reason = "read only to find the refused field")]
+    pub struct PolylineMotion {
+        pub points: Vec<[f32; 2]>,
+        pub speed: f32,
+    }
+}
+
+/// The path below an obstacle or goal motion `node` to its refused field, if one is refused.
+fn tagged_field_path(node: &serde_json::Value) -> Option<Vec<Segment>> {
+    fn first_error<T: serde::de::DeserializeOwned>(fields: serde_json::Value) -> Option<Vec<Segment>> {
+        serde_path_to_error::deserialize::<_, T>(fields).err().map(|e| e.path().iter().cloned().collect())
+    }
+    let mut fields = node.as_object()?.clone();
+    let (tag, variant) = if let Some(shape) = fields.remove("shape") {
+        ("shape", shape)
+    } else {
+        ("kind", fields.remove("kind")?)
+    };
+    let fields = serde_json::Value::Object(fields);
+    let path = match (tag, variant.as_str()?) {
+        ("shape", "circle") => first_error::<tagged::Circle>(fields),
+        ("shape", "rect") => first_error::<tagged::Rect>(fields),
+        ("shape", "polygon") => first_error::<tagged::Polygon>(fields),
+        ("kind", "circle") => first_error::<tagged::CircleMotion>(fields),
+        ("kind", "polyline") => first_error::<tagged::PolylineMotion>(fields),
+        _ => None,
+    }?;
+    (!path.is_empty()).then_some(path)
 }
 
 /// Follows `segments` into `json`.
