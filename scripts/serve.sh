@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Installs what is missing, builds the wasm module in release, and serves www/ on 127.0.0.1.
+# Installs what is missing, builds the wasm module in release, and serves www/ on 127.0.0.1 with
+# scripts/serve.py (CORS headers and the wasm MIME type, so <flock-path> works from other sites).
 # PORT=8080 picks the port; by default the system picks a free one (a fixed port may be taken).
 # Stays in the foreground; Ctrl+C stops the server.
 set -euo pipefail
@@ -8,9 +9,9 @@ cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 bash scripts/build-wasm.sh
 
-# python prints "Serving HTTP on 127.0.0.1 port N (http://127.0.0.1:N/) ..." first; -u keeps that
-# line unbuffered so the real port can be read when PORT=0.
-coproc SERVER { exec python3 -u -m http.server "${PORT:-0}" --bind 127.0.0.1 -d www 2>&1; }
+# serve.py prints "serve.py: serving DIR at http://127.0.0.1:N/" first; -u keeps that line
+# unbuffered so the real port can be read when PORT=0.
+coproc SERVER { exec python3 -u scripts/serve.py --port "${PORT:-0}" --bind 127.0.0.1 --directory www 2>&1; }
 server_pid=$SERVER_PID
 # Coproc descriptors are not inherited by background jobs: keep a plain copy of the output end.
 exec {server_out}<&"${SERVER[0]}"
@@ -20,7 +21,7 @@ if ! IFS= read -r first_line <&"$server_out"; then
   echo "serve.sh: the web server did not start" >&2
   exit 1
 fi
-port=$(sed -n 's/.* port \([0-9][0-9]*\) .*/\1/p' <<<"$first_line")
+port=$(sed -n 's|^serve.py: serving .* at http://127\.0\.0\.1:\([0-9][0-9]*\)/$|\1|p' <<<"$first_line")
 if [ -z "$port" ]; then
   echo "serve.sh: could not read the port from: $first_line" >&2
   exit 1

@@ -63,6 +63,11 @@ const TRAIL_ALPHA: u8 = 90;
 /// device px) from its last drawn point: the open end stays hidden under the agent, stationary
 /// agents cost nothing, and fewer, longer segments are cheaper and do not darken at the joins.
 const TRAIL_SEGMENT_PX: (f32, f32) = (1.0, 4.0);
+/// Between frames (steps of a multi-step advance, a rebuilt trail) a segment spans at least this
+/// many device px: half the segments of small agents, and a 2 px chord cannot cut through
+/// anything the agent went round. A frame after a single step draws exactly as before: what the
+/// step did not trace, the frame does with [`TRAIL_SEGMENT_PX`].
+const TRACED_SEGMENT_MIN_PX: f32 = 2.0;
 /// Agents are drawn in bands of 2^this device rows, top to bottom, so that consecutive sprites
 /// touch nearby frame memory (10,000 agents in id order hit the cache far less well).
 const BAND_SHIFT: u32 = 3;
@@ -71,6 +76,16 @@ const BAND_SHIFT: u32 = 3;
 const FADE_ROW_PERIOD: u32 = 8;
 /// Agents whose body radius is below this (device px) are drawn as single pixels.
 const DOT_RADIUS_PX: f32 = 1.0;
+/// Trail segments traced between two frames wait in a buffer so that they are drawn after the
+/// frame's fade (a single step per frame then draws exactly what it always drew); past this many
+/// (about 400 kB) they are drawn at once, so `step(5000)` never holds more than one buffer.
+const PENDING_SEGMENTS_MAX: usize = 16_384;
+/// A timeline jump redraws the trails of at most this many recorded agent-steps before the new
+/// step (50 steps of 10,000 agents, 625 of the 80 in `pillars`): about 125,000 segments,
+/// tens of milliseconds, so scrubbing stays fluid.
+const TRAIL_REBUILD_AGENT_STEPS: usize = 500_000;
+/// Steps per frame assumed when a rebuilt trail is faded by its age: the page's default speed.
+const TRAIL_REBUILD_STEPS_PER_FRAME: f32 = 2.0;
 
 /// How scene px map to canvas px: `canvas = scene * scale + offset`. The scene is fitted into the
 /// canvas keeping its aspect ratio, centred, with letterbox bands on the spare sides.
@@ -155,6 +170,15 @@ struct Placed {
     heading: u8,
 }
 
+/// A trail segment traced but not drawn yet: canvas endpoints, colour and opacity.
+#[derive(Clone, Copy, Debug)]
+struct Segment {
+    from: Vec2,
+    to: Vec2,
+    rgb: [u8; 3],
+    alpha: u8,
+}
+
 /// The sprites of one group, valid for one colour and one device radius.
 #[derive(Clone, Debug)]
 struct GroupSprites {
@@ -182,6 +206,10 @@ pub struct Renderer {
     trails_stale: bool,
     /// Device position of each agent where its trail was last drawn to.
     last_drawn: Vec<Vec2>,
+    /// Segments traced since the last frame (see [`PENDING_SEGMENTS_MAX`]).
+    pending: Vec<Segment>,
+    /// Per group, reused: trail colour and the distance (device px) that makes a new segment.
+    trail_groups: Vec<([u8; 3], f32)>,
     /// Step count of the world at the last frame (a smaller one means the run was reset).
     last_step: u32,
     /// Heading bucket of each agent, kept while it stands still.
@@ -213,6 +241,8 @@ impl Renderer {
             trail_fade: DEFAULT_TRAIL_FADE,
             trails_stale: true,
             last_drawn: Vec::new(),
+            pending: Vec::new(),
+            trail_groups: Vec::new(),
             last_step: 0,
             heading: Vec::new(),
             fade_phase: 0,
@@ -328,9 +358,87 @@ impl Renderer {
         self.inspected
     }
 
-    /// Draws `world` into the frame.
-    pub fn render(&mut self, world: &World) {
-        let scene = world.scene();
+    /// Adds the trail of the step `world` just took. Call it after every step of a multi-step
+    /// advance: without it the next frame joins the old and new positions by a straight chord,
+    /// through whatever the agents went round. An agent adds a segment only once it has moved
+    /// a body radius (1–4 device px) from its last one, so the cost is a comparison per agent and
+    /// step plus the segments, and memory does not grow with the steps. Does nothing with trails
+    /// off. After a new run, a reset or a resize the trails start here, so a script that loads a
+    /// scene and steps it before any frame still gets the whole trail.
+    pub fn trace_step(&mut self, world: &World) {
+        if !self.trails_on {
+            return;
+        }
+        let n = world.agent_count();
+        if self.trails_stale || self.last_drawn.len() != n || world.step_count() < self.last_step {
+            self.fit_scene(world.scene());
+            self.restart_trails(world);
+        } else {
+            let positions = world.positions();
+            self.trace(world.scene(), positions, world.group_of(), TRACED_SEGMENT_MIN_PX, TRAIL_ALPHA);
+            if self.pending.len() >= PENDING_SEGMENTS_MAX {
+                self.draw_pending();
+            }
+        }
+        self.last_step = world.step_count();
+    }
+
+    /// The first step whose recorded positions [`Renderer::rebuild_trails`] draws for `world`:
+    /// at most [`TRAIL_REBUILD_AGENT_STEPS`] agent-steps back, and no further back than the fade
+    /// leaves visible (assuming [`TRAIL_REBUILD_STEPS_PER_FRAME`]).
+    pub fn trail_rebuild_start(&self, world: &World) -> u32 {
+        let by_cost = TRAIL_REBUILD_AGENT_STEPS / world.agent_count().max(1);
+        let keep = 1.0 - self.trail_fade;
+        let by_fade = if keep >= 1.0 {
+            usize::MAX
+        } else {
+            // Frames until the segment's opacity drops below half a level.
+            let frames = libm::logf(0.5 / f32::from(TRAIL_ALPHA)) / libm::logf(keep);
+            (frames * TRAIL_REBUILD_STEPS_PER_FRAME).max(0.0) as usize
+        };
+        let back = u32::try_from(by_cost.min(by_fade)).unwrap_or(u32::MAX);
+        world.step_count().saturating_sub(back)
+    }
+
+    /// Redraws the trails after a jump to `world`'s step from the recorded positions before it
+    /// (`(step, positions)` in increasing step order; steps after `world`'s, or with another
+    /// agent count, are skipped), instead of erasing them. Each segment is drawn faded by its
+    /// age as the frames would have faded it. Pass the frames from
+    /// [`Renderer::trail_rebuild_start`] on: older ones cost time and add nothing visible.
+    pub fn rebuild_trails(&mut self, world: &World, history: impl IntoIterator<Item = (u32, Vec<Vec2>)>) {
+        self.fit_scene(world.scene());
+        self.restart_trails(world);
+        self.last_step = world.step_count();
+        if !self.trails_on {
+            return;
+        }
+        let now = world.step_count();
+        let keep = 1.0 - self.trail_fade;
+        let mut started = false;
+        for (step, positions) in history {
+            if step > now || positions.len() != world.agent_count() {
+                continue;
+            }
+            if !started {
+                let view = self.view;
+                self.last_drawn.clear();
+                self.last_drawn.extend(positions.iter().map(|&p| view.to_canvas(p)));
+                started = true;
+                continue;
+            }
+            let frames_ago = (now - step) as f32 / TRAIL_REBUILD_STEPS_PER_FRAME;
+            let alpha = (f32::from(TRAIL_ALPHA) * libm::powf(keep, frames_ago)).round() as u8;
+            self.trace(world.scene(), &positions, world.group_of(), TRACED_SEGMENT_MIN_PX, alpha);
+            if self.pending.len() >= PENDING_SEGMENTS_MAX {
+                self.draw_pending();
+            }
+        }
+        self.draw_pending();
+    }
+
+    /// Rebuilds the base layer and the view when the scene's size, obstacles or hills changed
+    /// (the trails then restart).
+    fn fit_scene(&mut self, scene: &Scene) {
         if !self.base_key.as_ref().is_some_and(|k| k.matches(scene)) {
             self.view = ViewTransform::fit(scene.width, scene.height, self.width, self.height);
             self.draw_base(scene);
@@ -342,6 +450,12 @@ impl Renderer {
             });
             self.trails_stale = true;
         }
+    }
+
+    /// Draws `world` into the frame.
+    pub fn render(&mut self, world: &World) {
+        let scene = world.scene();
+        self.fit_scene(scene);
         let n = world.agent_count();
         if self.last_drawn.len() != n || world.step_count() < self.last_step {
             self.trails_stale = true;
@@ -351,7 +465,10 @@ impl Renderer {
         }
         if self.trails_on {
             self.fade_trails();
-            self.draw_trail_segments(world);
+            // The segments traced by the steps since the last frame, then those from the last
+            // traced points to where the agents are now (all of them when nothing was traced).
+            self.trace(scene, world.positions(), world.group_of(), 0.0, TRAIL_ALPHA);
+            self.draw_pending();
             self.frame.copy_from_slice(&self.trails);
         } else {
             self.frame.copy_from_slice(&self.base);
@@ -428,6 +545,7 @@ impl Renderer {
 
     fn restart_trails(&mut self, world: &World) {
         self.trails.copy_from_slice(&self.base);
+        self.pending.clear();
         let view = self.view;
         self.last_drawn.clear();
         self.last_drawn.extend(world.positions().iter().map(|&p| view.to_canvas(p)));
@@ -459,31 +577,39 @@ impl Renderer {
         }
     }
 
-    /// Adds the segment from each agent's last drawn point to where it is now.
+    /// Queues the segment from each agent's last traced point to `positions` (scene px) when it
+    /// has moved its group's [`TRAIL_SEGMENT_PX`] and at least `min_px` (device px), with
+    /// opacity `alpha`.
+    fn trace(&mut self, scene: &Scene, positions: &[Vec2], group_of: &[u32], min_px: f32, alpha: u8) {
+        let view = self.view;
+        let (lo, hi) = TRAIL_SEGMENT_PX;
+        let lo = lo.max(min_px);
+        let hi = hi.max(lo);
+        self.trail_groups.clear();
+        self.trail_groups.extend(
+            scene.groups.iter().map(|g| (parse_color(&g.color), (g.agent_radius * view.scale).clamp(lo, hi))),
+        );
+        for ((&p, &g), last) in positions.iter().zip(group_of).zip(self.last_drawn.iter_mut()) {
+            let Some(&(rgb, min_step)) = self.trail_groups.get(g as usize) else { continue };
+            let now = view.to_canvas(p);
+            if now.distance(*last) < min_step {
+                continue;
+            }
+            self.pending.push(Segment { from: *last, to: now, rgb, alpha });
+            *last = now;
+        }
+    }
+
+    /// Draws the queued segments onto the trail layer.
     ///
     /// The segments are rasterised here with Wu's anti-aliased lines rather than as one
     /// tiny-skia path per group: tiny-skia's hairline costs 0.6–0.8 µs per 3 px segment on this
     /// machine (its pipeline runs once per one- or two-pixel span), which at 10,000 agents is the
     /// whole frame budget; the direct loop costs a few blends per pixel column.
-    fn draw_trail_segments(&mut self, world: &World) {
-        let view = self.view;
-        let (lo, hi) = TRAIL_SEGMENT_PX;
-        let groups: Vec<([u8; 3], f32)> = world
-            .scene()
-            .groups
-            .iter()
-            .map(|g| (parse_color(&g.color), (g.agent_radius * view.scale).clamp(lo, hi)))
-            .collect();
+    fn draw_pending(&mut self) {
         let (w, h) = (self.width as usize, self.height as usize);
-        for ((&p, &g), last) in world.positions().iter().zip(world.group_of()).zip(self.last_drawn.iter_mut())
-        {
-            let Some(&(rgb, min_step)) = groups.get(g as usize) else { continue };
-            let now = view.to_canvas(p);
-            if now.distance(*last) < min_step {
-                continue;
-            }
-            draw_segment(&mut self.trails, w, h, *last, now, rgb, TRAIL_ALPHA);
-            *last = now;
+        for s in self.pending.drain(..) {
+            draw_segment(&mut self.trails, w, h, s.from, s.to, s.rgb, s.alpha);
         }
     }
 
@@ -1078,6 +1204,137 @@ mod tests {
         let reset = World::new(lone_agent()).expect("valid");
         r.render(&reset);
         assert_eq!(r.trails, r.base);
+    }
+
+    /// Pixels of the trail layer that differ from the base inside a pillar, at least `inset`
+    /// device px from its border (the outline is anti-aliased).
+    fn trail_pixels_inside_pillars(r: &Renderer, scene: &Scene, inset: f32) -> usize {
+        let (w, h) = (r.width() as usize, r.height() as usize);
+        let mut inside = 0;
+        for o in &scene.obstacles {
+            let Obstacle::Circle { center, radius } = o else { panic!("pillars are circles") };
+            let c = r.view().to_canvas(Vec2::from(*center));
+            let reach = radius * r.view().scale - inset;
+            for y in (c.y - reach).floor() as usize..=(c.y + reach).ceil() as usize {
+                for x in (c.x - reach).floor() as usize..=(c.x + reach).ceil() as usize {
+                    let centre = Vec2::new(x as f32 + 0.5, y as f32 + 0.5);
+                    if x >= w || y >= h || centre.distance(c) > reach {
+                        continue;
+                    }
+                    let at = (y * w + x) * 4;
+                    inside += usize::from(r.trails[at..at + 3] != r.base[at..at + 3]);
+                }
+            }
+        }
+        inside
+    }
+
+    #[test]
+    fn traced_steps_go_round_the_pillars_where_one_chord_per_frame_crosses_them() {
+        let mut scene = presets::pillars();
+        scene.view.trail_fade = 0.0;
+        let mut world = World::new(scene).expect("valid");
+        let (mut traced, mut chords) = (Renderer::new(900, 560), Renderer::new(900, 560));
+        for r in [&mut traced, &mut chords] {
+            r.set_trail_fade(0.0);
+        }
+        // The chords start at the first frame; the traced trails at the first step, with no
+        // frame before it (a script stepping a scene it just loaded).
+        chords.render(&world);
+        let agents = world.agent_count();
+        for _ in 0..2000 {
+            world.step();
+            traced.trace_step(&world);
+            assert!(traced.pending.len() <= PENDING_SEGMENTS_MAX + agents, "the buffer stays bounded");
+        }
+        traced.render(&world);
+        chords.render(&world);
+        assert!(traced.pending.is_empty());
+        let scene = world.scene();
+        assert_eq!(trail_pixels_inside_pillars(&traced, scene, 2.0), 0, "a traced trail entered a pillar");
+        assert!(
+            trail_pixels_inside_pillars(&chords, scene, 2.0) > 100,
+            "one chord per 2000 steps should cross the pillars (else this test proves nothing)"
+        );
+    }
+
+    #[test]
+    fn tracing_single_steps_draws_the_same_frames_as_before() {
+        let mut world = World::new(presets::two_groups_swap()).expect("valid");
+        let (mut traced, mut plain) = (Renderer::new(640, 360), Renderer::new(640, 360));
+        for frame in 0..120 {
+            world.step();
+            traced.trace_step(&world);
+            traced.render(&world);
+            plain.render(&world);
+            assert!(traced.pixels() == plain.pixels(), "frame {frame} differs");
+        }
+    }
+
+    #[test]
+    fn a_jump_rebuilds_the_trails_from_the_recorded_positions() {
+        let mut world = World::new(presets::pillars()).expect("valid");
+        let mut history = vec![(0, world.positions().to_vec())];
+        let mut earlier = world.clone();
+        for _ in 0..400 {
+            world.step();
+            history.push((world.step_count(), world.positions().to_vec()));
+            if world.step_count() == 300 {
+                earlier = world.clone();
+            }
+        }
+        let mut r = Renderer::new(900, 560);
+        r.set_trail_fade(0.0);
+        r.render(&world);
+        let start = r.trail_rebuild_start(&world);
+        assert_eq!(start, 0, "80 agents × 400 steps are within the rebuild budget");
+        r.rebuild_trails(&world, history.iter().cloned());
+        r.render(&world);
+        let (w, scene) = (r.width() as usize, world.scene().clone());
+        let trail_near = |r: &Renderer, p: Vec2| {
+            let c = r.view().to_canvas(p);
+            let (x, y) = (c.x as usize, c.y as usize);
+            (y - 2..=y + 2)
+                .flat_map(|y| (x - 2..=x + 2).map(move |x| (y * w + x) * 4))
+                .any(|at| r.trails[at..at + 3] != r.base[at..at + 3])
+        };
+        for &(step, ref positions) in history.iter().skip(20).step_by(60) {
+            let missing = positions.iter().filter(|&&p| !trail_near(&r, p)).count();
+            assert!(
+                missing <= positions.len() / 20,
+                "step {step}: {missing} agents have no trail where they were"
+            );
+        }
+        assert_eq!(trail_pixels_inside_pillars(&r, &scene, 2.0), 0);
+
+        // Faded trails: only the recent part is rebuilt, old positions show nothing.
+        r.set_trail_fade(0.05);
+        let start = r.trail_rebuild_start(&world);
+        // 90 · 0.95^k < 0.5 after k = 101 frames of 2 steps.
+        assert_eq!(400 - start, 202, "fade 0.05 keeps the last 202 steps");
+        r.rebuild_trails(&world, history.iter().filter(|h| h.0 >= start).cloned());
+        let (_, early) = &history[40];
+        assert!(early.iter().all(|&p| !trail_near(&r, p)), "trails long faded are not redrawn");
+        let (_, recent) = &history[395];
+        let shown = recent.iter().filter(|&&p| trail_near(&r, p)).count();
+        assert!(shown >= recent.len() * 9 / 10, "{shown} recent positions have a trail");
+        // A jump back: the rebuild does not count as a reset (the step went back), the next
+        // frame keeps it.
+        r.render(&world);
+        r.rebuild_trails(&earlier, history.iter().cloned());
+        let rebuilt = r.trails.clone();
+        assert!(rebuilt != r.base);
+        r.render(&earlier);
+        let kept = r.trails.chunks_exact(4).zip(rebuilt.chunks_exact(4)).filter(|(a, b)| a == b).count();
+        assert!(kept > r.trails.len() / 4 * 9 / 10, "only {kept} pixels kept after one frame");
+        let (_, last) = &history[295];
+        assert!(last.iter().filter(|&&p| trail_near(&r, p)).count() >= last.len() * 9 / 10);
+        // Recorded steps after the jump's are left out.
+        let mut upto = Renderer::new(900, 560);
+        upto.set_trail_fade(0.05);
+        upto.render(&earlier);
+        upto.rebuild_trails(&earlier, history.iter().take(301).cloned());
+        assert!(upto.trails == rebuilt, "steps after 300 changed the rebuilt trails");
     }
 
     #[test]

@@ -80,9 +80,14 @@ impl CompareSim {
         to_json(&steps)
     }
 
-    /// Advances every pane `n` steps.
+    /// Advances every pane `n` steps, tracing each step's trail.
     pub fn step(&mut self, n: u32) {
-        self.comparison.step_n(n);
+        for _ in 0..n {
+            self.comparison.step_n(1);
+            for (r, p) in self.renderers.iter_mut().zip(self.comparison.panes()) {
+                r.trace_step(p.world());
+            }
+        }
     }
 
     /// Restarts every pane from step 0.

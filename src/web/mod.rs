@@ -135,10 +135,12 @@ impl Sim {
         Ok(())
     }
 
-    /// Advances `n` fixed steps, recording each.
+    /// Advances `n` fixed steps, recording each and tracing its trail.
     pub fn step(&mut self, n: u32) {
         for _ in 0..n {
             self.world.step();
+            // Every step leaves its trail, however many run before the next frame.
+            self.renderer.trace_step(&self.world);
             if self.replay.record(&self.world) {
                 // A new step (not one replayed after a jump back): the export recording and the
                 // metrics history keep the same history as the timeline.

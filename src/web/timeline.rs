@@ -28,8 +28,15 @@ impl Sim {
             scene.view = view;
             self.world.edit_scene(scene).map_err(js_error)?;
         }
-        // The trail layer would draw the jump as a segment: start it afresh.
-        self.renderer.clear_trails();
+        // Redraw the trails from the recorded positions before the new step (the timeline's
+        // quantised frames, every `frame_every`-th step once thinned), not a chord of the jump.
+        let from = self.renderer.trail_rebuild_start(&self.world);
+        let replay = &self.replay;
+        let now = self.world.step_count();
+        let recorded =
+            replay.frame_steps().iter().copied().skip_while(|&s| s < from).take_while(|&s| s <= now);
+        let history = recorded.map_while(|s| Some((s, replay.positions_at(s)?)));
+        self.renderer.rebuild_trails(&self.world, history);
         Ok(resimulated)
     }
 

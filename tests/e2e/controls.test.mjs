@@ -137,7 +137,7 @@ test('HiDPI backing store and resizing keep the scene', async () => {
 
     const scene = await page.evaluate(() => window.flockpath.scene());
     const stepsBefore = await steps(page);
-    await page.setViewportSize({ width: 900, height: 640 });
+    await page.setViewportSize({ width: 1000, height: 640 });
     await page.waitForFunction((w) => document.getElementById('scene-canvas').width !== w, first.width);
     await frames(page, 3);
     const second = await size();

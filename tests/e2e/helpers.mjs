@@ -41,14 +41,18 @@ const MIME = {
   '.ts': 'text/plain; charset=utf-8',
 };
 
-/** Serves www/ at SUB_PATH on 127.0.0.1 and a free port; resolves to { url, close }. */
-export async function startServer() {
+/**
+ * Serves www/ at SUB_PATH on 127.0.0.1 and a free port; resolves to { url, close }. Option `cors`:
+ * send `Access-Control-Allow-Origin: *` (true, or a function of the path that says for which files).
+ */
+export async function startServer({ cors = false } = {}) {
   const server = createServer(async (req, res) => {
     const pathname = decodeURIComponent(new URL(req.url, 'http://x').pathname);
     if (!pathname.startsWith(SUB_PATH)) {
       res.writeHead(404).end('not found');
       return;
     }
+    const allow = (typeof cors === 'function' ? cors(pathname) : cors) ? { 'access-control-allow-origin': '*' } : {};
     let file = path.join(WWW, pathname.slice(SUB_PATH.length));
     if (!file.startsWith(WWW)) {
       res.writeHead(403).end('forbidden');
@@ -60,10 +64,11 @@ export async function startServer() {
       res.writeHead(200, {
         'content-type': MIME[path.extname(file)] ?? 'application/octet-stream',
         'cache-control': 'no-store',
+        ...allow,
       });
       res.end(body);
     } catch {
-      res.writeHead(404).end('not found');
+      res.writeHead(404, allow).end('not found');
     }
   });
   await new Promise((resolve) => server.listen(0, '127.0.0.1', resolve));
@@ -232,9 +237,10 @@ export function assertNoUnexpectedErrors(errors, allowed = []) {
 
 /**
  * Like `openPage`, for any page of the folder: opens `SUB_PATH + pathAndHash` and waits until
- * `ready` (a function evaluated in the page) returns true. Returns the same handles.
+ * `ready` (a function evaluated in the page) returns true; `hasTouch` as in `openPage`. Returns the
+ * same handles.
  */
-export async function openPath(pathAndHash, { ready, viewport } = {}) {
+export async function openPath(pathAndHash, { ready, viewport, hasTouch = false } = {}) {
   const server = await startServer();
   const profile = await mkdtemp(path.join(tmpdir(), 'flockpath-e2e-'));
   const context = await chromium.launchPersistentContext(profile, {
@@ -242,6 +248,7 @@ export async function openPath(pathAndHash, { ready, viewport } = {}) {
     headless: true,
     args: CHROMIUM_ARGS,
     viewport: viewport ?? { width: 1280, height: 800 },
+    hasTouch,
     acceptDownloads: true,
   });
   const page = context.pages()[0] ?? (await context.newPage());

@@ -76,3 +76,69 @@ test('a host page scripts the embed through postMessage', async () => {
     await close();
   }
 });
+
+test('when the embed cannot load (its wasm missing), waiting and later requests answer ok: false with the reason', { timeout: 90_000 }, async () => {
+  const { page, context, errors, close } = await openPath('examples/course-notes.html', {
+    ready: () => document.getElementById('corridor') !== null,
+  });
+  try {
+    // A host page with one fresh iframe, whose wasm request is held until requests are waiting.
+    let release;
+    const held = new Promise((resolve) => (release = resolve));
+    let requested;
+    const wasmRequested = new Promise((resolve) => (requested = resolve));
+    await context.route('**/pkg/flockpath_bg.wasm', async (route) => {
+      requested();
+      await held;
+      await route.fulfill({ status: 404, body: 'not found' });
+    });
+    await page.evaluate(() => {
+      for (const el of document.querySelectorAll('flock-path, iframe')) el.remove();
+      const frame = Object.assign(document.createElement('iframe'), { src: '../embed.html' });
+      document.body.append(frame);
+      window.__replies = new Map();
+      window.__events = [];
+      window.addEventListener('message', (event) => {
+        if (event.source !== frame.contentWindow || event.data?.flockpath !== 1) return;
+        if (event.data.event) window.__events.push(event.data);
+        else window.__replies.set(event.data.id, event.data);
+      });
+      window.__send = (id, method, ...args) => frame.contentWindow.postMessage({ flockpath: 1, id, method, args }, '*');
+      window.__reply = (id) =>
+        new Promise((resolve) => {
+          const poll = () => (window.__replies.has(id) ? resolve(window.__replies.get(id)) : setTimeout(poll, 20));
+          poll();
+        });
+    });
+    await wasmRequested;
+    await page.evaluate(() => {
+      window.__send(1, 'step', 10);
+      window.__send(2, 'metrics');
+    });
+    await page.waitForTimeout(300);
+    assert.equal(await page.evaluate(() => window.__replies.size), 0, 'requests wait while the embed loads');
+
+    release();
+    const reason = /^The flockpath simulation could not be loaded: .*flockpath_bg\.wasm could not be loaded \([^)]*404/;
+    const waiting = await page.evaluate(() => Promise.all([window.__reply(1), window.__reply(2)]));
+    for (const [i, reply] of waiting.entries()) {
+      assert.deepEqual(Object.keys(reply).sort(), ['error', 'flockpath', 'id', 'ok']);
+      assert.deepEqual([reply.flockpath, reply.id, reply.ok], [1, i + 1, false]);
+      assert.match(reply.error, reason);
+    }
+    // A request sent after the failure is answered at once with the same reason; an unknown
+    // method still says so.
+    const later = await page.evaluate(() => {
+      window.__send(3, 'digest');
+      window.__send(4, 'teleport');
+      return Promise.all([window.__reply(3), window.__reply(4)]);
+    });
+    assert.deepEqual([later[0].ok, later[0].error], [false, waiting[0].error]);
+    assert.match(later[1].error, /unknown method "teleport"/);
+    // The parent hears of the failure instead of a 'ready' that never comes.
+    assert.deepEqual(await page.evaluate(() => window.__events), [{ flockpath: 1, event: 'error', error: waiting[0].error }]);
+    assertNoUnexpectedErrors(errors, [/404/, /could not be loaded/]);
+  } finally {
+    await close();
+  }
+});

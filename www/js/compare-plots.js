@@ -2,18 +2,21 @@
 // colour per pane). The numbers come from the core (`metrics_json`, `series_json`); this module
 // only formats and draws them.
 
-/** [metrics key, label, format]. */
+/**
+ * [metrics key, label, format]. Units sit in the label, not in every cell, so four panes' columns
+ * fit the side card.
+ */
 const ROWS = [
   ['steps', 'Steps', (m) => m.steps.toLocaleString('en-US')],
   ['agents', 'Agents', (m) => m.agents.toLocaleString('en-US')],
-  ['arrived_share', 'Arrived', (m) => `${(100 * m.arrived_share).toFixed(1)} %`],
-  ['mean_time_to_goal_s', 'Time to goal', (m) => (m.mean_time_to_goal_s == null ? '–' : `${m.mean_time_to_goal_s.toFixed(1)} s`)],
+  ['arrived_share', 'Arrived (%)', (m) => (100 * m.arrived_share).toFixed(1)],
+  ['mean_time_to_goal_s', 'Time to goal (s)', (m) => (m.mean_time_to_goal_s == null ? '–' : m.mean_time_to_goal_s.toFixed(1))],
   ['collisions_agent_agent', 'Collisions', (m) => m.collisions_agent_agent.toLocaleString('en-US')],
   ['penetrations_agent_obstacle', 'Penetrations', (m) => m.penetrations_agent_obstacle.toLocaleString('en-US')],
-  ['mean_path_length', 'Path length', (m) => `${m.mean_path_length.toFixed(0)} px`],
-  ['mean_turn_deg', 'Mean turn', (m) => `${m.mean_turn_deg.toFixed(2)}°`],
-  ['max_turn_deg', 'Max turn', (m) => `${m.max_turn_deg.toFixed(1)}°`],
-  ['mean_speed', 'Mean speed', (m) => `${m.mean_speed.toFixed(2)} px/step`],
+  ['mean_path_length', 'Path length (px)', (m) => m.mean_path_length.toFixed(0)],
+  ['mean_turn_deg', 'Mean turn (°)', (m) => m.mean_turn_deg.toFixed(2)],
+  ['max_turn_deg', 'Max turn (°)', (m) => m.max_turn_deg.toFixed(1)],
+  ['mean_speed', 'Mean speed (px/step)', (m) => m.mean_speed.toFixed(2)],
   ['stuck_agents', 'Stuck', (m) => m.stuck_agents.toLocaleString('en-US')],
 ];
 

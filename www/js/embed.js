@@ -8,7 +8,9 @@
 //
 // Methods: load(scene), play(), pause(), step(n), reset(), metrics(), scene(), sceneString(),
 // digest(), isPlaying(). When it is ready the embed posts { flockpath: 1, event: 'ready' } to
-// its parent.
+// its parent; when it cannot load (wasm missing or refused) it posts { flockpath: 1, event:
+// 'error', error } instead, and answers every request, waiting or new, with ok: false and that
+// message.
 
 import './flock-path.js';
 
@@ -65,7 +67,21 @@ openLink.addEventListener('pointerenter', refreshOpenLink);
 openLink.addEventListener('focus', refreshOpenLink);
 openLink.addEventListener('click', refreshOpenLink);
 
-// Messages that arrive before the simulation is ready wait for it.
+/**
+ * Resolves when the element can take calls; rejects with the load failure's message when it
+ * never will (its `ready` stays pending then, and `flockpath-error` also reports refused calls,
+ * so only an error that leaves the element `failed` counts).
+ */
+const booted = new Promise((resolve, reject) => {
+  el.ready.then(resolve);
+  const failure = (text) => reject(new Error(text));
+  if (el.failed) failure(el.shadowRoot.querySelector('.message')?.textContent ?? 'flockpath could not be loaded');
+  el.addEventListener('flockpath-error', (event) => {
+    if (el.failed) failure(String(event.detail));
+  });
+});
+
+// Messages that arrive before the simulation is ready wait for it (or for its load failure).
 window.addEventListener('message', async (event) => {
   const data = event.data;
   if (!data || data.flockpath !== 1 || typeof data.method !== 'string' || !event.source) return;
@@ -79,8 +95,8 @@ window.addEventListener('message', async (event) => {
     reply({ ok: false, error: `unknown method ${JSON.stringify(data.method)}; known: ${Object.keys(METHODS).join(', ')}` });
     return;
   }
-  await el.ready;
   try {
+    await booted;
     const result = method(el, ...(Array.isArray(data.args) ? data.args : []));
     if (data.method === 'load') refreshOpenLink();
     reply({ ok: true, result: result === undefined ? null : result });
@@ -89,8 +105,13 @@ window.addEventListener('message', async (event) => {
   }
 });
 
-el.ready.then(() => {
-  refreshOpenLink();
-  window.flockpathEmbed = el;
-  if (window.parent !== window) window.parent.postMessage({ flockpath: 1, event: 'ready' }, '*');
-});
+booted.then(
+  () => {
+    refreshOpenLink();
+    window.flockpathEmbed = el;
+    if (window.parent !== window) window.parent.postMessage({ flockpath: 1, event: 'ready' }, '*');
+  },
+  (error) => {
+    if (window.parent !== window) window.parent.postMessage({ flockpath: 1, event: 'error', error: error.message }, '*');
+  },
+);

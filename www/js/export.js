@@ -97,7 +97,7 @@ export function setupExport(app, canvas) {
   setupVideo(app, canvas, status);
 }
 
-/** WebM capture of the canvas while the simulation runs, with the REC indicator in the top bar. */
+/** WebM capture of the canvas while the simulation runs, with the REC indicator over the canvas corner. */
 function setupVideo(app, canvas, status) {
   const button = $('record-webm');
   const indicator = $('recording-indicator');

@@ -9,24 +9,66 @@
 // `fill` (fill the element's box instead, as embed.html does). Several elements on one page run
 // independently: each owns its own simulation; the wasm module is loaded once and shared. Every
 // URL is resolved against this module's own URL, so the folder works under any sub-path, offline.
+// From a page on another site the server must allow CORS (README, "Hosting"). Children other than
+// `slot="actions"` are fallback content: shown until the module upgrades the element, and all a
+// reader sees if it never loads (the Share dialog's snippet carries "Loading…" and a link there).
 //
 // Methods mirror the page API: load(text), play(), pause(), step(n), reset(), metrics(), scene(),
 // sceneString(), digest(); property `playing`, `steps`. Events: `flockpath-ready`,
-// `flockpath-error` (detail: message).
+// `flockpath-error` (detail: message; also when the wasm cannot be loaded, shown in the box too).
 
 const PKG_URL = new URL('../pkg/flockpath.js', import.meta.url).href;
+/** The wasm (where wasm-bindgen's glue looks by default), named here to say what went wrong. */
+const WASM_URL = new URL('../pkg/flockpath_bg.wasm', import.meta.url).href;
 /** Largest canvas backing store per element (px): many embeds on one page stay cheap. */
 const MAX_PIXELS = 1920 * 1200;
 const DEFAULT_STEPS_PER_FRAME = 2;
 
 let shared = null;
 
+/** Why loading `url` failed, in words a course author can act on, with the browser's detail. */
+function loadError(what, url, error, hint = '') {
+  // The browser's detail often repeats the URL the message already names.
+  const detail = messageOf(error).replace(` fetching '${url}'`, '').replace(`: ${url}`, '');
+  return new Error(`The flockpath simulation could not be loaded: ${what} (${detail}).${hint}`);
+}
+
+/** The hint for a request the browser refused: on another site, CORS or the page's CSP. */
+function refusedHint() {
+  if (new URL(PKG_URL).origin === location.origin) return '';
+  return (
+    ' This page is on another site than flockpath: the flockpath server must send Access-Control-Allow-Origin, ' +
+    'and a Content-Security-Policy must allow its origin (see flockpath’s README, “Hosting”).'
+  );
+}
+
 /** Loads and initialises the wasm module once for every element on the page. */
 function loadModule() {
-  shared ??= import(PKG_URL).then(async (module) => {
-    const wasm = await module.default();
+  shared ??= (async () => {
+    let module;
+    try {
+      module = await import(PKG_URL);
+    } catch (error) {
+      throw loadError(`the browser refused or could not find ${PKG_URL}`, PKG_URL, error, refusedHint());
+    }
+    let wasm;
+    try {
+      wasm = await module.default({ module_or_path: WASM_URL });
+    } catch (error) {
+      // fetch() rejects with a TypeError when the browser refuses it (CORS, CSP) or is offline; a
+      // CompileError is the CSP refusing WebAssembly or a file that is not wasm; else an HTTP error.
+      if (error instanceof TypeError) {
+        throw loadError(`the browser refused or could not fetch ${WASM_URL}`, WASM_URL, error, refusedHint());
+      }
+      const wasmApi = typeof WebAssembly !== 'undefined' ? WebAssembly : null;
+      if (wasmApi && (error instanceof wasmApi.CompileError || error instanceof wasmApi.LinkError)) {
+        const hint = " A Content-Security-Policy must allow 'wasm-unsafe-eval' in script-src (see flockpath’s README, “Hosting”).";
+        throw loadError(`${WASM_URL} could not be started as WebAssembly`, WASM_URL, error, hint);
+      }
+      throw loadError(`${WASM_URL} could not be loaded`, WASM_URL, error);
+    }
     return { module, wasm, presets: JSON.parse(module.presets_json()), planners: JSON.parse(module.planners_json()) };
-  });
+  })();
   return shared;
 }
 
@@ -50,10 +92,27 @@ button.play { background: #2f6fdf; border-color: #2f6fdf; color: #fff; min-width
 .message { position: absolute; left: 8px; right: 8px; top: 8px; margin: 0; padding: 6px 10px; background: #fdecea;
   border-left: 5px solid #b3261e; border-radius: 6px; color: #17202c; }
 .message[hidden] { display: none; }
+.message.fatal { position: relative; left: 0; right: 0; top: 0; margin: 8px; cursor: auto; }
 .loading { position: absolute; inset: 0; display: flex; align-items: center; justify-content: center; color: #5a6676; }
 .loading[hidden] { display: none; }
 ::slotted(a) { color: #2f6fdf; }
 `;
+
+let sheet = null;
+
+/**
+ * Styles the shadow root with a constructed sheet where the browser has them: unlike a `<style>`
+ * element it is not refused by a host page's Content-Security-Policy without 'unsafe-inline'.
+ */
+function adoptStyle(root) {
+  if (!('adoptedStyleSheets' in root) || typeof CSSStyleSheet.prototype.replaceSync !== 'function') return false;
+  if (!sheet) {
+    sheet = new CSSStyleSheet();
+    sheet.replaceSync(STYLE);
+  }
+  root.adoptedStyleSheets = [sheet];
+  return true;
+}
 
 /** A readable message from anything thrown. */
 const messageOf = (error) => (error instanceof Error ? error.message : String(error));
@@ -67,7 +126,7 @@ export class FlockPathElement extends HTMLElement {
   constructor() {
     super();
     const root = this.attachShadow({ mode: 'open' });
-    root.innerHTML = `<style>${STYLE}</style>
+    root.innerHTML = `${adoptStyle(root) ? '' : `<style>${STYLE}</style>`}
       <div class="frame" part="frame">
         <div class="stage" part="stage">
           <canvas part="canvas" role="img" aria-label="Simulated crowd"></canvas>
@@ -93,6 +152,7 @@ export class FlockPathElement extends HTMLElement {
     this.frameRequest = 0;
     this.dirty = true;
     this.crashed = false;
+    this.failed = false;
     this.ready = new Promise((resolve) => (this.resolveReady = resolve));
     this.$('.play').addEventListener('click', () => (this.playing ? this.pause() : this.play()));
     this.$('.step').addEventListener('click', () => {
@@ -151,8 +211,7 @@ export class FlockPathElement extends HTMLElement {
     try {
       shared = await loadModule();
     } catch (error) {
-      this.showMessage(`the simulation module could not be loaded (${PKG_URL}): ${messageOf(error)}`);
-      this.$('.loading').hidden = true;
+      this.fail(messageOf(error));
       return;
     }
     if (!this.isConnected) return;
@@ -167,7 +226,7 @@ export class FlockPathElement extends HTMLElement {
     try {
       this.sim = new this.module.Sim(first, width, height);
     } catch (error) {
-      this.showMessage(messageOf(error));
+      this.fail(messageOf(error));
       return;
     }
     this.tryLoad(this.getAttribute('scene') ?? '', { fallback: true });
@@ -230,6 +289,19 @@ export class FlockPathElement extends HTMLElement {
     }
   }
 
+  /** The element cannot run: says why in its box and tells the host page. */
+  fail(text) {
+    this.$('.loading').hidden = true;
+    this.showMessage(text);
+    // It stays (nothing else would fill the box) and takes the room it needs in the box.
+    this.failed = true;
+    // Buttons that could only fail go; slotted actions (embed.html's "Open in flockpath") stay.
+    for (const button of this.shadowRoot.querySelectorAll('.bar button')) button.hidden = true;
+    this.$('.message').classList.add('fatal');
+    this.$('.message').title = '';
+    this.dispatchEvent(new CustomEvent('flockpath-error', { detail: text, bubbles: true, composed: true }));
+  }
+
   showMessage(text) {
     const el = this.$('.message');
     el.textContent = text;
@@ -237,6 +309,7 @@ export class FlockPathElement extends HTMLElement {
   }
 
   hideMessage() {
+    if (this.failed) return;
     this.$('.message').hidden = true;
   }
 

@@ -37,7 +37,13 @@ export class Panel {
     this.plannerSelect.addEventListener('change', () => {
       const index = this.app.activeGroup;
       const name = this.plannerSelect.value;
-      this.app.change((sim) => sim.set_group_planner(index, name), { clearSelection: false });
+      // A new planner restarts the run from the seed, as any other group edit does: agents that
+      // had already arrived would otherwise show nothing of it until Reset.
+      const result = this.app.change((sim) => {
+        sim.set_group_planner(index, name);
+        sim.reset();
+      }, { clearSelection: false });
+      if (result.ok) this.app.dispatchEvent(new Event('stepped'));
     });
     this.defaults.addEventListener('click', () => this.resetParams());
     app.addEventListener('scene', () => this.render());

@@ -27,6 +27,15 @@ export function fileStem(scene) {
 /** HTML-attribute escaping for the snippets. */
 const attr = (text) => text.replace(/&/g, '&amp;').replace(/"/g, '&quot;').replace(/</g, '&lt;');
 
+/**
+ * The `<flock-path>` snippet's script runs this when the module cannot load (blocked by CORS or a
+ * Content-Security-Policy, 404, offline): no flockpath code runs then, so the snippet itself turns
+ * its fallback text ("Loading…", shown until the element upgrades) into the reason.
+ */
+const MODULE_ERROR_HANDLER =
+  "document.querySelectorAll('flock-path:not(:defined) [data-flockpath-status]').forEach((p) => " +
+  "{ p.textContent = 'The flockpath simulation could not be loaded: the browser refused or could not find ' + this.src + '.'; })";
+
 /** The snippets for the current scene string (absolute URLs: they are pasted into other sites). */
 export function snippets(sceneString, { autoplay = true, page = location.href } = {}) {
   const link = shareUrl(sceneString, page);
@@ -36,9 +45,15 @@ export function snippets(sceneString, { autoplay = true, page = location.href } 
   const iframe =
     `<iframe src="${attr(embed.href)}" width="720" height="480" style="border:0;max-width:100%" ` +
     'title="flockpath simulation" allowfullscreen loading="lazy"></iframe>';
+  // The element's children are fallback content: shown until the module upgrades it (then its
+  // shadow DOM replaces them), and all a reader sees when scripts do not run at all. Inline
+  // elements only: a Markdown tool that wraps the element in <p> would end it at a child <p>.
   const component =
-    `<script type="module" src="${attr(module.href)}"></script>\n` +
-    `<flock-path scene="${attr(sceneString)}"${autoplay ? ' autoplay' : ''} controls height="400px"></flock-path>`;
+    `<script type="module" src="${attr(module.href)}" onerror="${attr(MODULE_ERROR_HANDLER)}"></script>\n` +
+    `<flock-path scene="${attr(sceneString)}"${autoplay ? ' autoplay' : ''} controls height="400px">\n` +
+    '  <span data-flockpath-status>Loading the flockpath simulation…</span>\n' +
+    `  <a href="${attr(link)}">Open this scene in flockpath</a>\n` +
+    '</flock-path>';
   return { link, iframe, component };
 }
 
