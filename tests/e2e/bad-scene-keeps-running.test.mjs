@@ -99,6 +99,9 @@ test('refused scenes keep the previous scene running unchanged', async () => {
         assert.equal(disclosure.open, false, `${what}: details start closed`);
         assert.equal(disclosure.summary, 'details');
         assert.equal(disclosure.text, thrown.details, `${what}: the details are the parser's words`);
+        // The banner lets clicks through to the canvas; its disclosure takes them.
+        await page.click('#banner-details summary', { timeout: 5_000 });
+        assert.equal((await bannerDetails(page)).open, true, `${what}: a click opens the details`);
       } else {
         assert.equal(disclosure, null, `${what}: no details to offer`);
       }
