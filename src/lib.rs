@@ -3,7 +3,7 @@
 //! The core is plain Rust with no web types: a [`Scene`] is validated and turned into a [`World`]
 //! (agent state as struct-of-arrays, a fixed step, one seeded generator), planners steer groups,
 //! [`metrics`] measures the run and [`render`] rasterises it. `web` (wasm32 only) wraps this for
-//! the page; `src/bin/flockpath.rs` is the command line.
+//! the page; `src/bin/flockpath/` is the command line.
 //!
 //! ```
 //! use flockpath::{presets, World};
@@ -36,7 +36,6 @@ pub mod rng;
 pub mod scene;
 pub mod spatial;
 pub mod tune;
-pub mod tune_cli;
 #[cfg(target_arch = "wasm32")]
 pub mod web;
 pub mod world;

@@ -22,6 +22,8 @@ use glam::Vec2;
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
 
+pub mod experiment;
+
 /// Bits per gene.
 pub const GENE_BITS: u32 = 10;
 /// Genes per chromosome (s1…s5).

@@ -1,5 +1,6 @@
-//! `flockpath optimize`: argument parsing, independent seeded runs (in parallel natively),
-//! the Table-3-style summary, JSON records and convergence-curve CSV.
+//! The optimizer experiments as data (`flockpath optimize` prints them): independent seeded
+//! runs (in parallel natively), the Table-3-style summary, JSON records, convergence-curve CSV,
+//! the force-step timing and the paper's Table 4.
 //!
 //! The core has no clock: the caller passes one (`clock()` = seconds since any fixed instant)
 //! and a progress callback, both used only for reporting.
@@ -10,46 +11,9 @@ use super::{run_rng, Algorithm, Settings};
 use crate::rng::Rng;
 use serde::Serialize;
 use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
-/// Help text of `flockpath optimize`.
-pub const HELP: &str = "\
-flockpath optimize — run swarm optimizers on benchmark functions (Liu & Liu 2022, Table 3)
-
-USAGE:
-    flockpath optimize [--algorithms LIST] [--functions LIST] [--dim D] [--pop N] [--iters T]
-                       [--runs R] [--seed S] [--g0 X] [--alpha X] [--json FILE] [--curves PATH]
-    flockpath optimize --bench-force
-
-OPTIONS:
-    --algorithms LIST  Comma-separated: gsa,igsa,pso,firefly,ga or `all` (default all)
-    --functions LIST   Comma-separated: sphere,ackley,griewank,rastrigin,rastrigin-5.12,
-                       rosenbrock, `paper` (the first four, default) or `all`
-    --dim D            Dimension (default 30)
-    --pop N            Population size (default 50)
-    --iters T          Iterations per run (default 1000)
-    --runs R           Independent runs per algorithm and function (default 30)
-    --seed S           Master seed; run r draws from stream r of it (default 1)
-    --g0 X, --alpha X  Override G0 and α of GSA and IGSA (defaults GSA 100/20, IGSA 1/30)
-    --json FILE        Write one record per algorithm and function:
-                       {algorithm, function, dim, runs, best, worst, mean, median, seconds, ...}
-    --curves PATH      Convergence curves as CSV (algorithm,function,run,iteration,best):
-                       PATH ending in .csv is one file, otherwise a directory of one file
-                       per function
-    --bench-force      Time the O(N²) GSA force step at N = 50 and 1000 (d = 30) and exit
-    --table4           IGSA group path control, the paper's Table 4: the igsa-crowd scene
-                       with 100, 500 and 1000 agents, path planned by IGSA and by GSA
-                       (planning time, path length, speed near the obstacle, collisions);
-                       --steps N sets the run length (default 6000)
-    --paths            Plan the igsa-path-1 and igsa-path-2 scenes with the chosen
-                       algorithms for seeds 0..R and print length / deflection / turning
-                       (e.g. --paths --algorithms gsa,igsa --runs 20 --iters 500)
-    -h, --help         Show this help
-
-Runs use every core natively; results do not depend on the number of threads.
-";
-
-/// Parsed `flockpath optimize` options.
+/// What the optimizer experiments run (`flockpath optimize` fills it from its flags).
 #[derive(Clone, Debug, PartialEq)]
 pub struct OptimizeArgs {
     /// Algorithms to run, in table order.
@@ -94,97 +58,6 @@ impl Default for OptimizeArgs {
             table4: false,
             steps: 6000,
         }
-    }
-}
-
-fn number<T>(flag: &str, value: &str, lo: T, hi: T) -> Result<T, String>
-where
-    T: std::str::FromStr + PartialOrd + std::fmt::Display + Copy,
-{
-    let x: T = value.parse().map_err(|_| format!("{flag} needs a number, got {value:?}"))?;
-    if x < lo || x > hi {
-        return Err(format!("{flag} = {x} is outside {lo}…{hi}"));
-    }
-    Ok(x)
-}
-
-fn list<T: Copy>(
-    flag: &str,
-    value: &str,
-    lookup: fn(&str) -> Option<T>,
-    groups: &[(&str, &[T])],
-) -> Result<Vec<T>, String> {
-    let mut out = Vec::new();
-    for name in value.split(',').map(str::trim).filter(|s| !s.is_empty()) {
-        if let Some((_, all)) = groups.iter().find(|(g, _)| *g == name) {
-            out.extend_from_slice(all);
-        } else {
-            out.push(lookup(name).ok_or_else(|| format!("{flag}: unknown name {name:?}"))?);
-        }
-    }
-    if out.is_empty() {
-        return Err(format!("{flag} needs at least one name"));
-    }
-    Ok(out)
-}
-
-impl OptimizeArgs {
-    /// Parses the arguments after `optimize` (`--flag value` or `--flag=value`).
-    pub fn parse(args: &[String]) -> Result<Self, String> {
-        let mut a = Self::default();
-        let mut i = 0;
-        while i < args.len() {
-            let (flag, inline) = match args[i].split_once('=') {
-                Some((f, v)) => (f.to_string(), Some(v.to_string())),
-                None => (args[i].clone(), None),
-            };
-            i += 1;
-            if flag == "--bench-force" {
-                a.bench_force = true;
-                continue;
-            }
-            if flag == "--paths" {
-                a.paths = true;
-                continue;
-            }
-            if flag == "--table4" {
-                a.table4 = true;
-                continue;
-            }
-            let value = match inline {
-                Some(v) => v,
-                None => {
-                    let v = args.get(i).ok_or_else(|| format!("{flag} needs a value"))?.clone();
-                    i += 1;
-                    v
-                }
-            };
-            match flag.as_str() {
-                "--algorithms" => {
-                    a.algorithms = list(&flag, &value, Algorithm::from_name, &[("all", Algorithm::ALL)])?
-                }
-                "--functions" => {
-                    a.functions = list(
-                        &flag,
-                        &value,
-                        Function::from_name,
-                        &[("all", Function::ALL), ("paper", Function::PAPER)],
-                    )?
-                }
-                "--dim" => a.dim = number(&flag, &value, 1, 10_000)?,
-                "--pop" => a.settings.population = number(&flag, &value, 2, 100_000)?,
-                "--iters" => a.settings.iterations = number(&flag, &value, 1, 10_000_000)?,
-                "--runs" => a.runs = number(&flag, &value, 1, 100_000)?,
-                "--seed" => a.seed = number(&flag, &value, 0, u32::MAX)?,
-                "--g0" => a.settings.g0 = Some(number(&flag, &value, 0.0, 1e12)?),
-                "--alpha" => a.settings.alpha = Some(number(&flag, &value, 0.0, 1e6)?),
-                "--json" => a.json = Some(PathBuf::from(value)),
-                "--curves" => a.curves = Some(PathBuf::from(value)),
-                "--steps" => a.steps = number(&flag, &value, 1, 1_000_000)?,
-                other => return Err(format!("optimize: unknown option {other:?}")),
-            }
-        }
-        Ok(a)
     }
 }
 
@@ -420,22 +293,6 @@ impl Table {
         }
         s
     }
-
-    /// Writes the curves to `path`: one file if it ends in `.csv`, otherwise a directory with
-    /// `curves-<function>.csv` per function.
-    pub fn write_curves(&self, path: &Path) -> Result<(), String> {
-        let err = |p: &Path, e: std::io::Error| format!("cannot write {}: {e}", p.display());
-        if path.extension().is_some_and(|e| e == "csv") {
-            std::fs::write(path, self.curves_csv(None)).map_err(|e| err(path, e))
-        } else {
-            std::fs::create_dir_all(path).map_err(|e| err(path, e))?;
-            for f in &self.args.functions {
-                let file = path.join(format!("curves-{}.csv", f.name()));
-                std::fs::write(&file, self.curves_csv(Some(f.name()))).map_err(|e| err(&file, e))?;
-            }
-            Ok(())
-        }
-    }
 }
 
 /// Times the O(N²·d) force step ([`gravity_accelerations`] with every particle attracting) at
@@ -598,77 +455,6 @@ pub fn table4(
     s
 }
 
-/// A one-line progress bar for stderr: `[#####.....] done/total`.
-pub fn progress_line(done: usize, total: usize) -> String {
-    let width = 30;
-    let filled = (done * width).checked_div(total).unwrap_or(width).min(width);
-    format!("\r[{}{}] {done}/{total} runs", "#".repeat(filled), ".".repeat(width - filled))
-}
-
-/// The whole `optimize` command: parses `args`, runs, writes the requested files and returns
-/// the text for stdout. `clock` gives seconds; `progress` receives (done, total) runs.
-pub fn command(
-    args: &[String],
-    clock: &(dyn Fn() -> f64 + Sync),
-    progress: &mut dyn FnMut(usize, usize),
-) -> Result<String, String> {
-    if args.iter().any(|a| a == "-h" || a == "--help") {
-        return Ok(HELP.to_string());
-    }
-    execute(&OptimizeArgs::parse(args)?, clock, progress)
-}
-
-/// Runs already-parsed options: the table (or the force benchmark), the files, the text.
-pub fn execute(
-    parsed: &OptimizeArgs,
-    clock: &(dyn Fn() -> f64 + Sync),
-    progress: &mut dyn FnMut(usize, usize),
-) -> Result<String, String> {
-    if parsed.bench_force {
-        return Ok(bench_force(clock));
-    }
-    if parsed.table4 {
-        return Ok(table4(&[100, 500, 1000], parsed.steps, clock, progress));
-    }
-    if parsed.paths {
-        let scenes = [crate::presets::igsa_path_1(), crate::presets::igsa_path_2()];
-        let algorithms: Vec<Algorithm> = parsed.algorithms.clone();
-        let start = clock();
-        let rows = super::path::compare_paths(
-            &scenes,
-            &algorithms,
-            parsed.runs,
-            &parsed.settings,
-            &super::path::PathParams::default(),
-            progress,
-        );
-        let mut text = format!(
-            "N = {}, T = {}, {} seeds per planner and scene\n",
-            parsed.settings.population, parsed.settings.iterations, parsed.runs
-        );
-        text.push_str(&super::path::path_table_text(&rows));
-        let _ = writeln!(text, "wall time {:.1} s on {} threads", clock() - start, threads());
-        if let Some(path) = &parsed.json {
-            let json = serde_json::to_string_pretty(&rows).unwrap_or_else(|_| "[]".into());
-            std::fs::write(path, json + "\n").map_err(|e| format!("cannot write {}: {e}", path.display()))?;
-        }
-        return Ok(text);
-    }
-    let start = clock();
-    let table = run_optimize(parsed, clock, progress)?;
-    let wall = clock() - start;
-    if let Some(path) = &parsed.json {
-        std::fs::write(path, table.to_json() + "\n")
-            .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
-    }
-    if let Some(path) = &parsed.curves {
-        table.write_curves(path)?;
-    }
-    let mut text = table.to_text();
-    let _ = writeln!(text, "wall time {wall:.1} s on {} threads", threads());
-    Ok(text)
-}
-
 /// Worker threads the runs use.
 pub fn threads() -> usize {
     #[cfg(not(target_arch = "wasm32"))]
@@ -684,30 +470,6 @@ pub fn threads() -> usize {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn strings(s: &[&str]) -> Vec<String> {
-        s.iter().map(|x| x.to_string()).collect()
-    }
-
-    #[test]
-    fn parses_lists_groups_and_numbers() {
-        let a = OptimizeArgs::parse(&strings(&[
-            "--algorithms",
-            "gsa,pso",
-            "--functions=all",
-            "--dim",
-            "10",
-            "--runs=3",
-        ]))
-        .expect("parses");
-        assert_eq!(a.algorithms, vec![Algorithm::Gsa, Algorithm::Pso]);
-        assert_eq!(a.functions, Function::ALL.to_vec());
-        assert_eq!((a.dim, a.runs), (10, 3));
-        assert!(OptimizeArgs::parse(&strings(&["--algorithms", "nope"])).is_err());
-        assert!(OptimizeArgs::parse(&strings(&["--dim", "0"])).is_err());
-        assert!(OptimizeArgs::parse(&strings(&["--dim"])).is_err());
-        assert!(OptimizeArgs::parse(&strings(&["--what", "1"])).is_err());
-    }
 
     #[test]
     fn median_of_even_and_odd() {

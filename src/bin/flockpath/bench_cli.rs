@@ -1,0 +1,79 @@
+//! The command line of `flockpath bench` and of the hidden `density-scene` (the bench page's
+//! scenes); the measurements themselves live in `bench.rs`.
+
+use crate::{bench, out, usage, whole_number, CliError};
+use flockpath::scene_to_json;
+
+/// `flockpath bench`.
+#[derive(clap::Args, Debug)]
+#[command(
+    long_about = "ns per agent-step of World::step and render time per frame\n\n\
+                  Usage: taskset -c 0 flockpath bench [--quick] [--only step|grid|planners|render] [--json FILE]",
+    after_help = "Scenes are presets::constant_density(N, 9.0): about 9 neighbours per agent at every N.\n\
+                  Pin to one core (taskset -c 0) so the figures are comparable between runs."
+)]
+pub struct BenchArgs {
+    /// Fewer and shorter repetitions (CI smoke run; figures are rougher)
+    #[arg(long)]
+    quick: bool,
+    /// Run only the step benchmarks (grid, brute force, per planner), only the Boids grid step
+    /// benchmark, only the per-planner table, or only the render benchmark
+    #[arg(long, value_name = "step|grid|planners|render", value_parser = ["step", "grid", "planners", "render"])]
+    only: Option<String>,
+    /// Also write the figures as JSON
+    #[arg(long, value_name = "FILE")]
+    json: Option<String>,
+}
+
+impl BenchArgs {
+    /// The measurements to run.
+    pub fn options(&self) -> bench::Options {
+        let mut options =
+            bench::Options { quick: self.quick, json: self.json.clone(), ..bench::Options::default() };
+        match self.only.as_deref() {
+            Some("step") => options.render = false,
+            Some("grid") => (options.render, options.brute, options.planners) = (false, false, false),
+            Some("planners") => (options.render, options.step) = (false, false),
+            Some("render") => (options.step, options.planners) = (false, false),
+            _ => {}
+        }
+        options
+    }
+}
+
+/// `flockpath density-scene N [--planner NAME] | --planners`.
+#[derive(clap::Args, Debug)]
+pub struct DensitySceneArgs {
+    /// Agents in the scene
+    #[arg(value_parser = whole_number::<u32>, required_unless_present = "planners")]
+    n: Option<u32>,
+    /// The per-planner row's scene (heads for a central goal)
+    #[arg(long, value_name = "NAME")]
+    planner: Option<String>,
+    /// List the per-planner rows
+    #[arg(long, conflicts_with_all = ["n", "planner"])]
+    planners: bool,
+}
+
+/// Prints the benchmark scene with N agents, or the per-planner row names.
+pub fn density_scene(args: &DensitySceneArgs) -> Result<(), CliError> {
+    let Some(n) = args.n else {
+        let names: Vec<&str> = bench::planner_configs().into_iter().map(|(name, _)| name).collect();
+        return out(&format!("{}\n", names.join("\n")));
+    };
+    if n == 0 || n > flockpath::scene::MAX_AGENTS {
+        return Err(usage(format!("N = {n} is outside 1…{}", flockpath::scene::MAX_AGENTS)));
+    }
+    let scene = match &args.planner {
+        None => bench::bench_scene(n),
+        Some(name) => {
+            let config = bench::planner_configs()
+                .into_iter()
+                .find(|(row, _)| row == name)
+                .map(|(_, config)| config)
+                .ok_or_else(|| usage(format!("no bench row {name:?}; see --planners")))?;
+            bench::planner_scene(n, &config)
+        }
+    };
+    out(&format!("{}\n", scene_to_json(&scene)))
+}

@@ -1,0 +1,191 @@
+//! `flockpath run`: simulate a scene, report its metrics, write the exports asked for.
+
+use crate::scenes::load_scene;
+use crate::{failed, out, usage, whole_number, write_file, CliError};
+use flockpath::export::{self, ExportOptions};
+use flockpath::history::{self, MetricsHistory};
+use flockpath::recording::Recording;
+use flockpath::{PlannerKind, Scene, World};
+
+/// Most samples `run --metrics-history` keeps before halving its sampling rate.
+const HISTORY_CAP: usize = 4096;
+/// Most steps one `run` may ask for (about 4.6 hours of simulated time at 60 steps/s).
+const MAX_STEPS: u32 = 1_000_000;
+/// Memory the CLI's recording of a run may use before it thins (a note goes to stderr).
+const RECORDING_BUDGET_BYTES: usize = 1 << 30;
+
+/// `flockpath run`.
+#[derive(clap::Args, Debug)]
+#[command(
+    long_about = "Simulate a scene and report its metrics",
+    after_help = "Every step is recorded up to 1 GiB (agents × steps × 16 bytes); beyond that every other\n\
+                  step is dropped and a note says so on stderr."
+)]
+pub struct RunArgs {
+    /// A scene JSON file, `-` for stdin, a URL fragment value (2.…), a #s=… fragment or a whole
+    /// page URL
+    #[arg(long, value_name = "SCENE")]
+    scene: String,
+    /// Steps to simulate (1 step = 1/60 s), at most 1000000
+    #[arg(long, value_name = "N", value_parser = whole_number::<u32>, allow_negative_numbers = true)]
+    steps: u32,
+    /// Give every group this planner with its default parameters
+    #[arg(long, value_name = "NAME", value_parser = planner_kind)]
+    planner: Option<PlannerKind>,
+    /// Replace the scene's seed (0…4294967295)
+    #[arg(long, value_name = "S", value_parser = whole_number::<u32>, allow_negative_numbers = true)]
+    seed: Option<u32>,
+    /// Write the metrics JSON to FILE, or to stdout with `-`; without it a one-line summary is
+    /// printed
+    #[arg(long, value_name = "FILE|-")]
+    metrics: Option<String>,
+    /// Write the metrics over time as CSV: step,time_s,group,<series…>, a row per sample (every
+    /// 5 steps, halved beyond 4096 samples) for the whole run (group `all`) and per group
+    #[arg(long, value_name = "FILE")]
+    metrics_history: Option<String>,
+    /// Write every agent's path as CSV: agent,group,step,time,x,y,vx,vy (one row per agent per
+    /// recorded step, step 0 included)
+    #[arg(long, value_name = "FILE")]
+    paths: Option<String>,
+    /// Write the paths as JSON
+    #[arg(long, value_name = "FILE")]
+    paths_json: Option<String>,
+    /// Write a Maya MEL script: one keyframed locator per agent (x-z plane)
+    #[arg(long, value_name = "FILE")]
+    maya: Option<String>,
+    /// Write a Blender Python script: one keyframed empty per agent
+    #[arg(long, value_name = "FILE")]
+    blender: Option<String>,
+    /// Write the trails as SVG
+    #[arg(long, value_name = "FILE")]
+    svg: Option<String>,
+    /// Keyframes per second of the MEL/Python exports (1…240, default 24)
+    #[arg(long, value_name = "F", value_parser = real, allow_negative_numbers = true)]
+    fps: Option<f32>,
+    /// Scene px → 3-D units in the MEL/Python exports (default 0.01)
+    #[arg(long, value_name = "S", value_parser = real, allow_negative_numbers = true)]
+    scale: Option<f32>,
+}
+
+fn planner_kind(name: &str) -> Result<PlannerKind, String> {
+    PlannerKind::from_name(name).ok_or_else(|| {
+        let known: Vec<&str> = PlannerKind::ALL.iter().map(|k| k.name()).collect();
+        format!("unknown planner {name:?}; available: {}", known.join(", "))
+    })
+}
+
+fn real(text: &str) -> Result<f32, String> {
+    text.trim().parse().map_err(|_| format!("must be a number, got {text:?}"))
+}
+
+/// Makes one export file's text.
+type Export = fn(&Scene, &Recording, ExportOptions) -> String;
+
+impl RunArgs {
+    /// Every export: its flag, the file asked for, and what it writes.
+    fn exports(&self) -> [(&'static str, Option<&str>, Export); 5] {
+        [
+            ("--paths", self.paths.as_deref(), |scene, rec, _| export::paths_csv(scene, rec)),
+            ("--paths-json", self.paths_json.as_deref(), |scene, rec, _| export::paths_json(scene, rec)),
+            ("--maya", self.maya.as_deref(), export::maya_mel),
+            ("--blender", self.blender.as_deref(), export::blender_py),
+            ("--svg", self.svg.as_deref(), |scene, rec, _| export::trails_svg(scene, rec)),
+        ]
+    }
+}
+
+/// Runs the scene and prints the summary or the metrics JSON.
+pub fn run(args: &RunArgs) -> Result<(), CliError> {
+    let steps = args.steps;
+    if steps > MAX_STEPS {
+        return Err(usage(format!("--steps {steps} is over the limit of {MAX_STEPS}")));
+    }
+    let defaults = ExportOptions::default();
+    let export_options =
+        ExportOptions::checked(args.fps.unwrap_or(defaults.fps), args.scale.unwrap_or(defaults.scale))
+            .map_err(|m| usage(format!("--fps/--scale: {m}")))?;
+    let recording_wanted = args.exports().iter().any(|(_, file, _)| file.is_some());
+
+    let mut scene = load_scene(&args.scene)?;
+    if let Some(kind) = args.planner {
+        for g in &mut scene.groups {
+            g.planner = kind.default_config();
+        }
+    }
+    if let Some(seed) = args.seed {
+        scene.seed = seed;
+    }
+    let mut world = World::new(scene).map_err(|e| failed(format!("cannot run the scene: {e}")))?;
+    let mut recording = recording_wanted.then(|| Recording::of_world(&world, RECORDING_BUDGET_BYTES));
+    let history_file = args.metrics_history.as_deref();
+    let mut history = history_file.map(|_| MetricsHistory::new(history::DEFAULT_EVERY, HISTORY_CAP));
+    if recording.is_none() && history.is_none() {
+        world.step_n(steps);
+    } else {
+        for _ in 0..steps {
+            world.step();
+            if let Some(r) = recording.as_mut() {
+                r.capture_world(&world);
+            }
+            if let Some(h) = history.as_mut() {
+                h.sample(&world);
+            }
+        }
+    }
+    if let Some(recording) = &recording {
+        write_exports(args, &world, recording, export_options)?;
+    }
+    if let (Some(h), Some(file)) = (&history, history_file) {
+        let names: Vec<String> = world.scene().groups.iter().map(|g| g.name.clone()).collect();
+        write_file("metrics history file", file, &h.to_csv(&names))?;
+    }
+    let metrics = world.metrics();
+    let json = serde_json::to_string_pretty(&metrics)
+        .map_err(|e| failed(format!("cannot write the metrics: {e}")))?;
+    match args.metrics.as_deref() {
+        Some("-") => out(&format!("{json}\n")),
+        Some(file) => {
+            write_file("metrics file", file, &format!("{json}\n"))?;
+            out(&summary(&world))
+        }
+        None => out(&summary(&world)),
+    }
+}
+
+/// Writes each export file asked for; a thinned recording is reported on stderr.
+fn write_exports(
+    args: &RunArgs,
+    world: &World,
+    recording: &Recording,
+    options: ExportOptions,
+) -> Result<(), CliError> {
+    let scene = world.scene();
+    if recording.thinned() > 0 {
+        eprintln!(
+            "flockpath: note: the recording outgrew its 1 GiB budget and keeps every {}th step",
+            recording.every()
+        );
+    }
+    for (flag, file, make) in args.exports() {
+        if let Some(file) = file {
+            write_file(&format!("{flag} file"), file, &make(scene, recording, options))?;
+        }
+    }
+    Ok(())
+}
+
+fn summary(world: &World) -> String {
+    let m = world.metrics();
+    let o = &m.overall;
+    format!(
+        "{}: {} agents, {} steps, arrived {:.1}%, collisions {}, penetrations {}, stuck {}, digest {:016x}\n",
+        if world.scene().name.is_empty() { "scene" } else { &world.scene().name },
+        o.agents,
+        m.steps,
+        100.0 * o.arrived_share,
+        o.collisions_agent_agent,
+        o.penetrations_agent_obstacle,
+        o.stuck_agents,
+        world.digest()
+    )
+}
