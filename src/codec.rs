@@ -14,10 +14,17 @@
 //! - `1.` (read only): the deflated keyed scene JSON.
 //!
 //! Every released version keeps decoding: fixtures of each live in `tests/data/fragments/`.
+//!
+//! A refusal names the field by its path in the keyed scene JSON (`groups[2].planner.params.
+//! max_speed`), in both forms (the compact form's positions are translated), with the value as
+//! written and what is allowed; the parser's own words and position ride along as details.
+//! Scene text and fragments may start with a UTF-8 byte-order mark; a bare name is a preset.
 
 use crate::geometry::Obstacle;
 use crate::planners::{PlannerConfig, PlannerKind};
-use crate::scene::{Goal, GoalMotion, Group, Hill, PathSpec, Region, Scene, SceneError, ViewOptions};
+use crate::scene::{
+    allowed_for, Goal, GoalMotion, Group, Hill, PathSpec, Region, Scene, SceneError, ViewOptions,
+};
 use base64::engine::general_purpose::URL_SAFE_NO_PAD;
 use base64::Engine as _;
 use serde::{Deserialize, Serialize};
@@ -27,24 +34,52 @@ pub const FRAGMENT_VERSION: &str = "2";
 /// Every version this build reads, oldest first.
 pub const READABLE_VERSIONS: &[&str] = &["1", "2"];
 /// Largest decompressed scene accepted from a URL (bytes): a guard against deflate bombs.
-const MAX_SCENE_BYTES: usize = 4 << 20;
+pub const MAX_SCENE_BYTES: usize = 4 << 20;
 /// Largest text accepted from a URL or file (bytes).
-const MAX_INPUT_BYTES: usize = 8 << 20;
+pub const MAX_INPUT_BYTES: usize = 8 << 20;
+/// The byte-order mark some editors put at the start of a UTF-8 file.
+const BYTE_ORDER_MARK: char = '\u{feff}';
 
 /// Parses and validates a scene from JSON text.
 pub fn scene_from_json(text: &str) -> Result<Scene, SceneError> {
+    let text = text.strip_prefix(BYTE_ORDER_MARK).unwrap_or(text);
     check_input_size(text)?;
-    let scene: Scene = serde_json::from_str(text).map_err(|e| SceneError::Parse(e.to_string()))?;
-    scene.validate()?;
+    let scene: Scene = deserialize(text, Layout::Keyed)?;
+    scene.validate().map_err(|e| as_written(e, text))?;
     Ok(scene)
+}
+
+/// A refusal showing the number as the text wrote it: `1e39` read into an `f32` is infinite,
+/// and the message should show what the user typed.
+fn as_written(error: SceneError, text: &str) -> SceneError {
+    let SceneError::Field(mut field) = error else { return error };
+    if !field.value.contains("infinite") {
+        return SceneError::Field(field);
+    }
+    let json: Option<serde_json::Value> = serde_json::from_str(text).ok();
+    let mut node = json.as_ref();
+    for part in field.path.split('.') {
+        let (key, indices) = part.split_once('[').map_or((part, ""), |(k, i)| (k, i));
+        node = node.and_then(|n| n.get(key));
+        for index in indices.split('[') {
+            if let Ok(i) = index.trim_end_matches(']').parse::<usize>() {
+                node = node.and_then(|n| n.get(i));
+            }
+        }
+    }
+    if let Some(number) = node.filter(|n| n.is_number()) {
+        field.value = render(number);
+    }
+    SceneError::Field(field)
 }
 
 fn check_input_size(text: &str) -> Result<(), SceneError> {
     if text.len() > MAX_INPUT_BYTES {
-        return Err(SceneError::Parse(format!(
-            "the scene text is {} bytes, over the 8 MiB limit",
-            text.len()
-        )));
+        return Err(SceneError::TooLarge {
+            what: "the scene text",
+            bytes: Some(text.len()),
+            limit: MAX_INPUT_BYTES,
+        });
     }
     Ok(())
 }
@@ -77,8 +112,17 @@ fn unpack(payload: &str) -> Result<String, SceneError> {
         SceneError::Parse(format!("the scene string is not valid base64 ({e}); was it cut short?"))
     })?;
     let bytes =
-        miniz_oxide::inflate::decompress_to_vec_with_limit(&packed, MAX_SCENE_BYTES).map_err(|e| {
-            SceneError::Parse(format!("the scene string is damaged or truncated ({:?})", e.status))
+        miniz_oxide::inflate::decompress_to_vec_with_limit(&packed, MAX_SCENE_BYTES).map_err(|e| match e
+            .status
+        {
+            miniz_oxide::inflate::TINFLStatus::HasMoreOutput => SceneError::TooLarge {
+                what: "the unpacked scene string",
+                bytes: None,
+                limit: MAX_SCENE_BYTES,
+            },
+            _ => SceneError::Parse(
+                "the scene string is damaged or truncated: was it cut short when copied?".into(),
+            ),
         })?;
     String::from_utf8(bytes).map_err(|_| SceneError::Parse("the scene string does not hold text".into()))
 }
@@ -86,6 +130,7 @@ fn unpack(payload: &str) -> Result<String, SceneError> {
 /// Decodes a fragment value of any readable version; also accepts a whole URL or a `#s=…`
 /// fragment.
 pub fn scene_from_fragment(input: &str) -> Result<Scene, SceneError> {
+    let input = input.strip_prefix(BYTE_ORDER_MARK).unwrap_or(input);
     let value = fragment_value(input.trim());
     check_input_size(value)?;
     let (version, payload) = value.split_once('.').ok_or_else(|| {
@@ -98,9 +143,7 @@ pub fn scene_from_fragment(input: &str) -> Result<Scene, SceneError> {
         "2" => {
             let text = unpack(payload)?;
             if text.trim_start().starts_with('[') {
-                let compact: CompactScene = serde_json::from_str(&text).map_err(|e| {
-                    SceneError::Parse(format!("the scene string does not hold a version 2 scene ({e})"))
-                })?;
+                let compact: CompactScene = deserialize(&text, Layout::Compact)?;
                 let scene = compact.to_scene()?;
                 scene.validate()?;
                 Ok(scene)
@@ -116,16 +159,30 @@ pub fn scene_from_fragment(input: &str) -> Result<Scene, SceneError> {
     }
 }
 
-/// Loads a scene from whatever a user pasted: JSON, a fragment value, a `#s=` fragment or a URL.
+/// Loads a scene from whatever a user pasted: JSON, a fragment value, a `#s=` fragment, a URL,
+/// or a preset name (`pillars`).
 pub fn scene_from_any(input: &str) -> Result<Scene, SceneError> {
-    let trimmed = input.trim_start();
+    let input = input.strip_prefix(BYTE_ORDER_MARK).unwrap_or(input);
+    check_input_size(input)?;
+    let trimmed = input.trim();
     if trimmed.starts_with('{') {
         scene_from_json(trimmed)
     } else if trimmed.is_empty() {
         Err(SceneError::Parse("the scene text is empty".into()))
+    } else if looks_like_preset_name(trimmed) {
+        crate::presets::lookup(trimmed).map(|p| (p.build)())
     } else {
         scene_from_fragment(trimmed)
     }
+}
+
+/// Whether `text` reads as a preset name (`open-field`) rather than a scene string: lower-case
+/// letters, digits and dashes, starting with a letter. Scene strings start with their version
+/// (`2.`), URLs hold `:` or `/`, and a pasted payload without its version has capitals.
+fn looks_like_preset_name(text: &str) -> bool {
+    text.len() <= 40
+        && text.starts_with(|c: char| c.is_ascii_lowercase())
+        && text.chars().all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '-')
 }
 
 /// Extracts the `s=` value from a URL or fragment, or returns the input unchanged.
@@ -278,8 +335,13 @@ impl CompactScene {
                     spawn: Region { min: [*x0, *y0], max: [*x1, *y1] },
                     goal: *goal,
                     agent_radius: *radius,
-                    planner: planner_with(planner, params)
-                        .map_err(|m| SceneError::OutOfRange(format!("group {} ({name}): {m}", i + 1)))?,
+                    planner: planner_with(planner, params).map_err(|e| match e {
+                        SceneError::Field(mut f) => {
+                            f.path = format!("groups[{i}].{}", f.path);
+                            SceneError::Field(f)
+                        }
+                        other => other,
+                    })?,
                 })
             })
             .collect::<Result<_, SceneError>>()?;
@@ -337,14 +399,15 @@ fn planner_params(config: &PlannerConfig) -> Vec<serde_json::Value> {
 }
 
 /// The planner `name` with the table's first `values.len()` parameters set (range-checked) and
-/// the rest at their defaults.
-fn planner_with(name: &str, values: &[serde_json::Value]) -> Result<PlannerConfig, String> {
+/// the rest at their defaults. Refusals name the field below the group's `planner`
+/// (`planner.params.max_speed`); the caller puts the group in front.
+fn planner_with(name: &str, values: &[serde_json::Value]) -> Result<PlannerConfig, SceneError> {
     let kind = PlannerKind::from_name(name).ok_or_else(|| {
-        let known: Vec<&str> = PlannerKind::ALL.iter().map(|k| k.name()).collect();
-        format!(
-            "unknown planner {:?}; known: {}",
-            name.chars().take(40).collect::<String>(),
-            known.join(", ")
+        let known: Vec<String> = PlannerKind::ALL.iter().map(|k| format!("\"{}\"", k.name())).collect();
+        SceneError::field(
+            "planner.kind",
+            format!("{:?}", name.chars().take(40).collect::<String>()),
+            format!("one of {}", known.join(", ")),
         )
     })?;
     let specs = kind.param_specs();
@@ -354,11 +417,10 @@ fn planner_with(name: &str, values: &[serde_json::Value]) -> Result<PlannerConfi
         _ => (values, None),
     };
     if values.len() > specs.len() {
-        return Err(format!(
-            "{} takes {} parameters, the link has {}",
-            kind.label(),
-            specs.len(),
-            values.len()
+        return Err(SceneError::field(
+            "planner.params",
+            format!("a list of {} values", values.len()),
+            format!("at most {} values for {} (its parameter table)", specs.len(), kind.label()),
         ));
     }
     let mut params = serde_json::to_value(kind.default_config())
@@ -375,11 +437,433 @@ fn planner_with(name: &str, values: &[serde_json::Value]) -> Result<PlannerConfi
             object.insert(key.clone(), value.clone());
         }
     }
-    let config: PlannerConfig =
-        serde_json::from_value(serde_json::json!({ "kind": kind.name(), "params": params }))
-            .map_err(|e| format!("{}: {e}", kind.label()))?;
-    config.validate()?;
+    let keyed = serde_json::json!({ "kind": kind.name(), "params": params });
+    let config: PlannerConfig = serde_path_to_error::deserialize(&keyed).map_err(|e| {
+        let segments: Vec<Segment> = e.path().iter().cloned().collect();
+        let path = format!("planner.{}", keyed_path(&segments));
+        let value = walk(&keyed, &segments).map_or_else(|| "refused".to_string(), render);
+        let message = e.inner().to_string();
+        let hint = param_allowed(kind, &path);
+        field_refusal(path, value, &message, hint, None)
+    })?;
+    config.check().map_err(|e| SceneError::field(format!("planner.params.{}", e.key), e.value, e.allowed))?;
     Ok(config)
+}
+
+/// Which names a decoded text's positions get: the keyed scene JSON's own keys, or the
+/// positional compact form's, translated to the keyed names so messages read the same.
+#[derive(Clone, Copy)]
+enum Layout {
+    Keyed,
+    Compact,
+}
+
+use serde_path_to_error::Segment;
+
+/// Deserialises `text`, refusing with the field's path, its value and what is allowed.
+fn deserialize<T: serde::de::DeserializeOwned>(text: &str, layout: Layout) -> Result<T, SceneError> {
+    let mut deserializer = serde_json::Deserializer::from_str(text);
+    let value: T =
+        serde_path_to_error::deserialize(&mut deserializer).map_err(|e| refusal(&e, text, layout))?;
+    deserializer.end().map_err(|e| {
+        SceneError::Parse(format!(
+            "unexpected text after the end of the scene (line {}, column {})",
+            e.line(),
+            e.column()
+        ))
+    })?;
+    Ok(value)
+}
+
+/// Words for a refused decode: which field, what it held, what it may hold.
+fn refusal(error: &serde_path_to_error::Error<serde_json::Error>, text: &str, layout: Layout) -> SceneError {
+    let inner = error.inner();
+    let raw = inner.to_string();
+    let at = format!("line {}, column {}", inner.line(), inner.column());
+    if inner.is_eof() {
+        return SceneError::Parse(format!("the scene text ends too early ({at}): was it cut short?"));
+    }
+    let mut segments: Vec<Segment> = error.path().iter().cloned().collect();
+    let json: Option<serde_json::Value> = serde_json::from_str(text).ok();
+    let token = token_at(text, inner.line(), inner.column());
+    // The text's structure with a word JSON cannot hold (NaN) replaced by 0: it tells a compact
+    // circle [x, y, r] from a polygon and finds a group's planner.
+    let structure = json.clone().or_else(|| {
+        let (start, end, _) = token.as_ref()?;
+        serde_json::from_str(&format!("{}0{}", &text[..*start], &text[*end..])).ok()
+    });
+    let message = raw.rsplit_once(" at line ").map_or(raw.as_str(), |(m, _)| m).to_string();
+    // Internally tagged obstacles and goal motions report errors at the object: read it again
+    // as its variant's fields to find the field.
+    if let Some(inner) = json.as_ref().and_then(|j| walk(j, &segments)).and_then(tagged_field_path) {
+        segments.extend(inner);
+    }
+    let path = match layout {
+        Layout::Keyed => keyed_path(&segments),
+        Layout::Compact => compact_path(&segments, structure.as_ref()),
+    };
+    let about_a_key = message.starts_with("missing field") || message.starts_with("unknown field");
+    if path.is_empty() && !about_a_key {
+        return SceneError::Parse(match layout {
+            Layout::Keyed => format!("the text is not a scene object ({message}, {at})"),
+            Layout::Compact => format!("the scene string does not hold a version 2 scene ({message})"),
+        });
+    }
+    let hint = planner_param_allowed(&path, structure.as_ref());
+    let value = json.as_ref().and_then(|j| walk(j, &segments)).map(render);
+    let (value, hint) = match value {
+        Some(v) => (v, hint),
+        // Not JSON at all (NaN, Infinity, 1e999): show the word at the error's position.
+        None => match token.map(|(_, _, word)| word) {
+            Some(token) => {
+                let hint = hint.or_else(|| allowed_for(&path));
+                (token, hint.or_else(|| Some("a finite number (JSON has no NaN or Infinity)".into())))
+            }
+            None if inner.is_syntax() => {
+                return SceneError::Parse(format!(
+                    "the scene text is not valid JSON: {message} ({at}, in {path})"
+                ))
+            }
+            None => ("refused".to_string(), hint),
+        },
+    };
+    field_refusal(path, value, &message, hint, Some(raw))
+}
+
+/// What a planner parameter at `path` (`groups[2].planner.params.max_speed`) accepts, from the
+/// table of the group's planner (read from `json`; any planner with that key if unknown).
+fn planner_param_allowed(path: &str, json: Option<&serde_json::Value>) -> Option<String> {
+    let (group, key) = path.strip_prefix("groups[")?.split_once("].planner.params.")?;
+    let kind = json
+        .and_then(|j| {
+            j.get("groups")?.get(group.parse::<usize>().ok()?)?.get("planner")?.get("kind")?.as_str()
+        })
+        .and_then(PlannerKind::from_name);
+    let key = key.split(['.', '[']).next()?;
+    let kinds: Vec<PlannerKind> = kind.map_or_else(|| PlannerKind::ALL.to_vec(), |k| vec![k]);
+    kinds.iter().find_map(|k| k.param_specs().iter().find(|s| s.key == key)).map(|s| s.allowed())
+}
+
+/// [`planner_param_allowed`] for a path below `planner` of a known planner.
+fn param_allowed(kind: PlannerKind, path: &str) -> Option<String> {
+    let key = path.strip_prefix("planner.params.")?.split(['.', '[']).next()?;
+    kind.param_specs().iter().find(|s| s.key == key).map(|s| s.allowed())
+}
+
+/// A refused field from the parser's `message`, in words: the table's limit for `path` when it
+/// has one, else the parser's expectation translated.
+fn field_refusal(
+    path: String,
+    value: String,
+    message: &str,
+    hint: Option<String>,
+    detail: Option<String>,
+) -> SceneError {
+    let (value, allowed) = if let Some(key) = between(message, "unknown field `", "`") {
+        let known = message.split_once("expected ").map_or("", |(_, k)| k).replace('`', "\"");
+        let known = known.trim_start_matches("one of ");
+        let allowed =
+            if known.is_empty() { "no keys here".to_string() } else { format!("one of the keys {known}") };
+        let path = if path.ends_with(&key) { path } else { format!("{path}.{key}") };
+        return with_detail(SceneError::field(path, "an unknown key", allowed), detail);
+    } else if message.ends_with("expected \"kind\" or \"params\"") {
+        // serde's words for an unknown key beside a planner's kind and params.
+        let allowed = "one of the keys \"kind\", \"params\"";
+        return with_detail(SceneError::field(path, "an unknown key", allowed), detail);
+    } else if let Some(key) = between(message, "missing field `", "`") {
+        let path = if path.is_empty() { key.clone() } else { format!("{path}.{key}") };
+        let allowed = allowed_for(&path).unwrap_or_else(|| "a value: this key is required".into());
+        return with_detail(SceneError::field(path, "missing", allowed), detail);
+    } else if message.contains("untagged enum CompactObstacle") {
+        (value, "a circle [x, y, radius], a rectangle [x0, y0, x1, y1] or a polygon [[x, y], …]".to_string())
+    } else if message.contains("untagged enum CompactGoal") {
+        (value, "[x, y, radius] or [x, y, radius, motion]".to_string())
+    } else if message.starts_with("number out of range") {
+        let allowed = hint
+            .or_else(|| allowed_for(&path))
+            .unwrap_or_else(|| "a number within ±3.4e38 (a 32-bit float)".into());
+        (value, allowed)
+    } else {
+        let expected = message.rsplit_once("expected ").map(|(_, e)| expected_in_words(e));
+        let allowed = hint.or_else(|| allowed_for(&path)).or(expected).unwrap_or_else(|| message.to_string());
+        (value, allowed)
+    };
+    with_detail(SceneError::field(path, value, allowed), detail)
+}
+
+fn with_detail(error: SceneError, detail: Option<String>) -> SceneError {
+    match error {
+        SceneError::Field(mut f) => {
+            f.detail = detail;
+            SceneError::Field(f)
+        }
+        other => other,
+    }
+}
+
+/// The text between `start` and the next `end` in `s`.
+fn between(s: &str, start: &str, end: &str) -> Option<String> {
+    let rest = s.split_once(start)?.1;
+    Some(rest.split_once(end)?.0.to_string())
+}
+
+/// serde's description of an expected type, in a user's words.
+fn expected_in_words(expected: &str) -> String {
+    let e = expected.trim();
+    match e {
+        "f32" | "f64" => "a number".into(),
+        "u32" => "a whole number 0…4294967295".into(),
+        "u64" | "usize" => "a whole number ≥ 0".into(),
+        "a string" => "text in quotes".into(),
+        "a boolean" => "true or false".into(),
+        "a sequence" => "a list […]".into(),
+        _ if e.starts_with("an array of length") => {
+            format!("a list of {} numbers", e.trim_start_matches("an array of length ").trim())
+        }
+        _ if e.starts_with("struct ") || e.starts_with("a map") => "an object {…}".into(),
+        _ if e.starts_with("internally tagged enum Obstacle") => {
+            "an obstacle {\"shape\": \"circle\" | \"rect\" | \"polygon\", …}".into()
+        }
+        _ => e.replace('`', "\""),
+    }
+}
+
+/// The fields of an obstacle or a goal motion, without their tag: serde reads internally tagged
+/// enums from a buffer, which loses the path below the object, so a refused one is read again
+/// as one of these to name the field.
+mod tagged {
+    use serde::Deserialize;
+
+    #[derive(Deserialize)]
+    #[serde(deny_unknown_fields)]
+    #[expect(dead_code, reason = "read only to find the refused field")]
+    pub struct Circle {
+        pub center: [f32; 2],
+        pub radius: f32,
+    }
+
+    #[derive(Deserialize)]
+    #[serde(deny_unknown_fields)]
+    #[expect(dead_code, reason = "read only to find the refused field")]
+    pub struct Rect {
+        pub min: [f32; 2],
+        pub max: [f32; 2],
+    }
+
+    #[derive(Deserialize)]
+    #[serde(deny_unknown_fields)]
+    #[expect(dead_code, reason = "read only to find the refused field")]
+    pub struct Polygon {
+        pub points: Vec<[f32; 2]>,
+    }
+
+    #[derive(Deserialize)]
+    #[serde(deny_unknown_fields)]
+    #[expect(dead_code, reason = "read only to find the refused field")]
+    pub struct CircleMotion {
+        pub center: [f32; 2],
+        pub radius: f32,
+        pub period_steps: f32,
+    }
+
+    #[derive(Deserialize)]
+    #[serde(deny_unknown_fields)]
+    #[expect(dead_code, reason = "read only to find the refused field")]
+    pub struct PolylineMotion {
+        pub points: Vec<[f32; 2]>,
+        pub speed: f32,
+    }
+}
+
+/// The path below an obstacle or goal motion `node` to its refused field, if one is refused.
+fn tagged_field_path(node: &serde_json::Value) -> Option<Vec<Segment>> {
+    fn first_error<T: serde::de::DeserializeOwned>(fields: serde_json::Value) -> Option<Vec<Segment>> {
+        serde_path_to_error::deserialize::<_, T>(fields).err().map(|e| e.path().iter().cloned().collect())
+    }
+    let mut fields = node.as_object()?.clone();
+    let (tag, variant) = if let Some(shape) = fields.remove("shape") {
+        ("shape", shape)
+    } else {
+        ("kind", fields.remove("kind")?)
+    };
+    let fields = serde_json::Value::Object(fields);
+    let path = match (tag, variant.as_str()?) {
+        ("shape", "circle") => first_error::<tagged::Circle>(fields),
+        ("shape", "rect") => first_error::<tagged::Rect>(fields),
+        ("shape", "polygon") => first_error::<tagged::Polygon>(fields),
+        ("kind", "circle") => first_error::<tagged::CircleMotion>(fields),
+        ("kind", "polyline") => first_error::<tagged::PolylineMotion>(fields),
+        _ => None,
+    }?;
+    (!path.is_empty()).then_some(path)
+}
+
+/// Follows `segments` into `json`.
+fn walk<'a>(json: &'a serde_json::Value, segments: &[Segment]) -> Option<&'a serde_json::Value> {
+    segments.iter().try_fold(json, |node, segment| match segment {
+        Segment::Seq { index } => node.get(*index),
+        Segment::Map { key } => node.get(key),
+        _ => Some(node),
+    })
+}
+
+/// A value as written, shortened: `"abc"`, `4`, `[1,2,3]`.
+fn render(value: &serde_json::Value) -> String {
+    if let Some(x) = value.as_f64().filter(|x| x.abs() >= 1e7 || (*x != 0.0 && x.abs() < 1e-4)) {
+        if value.is_f64() {
+            return format!("{x:e}");
+        }
+    }
+    let text = value.to_string();
+    if text.chars().count() > 60 {
+        format!("{}…", text.chars().take(57).collect::<String>())
+    } else {
+        text
+    }
+}
+
+/// The word around (1-based) `line`, `column` of `text`: the number or name the parser stopped
+/// at (`NaN`, `Infinity`, `1e999`), with its byte range in `text`.
+fn token_at(text: &str, line: usize, column: usize) -> Option<(usize, usize, String)> {
+    let row_start: usize = text.split_inclusive('\n').take(line.checked_sub(1)?).map(str::len).sum();
+    let row = text.lines().nth(line - 1)?;
+    // serde_json counts columns in bytes; the word is ASCII, so bytes serve as characters.
+    let chars: Vec<char> = row.bytes().map(char::from).collect();
+    let word = |c: char| c.is_ascii_alphanumeric() || matches!(c, '.' | '+' | '-');
+    let mut at = column.min(chars.len());
+    // The column names the character after the token or the token's first character.
+    if at > 0 && !chars.get(at).copied().is_some_and(word) {
+        at -= 1;
+    }
+    if !chars.get(at).copied().is_some_and(word) {
+        return None;
+    }
+    let start = chars[..at].iter().rposition(|&c| !word(c)).map_or(0, |k| k + 1);
+    let end = chars[at..].iter().position(|&c| !word(c)).map_or(chars.len(), |k| at + k);
+    let token: String = chars[start..end].iter().take(40).collect();
+    (!token.is_empty()).then_some((row_start + start, row_start + end, token))
+}
+
+/// A keyed path: `groups[2].planner.params.max_speed`.
+fn keyed_path(segments: &[Segment]) -> String {
+    let mut path = String::new();
+    for segment in segments {
+        match segment {
+            Segment::Seq { index } => path.push_str(&format!("[{index}]")),
+            Segment::Map { key } | Segment::Enum { variant: key } => {
+                if !path.is_empty() {
+                    path.push('.');
+                }
+                path.push_str(key);
+            }
+            Segment::Unknown => {}
+        }
+    }
+    path
+}
+
+/// A compact form's positional path in the keyed scene's names (`[6][2][7][2]` →
+/// `groups[2].planner.params.max_speed`), so both forms of a link refuse in the same words.
+fn compact_path(segments: &[Segment], json: Option<&serde_json::Value>) -> String {
+    let index = |k: usize| match segments.get(k) {
+        Some(Segment::Seq { index }) => Some(*index),
+        _ => None,
+    };
+    let node = |k: usize| json.and_then(|j| walk(j, &segments[..k.min(segments.len())]));
+    let rest = |k: usize| {
+        let tail = keyed_path(segments.get(k..).unwrap_or_default());
+        if tail.is_empty() || tail.starts_with('[') {
+            tail
+        } else {
+            format!(".{tail}")
+        }
+    };
+    let pair = |name: &str, k: usize| match index(k) {
+        Some(c) => format!("{name}[{c}]{}", rest(k + 1)),
+        None => name.to_string(),
+    };
+    let Some(top) = index(0) else { return keyed_path(segments) };
+    match (top, index(1)) {
+        (0, _) => "name".into(),
+        (1, _) => "width".into(),
+        (2, _) => "height".into(),
+        (3, _) => "seed".into(),
+        (4, None) => "obstacles".into(),
+        (4, Some(i)) => {
+            let arity = node(2).and_then(|o| o.as_array()).map(Vec::len);
+            let field = match (arity, index(2)) {
+                (_, None) => String::new(),
+                (Some(3), Some(k)) if node(3).is_some_and(|v| !v.is_array()) => {
+                    if k < 2 {
+                        format!(".center[{k}]")
+                    } else {
+                        ".radius".into()
+                    }
+                }
+                (Some(4), Some(k)) if node(3).is_some_and(|v| !v.is_array()) => {
+                    format!(".{}[{}]", if k < 2 { "min" } else { "max" }, k % 2)
+                }
+                (_, Some(k)) => format!(".points[{k}]{}", rest(3)),
+            };
+            format!("obstacles[{i}]{field}")
+        }
+        (5, None) => "goals".into(),
+        (5, Some(i)) => match index(2) {
+            None => format!("goals[{i}]"),
+            Some(k @ (0 | 1)) => format!("goals[{i}].position[{k}]"),
+            Some(2) => format!("goals[{i}].radius"),
+            Some(_) => format!("goals[{i}].motion{}", rest(3)),
+        },
+        (6, None) => "groups".into(),
+        (6, Some(i)) => {
+            let field = match index(2) {
+                None => String::new(),
+                Some(0) => ".name".into(),
+                Some(1) => ".color".into(),
+                Some(2) => ".count".into(),
+                Some(3) => match index(3) {
+                    Some(k) => format!(".spawn.{}[{}]", if k < 2 { "min" } else { "max" }, k % 2),
+                    None => ".spawn".into(),
+                },
+                Some(4) => ".goal".into(),
+                Some(5) => ".agent_radius".into(),
+                Some(6) => ".planner.kind".into(),
+                Some(_) => {
+                    let kind = node(3)
+                        .and_then(|g| g.get(6))
+                        .and_then(|k| k.as_str())
+                        .and_then(PlannerKind::from_name);
+                    match (index(3), kind) {
+                        (Some(k), Some(kind)) => match kind.param_specs().get(k) {
+                            Some(spec) => format!(".planner.params.{}", spec.key),
+                            None => format!(".planner.params{}", rest(4)),
+                        },
+                        _ => ".planner.params".into(),
+                    }
+                }
+            };
+            format!("groups[{i}]{field}")
+        }
+        (7, _) => match index(1) {
+            Some(0) => "view.trails".into(),
+            Some(1) => "view.trail_fade".into(),
+            _ => "view".into(),
+        },
+        (8, Some(0)) => match (index(2), index(3)) {
+            (Some(i), Some(0)) => format!("paths[{i}].radius"),
+            (Some(i), Some(_)) => pair(&format!("paths[{i}].points"), 4),
+            (Some(i), None) => format!("paths[{i}]"),
+            _ => "paths".into(),
+        },
+        (8, Some(_)) => match (index(2), index(3)) {
+            (Some(i), Some(k @ (0 | 1))) => format!("hills[{i}].center[{k}]"),
+            (Some(i), Some(2)) => format!("hills[{i}].radius"),
+            (Some(i), Some(_)) => format!("hills[{i}].height"),
+            (Some(i), None) => format!("hills[{i}]"),
+            _ => "hills".into(),
+        },
+        _ => keyed_path(segments),
+    }
 }
 
 #[cfg(test)]

@@ -312,7 +312,7 @@ mod tests {
         assert_eq!((path_of(&deleted, 0), path_of(&deleted, 1)), (0, 1));
         assert_eq!(deleted.paths.len(), 1);
         let one_point = Edit::AddPath { points: vec![[1.0, 1.0]], radius: None, group: None };
-        assert!(matches!(apply(&s, &one_point), Err(SceneError::OutOfRange(_))));
+        assert!(matches!(apply(&s, &one_point), Err(SceneError::Field(f)) if f.path == "paths[2].points"));
         let mut pso = s.clone();
         pso.groups[0].planner = crate::planners::PlannerKind::Pso.default_config();
         let e = apply(&pso, &first).expect_err("PSO does not follow paths");

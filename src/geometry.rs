@@ -5,7 +5,7 @@ use serde::{Deserialize, Serialize};
 
 /// A static obstacle in scene coordinates (pixels, y down).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(tag = "shape", rename_all = "snake_case")]
+#[serde(tag = "shape", rename_all = "snake_case", deny_unknown_fields)]
 pub enum Obstacle {
     /// A disc.
     Circle {

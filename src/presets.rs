@@ -147,6 +147,14 @@ pub fn find(name: &str) -> Option<&'static Preset> {
     ALL.iter().find(|p| p.name == name)
 }
 
+/// Looks a preset up by name; an unknown name is refused with the list of known ones.
+pub fn lookup(name: &str) -> Result<&'static Preset, crate::scene::SceneError> {
+    find(name).ok_or_else(|| crate::scene::SceneError::UnknownPreset {
+        name: name.chars().take(40).collect(),
+        known: ALL.iter().map(|p| p.name).collect(),
+    })
+}
+
 fn group(name: &str, color: &str, count: u32, spawn: ([f32; 2], [f32; 2]), goal: u32) -> Group {
     Group {
         name: name.into(),

@@ -265,26 +265,36 @@ impl GoalMotion {
         }
     }
 
-    fn validate(&self, name: &dyn Fn() -> String) -> Result<(), SceneError> {
+    /// Checks the motion of the goal at `path` (`goals[0].motion`) in `scene`.
+    fn validate(&self, path: &str, scene: &Scene) -> Result<(), SceneError> {
         match self {
             GoalMotion::Circle { center, radius, period_steps } => {
-                finite(name, &[center[0], center[1], *radius, *period_steps])?;
-                if *radius < 0.0 || *radius > MAX_SIDE || *period_steps < 1.0 {
-                    return Err(SceneError::OutOfRange(format!(
-                        "{} circle needs radius 0…{MAX_SIDE} px and a period of at least 1 step",
-                        name()
-                    )));
+                for (k, &c) in center.iter().enumerate() {
+                    finite_at(|| format!("{path}.center[{k}]"), c)?;
+                }
+                number_in(|| format!("{path}.radius"), *radius, 0.0, false, MAX_SIDE)?;
+                number_in(|| format!("{path}.period_steps"), *period_steps, 1.0, false, f32::MAX)?;
+                let reach = Vec2::splat(*radius);
+                if !scene.in_bounds(v(*center) - reach) || !scene.in_bounds(v(*center) + reach) {
+                    return Err(SceneError::field(
+                        format!("{path}.radius"),
+                        num(*radius),
+                        format!(
+                            "a circle around ({}, {}) that stays inside the {}×{} px world",
+                            num(center[0]),
+                            num(center[1]),
+                            num(scene.width),
+                            num(scene.height)
+                        ),
+                    ));
                 }
             }
             GoalMotion::Polyline { points, speed } => {
-                let flat: Vec<f32> = points.iter().flat_map(|p| [p[0], p[1]]).chain([*speed]).collect();
-                finite(name, &flat)?;
-                if points.is_empty() || points.len() > MAX_PATH_POINTS || *speed < 0.0 || *speed > MAX_SIDE {
-                    return Err(SceneError::OutOfRange(format!(
-                        "{} path needs 1…{MAX_PATH_POINTS} points and a speed ≥ 0 px/step",
-                        name()
-                    )));
+                count_in(|| format!("{path}.points"), points.len(), 1, MAX_PATH_POINTS)?;
+                for (k, p) in points.iter().enumerate() {
+                    scene.point_near(|| format!("{path}.points[{k}]"), *p)?;
                 }
+                number_in(|| format!("{path}.speed"), *speed, 0.0, false, MAX_SIDE)?;
             }
         }
         Ok(())
@@ -368,6 +378,60 @@ pub enum SceneError {
     Blocked(String),
     /// One step of the scene would cost more than the stated limit ([`crate::cost`]).
     TooCostly(String),
+    /// One field's value is refused (wrong type, not a finite number, outside its limit, an
+    /// unknown key, a missing one): the message names the field by its path, the value and what
+    /// is allowed.
+    Field(Box<FieldError>),
+    /// The input is larger than a stated limit.
+    TooLarge {
+        /// What was too large ("the scene text", "the unpacked scene string").
+        what: &'static str,
+        /// Its size in bytes, when known (unpacking stops at the limit).
+        bytes: Option<usize>,
+        /// The limit in bytes.
+        limit: usize,
+    },
+    /// A bare name that names no preset.
+    UnknownPreset {
+        /// The name given.
+        name: String,
+        /// Every preset name, in menu order.
+        known: Vec<&'static str>,
+    },
+}
+
+/// A refused field: where it is, what it holds, what is allowed.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FieldError {
+    /// Path to the field as the scene JSON spells it: `groups[2].planner.params.max_speed`
+    /// (indices count from 0, like the JSON arrays they index).
+    pub path: String,
+    /// The refused value as written (`"abc"`, `NaN`, `1e30`), or `missing` / `an unknown key`.
+    pub value: String,
+    /// What the field accepts, with its unit and limit (`a number in 0.1…20 px/step`).
+    pub allowed: String,
+    /// The parser's own words and position, for a "details" disclosure; not part of the message.
+    pub detail: Option<String>,
+}
+
+impl SceneError {
+    /// A refused field (see [`FieldError`]).
+    pub fn field(path: impl Into<String>, value: impl Into<String>, allowed: impl Into<String>) -> Self {
+        SceneError::Field(Box::new(FieldError {
+            path: path.into(),
+            value: value.into(),
+            allowed: allowed.into(),
+            detail: None,
+        }))
+    }
+
+    /// The parser's raw message and position behind this error, if it came from one.
+    pub fn detail(&self) -> Option<&str> {
+        match self {
+            SceneError::Field(f) => f.detail.as_deref(),
+            _ => None,
+        }
+    }
 }
 
 impl fmt::Display for SceneError {
@@ -381,18 +445,166 @@ impl fmt::Display for SceneError {
             | SceneError::TooCostly(m) => {
                 write!(f, "{m}")
             }
+            SceneError::Field(e) => write!(f, "{} is {}; allowed: {}", e.path, e.value, e.allowed),
+            SceneError::TooLarge { what, bytes: Some(bytes), limit } => {
+                write!(f, "{what} is too large ({bytes} bytes; limit {limit} bytes)")
+            }
+            SceneError::TooLarge { what, bytes: None, limit } => {
+                write!(f, "{what} is too large (limit {limit} bytes)")
+            }
+            SceneError::UnknownPreset { name, known } => {
+                write!(f, "unknown preset '{name}' (known: {})", known.join(", "))
+            }
         }
     }
 }
 
 impl std::error::Error for SceneError {}
 
-fn finite(what: impl Fn() -> String, values: &[f32]) -> Result<(), SceneError> {
-    if values.iter().all(|x| x.is_finite()) {
+/// A number as a person writes it: `1e30` rather than thirty-one digits, `NaN`, `infinite`.
+pub fn number_text(x: f32) -> String {
+    if x.is_nan() {
+        "NaN".into()
+    } else if x.is_infinite() {
+        if x > 0.0 { "infinite (too large a number)" } else { "-infinite (too large a number)" }.into()
+    } else if x != 0.0 && (x.abs() >= 1e7 || x.abs() < 1e-4) {
+        format!("{x:e}")
+    } else {
+        format!("{x}")
+    }
+}
+
+fn num(x: f32) -> String {
+    number_text(x)
+}
+
+/// How far (px) obstacles, hills and moving goals may reach beyond the world's edges: room for a
+/// wall drawn across the border, and a bound that keeps squared distances far from overflow.
+pub const WORLD_MARGIN: f32 = MAX_SIDE;
+/// Most polygon vertices a scene may hold over all its polygons: the check that edges do not
+/// cross compares pairs of edges within each polygon.
+pub const MAX_POLYGON_POINTS_TOTAL: usize = 50_000;
+
+/// One row of the limits table: a field pattern (`[]` for any index), what it accepts, why.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FieldLimit {
+    /// The field, as a path with `[]` for any index (`groups[].agent_radius`).
+    pub field: &'static str,
+    /// What is allowed, with the unit.
+    pub allowed: String,
+    /// Why the limit exists.
+    pub why: &'static str,
+}
+
+/// Every limit a scene field has, in the words of the refusal messages (the README's table is
+/// checked against it). Planner parameters are listed by their own table
+/// ([`crate::planners::ParamSpec`]).
+pub fn field_limits() -> Vec<FieldLimit> {
+    let row = |field, allowed: String, why| FieldLimit { field, allowed, why };
+    let side = format!("a number in 10…{MAX_SIDE} px");
+    let inside = "a number inside the world (0…width, 0…height px)".to_string();
+    let near = format!(
+        "a number within {WORLD_MARGIN} px of the world (−{WORLD_MARGIN}…width/height + {WORLD_MARGIN} px)"
+    );
+    let length = format!("a number above 0 and at most {MAX_SIDE} px");
+    vec![
+        row("width", side.clone(), "a world from a dot to a large poster; bigger worlds cost memory per grid cell"),
+        row("height", side, "as width"),
+        row("seed", "a whole number 0…4294967295".into(), "a 32-bit seed: same scene + same seed = same run"),
+        row("obstacles", format!("a list of at most {MAX_OBSTACLES} obstacles"), "every step tests agents against nearby obstacles"),
+        row("obstacles[].shape", "\"circle\", \"rect\" or \"polygon\"".into(), "the shapes the geometry knows"),
+        row("obstacles[].center[]", near.clone(), "far-off coordinates only cost precision"),
+        row("obstacles[].radius", length.clone(), "a circle larger than the largest world is a typo"),
+        row("obstacles[].min[]", format!("{near}, below max"), "a rectangle needs an area"),
+        row("obstacles[].max[]", format!("{near}, above min"), "a rectangle needs an area"),
+        row(
+            "obstacles[].points",
+            format!("3…{MAX_POLYGON_POINTS} points of a simple polygon (edges meet only at shared corners, non-zero area); at most {MAX_POLYGON_POINTS_TOTAL} polygon points in all"),
+            "inside/outside tests need a simple polygon; the crossing check compares pairs of edges",
+        ),
+        row("obstacles[].points[][]", near.clone(), "as obstacle centres"),
+        row("goals[].position[]", format!("{inside}, outside every obstacle"), "a goal must be reachable"),
+        row("goals[].radius", length.clone(), "the arrival disc"),
+        row("goals[].motion.kind", "\"circle\" or \"polyline\"".into(), "the motions goals know"),
+        row("goals[].motion.center[]", "a number; the whole circle inside the world".into(), "the goal must stay reachable"),
+        row("goals[].motion.radius", format!("a number in 0…{MAX_SIDE} px"), "as obstacle radii"),
+        row("goals[].motion.period_steps", "a number of at least 1 step".into(), "a turn takes at least one step"),
+        row("goals[].motion.points", format!("1…{MAX_PATH_POINTS} points, each {near}"), "a goal's route"),
+        row("goals[].motion.speed", format!("a number in 0…{MAX_SIDE} px/step"), "as obstacle radii"),
+        row("groups[].count", format!("a whole number 0…{MAX_AGENTS}; all groups together at most {MAX_AGENTS} agents; 0 is an empty group that spawns nothing"), "keeps a typo from freezing the page"),
+        row("groups[].color", "a colour \"#rrggbb\"".into(), "what the renderer draws"),
+        row("groups[].spawn.min[]", format!("{inside}, at most max"), "agents start inside the world"),
+        row("groups[].spawn.max[]", format!("{inside}, at least min"), "agents start inside the world"),
+        row("groups[].goal", "null (wander) or the index of one of the scene's goals, counting from 0".into(), "a group heads for a goal that exists"),
+        row("groups[].agent_radius", "a number in 0.5…100 px".into(), "bodies from a dot to a large disc"),
+        row("groups[].planner.kind", "\"boids\", \"pso\", \"firefly\", \"forces\" or \"igsa\"".into(), "the planners flockpath has"),
+        row("groups[].planner.params.path", "0 (none) or the number of one of the scene's paths, counting from 1".into(), "a Boids group follows a path that exists"),
+        row("paths", format!("a list of at most {MAX_PATHS} paths"), "paths are drawn and followed every step"),
+        row("paths[].points", format!("2…{MAX_PATH_POINTS} points, each inside the world"), "a path runs inside the world"),
+        row("paths[].radius", length.clone(), "the corridor half-width"),
+        row("hills", format!("a list of at most {MAX_HILLS} hills"), "every hill adds to each ground-height lookup"),
+        row("hills[].center[]", near, "as obstacle centres"),
+        row("hills[].radius", length, "as obstacle radii"),
+        row("hills[].height", format!("a number in 0…{MAX_HILL_HEIGHT} px"), "hills, not pits; tall enough for any scene"),
+        row("view.trail_fade", "a number in 0…1".into(), "the share of a trail lost per frame"),
+        row("(any object)", "only the keys listed here and in the planner tables; an unknown key is refused".into(), "a misspelt key would otherwise be ignored without a word"),
+        row("(scene text)", format!("at most {} bytes", crate::codec::MAX_INPUT_BYTES), "a file or link larger than any real scene"),
+        row("(unpacked scene string)", format!("at most {} bytes", crate::codec::MAX_SCENE_BYTES), "a guard against deflate bombs"),
+    ]
+}
+
+/// What `path` accepts, from [`field_limits`] (indices in the path may be any number).
+pub fn allowed_for(path: &str) -> Option<String> {
+    let pattern = index_free(path);
+    field_limits().into_iter().find(|l| l.field == pattern).map(|l| l.allowed)
+}
+
+/// `groups[2].spawn.min[0]` → `groups[].spawn.min[]`.
+pub fn index_free(path: &str) -> String {
+    let mut out = String::with_capacity(path.len());
+    let mut in_index = false;
+    for c in path.chars() {
+        match c {
+            '[' => {
+                in_index = true;
+                out.push('[');
+            }
+            ']' => {
+                in_index = false;
+                out.push(']');
+            }
+            _ if in_index => {}
+            _ => out.push(c),
+        }
+    }
+    out
+}
+
+/// The allowed text of `path`, or `fallback` when the table has no row for it.
+fn allowed(path: &str, fallback: &str) -> String {
+    allowed_for(path).unwrap_or_else(|| fallback.to_string())
+}
+
+/// Refuses a non-finite number at `path`.
+fn finite_at(path: impl Fn() -> String, x: f32) -> Result<(), SceneError> {
+    if x.is_finite() {
         Ok(())
     } else {
-        Err(SceneError::NotFinite(what()))
+        let path = path();
+        let allowed = allowed(&path, "a finite number");
+        Err(SceneError::field(path, num(x), allowed))
     }
+}
+
+/// Refuses `x` at `path` unless finite and within `lo…hi` (`above_lo`: strictly above `lo`).
+fn number_in(path: impl Fn() -> String, x: f32, lo: f32, above_lo: bool, hi: f32) -> Result<(), SceneError> {
+    finite_at(&path, x)?;
+    if (above_lo && x <= lo) || (!above_lo && x < lo) || x > hi {
+        let path = path();
+        let allowed = allowed(&path, &format!("a number in {lo}…{hi}"));
+        return Err(SceneError::field(path, num(x), allowed));
+    }
+    Ok(())
 }
 
 impl Scene {
@@ -417,183 +629,311 @@ impl Scene {
         self.groups.iter().map(|g| u64::from(g.count)).sum()
     }
 
-    /// Checks every value; the first problem found is returned with a message naming it.
+    /// Checks every value; the first problem found is returned with a message naming the field
+    /// by its path (`groups[2].agent_radius`), the value and what is allowed ([`field_limits`]).
+    ///
+    /// Empty is fine: a scene without obstacles, goals or groups is an empty canvas to draw on,
+    /// and a group with `count: 0` spawns nothing (the editor keeps its settings).
     pub fn validate(&self) -> Result<(), SceneError> {
-        finite(|| "scene width/height".into(), &[self.width, self.height])?;
-        if !(10.0..=MAX_SIDE).contains(&self.width) || !(10.0..=MAX_SIDE).contains(&self.height) {
-            return Err(SceneError::OutOfRange(format!(
-                "scene size {}×{} px is outside 10…{MAX_SIDE} px",
-                self.width, self.height
-            )));
-        }
-        if self.obstacles.len() > MAX_OBSTACLES {
-            return Err(SceneError::OutOfRange(format!(
-                "{} obstacles is more than the {MAX_OBSTACLES} allowed",
-                self.obstacles.len()
-            )));
+        number_in(|| "width".into(), self.width, 10.0, false, MAX_SIDE)?;
+        number_in(|| "height".into(), self.height, 10.0, false, MAX_SIDE)?;
+        count_in(|| "obstacles".into(), self.obstacles.len(), 0, MAX_OBSTACLES)?;
+        let polygon_points: usize = self
+            .obstacles
+            .iter()
+            .map(|o| if let Obstacle::Polygon { points } = o { points.len() } else { 0 })
+            .sum();
+        if polygon_points > MAX_POLYGON_POINTS_TOTAL {
+            return Err(SceneError::field(
+                "obstacles",
+                format!("{polygon_points} polygon points in all"),
+                format!("at most {MAX_POLYGON_POINTS_TOTAL} polygon points over all polygons"),
+            ));
         }
         for (i, o) in self.obstacles.iter().enumerate() {
-            validate_obstacle(i, o)?;
+            self.validate_obstacle(i, o)?;
         }
         for (i, g) in self.goals.iter().enumerate() {
-            finite(|| format!("goal {}", i + 1), &[g.position[0], g.position[1], g.radius])?;
-            if g.radius <= 0.0 || g.radius > MAX_SIDE {
-                return Err(SceneError::OutOfRange(format!(
-                    "goal {} radius {} must be > 0",
-                    i + 1,
-                    g.radius
+            self.point_inside(|| format!("goals[{i}].position"), g.position)?;
+            number_in(|| format!("goals[{i}].radius"), g.radius, 0.0, true, MAX_SIDE)?;
+            if let Some(k) = self.obstacles.iter().position(|o| o.contains(v(g.position))) {
+                return Err(SceneError::Blocked(format!(
+                    "goals[{i}] at ({}, {}) is inside obstacles[{k}]; a goal must lie outside every obstacle",
+                    num(g.position[0]),
+                    num(g.position[1])
                 )));
             }
-            if !self.in_bounds(v(g.position)) {
-                return Err(SceneError::OutOfRange(format!("goal {} lies outside the scene", i + 1)));
-            }
-            if let Some(k) = self.obstacles.iter().position(|o| o.contains(v(g.position))) {
-                return Err(SceneError::Blocked(format!("goal {} is inside obstacle {}", i + 1, k + 1)));
-            }
             if let Some(m) = &g.motion {
-                m.validate(&|| format!("goal {} motion", i + 1))?;
-                if let GoalMotion::Circle { center, radius, .. } = m {
-                    let reach = Vec2::splat(*radius);
-                    if !self.in_bounds(v(*center) - reach) || !self.in_bounds(v(*center) + reach) {
-                        return Err(SceneError::OutOfRange(format!(
-                            "goal {} circle (radius {radius} px) must stay inside the scene",
-                            i + 1
-                        )));
-                    }
-                }
+                m.validate(&format!("goals[{i}].motion"), self)?;
             }
         }
         let total = self.agent_count();
         if total > u64::from(MAX_AGENTS) {
-            return Err(SceneError::OutOfRange(format!(
-                "{total} agents is more than the {MAX_AGENTS} allowed"
-            )));
+            let path = if self.groups.len() == 1 { "groups[0].count" } else { "groups" };
+            return Err(SceneError::field(
+                path,
+                format!("{total} agents in all"),
+                format!("at most {MAX_AGENTS} agents over all groups"),
+            ));
         }
         for (i, g) in self.groups.iter().enumerate() {
             self.validate_group(i, g)?;
         }
-        if self.paths.len() > MAX_PATHS {
-            return Err(SceneError::OutOfRange(format!(
-                "{} paths is more than the {MAX_PATHS} allowed",
-                self.paths.len()
-            )));
-        }
+        count_in(|| "paths".into(), self.paths.len(), 0, MAX_PATHS)?;
         for (i, path) in self.paths.iter().enumerate() {
-            let flat: Vec<f32> = path.points.iter().flat_map(|p| [p[0], p[1]]).chain([path.radius]).collect();
-            finite(|| format!("path {}", i + 1), &flat)?;
-            if path.points.len() < 2 || path.points.len() > MAX_PATH_POINTS {
-                return Err(SceneError::OutOfRange(format!(
-                    "path {} needs 2…{MAX_PATH_POINTS} points, has {}",
-                    i + 1,
-                    path.points.len()
-                )));
+            count_in(|| format!("paths[{i}].points"), path.points.len(), 2, MAX_PATH_POINTS)?;
+            for (k, p) in path.points.iter().enumerate() {
+                self.point_inside(|| format!("paths[{i}].points[{k}]"), *p)?;
             }
-            if path.radius <= 0.0 || path.radius > MAX_SIDE {
-                return Err(SceneError::OutOfRange(format!(
-                    "path {} radius {} must be > 0",
-                    i + 1,
-                    path.radius
-                )));
-            }
-            if let Some(k) = path.points.iter().position(|&p| !self.in_bounds(v(p))) {
-                return Err(SceneError::OutOfRange(format!(
-                    "path {} point {} lies outside the scene",
-                    i + 1,
-                    k + 1
-                )));
-            }
+            number_in(|| format!("paths[{i}].radius"), path.radius, 0.0, true, MAX_SIDE)?;
         }
-        if self.hills.len() > MAX_HILLS {
-            return Err(SceneError::OutOfRange(format!(
-                "{} hills is more than the {MAX_HILLS} allowed",
-                self.hills.len()
-            )));
-        }
+        count_in(|| "hills".into(), self.hills.len(), 0, MAX_HILLS)?;
         for (i, h) in self.hills.iter().enumerate() {
-            finite(|| format!("hill {}", i + 1), &[h.center[0], h.center[1], h.radius, h.height])?;
-            if h.radius <= 0.0 || h.radius > MAX_SIDE || !(0.0..=MAX_HILL_HEIGHT).contains(&h.height) {
-                return Err(SceneError::OutOfRange(format!(
-                    "hill {} needs a radius in 0…{MAX_SIDE} px and a height in 0…{MAX_HILL_HEIGHT} px",
-                    i + 1
-                )));
-            }
+            self.point_near(|| format!("hills[{i}].center"), h.center)?;
+            number_in(|| format!("hills[{i}].radius"), h.radius, 0.0, true, MAX_SIDE)?;
+            number_in(|| format!("hills[{i}].height"), h.height, 0.0, false, MAX_HILL_HEIGHT)?;
         }
-        let fade = self.view.trail_fade;
-        finite(|| "view trail fade".into(), &[fade])?;
-        if !(0.0..=1.0).contains(&fade) {
-            return Err(SceneError::OutOfRange(format!("view trail fade {fade} is outside 0…1")));
-        }
-        Ok(())
+        number_in(|| "view.trail_fade".into(), self.view.trail_fade, 0.0, false, 1.0)
     }
 
     fn validate_group(&self, i: usize, g: &Group) -> Result<(), SceneError> {
-        let name = || format!("group {} ({})", i + 1, g.name);
         let s = g.spawn;
-        finite(|| format!("{} spawn region", name()), &[s.min[0], s.min[1], s.max[0], s.max[1]])?;
-        finite(|| format!("{} agent radius", name()), &[g.agent_radius])?;
-        if !(0.5..=100.0).contains(&g.agent_radius) {
-            return Err(SceneError::OutOfRange(format!(
-                "{} agent radius {} px is outside 0.5…100",
-                name(),
-                g.agent_radius
-            )));
+        for (corner, p) in [("min", s.min), ("max", s.max)] {
+            self.point_inside(|| format!("groups[{i}].spawn.{corner}"), p)?;
         }
-        if s.min[0] > s.max[0] || s.min[1] > s.max[1] {
-            return Err(SceneError::OutOfRange(format!("{} spawn region has min > max", name())));
+        for k in 0..2 {
+            if s.min[k] > s.max[k] {
+                return Err(SceneError::field(
+                    format!("groups[{i}].spawn.min[{k}]"),
+                    num(s.min[k]),
+                    format!("at most spawn.max[{k}] ({})", num(s.max[k])),
+                ));
+            }
         }
-        if !self.in_bounds(v(s.min)) || !self.in_bounds(v(s.max)) {
-            return Err(SceneError::OutOfRange(format!("{} spawn region leaves the scene", name())));
-        }
+        number_in(|| format!("groups[{i}].agent_radius"), g.agent_radius, 0.5, false, 100.0)?;
         if let Some(goal) = g.goal {
             if goal as usize >= self.goals.len() {
-                return Err(SceneError::BadReference(format!(
-                    "{} heads for goal {} but the scene has {} goal(s)",
-                    name(),
-                    goal + 1,
-                    self.goals.len()
-                )));
+                return Err(SceneError::field(
+                    format!("groups[{i}].goal"),
+                    goal.to_string(),
+                    match self.goals.len() {
+                        0 => "null: the scene has no goals".to_string(),
+                        n => format!("null or a goal index 0…{} (the scene has {n} goal(s))", n - 1),
+                    },
+                ));
             }
         }
         if !is_hex_color(&g.color) {
-            return Err(SceneError::OutOfRange(format!("{} colour {:?} is not #rrggbb", name(), g.color)));
+            return Err(SceneError::field(
+                format!("groups[{i}].color"),
+                format!("{:?}", g.color.chars().take(40).collect::<String>()),
+                allowed(&format!("groups[{i}].color"), "#rrggbb"),
+            ));
         }
-        g.planner.validate().map_err(|m| SceneError::OutOfRange(format!("{}: {m}", name())))
+        self.validate_planner(i, &g.planner)
+    }
+
+    /// Checks the planner settings of group `i` against their table and against this scene (a
+    /// Boids group follows a path that exists). The world checks a live planner change with it.
+    pub fn validate_planner(&self, i: usize, planner: &PlannerConfig) -> Result<(), SceneError> {
+        planner.check().map_err(|e| {
+            SceneError::field(format!("groups[{i}].planner.params.{}", e.key), e.value, e.allowed)
+        })?;
+        if let PlannerConfig::Boids(p) = planner {
+            if p.path as usize > self.paths.len() {
+                return Err(SceneError::field(
+                    format!("groups[{i}].planner.params.path"),
+                    p.path.to_string(),
+                    match self.paths.len() {
+                        0 => "0 (none): the scene has no paths".to_string(),
+                        n => format!("0 (none) or a path number 1…{n} (the scene has {n} path(s))"),
+                    },
+                ));
+            }
+        }
+        Ok(())
     }
 
     /// Whether a point lies within the scene rectangle.
     pub fn in_bounds(&self, p: Vec2) -> bool {
         p.x >= 0.0 && p.y >= 0.0 && p.x <= self.width && p.y <= self.height
     }
+
+    /// Refuses coordinate `axis` (0 = x, 1 = y) at `path` unless it lies inside the world.
+    fn coordinate_inside(&self, path: impl Fn() -> String, x: f32, axis: usize) -> Result<(), SceneError> {
+        let side = if axis == 0 { self.width } else { self.height };
+        finite_at(&path, x)?;
+        if !(0.0..=side).contains(&x) {
+            let what = if axis == 0 { "width" } else { "height" };
+            return Err(SceneError::field(
+                path(),
+                num(x),
+                format!("a number in 0…{} px (inside the world's {what})", num(side)),
+            ));
+        }
+        Ok(())
+    }
+
+    /// Refuses point `p` at `path` unless it lies inside the world.
+    fn point_inside(&self, path: impl Fn() -> String, p: [f32; 2]) -> Result<(), SceneError> {
+        for (axis, x) in p.into_iter().enumerate() {
+            self.coordinate_inside(|| format!("{}[{axis}]", path()), x, axis)?;
+        }
+        Ok(())
+    }
+
+    /// Refuses point `p` at `path` unless both coordinates are finite and within
+    /// [`WORLD_MARGIN`] of the world.
+    fn point_near(&self, path: impl Fn() -> String, p: [f32; 2]) -> Result<(), SceneError> {
+        for (k, side) in [self.width, self.height].into_iter().enumerate() {
+            let at = || format!("{}[{k}]", path());
+            finite_at(at, p[k])?;
+            if p[k] < -WORLD_MARGIN || p[k] > side + WORLD_MARGIN {
+                return Err(SceneError::field(
+                    at(),
+                    num(p[k]),
+                    format!(
+                        "a number in −{WORLD_MARGIN}…{} px (within {WORLD_MARGIN} px of the world)",
+                        num(side + WORLD_MARGIN)
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    fn validate_obstacle(&self, i: usize, o: &Obstacle) -> Result<(), SceneError> {
+        match o {
+            Obstacle::Circle { center, radius } => {
+                self.point_near(|| format!("obstacles[{i}].center"), *center)?;
+                number_in(|| format!("obstacles[{i}].radius"), *radius, 0.0, true, MAX_SIDE)?;
+            }
+            Obstacle::Rect { min, max } => {
+                self.point_near(|| format!("obstacles[{i}].min"), *min)?;
+                self.point_near(|| format!("obstacles[{i}].max"), *max)?;
+                for k in 0..2 {
+                    if min[k] >= max[k] {
+                        return Err(SceneError::field(
+                            format!("obstacles[{i}].min[{k}]"),
+                            num(min[k]),
+                            format!("below max[{k}] ({}): a rectangle needs an area", num(max[k])),
+                        ));
+                    }
+                }
+            }
+            Obstacle::Polygon { points } => {
+                count_in(|| format!("obstacles[{i}].points"), points.len(), 3, MAX_POLYGON_POINTS)?;
+                for (k, p) in points.iter().enumerate() {
+                    self.point_near(|| format!("obstacles[{i}].points[{k}]"), *p)?;
+                }
+                check_simple_polygon(points).map_err(|problem| {
+                    SceneError::field(
+                        format!("obstacles[{i}].points"),
+                        problem,
+                        "a simple polygon: edges meet only at shared corners, non-zero area",
+                    )
+                })?;
+            }
+        }
+        Ok(())
+    }
 }
 
-fn validate_obstacle(i: usize, o: &Obstacle) -> Result<(), SceneError> {
-    let name = || format!("obstacle {}", i + 1);
-    match o {
-        Obstacle::Circle { center, radius } => {
-            finite(name, &[center[0], center[1], *radius])?;
-            if *radius <= 0.0 || *radius > MAX_SIDE {
-                return Err(SceneError::OutOfRange(format!("{} radius {radius} must be > 0", name())));
-            }
+/// Refuses a list at `path` of `n` items unless `lo ≤ n ≤ hi`.
+fn count_in(path: impl Fn() -> String, n: usize, lo: usize, hi: usize) -> Result<(), SceneError> {
+    if n < lo || n > hi {
+        let path = path();
+        let fallback = if lo == 0 { format!("at most {hi} items") } else { format!("{lo}…{hi} items") };
+        let allowed = allowed(&path, &fallback);
+        return Err(SceneError::field(path, format!("a list of {n}"), allowed));
+    }
+    Ok(())
+}
+
+/// Checks that `points` form a simple polygon: not all on one line, and no two edges meet except
+/// neighbours at their shared corner (which also rules out zero area). Repeated consecutive points count once (an editor's
+/// double click). Edges are swept in order of their left end, so only edges whose x ranges
+/// overlap are compared. The problem is described in words, naming the points (from 0).
+fn check_simple_polygon(points: &[[f32; 2]]) -> Result<(), String> {
+    let mut corners: Vec<(usize, [f64; 2])> = Vec::with_capacity(points.len());
+    for (k, p) in points.iter().enumerate() {
+        let q = [f64::from(p[0]), f64::from(p[1])];
+        if corners.last().is_none_or(|(_, last)| *last != q) {
+            corners.push((k, q));
         }
-        Obstacle::Rect { min, max } => {
-            finite(name, &[min[0], min[1], max[0], max[1]])?;
-            if min[0] >= max[0] || min[1] >= max[1] {
-                return Err(SceneError::OutOfRange(format!("{} rectangle has no area", name())));
+    }
+    while corners.len() > 1 && corners.first().map(|c| c.1) == corners.last().map(|c| c.1) {
+        corners.pop();
+    }
+    let n = corners.len();
+    if n < 3 {
+        return Err(format!("a polygon of {n} distinct point(s)"));
+    }
+    if corners.iter().all(|c| orientation(corners[0].1, corners[1].1, c.1) == 0.0) {
+        return Err("a polygon with no area (its points lie on one line)".into());
+    }
+    let edge = |k: usize| (corners[k].1, corners[(k + 1) % n].1);
+    let mut order: Vec<usize> = (0..n).collect();
+    let min_x = |k: usize| edge(k).0[0].min(edge(k).1[0]);
+    order.sort_by(|&a, &b| min_x(a).total_cmp(&min_x(b)));
+    for (slot, &a) in order.iter().enumerate() {
+        let (a0, a1) = edge(a);
+        let max_x = a0[0].max(a1[0]);
+        for &b in &order[slot + 1..] {
+            if min_x(b) > max_x {
+                break;
             }
-        }
-        Obstacle::Polygon { points } => {
-            if points.len() < 3 || points.len() > MAX_POLYGON_POINTS {
-                return Err(SceneError::OutOfRange(format!(
-                    "{} polygon needs 3…{MAX_POLYGON_POINTS} points, has {}",
-                    name(),
-                    points.len()
-                )));
+            let (b0, b1) = edge(b);
+            let neighbours = (a + 1) % n == b || (b + 1) % n == a;
+            let crossing = if neighbours {
+                // Neighbours share one corner; they may only touch there (no folding back).
+                let (shared, a_far, b_far) = if (a + 1) % n == b { (a1, a0, b1) } else { (a0, a1, b0) };
+                orientation(a_far, shared, b_far) == 0.0 && dot(a_far, shared, b_far) > 0.0
+            } else {
+                segments_meet(a0, a1, b0, b1)
+            };
+            if crossing {
+                let (first, second) = (a.min(b), a.max(b));
+                let name = |k: usize| format!("{}→{}", corners[k].0, corners[(k + 1) % n].0);
+                return Err(format!(
+                    "a polygon whose edges {} and {} {}",
+                    name(first),
+                    name(second),
+                    if neighbours { "fold back onto each other" } else { "cross or touch" }
+                ));
             }
-            let flat: Vec<f32> = points.iter().flat_map(|p| [p[0], p[1]]).collect();
-            finite(name, &flat)?;
         }
     }
     Ok(())
+}
+
+/// Twice the signed area of triangle `a, b, c`, in f64 (scene coordinates are f32).
+fn orientation(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
+    (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
+}
+
+/// `(a − at) · (c − at)`: positive when `a` and `c` lie on the same side of `at`.
+fn dot(a: [f64; 2], at: [f64; 2], c: [f64; 2]) -> f64 {
+    (a[0] - at[0]) * (c[0] - at[0]) + (a[1] - at[1]) * (c[1] - at[1])
+}
+
+/// Whether closed segments `a0a1` and `b0b1` share a point.
+fn segments_meet(a0: [f64; 2], a1: [f64; 2], b0: [f64; 2], b1: [f64; 2]) -> bool {
+    let on = |p: [f64; 2], q: [f64; 2], r: [f64; 2]| {
+        // r lies on segment pq, given that p, q, r are collinear.
+        r[0] >= p[0].min(q[0]) && r[0] <= p[0].max(q[0]) && r[1] >= p[1].min(q[1]) && r[1] <= p[1].max(q[1])
+    };
+    let (d1, d2) = (orientation(b0, b1, a0), orientation(b0, b1, a1));
+    let (d3, d4) = (orientation(a0, a1, b0), orientation(a0, a1, b1));
+    if ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0))
+        && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0))
+    {
+        return true;
+    }
+    (d1 == 0.0 && on(b0, b1, a0))
+        || (d2 == 0.0 && on(b0, b1, a1))
+        || (d3 == 0.0 && on(a0, a1, b0))
+        || (d4 == 0.0 && on(a0, a1, b1))
 }
 
 /// Whether `s` is a `#rrggbb` colour.
@@ -640,8 +980,10 @@ mod tests {
         let mut s = scene();
         s.goals[0].position[0] = f32::NAN;
         let e = s.validate().expect_err("NaN");
-        assert!(matches!(e, SceneError::NotFinite(_)));
-        assert!(e.to_string().contains("goal 1"), "{e}");
+        assert!(
+            matches!(&e, SceneError::Field(f) if f.path == "goals[0].position[0]" && f.value == "NaN"),
+            "{e}"
+        );
     }
 
     #[test]
@@ -649,21 +991,29 @@ mod tests {
         let mut s = scene();
         s.obstacles.push(Obstacle::Circle { center: [350.0, 150.0], radius: 30.0 });
         let e = s.validate().expect_err("blocked");
-        assert_eq!(e, SceneError::Blocked("goal 1 is inside obstacle 1".into()));
+        assert_eq!(
+            e,
+            SceneError::Blocked(
+                "goals[0] at (350, 150) is inside obstacles[0]; a goal must lie outside every obstacle"
+                    .into()
+            )
+        );
     }
 
     #[test]
     fn ten_million_agents_are_refused() {
         let mut s = scene();
         s.groups[0].count = 10_000_000;
-        assert!(matches!(s.validate(), Err(SceneError::OutOfRange(m)) if m.contains("10000000 agents")));
+        let e = s.validate().expect_err("too many").to_string();
+        assert!(e.contains("groups[0].count is 10000000 agents") && e.contains("at most 200000"), "{e}");
     }
 
     #[test]
     fn a_missing_goal_is_a_bad_reference() {
         let mut s = scene();
         s.groups[0].goal = Some(3);
-        assert!(matches!(s.validate(), Err(SceneError::BadReference(_))));
+        let e = s.validate().expect_err("no goal 3").to_string();
+        assert_eq!(e, "groups[0].goal is 3; allowed: null or a goal index 0…0 (the scene has 1 goal(s))");
     }
 
     #[test]
@@ -682,7 +1032,7 @@ mod tests {
         if let Some(GoalMotion::Circle { radius, .. }) = &mut s.goals[0].motion {
             *radius = 1000.0;
         }
-        assert!(matches!(s.validate(), Err(SceneError::OutOfRange(_))));
+        assert!(matches!(s.validate(), Err(SceneError::Field(f)) if f.path == "goals[0].motion.radius"));
     }
 
     #[test]
@@ -698,7 +1048,7 @@ mod tests {
         assert!(circle.position_at(Vec2::ZERO, 40).distance(circle.position_at(Vec2::ZERO, 0)) < 1e-4);
         let mut s = scene();
         s.goals[0].motion = Some(GoalMotion::Polyline { points: vec![], speed: 1.0 });
-        assert!(matches!(s.validate(), Err(SceneError::OutOfRange(m)) if m.contains("goal 1 motion")));
+        assert!(matches!(s.validate(), Err(SceneError::Field(f)) if f.path == "goals[0].motion.points"));
         s.goals[0].motion = Some(circle);
         assert_eq!(s.validate(), Ok(()));
         let json = serde_json::to_string(&s.goals[0]).expect("serialises");

@@ -206,13 +206,13 @@ impl World {
 
     /// Replaces the planner parameters of group `g` without restarting the run.
     pub fn set_group_planner(&mut self, g: usize, config: PlannerConfig) -> Result<(), SceneError> {
-        let group = self
-            .scene
-            .groups
-            .get(g)
-            .ok_or_else(|| SceneError::BadReference(format!("there is no group {}", g + 1)))?;
-        config.validate().map_err(SceneError::OutOfRange)?;
-        if group.planner != config {
+        if g >= self.scene.groups.len() {
+            return Err(SceneError::BadReference(format!("there is no group {}", g + 1)));
+        }
+        // Checked against the scene too (a Boids group follows a path that exists), so the
+        // scene's link stays loadable.
+        self.scene.validate_planner(g, &config)?;
+        if self.scene.groups[g].planner != config {
             // Another planner or larger IGSA settings may break a cost limit: then the run keeps
             // its planner.
             let mut changed = Scene { groups: self.scene.groups.clone(), ..Scene::empty(10.0, 10.0) };

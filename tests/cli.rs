@@ -96,6 +96,11 @@ fn preset_prints_valid_json_that_run_accepts_from_stdin_and_from_a_file() {
         std::fs::remove_file(&file).ok();
         assert_eq!(piped, from_file, "{}: stdin and file runs differ", p.name);
     }
+    // A preset name is a scene too.
+    let by_name = ok(flockpath(&["run", "--scene", "pillars", "--steps", "20"]));
+    let from_json =
+        ok(flockpath_with_stdin(&["run", "--scene", "-", "--steps", "20"], &preset_json("pillars")));
+    assert_eq!(by_name, from_json);
 }
 
 #[test]
@@ -193,7 +198,9 @@ fn bad_inputs_fail_with_a_message_naming_the_problem() {
     );
     fails_naming(flockpath(&["optimize", "--algorithms", "nope"]), "nope");
     fails_naming(flockpath(&["fly"]), "fly");
-    fails_naming(flockpath(&["preset", "moon-base"]), "moon-base");
+    fails_naming(flockpath(&["preset", "moon-base"]), "unknown preset 'moon-base' (known: pillars");
+    fails_naming(flockpath(&["run", "--scene", "moon-base", "--steps", "5"]), "no preset has that name");
+    fails_naming(flockpath(&["scene", "moon-base"]), "unknown preset 'moon-base' (known: pillars");
     fails_naming(flockpath(&[]), "no command");
 
     // NaN and out-of-range values inside the scene are refused by name.
@@ -204,7 +211,7 @@ fn bad_inputs_fail_with_a_message_naming_the_problem() {
     scene["goals"][0]["radius"] = serde_json::json!(-1.0);
     fails_naming(
         flockpath_with_stdin(&["run", "--scene", "-", "--steps", "5"], &scene.to_string()),
-        "goal 1 radius",
+        "goals[0].radius is -1",
     );
     scene["goals"][0]["radius"] = serde_json::json!(1e39);
     fails_naming(flockpath_with_stdin(&["run", "--scene", "-", "--steps", "5"], &scene.to_string()), "goal");

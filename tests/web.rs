@@ -6,7 +6,7 @@
 use flockpath::render::OBSTACLE_COLOR;
 use flockpath::web::{planners_json, preset_scene_json, presets_json, scene_from_text, Sim};
 use flockpath::{scene_from_json, scene_to_fragment, Obstacle};
-use wasm_bindgen::{JsCast, JsError, JsValue};
+use wasm_bindgen::{JsCast, JsValue};
 use wasm_bindgen_test::{wasm_bindgen_test, wasm_bindgen_test_configure};
 
 wasm_bindgen_test_configure!(run_in_browser);
@@ -19,8 +19,8 @@ fn pillars() -> String {
 }
 
 /// The message of the JS `Error` a call threw.
-fn message(e: JsError) -> String {
-    let value = JsValue::from(e);
+fn message(e: impl Into<JsValue>) -> String {
+    let value: JsValue = e.into();
     let error: &js_sys::Error = value.dyn_ref().expect("a JS Error");
     String::from(error.message())
 }
@@ -115,11 +115,17 @@ fn bad_scenes_are_js_errors_and_the_run_goes_on() {
     let nan_json = pillars().replacen("\"width\": 900.0", "\"width\": NaN", 1);
     assert_ne!(nan_json, pillars(), "the NaN was put in");
     let huge_json = pillars().replacen("\"width\": 900.0", "\"width\": 1e39", 1);
+    // The parser's own words ride along as `details` for the page's disclosure.
+    let refused = sim.load(&nan_json).expect_err("NaN");
+    let details =
+        js_sys::Reflect::get(&refused, &JsValue::from_str("details")).ok().and_then(|d| d.as_string());
+    assert!(details.as_deref().is_some_and(|d| d.contains("column")), "{details:?}");
     let cases: Vec<(&str, String, &str)> = vec![
         ("garbled fragment", format!("{}!!x", &fragment[..fragment.len() / 2]), "scene"),
         ("unknown version", "9.abcdef".to_string(), "version"),
-        ("NaN in JSON", nan_json, "scene"),
-        ("overflowing number", huge_json, "finite"),
+        ("NaN in JSON", nan_json, "width is NaN; allowed: a number in 10…20000 px"),
+        ("overflowing number", huge_json, "width is 1e39; allowed"),
+        ("unknown preset", "no-such-preset".to_string(), "unknown preset 'no-such-preset' (known: pillars"),
         ("10 million agents", serde_json::to_string(&crowd).expect("json"), "10000000 agents"),
         ("obstacle over the goal", serde_json::to_string(&blocked).expect("json"), "inside obstacle"),
         ("empty text", String::new(), "empty"),

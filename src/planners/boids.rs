@@ -65,8 +65,8 @@ pub struct BoidsParams {
     pub leader: Leader,
     /// Path following looks this far ahead of the agent (px) for its predicted position. Default 30.
     pub path_lookahead: f32,
-    /// The scene path this group follows, 1-based; 0 (the default) follows none, and so does a
-    /// number beyond the scene's paths (a documented no-op: deleting a path never breaks a scene).
+    /// The scene path this group follows, 1-based; 0 (the default) follows none. A scene naming a
+    /// path it lacks is refused; deleting a path renumbers its followers (`edit.rs`).
     pub path: u32,
     /// Flow field guidance: `goal` replaces straight seeking by the goal-derived flow field.
     pub flow_field: FlowGuide,

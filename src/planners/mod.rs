@@ -183,7 +183,7 @@ impl PlannerKind {
 
 /// A planner with its parameters, as stored in a scene's group.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(tag = "kind", content = "params", rename_all = "snake_case")]
+#[serde(tag = "kind", content = "params", rename_all = "snake_case", deny_unknown_fields)]
 pub enum PlannerConfig {
     /// Boids steering.
     Boids(BoidsParams),
@@ -217,11 +217,26 @@ impl PlannerConfig {
 
     /// Checks every parameter against its table range.
     pub fn validate(&self) -> Result<(), String> {
-        let value = serde_json::to_value(self).map_err(|e| e.to_string())?;
+        self.check().map_err(|e| e.to_string())
+    }
+
+    /// [`Self::validate`] with the refused parameter named by its key, value and range.
+    pub fn check(&self) -> Result<(), ParamError> {
+        let value = serde_json::to_value(self).map_err(|e| ParamError {
+            key: String::new(),
+            label: "parameters",
+            value: e.to_string(),
+            allowed: "values that can be written as JSON".into(),
+        })?;
         let params = value.get("params").cloned().unwrap_or_default();
         check_params(self.kind().param_specs(), &params)?;
         match self {
-            PlannerConfig::Igsa(p) => p.check_waypoints(),
+            PlannerConfig::Igsa(p) => p.check_waypoints().map_err(|problem| ParamError {
+                key: "waypoints".into(),
+                label: "Waypoints",
+                value: problem,
+                allowed: "finite points".into(),
+            }),
             _ => Ok(()),
         }
     }
@@ -364,24 +379,67 @@ impl ParamSpec {
     }
 }
 
-fn check_params(specs: &[ParamSpec], params: &serde_json::Value) -> Result<(), String> {
+/// A planner parameter refused by its table.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ParamError {
+    /// The parameter's key in the planner's params (`max_speed`).
+    pub key: String,
+    /// Its label on the slider (`Max speed`).
+    pub label: &'static str,
+    /// The refused value as written.
+    pub value: String,
+    /// What is allowed, with the unit (`a number in 0.1…20 px/step`).
+    pub allowed: String,
+}
+
+impl std::fmt::Display for ParamError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{} ({}) is {}; allowed: {}", self.label, self.key, self.value, self.allowed)
+    }
+}
+
+impl ParamSpec {
+    /// What this parameter accepts, in words: `a number in 0.1…20 px/step`, `"on" or "off"`.
+    pub fn allowed(&self) -> String {
+        if self.choices.is_empty() {
+            let unit = if self.unit.is_empty() || self.unit == "#" {
+                String::new()
+            } else {
+                format!(" {}", self.unit)
+            };
+            format!("a number in {}…{}{unit}", self.min, self.max)
+        } else {
+            let quoted: Vec<String> = self.choices.iter().map(|c| format!("\"{c}\"")).collect();
+            format!("one of {}", quoted.join(", "))
+        }
+    }
+}
+
+fn check_params(specs: &[ParamSpec], params: &serde_json::Value) -> Result<(), ParamError> {
     for spec in specs {
         let Some(value) = params.get(spec.key) else { continue };
+        let refuse = |shown: String| ParamError {
+            key: spec.key.to_string(),
+            label: spec.label,
+            value: shown,
+            allowed: spec.allowed(),
+        };
         if spec.choices.is_empty() {
-            let x = value.as_f64().ok_or_else(|| format!("{} must be a number", spec.label))?;
-            if !x.is_finite() {
-                return Err(format!("{} is not a finite number", spec.label));
+            // JSON cannot hold NaN or infinity: serialising the f32 parameters turned them (and
+            // numbers past f32's range, which became infinite) into null.
+            if value.is_null() {
+                return Err(refuse("not a finite number (too large, infinite or NaN)".into()));
             }
-            if x < spec.min || x > spec.max {
-                return Err(format!(
-                    "{} = {x} is outside {}…{} {}",
-                    spec.label, spec.min, spec.max, spec.unit
-                ));
+            // Compared as f32, the parameters' type: 0.01 stored as f32 is below 0.01 as f64, and
+            // a slider at its minimum must be accepted.
+            let x = value.as_f64().ok_or_else(|| refuse(value.to_string()))? as f32;
+            if !x.is_finite() || x < spec.min as f32 || x > spec.max as f32 {
+                return Err(refuse(crate::scene::number_text(x)));
             }
         } else {
             let s = value.as_str().unwrap_or_default();
             if !spec.choices.contains(&s) {
-                return Err(format!("{} must be one of {:?}", spec.label, spec.choices));
+                return Err(refuse(value.to_string()));
             }
         }
     }

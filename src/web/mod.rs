@@ -39,6 +39,17 @@ fn js_error(e: impl Display) -> JsError {
     JsError::new(&e.to_string())
 }
 
+/// A refused scene as a JS `Error`: its message is the readable text, and its `details` property
+/// (when the parser had its own words and position) what the page shows behind "details".
+fn scene_error(e: crate::scene::SceneError) -> JsValue {
+    let error = js_sys::Error::new(&e.to_string());
+    if let Some(detail) = e.detail() {
+        // Setting a property on a fresh Error object cannot fail.
+        let _ = js_sys::Reflect::set(&error, &JsValue::from_str("details"), &JsValue::from_str(detail));
+    }
+    error.into()
+}
+
 fn to_json<T: serde::Serialize>(value: &T) -> Result<String, JsError> {
     serde_json::to_string(value).map_err(js_error)
 }
@@ -62,9 +73,9 @@ pub struct Sim {
 impl Sim {
     /// Starts a scene from JSON, a fragment value or a URL, rendered at `width × height` device px.
     #[wasm_bindgen(constructor)]
-    pub fn new(scene_text: &str, width: u32, height: u32) -> Result<Sim, JsError> {
+    pub fn new(scene_text: &str, width: u32, height: u32) -> Result<Sim, JsValue> {
         console_error_panic_hook::set_once();
-        let scene = codec::scene_from_any(scene_text).map_err(js_error)?;
+        let scene = codec::scene_from_any(scene_text).map_err(scene_error)?;
         let world = World::new(scene).map_err(js_error)?;
         let recording = Recording::of_world(&world, RECORDING_BUDGET_BYTES);
         let replay = Replay::new(&world);
@@ -106,8 +117,8 @@ impl Sim {
     }
 
     /// Replaces the scene; on error the current scene keeps running unchanged.
-    pub fn load(&mut self, scene_text: &str) -> Result<(), JsError> {
-        let scene = codec::scene_from_any(scene_text).map_err(js_error)?;
+    pub fn load(&mut self, scene_text: &str) -> Result<(), JsValue> {
+        let scene = codec::scene_from_any(scene_text).map_err(scene_error)?;
         self.world = World::new(scene).map_err(js_error)?;
         self.renderer.set_selection(None);
         self.renderer.clear_trails();
@@ -353,10 +364,7 @@ pub fn presets_json() -> Result<String, JsError> {
 /// The scene JSON of a preset; throws for an unknown name.
 #[wasm_bindgen]
 pub fn preset_scene_json(name: &str) -> Result<String, JsError> {
-    let preset = presets::find(name).ok_or_else(|| {
-        let names: Vec<&str> = presets::ALL.iter().map(|p| p.name).collect();
-        js_error(format!("unknown preset {name:?}; known: {}", names.join(", ")))
-    })?;
+    let preset = presets::lookup(name).map_err(js_error)?;
     Ok(codec::scene_to_json(&(preset.build)()))
 }
 
@@ -373,6 +381,6 @@ pub fn planners_json() -> Result<String, JsError> {
 /// Validates a scene given as JSON, a fragment value or a URL and returns it as JSON; throws with
 /// the reason otherwise.
 #[wasm_bindgen]
-pub fn scene_from_text(text: &str) -> Result<String, JsError> {
-    codec::scene_from_any(text).map(|s| codec::scene_to_json(&s)).map_err(js_error)
+pub fn scene_from_text(text: &str) -> Result<String, JsValue> {
+    codec::scene_from_any(text).map(|s| codec::scene_to_json(&s)).map_err(scene_error)
 }

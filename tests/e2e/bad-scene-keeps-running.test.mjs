@@ -1,5 +1,7 @@
-// Bad input never stops the show: a garbled link, a non-number radius and an obstacle over the goal
-// each give a readable message in the page while the previous scene keeps running unchanged.
+// Bad input never stops the show: a garbled link, a non-number radius, an obstacle over the goal,
+// an unknown preset name and more each give a readable message in the page (the field's path, the
+// value and what is allowed; the parser's own words only behind "details") while the previous
+// scene keeps running unchanged.
 
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
@@ -10,16 +12,25 @@ async function stepsIncrease(page, than) {
   await page.waitForFunction((n) => window.flockpath.metrics().steps > n, than, { timeout: 20_000 });
 }
 
-/** Calls load() in the page; returns the thrown message (or null if it loaded). */
+/** Calls load() in the page; returns the thrown message and its details (or null if it loaded). */
 async function tryLoad(page, input) {
   return page.evaluate((value) => {
     try {
       window.flockpath.load(value);
       return null;
     } catch (error) {
-      return error instanceof Error ? error.message : String(error);
+      return { message: error instanceof Error ? error.message : String(error), details: error?.details ?? null };
     }
   }, input);
+}
+
+/** The banner's "details" disclosure: whether it shows, is open, and its text. */
+async function bannerDetails(page) {
+  return page.evaluate(() => {
+    const box = document.getElementById('banner-details');
+    if (!box || box.hidden) return null;
+    return { open: box.open, summary: box.querySelector('summary').textContent, text: box.querySelector('code').textContent };
+  });
 }
 
 test('a garbled #s= link shows a message and the default preset runs', async () => {
@@ -51,21 +62,49 @@ test('refused scenes keep the previous scene running unchanged', async () => {
 
     const nanRadius = simpleScene({ obstacles: [{ shape: 'circle', center: [400, 100], radius: 'NaN' }] });
     const overGoal = simpleScene({ obstacles: [{ shape: 'circle', center: [700, 250], radius: 60 }] });
+    const fastBoids = simpleScene();
+    fastBoids.groups[0].planner.params.max_speed = 'fast';
+    const bowTie = simpleScene({ obstacles: [{ shape: 'polygon', points: [[300, 100], [400, 200], [400, 100], [300, 200]] }] });
+    const parser = /invalid type: string .*expected f32 at line 1 column \d+/;
+    // [what, input, the message, the parser's words behind "details" (null: none)]
     const cases = [
-      ['a radius that is not a number', nanRadius, /radius|invalid type|number/i],
-      ['an obstacle over the goal', overGoal, /goal 1 is inside obstacle 1/],
-      ['a garbled fragment', '#s=1.%%%garbled', /scene string|base64|cannot read/i],
-      ['a fragment of an unknown version', '9.abcdef', /version/],
-      ['broken JSON text', '{"width": 800, "height":', /cannot read the scene/],
+      ['a radius that is not a number', nanRadius,
+        /^obstacles\[0\]\.radius is "NaN"; allowed: a number above 0 and at most 20000 px$/, parser],
+      ['a parameter that is not a number', fastBoids,
+        /^groups\[0\]\.planner\.params\.max_speed is "fast"; allowed: a number in 0\.1…20 px\/step$/, parser],
+      ['a polygon whose edges cross', bowTie,
+        /^obstacles\[0\]\.points is a polygon whose edges 0→1 and 2→3 cross or touch; allowed: a simple polygon/, null],
+      ['an obstacle over the goal', overGoal, /goals\[0\] at \(700, 250\) is inside obstacles\[0\]/, null],
+      ['an unknown preset name', 'no-such-preset', /^unknown preset 'no-such-preset' \(known: pillars, open-field, /, null],
+      ['a garbled fragment', '#s=1.%%%garbled', /scene string|base64|cannot read/i, null],
+      ['a fragment of an unknown version', '9.abcdef', /version/, null],
+      ['broken JSON text', '{"width": 800, "height":', /cannot read the scene/, null],
     ];
-    for (const [what, input, expected] of cases) {
+    for (const [what, input, expected, details] of cases) {
       const stepsBefore = await page.evaluate(() => window.flockpath.metrics().steps);
-      const message = await tryLoad(page, input);
-      assert.ok(message, `${what}: load() throws`);
+      const thrown = await tryLoad(page, input);
+      assert.ok(thrown, `${what}: load() throws`);
+      const { message } = thrown;
       assert.match(message, expected, `${what}: readable message`);
+      assert.doesNotMatch(message, /line \d+ column|Failed|HasMoreOutput/, `${what}: no parser internals in the message`);
       const shown = await bannerText(page);
-      assert.ok(shown && shown.toLowerCase().includes(message.toLowerCase()),
+      assert.ok(shown && shown.toLowerCase() === message.toLowerCase(),
         `${what}: the page shows "${message}" (banner: ${shown})`);
+      // A field's path is shown as the JSON spells it (not capitalised into `Groups[0]`).
+      if (/^[^\s]*[[._]/.test(message)) assert.equal(shown, message, `${what}: the path as written`);
+      const disclosure = await bannerDetails(page);
+      if (details) {
+        assert.match(thrown.details ?? '', details, `${what}: the error carries the parser's words`);
+        assert.ok(disclosure, `${what}: the banner offers details`);
+        assert.equal(disclosure.open, false, `${what}: details start closed`);
+        assert.equal(disclosure.summary, 'details');
+        assert.equal(disclosure.text, thrown.details, `${what}: the details are the parser's words`);
+        // The banner lets clicks through to the canvas; its disclosure takes them.
+        await page.click('#banner-details summary', { timeout: 5_000 });
+        assert.equal((await bannerDetails(page)).open, true, `${what}: a click opens the details`);
+      } else {
+        assert.equal(disclosure, null, `${what}: no details to offer`);
+      }
       assert.deepEqual(await page.evaluate(() => window.flockpath.scene()), loaded, `${what}: scene unchanged`);
       await stepsIncrease(page, stepsBefore);
     }

@@ -2,8 +2,21 @@
 
 const banner = () => document.getElementById('banner');
 
+/**
+ * The parser's own words behind the last error read with `messageOf` (a refused scene's `Error`
+ * carries them as `details`): the next banner that quotes that error offers them behind "details",
+ * whichever words the caller put around the message.
+ */
+let lastDetails = null;
+
 /** The readable text of anything thrown (wasm-bindgen turns Rust errors into `Error`s). */
 export function messageOf(error) {
+  const text = readableText(error);
+  lastDetails = typeof error?.details === 'string' && text ? { message: text, details: error.details } : null;
+  return text;
+}
+
+function readableText(error) {
   if (error instanceof Error) return error.message || String(error);
   if (typeof error === 'string') return error;
   try {
@@ -21,13 +34,44 @@ export function isPanic(error) {
   return typeof WebAssembly !== 'undefined' && error instanceof WebAssembly.RuntimeError;
 }
 
-/** Shows `text` in the banner until the user dismisses it or another message replaces it. */
-export function showMessage(text) {
+/**
+ * Shows `text` in the banner until the user dismisses it or another message replaces it, with
+ * `details` (or those of the error it quotes) in a closed "details" disclosure.
+ */
+export function showMessage(text, details = null) {
+  const quoted = lastDetails !== null && text.includes(lastDetails.message) ? lastDetails.details : null;
+  lastDetails = null;
   const el = banner();
   if (!el) return;
-  // Rust messages start in lower case (they compose); a sentence on a projector should not.
-  document.getElementById('banner-text').textContent = text.charAt(0).toUpperCase() + text.slice(1);
+  // Rust messages start in lower case (they compose); a sentence on a projector should not. A
+  // message that starts with a field's path (`groups[0].count is -5`) keeps it as the JSON spells it.
+  const startsWithPath = /^[^\s]*[[._]/.test(text);
+  document.getElementById('banner-text').textContent = startsWithPath ? text : text.charAt(0).toUpperCase() + text.slice(1);
+  showDetails(details ?? quoted);
   el.hidden = false;
+}
+
+/**
+ * Puts `details` in the banner's disclosure (made once, after the text), closed; hides it when
+ * there are none. Closed, it is one summary word beside the text, so the banner keeps its height.
+ */
+function showDetails(details) {
+  let box = document.getElementById('banner-details');
+  if (!details) {
+    if (box) box.hidden = true;
+    return;
+  }
+  if (!box) {
+    box = document.createElement('details');
+    box.id = 'banner-details';
+    const summary = document.createElement('summary');
+    summary.textContent = 'details';
+    box.append(summary, document.createElement('code'));
+    document.getElementById('banner-text')?.after(box);
+  }
+  box.open = false;
+  box.querySelector('code').textContent = details;
+  box.hidden = false;
 }
 
 /** Hides the banner. */

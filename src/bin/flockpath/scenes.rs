@@ -1,5 +1,5 @@
 //! `flockpath presets`, `preset NAME`, `url FILE`, `scene STRING`, and reading a scene from any
-//! of the forms a user has at hand (file, stdin, JSON, fragment, URL).
+//! of the forms a user has at hand (file, stdin, JSON, fragment, URL, preset name).
 
 use crate::{failed, out, usage, CliError};
 use flockpath::{presets, scene_from_any, scene_to_fragment, scene_to_json, Scene};
@@ -43,10 +43,8 @@ pub fn presets() -> Result<(), CliError> {
 /// Prints one preset as JSON.
 pub fn preset(args: &PresetArgs) -> Result<(), CliError> {
     let name = &args.name;
-    let preset = presets::find(name).ok_or_else(|| {
-        let names: Vec<&str> = presets::ALL.iter().map(|p| p.name).collect();
-        usage(format!("unknown preset {name:?}; `flockpath presets` lists them ({})", names.join(", ")))
-    })?;
+    let preset =
+        presets::lookup(name).map_err(|e| usage(format!("{e}; `flockpath presets` describes them")))?;
     out(&format!("{}\n", scene_to_json(&(preset.build)())))
 }
 
@@ -62,7 +60,7 @@ pub fn scene(args: &SceneArgs) -> Result<(), CliError> {
     out(&format!("{}\n", scene_to_json(&scene)))
 }
 
-/// Loads a scene from a file, stdin (`-`), inline JSON, a fragment value or a URL.
+/// Loads a scene from a file, stdin (`-`), inline JSON, a fragment value, a URL or a preset name.
 pub fn load_scene(source: &str) -> Result<Scene, CliError> {
     let path = Path::new(source);
     let text = if source == "-" {
@@ -72,8 +70,17 @@ pub fn load_scene(source: &str) -> Result<Scene, CliError> {
     } else if path.is_file() {
         std::fs::read_to_string(path)
             .map_err(|e| failed(format!("cannot read scene file {source:?}: {e}")))?
+    } else if presets::find(source).is_some() {
+        // A preset name: `scene_from_any` builds it.
+        source.to_string()
     } else if looks_like_path(source) {
-        return Err(failed(format!("cannot read scene file {source:?}: no such file")));
+        let hint = if source.contains(['/', '\\', '.']) {
+            String::new()
+        } else {
+            let names: Vec<&str> = presets::ALL.iter().map(|p| p.name).collect();
+            format!(", and no preset has that name (known: {})", names.join(", "))
+        };
+        return Err(failed(format!("cannot read scene file {source:?}: no such file{hint}")));
     } else {
         source.to_string()
     };
