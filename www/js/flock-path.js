@@ -14,6 +14,8 @@
 // sceneString(), digest(); property `playing`, `steps`. Events: `flockpath-ready`,
 // `flockpath-error` (detail: message).
 
+import { PlanningSlices } from './planning.js';
+
 const PKG_URL = new URL('../pkg/flockpath.js', import.meta.url).href;
 /** Largest canvas backing store per element (px): many embeds on one page stay cheap. */
 const MAX_PIXELS = 1920 * 1200;
@@ -270,7 +272,10 @@ export class FlockPathElement extends HTMLElement {
       this.frameRequest = 0;
       if (!this.isConnected || this.crashed || !this.sim) return;
       try {
-        if (this.playing) {
+        this.planning ??= new PlanningSlices((fn) => this.call(fn), this.$('.stage'), () => this.afterLoad());
+        if (this.planning.advance()) {
+          this.dirty = true;
+        } else if (this.playing) {
           this.call((sim) => sim.step(this.stepsPerFrame));
           this.dirty = true;
         }

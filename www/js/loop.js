@@ -3,6 +3,8 @@
 // A hidden tab does not step (Page Visibility), and a frame never "catches up" on lost time: it
 // always steps `stepsPerFrame` fixed steps, however long the tab was away.
 
+import { PlanningSlices } from './planning.js';
+
 /** Copies the Sim's RGBA frame to the canvas (the view is rebuilt: wasm memory may have grown). */
 export function blit(app, ctx) {
   const { sim, wasm } = app;
@@ -17,9 +19,15 @@ export function blit(app, ctx) {
 /** Starts the loop; `onFrame(now)` runs after every frame (metrics, FPS). */
 export function startLoop(app, canvas, onFrame) {
   const ctx = canvas.getContext('2d', { alpha: false });
+  // A scene still planning its path gets a time slice per frame instead of a step.
+  const planning = new PlanningSlices((fn) => app.guard(fn).value, canvas.parentElement, () => {
+    app.afterLoad();
+  });
   const frame = (now) => {
     if (app.crashed) return;
-    if (app.playing && document.visibilityState !== 'hidden') {
+    if (planning.advance()) {
+      app.dirty = true;
+    } else if (app.playing && document.visibilityState !== 'hidden') {
       // A refused step (not a panic) would repeat every frame: pause and let the banner explain.
       if (!app.guard((sim) => sim.step(app.stepsPerFrame)).ok) app.setPlaying(false);
       app.dirty = true;
