@@ -28,6 +28,9 @@ use serde::Serialize;
 /// `[−100, 100]`-sized boxes, so the same G0 means the same thing on every scene size.
 pub const SEARCH_HALF_RANGE: f64 = 100.0;
 
+/// Longest piece (px) a segment is cut into when looking up the obstacles it may cross.
+const PIECE_LENGTH: f32 = 32.0;
+
 /// Random stream of the path planner (separate from the world's spawn and plan streams).
 pub const PATH_STREAM: u32 = 0x9a7b;
 
@@ -123,7 +126,9 @@ impl PathProblem {
         let m = params.clearance.min(0.25 * width.min(height)).max(0.0);
         let bounds = Bounds::uniform(2 * k, -SEARCH_HALF_RANGE, SEARCH_HALF_RANGE);
         let reach_boxes = obstacles.iter().map(|o| o.aabb().inflate(params.clearance as f32)).collect();
-        let index = ObstacleIndex::new(obstacles.clone(), width as f32, height as f32);
+        // Cells of a few clearances: a sample's query box meets one to four of them.
+        let cell = (4.0 * params.clearance as f32).clamp(16.0, 64.0);
+        let index = ObstacleIndex::with_cell_size(obstacles.clone(), width as f32, height as f32, cell);
         Self {
             start,
             goal,
@@ -171,13 +176,21 @@ impl PathProblem {
     /// Whether segment a→b intersects an obstacle (or starts or ends inside one).
     pub fn segment_crosses(&self, a: [f64; 2], b: [f64; 2]) -> bool {
         let (pa, pb) = (to_vec2(a), to_vec2(b));
-        // An obstacle the segment touches has its box overlapping the segment's; the 1 px
-        // margin covers rounding.
-        let query = Aabb { min: pa.min(pb), max: pa.max(pb) }.inflate(1.0);
+        // An obstacle the segment touches overlaps the box of one of its pieces (a long diagonal
+        // segment's own box would hold most of the scene); the 1 px margin covers rounding.
+        let pieces = (pa.distance(pb) / PIECE_LENGTH).ceil().clamp(1.0, 4096.0) as u32;
         let mut hit = false;
-        self.index.for_each_near(query, |_, o| {
-            hit = hit || o.contains(pa) || o.contains(pb) || o.ray_cast(pa, pb - pa).is_some();
-        });
+        for k in 0..pieces {
+            let (p0, p1) =
+                (pa.lerp(pb, k as f32 / pieces as f32), pa.lerp(pb, (k + 1) as f32 / pieces as f32));
+            let query = Aabb { min: p0.min(p1), max: p0.max(p1) }.inflate(1.0);
+            self.index.for_each_near(query, |_, o| {
+                hit = hit || o.contains(pa) || o.contains(pb) || o.ray_cast(pa, pb - pa).is_some();
+            });
+            if hit {
+                break;
+            }
+        }
         hit
     }
 
@@ -296,24 +309,34 @@ pub struct PathPlanning {
     algorithm: Algorithm,
     settings: Settings,
     seed: u32,
-    optimizer: Box<dyn Optimizer + Send>,
+    /// Built (the initial population evaluated) by the first slice, so starting is instant.
+    optimizer: Option<Box<dyn Optimizer + Send>>,
     /// Iterations done so far.
     done: u32,
 }
 
 impl PathPlanning {
-    /// Starts planning `problem` (builds and evaluates the initial population: one
-    /// iteration's worth of work).
+    /// Starts planning `problem`; nothing is computed yet.
     pub fn new(problem: PathProblem, algorithm: Algorithm, settings: &Settings, seed: u32) -> Self {
-        let optimizer = algorithm.build(&problem, settings, Rng::new(seed, PATH_STREAM));
-        Self { problem, algorithm, settings: settings.clone(), seed, optimizer, done: 0 }
+        Self { problem, algorithm, settings: settings.clone(), seed, optimizer: None, done: 0 }
     }
 
-    /// Runs up to `iterations` more iterations; returns the share done, 0…1.
+    /// Runs up to `iterations` more iterations; returns the share done, 0…1. The first call
+    /// builds and evaluates the initial population (about one iteration's work) and counts it
+    /// as one of its iterations' slice.
     pub fn advance(&mut self, iterations: u32) -> f64 {
-        let todo = iterations.min(self.settings.iterations - self.done);
+        let mut budget = iterations;
+        let optimizer = match &mut self.optimizer {
+            Some(optimizer) => optimizer,
+            None => {
+                budget = budget.saturating_sub(1);
+                let rng = Rng::new(self.seed, PATH_STREAM);
+                self.optimizer.insert(self.algorithm.build(&self.problem, &self.settings, rng))
+            }
+        };
+        let todo = budget.min(self.settings.iterations - self.done);
         for _ in 0..todo {
-            self.optimizer.step(&self.problem);
+            optimizer.step(&self.problem);
         }
         self.done += todo;
         self.progress()
@@ -330,7 +353,7 @@ impl PathPlanning {
 
     /// Whether every iteration has run.
     pub fn is_done(&self) -> bool {
-        self.done >= self.settings.iterations
+        self.optimizer.is_some() && self.done >= self.settings.iterations
     }
 
     /// The problem being solved.
@@ -340,12 +363,20 @@ impl PathPlanning {
 
     /// The best path so far (the planned path once [`PathPlanning::is_done`]).
     pub fn result(&self) -> PlannedPath {
-        let points = self.problem.points(self.optimizer.best_position());
+        let built;
+        let optimizer = match &self.optimizer {
+            Some(optimizer) => optimizer,
+            None => {
+                built = self.algorithm.build(&self.problem, &self.settings, Rng::new(self.seed, PATH_STREAM));
+                &built
+            }
+        };
+        let points = self.problem.points(optimizer.best_position());
         PlannedPath {
             measures: self.problem.measure(&points),
-            fitness: self.optimizer.best_value(),
+            fitness: optimizer.best_value(),
             points,
-            evaluations: self.optimizer.evaluations(),
+            evaluations: optimizer.evaluations(),
         }
     }
 }
@@ -355,7 +386,11 @@ impl Clone for PathPlanning {
     /// which gives the same state bit for bit.
     fn clone(&self) -> Self {
         let mut copy = Self::new(self.problem.clone(), self.algorithm, &self.settings, self.seed);
-        copy.advance(self.done);
+        if self.optimizer.is_some() {
+            // The build slice, then the iterations done.
+            copy.advance(1);
+            copy.advance(self.done);
+        }
         copy
     }
 }
@@ -613,7 +648,8 @@ mod tests {
                     sliced = sliced.clone();
                 }
                 let now = sliced.advance(*k);
-                assert!(now > last, "progress grows: {last} → {now}");
+                // The first slice only builds the initial population.
+                assert!(now > last || (last == 0.0 && *k == 1), "progress grows: {last} → {now}");
                 last = now;
             }
             assert_eq!(last, 1.0);
