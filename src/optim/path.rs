@@ -222,12 +222,8 @@ impl PathProblem {
             if self.segment_crosses(a, b) {
                 crossings += 1;
             }
-            let len = dist(a, b);
-            let samples = (len / spacing).ceil().max(1.0) as usize;
-            let ds = len / samples as f64;
-            for s in 0..=samples {
-                let t = s as f64 / samples as f64;
-                let p = Vec2::new((a[0] + t * (b[0] - a[0])) as f32, (a[1] + t * (b[1] - a[1])) as f32);
+            let (ds, points) = segment_samples(a, b, spacing);
+            for p in points {
                 self.obstacles_reaching(p, &mut near);
                 if near.len() < self.obstacles.len() {
                     // Some obstacle is farther than the clearance.
@@ -522,6 +518,18 @@ pub fn path_table_text(rows: &[PathRow]) -> String {
     s
 }
 
+/// The samples of segment a→b at most `spacing` px apart, both ends included, and the length
+/// each stands for.
+fn segment_samples(a: [f64; 2], b: [f64; 2], spacing: f64) -> (f64, impl Iterator<Item = Vec2>) {
+    let len = dist(a, b);
+    let samples = (len / spacing).ceil().max(1.0) as usize;
+    let points = (0..=samples).map(move |s| {
+        let t = s as f64 / samples as f64;
+        Vec2::new((a[0] + t * (b[0] - a[0])) as f32, (a[1] + t * (b[1] - a[1])) as f32)
+    });
+    (len / samples as f64, points)
+}
+
 fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {
     let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
     libm::sqrt(dx * dx + dy * dy)
@@ -573,12 +581,8 @@ mod tests {
             {
                 crossings += 1;
             }
-            let len = dist(a, b);
-            let samples = (len / spacing).ceil().max(1.0) as usize;
-            let ds = len / samples as f64;
-            for s in 0..=samples {
-                let t = s as f64 / samples as f64;
-                let q = Vec2::new((a[0] + t * (b[0] - a[0])) as f32, (a[1] + t * (b[1] - a[1])) as f32);
+            let (ds, points) = segment_samples(a, b, spacing);
+            for q in points {
                 for o in &p.obstacles {
                     if !o.aabb().inflate(c as f32).contains(q) {
                         min_clear = min_clear.min(c);

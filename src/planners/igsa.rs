@@ -292,7 +292,7 @@ pub struct GroupPathJob {
 #[derive(Clone, Debug)]
 enum JobStage {
     /// The optimizer is searching.
-    Searching(PathPlanning, PathSource),
+    Searching(Box<PathPlanning>, PathSource),
     /// The path is known (edited, no goal, or planned).
     Ready(GroupPath),
 }
@@ -335,7 +335,7 @@ impl GroupPathJob {
             };
             let planning =
                 PathPlanning::new(problem, params.optimizer.algorithm(), &params.settings(), scene.seed);
-            JobStage::Searching(planning, source)
+            JobStage::Searching(Box::new(planning), source)
         } else {
             let mut pts = vec![to64(start)];
             pts.extend(params.waypoints.iter().map(|&p| to64(p)));
