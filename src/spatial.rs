@@ -380,8 +380,14 @@ const OBSTACLE_CELL: f32 = 64.0;
 impl ObstacleIndex {
     /// Indexes `obstacles` over a `width × height` world.
     pub fn new(obstacles: Vec<Obstacle>, width: f32, height: f32) -> Self {
+        Self::with_cell_size(obstacles, width, height, OBSTACLE_CELL)
+    }
+
+    /// [`ObstacleIndex::new`] with cells of `cell` px (grown for huge worlds): smaller cells for
+    /// callers that query small boxes among many small obstacles (the IGSA path fitness).
+    pub fn with_cell_size(obstacles: Vec<Obstacle>, width: f32, height: f32, cell: f32) -> Self {
         let (width, height) = (width.max(1.0), height.max(1.0));
-        let mut cell = OBSTACLE_CELL;
+        let mut cell = cell.max(1.0);
         while ((width / cell).ceil() * (height / cell).ceil()) as usize > MIN_CELL_BUDGET {
             cell *= 1.5;
         }

@@ -49,15 +49,27 @@ pub struct World {
     obstacles: ObstacleIndex,
     rng: Rng,
     recorder: MetricsRecorder,
+    /// Whether planning ahead (IGSA paths) is left to [`World::advance_planning`] instead of
+    /// being done at once when planners are built (the page plans in slices).
+    sliced_planning: bool,
 }
 
 impl World {
-    /// Validates the scene, spawns its agents from the scene's seed and builds the planners.
+    /// Validates the scene, spawns its agents from the scene's seed and builds the planners
+    /// (planning IGSA paths to the end).
     pub fn new(scene: Scene) -> Result<Self, SceneError> {
-        Self::build(scene, true)
+        Self::build(scene, true, false)
     }
 
-    fn build(scene: Scene, cost_limit: bool) -> Result<Self, SceneError> {
+    /// [`World::new`] leaving the planning ahead to [`World::advance_planning`], here and after
+    /// edits: the page plans in slices within its frame budget. Stepping finishes it first.
+    pub fn new_sliced(scene: Scene) -> Result<Self, SceneError> {
+        Self::build(scene, true, true)
+    }
+
+    /// `cost_limit`: refuse scenes over the step-cost limit of [`crate::cost`];
+    /// `sliced_planning`: leave IGSA planning to [`World::advance_planning`].
+    fn build(scene: Scene, cost_limit: bool, sliced_planning: bool) -> Result<Self, SceneError> {
         scene.validate()?;
         let obstacles = ObstacleIndex::new(scene.obstacles.clone(), scene.width, scene.height);
         let total = scene.agent_count() as usize;
@@ -103,8 +115,10 @@ impl World {
             obstacles,
             rng,
             recorder,
+            sliced_planning,
         };
         world.grid.rebuild(&world.pos, &world.vel);
+        world.plan_now_unless_sliced();
         Ok(world)
     }
 
@@ -112,7 +126,47 @@ impl World {
     /// still holds): for native benchmarks that time scenes bigger than the page may run.
     #[doc(hidden)]
     pub fn new_beyond_cost_limit(scene: Scene) -> Result<Self, SceneError> {
-        Self::build(scene, false)
+        Self::build(scene, false, false)
+    }
+
+    /// Share of the planning ahead done (IGSA paths), 0…1: the mean over the groups that plan
+    /// ahead; 1 when nothing is left to plan.
+    pub fn planning_progress(&self) -> f64 {
+        let shares: Vec<f64> = self
+            .groups
+            .iter()
+            .filter(|g| g.planner.replans_on_edit())
+            .map(|g| g.planner.planning_progress())
+            .collect();
+        if shares.iter().all(|&s| s >= 1.0) {
+            1.0
+        } else {
+            shares.iter().sum::<f64>() / shares.len() as f64
+        }
+    }
+
+    /// Runs up to `iterations` planning iterations (of the first group still planning; the
+    /// slices do not change the result); returns [`World::planning_progress`].
+    pub fn advance_planning(&mut self, iterations: u32) -> f64 {
+        if let Some(g) = self.groups.iter_mut().find(|g| g.planner.planning_progress() < 1.0) {
+            g.planner.advance_planning(iterations);
+        }
+        self.planning_progress()
+    }
+
+    /// Plans everything left to plan, at once.
+    pub fn finish_planning(&mut self) {
+        for g in &mut self.groups {
+            if g.planner.planning_progress() < 1.0 {
+                g.planner.advance_planning(u32::MAX);
+            }
+        }
+    }
+
+    fn plan_now_unless_sliced(&mut self) {
+        if !self.sliced_planning {
+            self.finish_planning();
+        }
     }
 
     /// The scene this world was built from.
@@ -227,6 +281,7 @@ impl World {
             self.grid.rebuild(&self.pos, &self.vel);
         }
         self.groups[g].planner = planner;
+        self.plan_now_unless_sliced();
         Ok(())
     }
 
@@ -261,7 +316,7 @@ impl World {
                     && a.planner == b.planner
             });
         if !same_agents {
-            *self = World::new(scene)?;
+            *self = World::build(scene, true, self.sliced_planning)?;
             return Ok(());
         }
         let geometry_changed = scene.obstacles != self.scene.obstacles || scene.goals != self.scene.goals;
@@ -272,6 +327,7 @@ impl World {
                 group.planner = self.scene.groups[gi].planner.build_for_group(&self.scene, gi);
             }
         }
+        self.plan_now_unless_sliced();
         Ok(())
     }
 
@@ -285,6 +341,8 @@ impl World {
     /// One fixed step: every planner computes new velocities from the old state (phase 1),
     /// then all agents move, are kept out of obstacles and inside the bounds (phase 2).
     pub fn step(&mut self) {
+        // A group cannot move before its path is known (a no-op once planned).
+        self.finish_planning();
         let bounds = Vec2::new(self.scene.width, self.scene.height);
         let ctx = StepContext {
             positions: &self.pos,

@@ -15,10 +15,11 @@
 //! Measures reported per path: length, maximum deflection angle, mean turning angle (degrees),
 //! exact crossings and the smallest sampled clearance.
 
-use super::{Algorithm, Bounds, Objective, Settings};
-use crate::geometry::{v, Obstacle};
+use super::{Algorithm, Bounds, Objective, Optimizer, Settings};
+use crate::geometry::{v, Aabb, Obstacle};
 use crate::rng::Rng;
 use crate::scene::Scene;
+use crate::spatial::ObstacleIndex;
 use glam::Vec2;
 use serde::Serialize;
 
@@ -26,6 +27,9 @@ use serde::Serialize;
 /// gravitational constants (G0 is an acceleration in search units) were set by Rashedi on
 /// `[−100, 100]`-sized boxes, so the same G0 means the same thing on every scene size.
 pub const SEARCH_HALF_RANGE: f64 = 100.0;
+
+/// Longest piece (px) a segment is cut into when looking up the obstacles it may cross.
+const PIECE_LENGTH: f32 = 32.0;
 
 /// Random stream of the path planner (separate from the world's spawn and plan streams).
 pub const PATH_STREAM: u32 = 0x9a7b;
@@ -64,15 +68,20 @@ pub struct PathProblem {
     pub start: [f64; 2],
     /// Goal point (px).
     pub goal: [f64; 2],
-    /// Obstacles to avoid.
+    /// Obstacles to avoid (indexed at construction: do not change them afterwards).
     pub obstacles: Vec<Obstacle>,
-    /// Fitness parameters.
+    /// Fitness parameters (the clearance is baked into the index boxes: do not change it).
     pub params: PathParams,
     /// Smallest waypoint coordinates (px): the scene inset by the clearance.
     pub area_min: [f64; 2],
     /// Largest waypoint coordinates (px).
     pub area_max: [f64; 2],
     bounds: Bounds,
+    /// The obstacles in a grid, so a sample tests only the obstacles near it: planning time
+    /// grows with the obstacles near the path, not with all of them.
+    index: ObstacleIndex,
+    /// Each obstacle's bounding box grown by the clearance: the samples it penalises lie in it.
+    reach_boxes: Vec<Aabb>,
 }
 
 /// Quality measures of a path.
@@ -116,6 +125,10 @@ impl PathProblem {
         let k = params.waypoints.max(1);
         let m = params.clearance.min(0.25 * width.min(height)).max(0.0);
         let bounds = Bounds::uniform(2 * k, -SEARCH_HALF_RANGE, SEARCH_HALF_RANGE);
+        let reach_boxes = obstacles.iter().map(|o| o.aabb().inflate(params.clearance as f32)).collect();
+        // Cells of a few clearances: a sample's query box meets one to four of them.
+        let cell = (4.0 * params.clearance as f32).clamp(16.0, 64.0);
+        let index = ObstacleIndex::with_cell_size(obstacles.clone(), width as f32, height as f32, cell);
         Self {
             start,
             goal,
@@ -124,6 +137,8 @@ impl PathProblem {
             area_min: [m, m],
             area_max: [width - m, height - m],
             bounds,
+            index,
+            reach_boxes,
         }
     }
 
@@ -161,7 +176,37 @@ impl PathProblem {
     /// Whether segment a→b intersects an obstacle (or starts or ends inside one).
     pub fn segment_crosses(&self, a: [f64; 2], b: [f64; 2]) -> bool {
         let (pa, pb) = (to_vec2(a), to_vec2(b));
-        self.obstacles.iter().any(|o| o.contains(pa) || o.contains(pb) || o.ray_cast(pa, pb - pa).is_some())
+        // An obstacle the segment touches overlaps the box of one of its pieces (a long diagonal
+        // segment's own box would hold most of the scene); the 1 px margin covers rounding.
+        let pieces = (pa.distance(pb) / PIECE_LENGTH).ceil().clamp(1.0, 4096.0) as u32;
+        let mut hit = false;
+        for k in 0..pieces {
+            let (p0, p1) =
+                (pa.lerp(pb, k as f32 / pieces as f32), pa.lerp(pb, (k + 1) as f32 / pieces as f32));
+            let query = Aabb { min: p0.min(p1), max: p0.max(p1) }.inflate(1.0);
+            self.index.for_each_near(query, |_, o| {
+                hit = hit || o.contains(pa) || o.contains(pb) || o.ray_cast(pa, pb - pa).is_some();
+            });
+            if hit {
+                break;
+            }
+        }
+        hit
+    }
+
+    /// Scene-order indices of the obstacles whose clearance box holds `p`, into `near`: the
+    /// only ones that add a penalty at `p` (the index returns a superset, filtered here by the
+    /// same box test the full loop makes).
+    fn obstacles_reaching(&self, p: Vec2, near: &mut Vec<u32>) {
+        near.clear();
+        let query = Aabb { min: p, max: p }.inflate(self.params.clearance as f32 + 1.0);
+        self.index.for_each_near(query, |i, _| {
+            if self.reach_boxes[i as usize].contains(p) {
+                near.push(i);
+            }
+        });
+        // Scene order, so the penalties add up in the same order as over the full list.
+        near.sort_unstable();
     }
 
     /// Sum of the obstacle penalties along the polyline and the smallest sampled clearance.
@@ -171,24 +216,21 @@ impl PathProblem {
         let mut penalty = 0.0;
         let mut min_clear = f64::INFINITY;
         let mut crossings = 0u32;
+        let mut near = Vec::new();
         for w in pts.windows(2) {
             let (a, b) = (w[0], w[1]);
             if self.segment_crosses(a, b) {
                 crossings += 1;
             }
-            let len = dist(a, b);
-            let samples = (len / spacing).ceil().max(1.0) as usize;
-            let ds = len / samples as f64;
-            for s in 0..=samples {
-                let t = s as f64 / samples as f64;
-                let p = Vec2::new((a[0] + t * (b[0] - a[0])) as f32, (a[1] + t * (b[1] - a[1])) as f32);
-                for o in &self.obstacles {
-                    let bb = o.aabb().inflate(c as f32);
-                    if !bb.contains(p) {
-                        min_clear = min_clear.min(c);
-                        continue;
-                    }
-                    let sd = f64::from(o.surface(p).signed_distance);
+            let (ds, points) = segment_samples(a, b, spacing);
+            for p in points {
+                self.obstacles_reaching(p, &mut near);
+                if near.len() < self.obstacles.len() {
+                    // Some obstacle is farther than the clearance.
+                    min_clear = min_clear.min(c);
+                }
+                for &i in &near {
+                    let sd = f64::from(self.obstacles[i as usize].surface(p).signed_distance);
                     min_clear = min_clear.min(sd);
                     if sd < c {
                         penalty += (c - sd) * ds.max(1.0);
@@ -249,17 +291,113 @@ impl PathProblem {
     /// Optimises the path with `algorithm` (GSA or IGSA in the paper; any works) for
     /// `settings.iterations` iterations from `seed`.
     pub fn plan(&self, algorithm: Algorithm, settings: &Settings, seed: u32) -> PlannedPath {
-        let mut opt = algorithm.build(self, settings, Rng::new(seed, PATH_STREAM));
-        for _ in 0..settings.iterations {
-            opt.step(self);
+        let mut planning = PathPlanning::new(self.clone(), algorithm, settings, seed);
+        planning.advance(u32::MAX);
+        planning.result()
+    }
+}
+
+/// A path being planned, one slice of iterations at a time ([`PathPlanning::advance`]), so a
+/// caller with a frame budget (the page) can spread the work over frames. The iterations are the
+/// same whatever the slices: the result is bit-identical to [`PathProblem::plan`].
+pub struct PathPlanning {
+    problem: PathProblem,
+    algorithm: Algorithm,
+    settings: Settings,
+    seed: u32,
+    /// Built (the initial population evaluated) by the first slice, so starting is instant.
+    optimizer: Option<Box<dyn Optimizer + Send>>,
+    /// Iterations done so far.
+    done: u32,
+}
+
+impl PathPlanning {
+    /// Starts planning `problem`; nothing is computed yet.
+    pub fn new(problem: PathProblem, algorithm: Algorithm, settings: &Settings, seed: u32) -> Self {
+        Self { problem, algorithm, settings: settings.clone(), seed, optimizer: None, done: 0 }
+    }
+
+    /// Runs up to `iterations` more iterations; returns the share done, 0…1. The first call
+    /// builds and evaluates the initial population (about one iteration's work) and counts it
+    /// as one of its iterations' slice.
+    pub fn advance(&mut self, iterations: u32) -> f64 {
+        let mut budget = iterations;
+        let optimizer = match &mut self.optimizer {
+            Some(optimizer) => optimizer,
+            None => {
+                budget = budget.saturating_sub(1);
+                let rng = Rng::new(self.seed, PATH_STREAM);
+                self.optimizer.insert(self.algorithm.build(&self.problem, &self.settings, rng))
+            }
+        };
+        let todo = budget.min(self.settings.iterations - self.done);
+        for _ in 0..todo {
+            optimizer.step(&self.problem);
         }
-        let points = self.points(opt.best_position());
+        self.done += todo;
+        self.progress()
+    }
+
+    /// Share of the iterations done, 0…1 (1 when there are none to do).
+    pub fn progress(&self) -> f64 {
+        if self.settings.iterations == 0 {
+            1.0
+        } else {
+            f64::from(self.done) / f64::from(self.settings.iterations)
+        }
+    }
+
+    /// Whether every iteration has run.
+    pub fn is_done(&self) -> bool {
+        self.optimizer.is_some() && self.done >= self.settings.iterations
+    }
+
+    /// The problem being solved.
+    pub fn problem(&self) -> &PathProblem {
+        &self.problem
+    }
+
+    /// The best path so far (the planned path once [`PathPlanning::is_done`]).
+    pub fn result(&self) -> PlannedPath {
+        let built;
+        let optimizer = match &self.optimizer {
+            Some(optimizer) => optimizer,
+            None => {
+                built = self.algorithm.build(&self.problem, &self.settings, Rng::new(self.seed, PATH_STREAM));
+                &built
+            }
+        };
+        let points = self.problem.points(optimizer.best_position());
         PlannedPath {
-            measures: self.measure(&points),
-            fitness: opt.best_value(),
+            measures: self.problem.measure(&points),
+            fitness: optimizer.best_value(),
             points,
-            evaluations: opt.evaluations(),
+            evaluations: optimizer.evaluations(),
         }
+    }
+}
+
+impl Clone for PathPlanning {
+    /// Optimizers are not `Clone`: the copy replays the same iterations from the same seed,
+    /// which gives the same state bit for bit.
+    fn clone(&self) -> Self {
+        let mut copy = Self::new(self.problem.clone(), self.algorithm, &self.settings, self.seed);
+        if self.optimizer.is_some() {
+            // The build slice, then the iterations done.
+            copy.advance(1);
+            copy.advance(self.done);
+        }
+        copy
+    }
+}
+
+impl std::fmt::Debug for PathPlanning {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("PathPlanning")
+            .field("algorithm", &self.algorithm)
+            .field("done", &self.done)
+            .field("iterations", &self.settings.iterations)
+            .finish()
     }
 }
 
@@ -380,6 +518,18 @@ pub fn path_table_text(rows: &[PathRow]) -> String {
     s
 }
 
+/// The samples of segment a→b at most `spacing` px apart, both ends included, and the length
+/// each stands for.
+fn segment_samples(a: [f64; 2], b: [f64; 2], spacing: f64) -> (f64, impl Iterator<Item = Vec2>) {
+    let len = dist(a, b);
+    let samples = (len / spacing).ceil().max(1.0) as usize;
+    let points = (0..=samples).map(move |s| {
+        let t = s as f64 / samples as f64;
+        Vec2::new((a[0] + t * (b[0] - a[0])) as f32, (a[1] + t * (b[1] - a[1])) as f32)
+    });
+    (len / samples as f64, points)
+}
+
 fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {
     let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
     libm::sqrt(dx * dx + dy * dy)
@@ -415,6 +565,105 @@ mod tests {
         let around = p.fitness_of(&[[40.0, 100.0], [200.0, 190.0], [360.0, 100.0]]);
         assert!(p.measure(&[[40.0, 100.0], [360.0, 100.0]]).crossings == 1);
         assert!(around < through, "{around} vs {through}");
+    }
+
+    /// The obstacle terms as they were before the index: every obstacle tested at every sample.
+    fn full_scan_terms(p: &PathProblem, pts: &[[f64; 2]]) -> (f64, f64, u32) {
+        let c = p.params.clearance;
+        let spacing = (0.5 * c).max(1.0);
+        let (mut penalty, mut min_clear, mut crossings) = (0.0, f64::INFINITY, 0u32);
+        for w in pts.windows(2) {
+            let (a, b) = (w[0], w[1]);
+            let (pa, pb) = (to_vec2(a), to_vec2(b));
+            if p.obstacles
+                .iter()
+                .any(|o| o.contains(pa) || o.contains(pb) || o.ray_cast(pa, pb - pa).is_some())
+            {
+                crossings += 1;
+            }
+            let (ds, points) = segment_samples(a, b, spacing);
+            for q in points {
+                for o in &p.obstacles {
+                    if !o.aabb().inflate(c as f32).contains(q) {
+                        min_clear = min_clear.min(c);
+                        continue;
+                    }
+                    let sd = f64::from(o.surface(q).signed_distance);
+                    min_clear = min_clear.min(sd);
+                    if sd < c {
+                        penalty += (c - sd) * ds.max(1.0);
+                    }
+                }
+            }
+        }
+        (penalty, min_clear, crossings)
+    }
+
+    #[test]
+    fn the_obstacle_index_gives_the_full_scan_values_bit_for_bit() {
+        let mut rng = Rng::new(3, 0);
+        let mut obstacles = Vec::new();
+        for k in 0..600 {
+            let (x, y) = (rng.range(-20.0, 820.0), rng.range(-20.0, 520.0));
+            obstacles.push(match k % 3 {
+                0 => Obstacle::Circle { center: [x, y], radius: rng.range(1.0, 6.0) },
+                1 => Obstacle::Rect { min: [x, y], max: [x + rng.range(1.0, 40.0), y + rng.range(1.0, 8.0)] },
+                _ => Obstacle::Polygon { points: vec![[x, y], [x + 9.0, y + 2.0], [x + 3.0, y + 7.0]] },
+            });
+        }
+        // One long wall over index cell borders, and obstacles on exact cell corners.
+        obstacles.push(Obstacle::Rect { min: [64.0, 128.0], max: [700.0, 140.0] });
+        obstacles.push(Obstacle::Circle { center: [128.0, 192.0], radius: 4.0 });
+        for clearance in [0.0, 5.0, 12.0, 40.0] {
+            let params = PathParams { clearance, waypoints: 4, ..PathParams::default() };
+            let p = PathProblem::new([30.0, 250.0], [770.0, 250.0], obstacles.clone(), 800.0, 500.0, params);
+            let mut evaluated = 0;
+            for _ in 0..150 {
+                let x: Vec<f64> = (0..8).map(|_| rng.unit_f64() * 200.0 - 100.0).collect();
+                let pts = p.points(&x);
+                let (penalty, min_clear, crossings) = full_scan_terms(&p, &pts);
+                let indexed = p.obstacle_terms(&pts);
+                assert_eq!(indexed.0.to_bits(), penalty.to_bits(), "penalty at clearance {clearance}");
+                assert_eq!(indexed.1.to_bits(), min_clear.to_bits(), "min clearance at {clearance}");
+                assert_eq!(indexed.2, crossings, "crossings at clearance {clearance}");
+                evaluated += usize::from(penalty > 0.0 && crossings > 0);
+            }
+            if clearance > 0.0 {
+                assert!(evaluated > 50, "the random paths must meet obstacles ({evaluated})");
+            }
+        }
+    }
+
+    #[test]
+    fn sliced_planning_equals_planning_in_one_go() {
+        let p = wall_problem();
+        let settings = Settings { population: 12, iterations: 40, ..Settings::default() };
+        for algorithm in [Algorithm::Igsa, Algorithm::Gsa] {
+            let whole = p.plan(algorithm, &settings, 9);
+            let mut sliced = PathPlanning::new(p.clone(), algorithm, &settings, 9);
+            let mut last = sliced.progress();
+            assert_eq!(last, 0.0);
+            for k in [1, 3, 1, 7, 2].iter().cycle() {
+                if sliced.is_done() {
+                    break;
+                }
+                // A copy taken mid-way carries on identically.
+                if sliced.progress() > 0.5 && sliced.progress() < 0.6 {
+                    sliced = sliced.clone();
+                }
+                let now = sliced.advance(*k);
+                // The first slice only builds the initial population.
+                assert!(now > last || (last == 0.0 && *k == 1), "progress grows: {last} → {now}");
+                last = now;
+            }
+            assert_eq!(last, 1.0);
+            assert_eq!(sliced.advance(5), 1.0, "nothing left to do");
+            let r = sliced.result();
+            assert_eq!(
+                (r.fitness.to_bits(), &r.points, r.evaluations),
+                (whole.fitness.to_bits(), &whole.points, whole.evaluations)
+            );
+        }
     }
 
     #[test]

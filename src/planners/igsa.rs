@@ -34,7 +34,7 @@
 
 use super::{limit, GroupView, ParamSpec, Planner, StepContext};
 use crate::geometry::{unit_or, v, Aabb, Obstacle};
-use crate::optim::path::{PathParams, PathProblem, PlannedPath};
+use crate::optim::path::{PathParams, PathPlanning, PathProblem, PlannedPath};
 use crate::optim::{Algorithm, Settings};
 use crate::rng::Rng;
 use crate::scene::Scene;
@@ -276,48 +276,128 @@ pub struct GroupPath {
 /// the scene's geometry, the group's spawn region and goal and the seed are read, never the
 /// agent count. `None` when the group does not exist.
 pub fn plan_group_path(scene: &Scene, group: usize, params: &IgsaParams) -> Option<GroupPath> {
-    let g = scene.groups.get(group)?;
-    let goal = g.goal.and_then(|k| scene.goals.get(k as usize));
-    let s = g.spawn;
-    let start = [0.5 * (s.min[0] + s.max[0]), 0.5 * (s.min[1] + s.max[1])];
-    let Some(goal) = goal else {
-        return Some(GroupPath {
-            points: vec![start],
-            crossing: vec![],
-            source: PathSource::None,
-            length: 0.0,
-            max_turn_deg: 0.0,
-            mean_turn_deg: 0.0,
-            fitness: None,
-            evaluations: 0,
-        });
-    };
-    let to64 = |p: [f32; 2]| [f64::from(p[0]), f64::from(p[1])];
-    let problem = PathProblem::new(
-        to64(start),
-        to64(goal.position),
-        scene.obstacles.clone(),
-        f64::from(scene.width),
-        f64::from(scene.height),
-        params.path_params(),
-    );
-    let (points, source, fitness, evaluations) = if params.waypoints.is_empty() {
-        let PlannedPath { points, fitness, evaluations, .. } =
-            problem.plan(params.optimizer.algorithm(), &params.settings(), scene.seed);
-        let source = match params.optimizer {
-            PathOptimizer::Igsa => PathSource::Igsa,
-            PathOptimizer::Gsa => PathSource::Gsa,
+    let mut job = GroupPathJob::new(scene, group, params)?;
+    job.advance(u32::MAX);
+    Some(job.result())
+}
+
+/// [`plan_group_path`] in slices: [`GroupPathJob::advance`] runs a few optimizer iterations at a
+/// time, so the page can plan within its frame budget. Whatever the slices, the result is the
+/// same path bit for bit.
+#[derive(Clone, Debug)]
+pub struct GroupPathJob {
+    stage: JobStage,
+}
+
+#[derive(Clone, Debug)]
+enum JobStage {
+    /// The optimizer is searching.
+    Searching(Box<PathPlanning>, PathSource),
+    /// The path is known (edited, no goal, or planned).
+    Ready(GroupPath),
+}
+
+impl GroupPathJob {
+    /// Starts planning group `group` of `scene` (this evaluates the initial population); an
+    /// edited path or a group without a goal is ready at once. `None` when the group does not
+    /// exist.
+    pub fn new(scene: &Scene, group: usize, params: &IgsaParams) -> Option<Self> {
+        let g = scene.groups.get(group)?;
+        let goal = g.goal.and_then(|k| scene.goals.get(k as usize));
+        let s = g.spawn;
+        let start = [0.5 * (s.min[0] + s.max[0]), 0.5 * (s.min[1] + s.max[1])];
+        let Some(goal) = goal else {
+            return Some(Self {
+                stage: JobStage::Ready(GroupPath {
+                    points: vec![start],
+                    crossing: vec![],
+                    source: PathSource::None,
+                    length: 0.0,
+                    max_turn_deg: 0.0,
+                    mean_turn_deg: 0.0,
+                    fitness: None,
+                    evaluations: 0,
+                }),
+            });
         };
-        (points, source, Some(fitness), evaluations)
-    } else {
-        let mut pts = vec![to64(start)];
-        pts.extend(params.waypoints.iter().map(|&p| to64(p)));
-        pts.push(to64(goal.position));
-        (pts, PathSource::Edited, None, 0)
-    };
+        let problem = PathProblem::new(
+            to64(start),
+            to64(goal.position),
+            scene.obstacles.clone(),
+            f64::from(scene.width),
+            f64::from(scene.height),
+            params.path_params(),
+        );
+        let stage = if params.waypoints.is_empty() {
+            let source = match params.optimizer {
+                PathOptimizer::Igsa => PathSource::Igsa,
+                PathOptimizer::Gsa => PathSource::Gsa,
+            };
+            let planning =
+                PathPlanning::new(problem, params.optimizer.algorithm(), &params.settings(), scene.seed);
+            JobStage::Searching(Box::new(planning), source)
+        } else {
+            let mut pts = vec![to64(start)];
+            pts.extend(params.waypoints.iter().map(|&p| to64(p)));
+            pts.push(to64(goal.position));
+            JobStage::Ready(group_path(&problem, pts, PathSource::Edited, None, 0))
+        };
+        Some(Self { stage })
+    }
+
+    /// Runs up to `iterations` more optimizer iterations; returns the share done, 0…1.
+    pub fn advance(&mut self, iterations: u32) -> f64 {
+        if let JobStage::Searching(planning, source) = &mut self.stage {
+            planning.advance(iterations);
+            if planning.is_done() {
+                let PlannedPath { points, fitness, evaluations, .. } = planning.result();
+                let path = group_path(planning.problem(), points, *source, Some(fitness), evaluations);
+                self.stage = JobStage::Ready(path);
+            }
+        }
+        self.progress()
+    }
+
+    /// Share of the optimizer iterations done, 0…1.
+    pub fn progress(&self) -> f64 {
+        match &self.stage {
+            JobStage::Searching(planning, _) => planning.progress().min(1.0),
+            JobStage::Ready(_) => 1.0,
+        }
+    }
+
+    /// Whether the path is known.
+    pub fn is_done(&self) -> bool {
+        matches!(self.stage, JobStage::Ready(_))
+    }
+
+    /// The path: the planned one once [`GroupPathJob::is_done`], the best so far before.
+    pub fn result(&self) -> GroupPath {
+        match &self.stage {
+            JobStage::Ready(path) => path.clone(),
+            JobStage::Searching(planning, source) => {
+                let PlannedPath { points, fitness, evaluations, .. } = planning.result();
+                group_path(planning.problem(), points, *source, Some(fitness), evaluations)
+            }
+        }
+    }
+}
+
+fn to64(p: [f32; 2]) -> [f64; 2] {
+    [f64::from(p[0]), f64::from(p[1])]
+}
+
+/// The report of the path through `points` on `problem`.
+fn group_path(
+    problem: &PathProblem,
+    points: Vec<[f64; 2]>,
+    source: PathSource,
+    fitness: Option<f64>,
+    evaluations: u64,
+) -> GroupPath {
     let measures = problem.measure(&points);
     let crossing = points.windows(2).map(|w| problem.segment_crosses(w[0], w[1])).collect();
-    Some(GroupPath {
+    GroupPath {
         points: points.iter().map(|p| [p[0] as f32, p[1] as f32]).collect(),
         crossing,
         source,
@@ -326,7 +406,7 @@ pub fn plan_group_path(scene: &Scene, group: usize, params: &IgsaParams) -> Opti
         mean_turn_deg: measures.mean_turn_deg,
         fitness,
         evaluations,
-    })
+    }
 }
 
 /// Per segment of the polyline `points`, whether it crosses (or starts or ends inside) an
@@ -464,6 +544,16 @@ pub struct IgsaPlanner {
     next_slot: u32,
     /// Scratch for one agent's constraints: (unit direction, largest approach speed).
     constraints: Vec<(Vec2, f32)>,
+    /// The path still being planned, with the scene and group it is for; `None` once the
+    /// planner follows its path.
+    planning: Option<Box<PendingPath>>,
+}
+
+#[derive(Clone)]
+struct PendingPath {
+    job: GroupPathJob,
+    scene: Scene,
+    group: usize,
 }
 
 impl IgsaPlanner {
@@ -471,7 +561,40 @@ impl IgsaPlanner {
     /// measures the free width along it, draws the agents' offsets and lays out the parking
     /// slots. A missing group gives a planner that holds every agent still.
     pub fn new(params: IgsaParams, scene: &Scene, group: usize) -> Self {
-        let report = plan_group_path(scene, group, &params);
+        let mut planner = Self::planning(params, scene, group);
+        planner.advance_planning(u32::MAX);
+        planner
+    }
+
+    /// The same planner with its path still to plan: [`Planner::advance_planning`] plans it in
+    /// slices (the page spreads them over frames) and then sets the planner up as
+    /// [`IgsaPlanner::new`] does. Until then no path is shown and agents are not planned for.
+    pub fn planning(params: IgsaParams, scene: &Scene, group: usize) -> Self {
+        let mut planner = Self {
+            params,
+            report: None,
+            path: Polyline::default(),
+            widths: Vec::new(),
+            offsets: Vec::new(),
+            progress: Vec::new(),
+            slot_of: Vec::new(),
+            slots: Vec::new(),
+            next_slot: 0,
+            constraints: Vec::new(),
+            planning: None,
+        };
+        match GroupPathJob::new(scene, group, &planner.params) {
+            Some(job) if !job.is_done() => {
+                planner.planning = Some(Box::new(PendingPath { job, scene: scene.clone(), group }))
+            }
+            job => planner.follow(job.map(|j| j.result()), scene, group),
+        }
+        planner
+    }
+
+    /// Sets up following `report` (the planned or edited path): free widths, offsets, slots.
+    fn follow(&mut self, report: Option<GroupPath>, scene: &Scene, group: usize) {
+        let params = &self.params;
         let g = scene.groups.get(group);
         let count = g.map_or(0, |g| g.count as usize);
         let radius = g.map_or(4.0, |g| g.agent_radius);
@@ -503,8 +626,8 @@ impl IgsaPlanner {
             }
             _ => Vec::new(),
         };
-        Self {
-            params,
+        *self = Self {
+            params: self.params.clone(),
             report,
             path,
             widths,
@@ -514,7 +637,8 @@ impl IgsaPlanner {
             slots,
             next_slot: 0,
             constraints: Vec::new(),
-        }
+            planning: None,
+        };
     }
 
     /// The group's path with its crossings and measures.
@@ -805,6 +929,22 @@ impl Planner for IgsaPlanner {
     fn replans_on_edit(&self) -> bool {
         true
     }
+
+    fn planning_progress(&self) -> f64 {
+        self.planning.as_ref().map_or(1.0, |p| p.job.progress())
+    }
+
+    fn advance_planning(&mut self, iterations: u32) -> f64 {
+        let Some(pending) = &mut self.planning else { return 1.0 };
+        pending.job.advance(iterations);
+        if !pending.job.is_done() {
+            return pending.job.progress();
+        }
+        if let Some(done) = self.planning.take() {
+            self.follow(Some(done.job.result()), &done.scene, done.group);
+        }
+        1.0
+    }
 }
 
 #[cfg(test)]
@@ -836,6 +976,45 @@ mod tests {
                 assert!(s.distance(*t) > 9.9);
             }
         }
+    }
+
+    #[test]
+    fn a_world_planning_in_slices_runs_as_one_planned_at_once() {
+        let mut scene = (crate::presets::find("igsa-path-2").expect("preset").build)();
+        let params = IgsaParams { iterations: 60, population: 12, ..IgsaParams::default() };
+        scene.groups[0].planner = crate::planners::PlannerConfig::Igsa(params.clone());
+        let mut at_once = crate::World::new(scene.clone()).expect("valid");
+        assert_eq!(at_once.planning_progress(), 1.0);
+        let mut sliced = crate::World::new_sliced(scene.clone()).expect("valid");
+        assert_eq!(sliced.planning_progress(), 0.0);
+        assert!(sliced.planned_path(0).is_none(), "no path before it is planned");
+        let mut copy = None;
+        let mut last = 0.0;
+        while sliced.planning_progress() < 1.0 {
+            let now = sliced.advance_planning(7);
+            assert!(now > last, "progress grows: {last} → {now}");
+            last = now;
+            if copy.is_none() && now > 0.3 {
+                copy = Some(sliced.clone());
+            }
+        }
+        assert_eq!(sliced.planned_path(0), at_once.planned_path(0));
+        assert_eq!(sliced.planned_path(0), plan_group_path(&scene, 0, &params).as_ref());
+        // A copy taken mid-way finishes with the same path when it steps.
+        let mut copy = copy.expect("planning took several slices");
+        for w in [&mut at_once, &mut sliced, &mut copy] {
+            w.step_n(80);
+        }
+        assert_eq!(sliced.digest(), at_once.digest());
+        assert_eq!(copy.digest(), at_once.digest());
+        // An edit of the geometry re-plans in slices too, with the path planned at once.
+        let mut edited = scene.clone();
+        edited.obstacles.pop();
+        at_once.edit_scene(edited.clone()).expect("valid edit");
+        sliced.edit_scene(edited).expect("valid edit");
+        assert!(sliced.planning_progress() < 1.0);
+        while sliced.advance_planning(25) < 1.0 {}
+        assert_eq!(sliced.planned_path(0), at_once.planned_path(0));
     }
 
     #[test]

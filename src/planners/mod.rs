@@ -95,6 +95,16 @@ pub trait Planner: PlannerClone {
     fn replans_on_edit(&self) -> bool {
         false
     }
+    /// Share of the planning ahead done, 0…1 (IGSA plans its path in slices); 1 for planners
+    /// that plan nothing ahead. The world does not step a group before it reaches 1.
+    fn planning_progress(&self) -> f64 {
+        1.0
+    }
+    /// Runs up to `iterations` more iterations of the planning ahead; returns the share done.
+    fn advance_planning(&mut self, iterations: u32) -> f64 {
+        let _ = iterations;
+        1.0
+    }
     /// Why `agent` would move as it does at the next step: the terms of its step recomputed from
     /// `ctx` (forces per component, points looked at, neighbours). Called only for a selected
     /// agent, so it costs nothing per step. The default explains nothing.
@@ -255,10 +265,11 @@ impl PlannerConfig {
     }
 
     /// A fresh planner for group `group` of `scene`. Planners that plan ahead (IGSA) read the
-    /// scene's geometry and seed here; the others are [`PlannerConfig::build`].
+    /// scene's geometry and seed here and plan when [`Planner::advance_planning`] is called
+    /// (the world does); the others are [`PlannerConfig::build`].
     pub fn build_for_group(&self, scene: &Scene, group: usize) -> Box<dyn Planner> {
         match self {
-            PlannerConfig::Igsa(p) => Box::new(IgsaPlanner::new(p.clone(), scene, group)),
+            PlannerConfig::Igsa(p) => Box::new(IgsaPlanner::planning(p.clone(), scene, group)),
             _ => {
                 let count = scene.groups.get(group).map_or(0, |g| g.count as usize);
                 self.build(count, &scene.obstacles)

@@ -67,6 +67,9 @@ pub struct Sim {
     replay: Replay,
     /// The metrics over time for the plots (a run that restarts starts a new one).
     history: MetricsHistory,
+    /// The world shown before the current one started planning ahead (IGSA paths), which
+    /// [`Sim::cancel_planning`] goes back to; `None` when nothing is being planned.
+    before_planning: Option<World>,
 }
 
 #[wasm_bindgen]
@@ -76,7 +79,7 @@ impl Sim {
     pub fn new(scene_text: &str, width: u32, height: u32) -> Result<Sim, JsValue> {
         console_error_panic_hook::set_once();
         let scene = codec::scene_from_any(scene_text).map_err(scene_error)?;
-        let world = World::new(scene).map_err(js_error)?;
+        let world = World::new_sliced(scene).map_err(js_error)?;
         let recording = Recording::of_world(&world, RECORDING_BUDGET_BYTES);
         let replay = Replay::new(&world);
         let mut sim = Sim {
@@ -85,6 +88,7 @@ impl Sim {
             recording,
             replay,
             history: MetricsHistory::default(),
+            before_planning: None,
         };
         sim.show_scene_view();
         Ok(sim)
@@ -119,7 +123,8 @@ impl Sim {
     /// Replaces the scene; on error the current scene keeps running unchanged.
     pub fn load(&mut self, scene_text: &str) -> Result<(), JsValue> {
         let scene = codec::scene_from_any(scene_text).map_err(scene_error)?;
-        self.world = World::new(scene).map_err(js_error)?;
+        let before = std::mem::replace(&mut self.world, World::new_sliced(scene).map_err(js_error)?);
+        self.keep_for_cancel(Some(before));
         self.renderer.set_selection(None);
         self.renderer.clear_trails();
         self.show_scene_view();
@@ -129,7 +134,9 @@ impl Sim {
 
     /// Restarts the current scene from step 0 with the same seed.
     pub fn reset(&mut self) -> Result<(), JsError> {
-        self.world = World::new(self.world.scene().clone()).map_err(js_error)?;
+        let next = World::new_sliced(self.world.scene().clone()).map_err(js_error)?;
+        let before = std::mem::replace(&mut self.world, next);
+        self.keep_for_cancel(Some(before));
         self.renderer.clear_trails();
         self.restart_recording_if_new_run();
         Ok(())
@@ -222,7 +229,8 @@ impl Sim {
     pub fn set_seed(&mut self, seed: u32) -> Result<(), JsError> {
         let mut scene = self.world.scene().clone();
         scene.seed = seed;
-        self.world = World::new(scene).map_err(js_error)?;
+        let before = std::mem::replace(&mut self.world, World::new_sliced(scene).map_err(js_error)?);
+        self.keep_for_cancel(Some(before));
         self.renderer.clear_trails();
         self.restart_recording_if_new_run();
         Ok(())
@@ -241,7 +249,9 @@ impl Sim {
             .planner
             .clone();
         config.set_param(key, value).map_err(js_error)?;
+        let before = self.snapshot_if_planning_ahead();
         self.world.set_group_planner(group as usize, config).map_err(js_error)?;
+        self.keep_for_cancel(before);
         self.note_live_edit();
         Ok(())
     }
@@ -252,7 +262,9 @@ impl Sim {
             let names: Vec<&str> = PlannerKind::ALL.iter().map(|k| k.name()).collect();
             js_error(format!("unknown planner {planner_name:?}; known: {}", names.join(", ")))
         })?;
+        let before = (kind == PlannerKind::Igsa).then(|| self.world.clone());
         self.world.set_group_planner(group as usize, kind.default_config()).map_err(js_error)?;
+        self.keep_for_cancel(before);
         self.note_live_edit();
         Ok(())
     }
@@ -262,7 +274,9 @@ impl Sim {
         let edit: Edit =
             serde_json::from_str(edit_json).map_err(|e| js_error(format!("cannot read the edit: {e}")))?;
         let scene = edit::apply(self.world.scene(), &edit).map_err(js_error)?;
+        let before = self.snapshot_if_planning_ahead();
         self.world.edit_scene(scene).map_err(js_error)?;
+        self.keep_for_cancel(before);
         if self.world.step_count() == 0 {
             // The agents may have been respawned elsewhere: do not draw the jump as a trail.
             self.renderer.clear_trails();
@@ -343,6 +357,65 @@ impl Sim {
     /// Erases the trails.
     pub fn clear_trails(&mut self) {
         self.renderer.clear_trails();
+    }
+
+    /// Share of the planning ahead done (IGSA paths), 0…1. Below 1 the page calls
+    /// [`Sim::advance_planning`] within its frame budget instead of stepping (a step would
+    /// finish the planning at once: what a script calling `step` wants).
+    pub fn planning_progress(&self) -> f64 {
+        self.world.planning_progress()
+    }
+
+    /// Runs up to `iterations` planning iterations; returns the share done. The path is the
+    /// same whatever the slices.
+    pub fn advance_planning(&mut self, iterations: u32) -> f64 {
+        let progress = self.world.advance_planning(iterations);
+        if progress >= 1.0 {
+            self.before_planning = None;
+            if self.world.step_count() == 0 {
+                // The timeline's first checkpoint should hold the planned path.
+                self.restart_recording_if_new_run();
+            }
+        }
+        progress
+    }
+
+    /// Whether [`Sim::cancel_planning`] has a scene to go back to.
+    pub fn can_cancel_planning(&self) -> bool {
+        self.before_planning.is_some() && self.world.planning_progress() < 1.0
+    }
+
+    /// Abandons the planning and goes back to the scene shown before it began; returns false
+    /// (and changes nothing) when there is none.
+    pub fn cancel_planning(&mut self) -> bool {
+        if !self.can_cancel_planning() {
+            return false;
+        }
+        let Some(before) = self.before_planning.take() else { return false };
+        self.world = before;
+        self.renderer.set_selection(None);
+        self.renderer.clear_trails();
+        self.show_scene_view();
+        self.recording = Recording::of_world(&self.world, RECORDING_BUDGET_BYTES);
+        self.replay = Replay::new(&self.world);
+        self.history = MetricsHistory::default();
+        true
+    }
+
+    /// A copy of the world for [`Sim::cancel_planning`] when a change may start planning ahead.
+    fn snapshot_if_planning_ahead(&self) -> Option<World> {
+        let igsa = |g: &crate::scene::Group| g.planner.kind() == PlannerKind::Igsa;
+        self.world.scene().groups.iter().any(igsa).then(|| self.world.clone())
+    }
+
+    /// Keeps `before` to go back to if the world now plans ahead (the oldest such world wins:
+    /// edits during planning start it again, Cancel goes back to before the first).
+    fn keep_for_cancel(&mut self, before: Option<World>) {
+        if self.world.planning_progress() >= 1.0 {
+            self.before_planning = None;
+        } else if self.before_planning.is_none() {
+            self.before_planning = before.filter(|w| w.planning_progress() >= 1.0);
+        }
     }
 
     /// The run's digest as 16 hex digits: equal digests mean bit-identical runs.

@@ -10,7 +10,7 @@ use wasm_bindgen::prelude::*;
 impl Sim {
     /// The path group `group` (0-based) follows, as JSON `{points, crossing, source, length,
     /// max_turn_deg, mean_turn_deg, fitness, evaluations}`, or `"null"` for a group whose
-    /// planner plans no path.
+    /// planner plans no path or whose path is still being planned ([`Sim::planning_progress`]).
     pub fn group_path_json(&self, group: u32) -> Result<String, JsError> {
         to_json(&self.world.planned_path(group as usize))
     }
@@ -25,7 +25,8 @@ impl Sim {
 
     /// Replaces the waypoints of an IGSA group (JSON `[[x, y], …]`; `[]` plans them again) and
     /// lets the group follow the new path without restarting the run. A path that crosses an
-    /// obstacle is accepted; the returned path JSON flags the crossing segments.
+    /// obstacle is accepted; the returned path JSON flags the crossing segments (`"null"` after
+    /// `[]`: the path is planned in slices, see [`Sim::advance_planning`]).
     pub fn set_group_waypoints(&mut self, group: u32, points_json: &str) -> Result<String, JsError> {
         let points: Vec<[f32; 2]> = serde_json::from_str(points_json)
             .map_err(|e| js_error(format!("the waypoints are not a list of [x, y] points: {e}")))?;

@@ -88,6 +88,14 @@ export function digest() {
 }
 
 /**
+ * Share of the scene's planning ahead done (IGSA group paths), 0…1. Below 1 the page plans in
+ * slices and does not step yet; `step(n)` would finish the planning at once.
+ */
+export function planningProgress() {
+  return booted().guard((sim) => sim.planning_progress(), { rethrow: true }).value;
+}
+
+/**
  * Agent positions as `[[x, y], …]` in scene px, in agent order (groups in scene order), for
  * tests and course notes that want to measure something the metrics do not cover.
  */
@@ -209,6 +217,7 @@ export const flockpath = Object.freeze({
   scene,
   sceneString,
   digest,
+  planningProgress,
   seek,
   timeline,
   positions,

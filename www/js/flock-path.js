@@ -17,6 +17,8 @@
 // sceneString(), digest(); property `playing`, `steps`. Events: `flockpath-ready`,
 // `flockpath-error` (detail: message; also when the wasm cannot be loaded, shown in the box too).
 
+import { PlanningSlices } from './planning.js';
+
 const PKG_URL = new URL('../pkg/flockpath.js', import.meta.url).href;
 /** The wasm (where wasm-bindgen's glue looks by default), named here to say what went wrong. */
 const WASM_URL = new URL('../pkg/flockpath_bg.wasm', import.meta.url).href;
@@ -343,7 +345,10 @@ export class FlockPathElement extends HTMLElement {
       this.frameRequest = 0;
       if (!this.isConnected || this.crashed || !this.sim) return;
       try {
-        if (this.playing) {
+        this.planning ??= new PlanningSlices((fn) => this.call(fn), this.$('.stage'), () => this.afterLoad());
+        if (this.planning.advance()) {
+          this.dirty = true;
+        } else if (this.playing) {
           this.call((sim) => sim.step(this.stepsPerFrame));
           this.dirty = true;
         }

@@ -29,6 +29,8 @@ const STYLE = `
 .spf-actual.idle { visibility: hidden; }
 `;
 
+import { PlanningSlices } from './planning.js';
+
 /** Copies the Sim's RGBA frame to the canvas (the view is rebuilt: wasm memory may have grown). */
 export function blit(app, ctx) {
   const { sim, wasm } = app;
@@ -130,12 +132,18 @@ const stepping = () => !document.hidden && document.visibilityState !== 'hidden'
 export function startLoop(app, canvas, onFrame) {
   const ctx = canvas.getContext('2d', { alpha: false });
   const pace = setupPaceReadout(app);
+  // A scene still planning its path gets a time slice per frame instead of steps (a step would
+  // finish the planning in one go).
+  const planning = new PlanningSlices((fn) => app.guard(fn).value, canvas.parentElement, () => {
+    app.afterLoad();
+  });
+  let planningLeft = false;
   // The frame's steps run in a message task queued by the frame (not a timer: no clamping).
   const channel = new MessageChannel();
   let queued = false;
   channel.port1.onmessage = () => {
     queued = false;
-    if (app.crashed || !app.playing || !stepping()) return;
+    if (app.crashed || !app.playing || !stepping() || planningLeft) return;
     const wanted = app.stepsPerFrame;
     const { done, ok } = stepWithinBudget(app, wanted);
     // A refused step (not a panic) would repeat every frame: pause and let the banner explain.
@@ -145,6 +153,8 @@ export function startLoop(app, canvas, onFrame) {
   };
   const frame = (now) => {
     if (app.crashed) return;
+    planningLeft = planning.advance();
+    if (planningLeft) app.dirty = true;
     if (app.dirty) {
       app.dirty = false;
       app.guard((sim) => {
@@ -153,7 +163,7 @@ export function startLoop(app, canvas, onFrame) {
       });
     }
     onFrame(now);
-    if (app.playing && stepping()) {
+    if (app.playing && stepping() && !planningLeft) {
       if (!queued) {
         queued = true;
         channel.port2.postMessage(null);

@@ -87,7 +87,8 @@ export class PathEditor {
     });
     this.editor.draw();
     if (!result.ok) return;
-    const crossing = result.value.crossing.map((c, i) => (c ? i + 1 : 0)).filter((i) => i > 0);
+    // A path planned again (no waypoints) is null until the frame loop has planned it.
+    const crossing = (result.value?.crossing ?? []).map((c, i) => (c ? i + 1 : 0)).filter((i) => i > 0);
     if (crossing.length) {
       showMessage(
         `Warning: the edited path of group ${group + 1} crosses an obstacle on segment ${crossing.join(', ')} ` +

@@ -1,0 +1,89 @@
+// Planning ahead in slices (IGSA group paths): a scene whose path is still being planned does not
+// step; instead the frame loop hands the Sim's planning a time budget every frame
+// (`Sim.advance_planning`, one optimizer iteration per call, timed here), so clicks and keys are
+// answered between slices. Meanwhile a bar over the canvas shows the progress, and Cancel goes
+// back to the scene shown before (`Sim.cancel_planning`). The path is the same whatever the
+// slices: the core runs the same iterations. Used by the playground's loop and by <flock-path>.
+
+/** Time (ms) given to planning per frame: short enough that input is answered at once. */
+export const PLANNING_BUDGET_MS = 24;
+
+const BOX_STYLE =
+  'position:absolute;left:50%;top:12px;transform:translateX(-50%);z-index:5;display:flex;align-items:center;' +
+  'gap:8px;padding:6px 10px;background:#fff;border:1px solid #c5cdd8;border-radius:8px;' +
+  'box-shadow:0 2px 8px rgba(0,0,0,.15);font:14px/1.3 system-ui,sans-serif;color:#17202c;white-space:nowrap';
+
+export class PlanningSlices {
+  /**
+   * @param {(fn: (sim: object) => any) => any} call runs `fn(sim)` through the host's guarded door
+   * @param {HTMLElement} stage the positioned element the bar is laid over
+   * @param {() => void} onCancelled called after Cancel brought the previous scene back
+   */
+  constructor(call, stage, onCancelled = () => {}) {
+    this.call = call;
+    this.stage = stage;
+    this.onCancelled = onCancelled;
+    this.box = null;
+  }
+
+  /**
+   * Gives the planning up to `budgetMs` of this frame. Returns true while planning is left (the
+   * caller does not step then; a step would finish the planning in one go).
+   */
+  advance(budgetMs = PLANNING_BUDGET_MS) {
+    let progress = this.call((sim) => sim.planning_progress());
+    if (!(progress < 1)) {
+      this.hide();
+      return false;
+    }
+    const end = performance.now() + budgetMs;
+    do {
+      progress = this.call((sim) => sim.advance_planning(1));
+    } while (progress < 1 && performance.now() < end);
+    if (progress < 1) {
+      this.show(progress);
+      return true;
+    }
+    this.hide();
+    return false;
+  }
+
+  show(progress) {
+    if (!this.box) {
+      const box = document.createElement('div');
+      box.className = 'planning';
+      box.setAttribute('role', 'status');
+      box.style.cssText = BOX_STYLE;
+      const label = document.createElement('span');
+      label.className = 'planning-label';
+      const bar = document.createElement('progress');
+      bar.max = 1;
+      const cancel = document.createElement('button');
+      cancel.type = 'button';
+      cancel.className = 'planning-cancel';
+      cancel.textContent = 'Cancel';
+      cancel.title = 'Stop planning and go back to the previous scene';
+      cancel.addEventListener('click', () => this.cancel());
+      box.append(label, bar, cancel);
+      this.stage.append(box);
+      this.box = box;
+    }
+    const percent = Math.floor(progress * 100);
+    this.box.querySelector('.planning-label').textContent = `Planning the group path… ${percent}%`;
+    this.box.querySelector('progress').value = progress;
+    this.box.querySelector('.planning-cancel').hidden = !this.call((sim) => sim.can_cancel_planning());
+  }
+
+  hide() {
+    this.box?.remove();
+    this.box = null;
+  }
+
+  /** Goes back to the scene shown before the planning began. */
+  cancel() {
+    if (this.call((sim) => sim.cancel_planning())) {
+      this.hide();
+      this.onCancelled();
+    }
+  }
+}
