@@ -88,14 +88,15 @@ const BENCH_HELP: &str = "\
 flockpath bench — ns per agent-step of World::step and render time per frame
 
 USAGE:
-    taskset -c 0 flockpath bench [--quick] [--only step|grid|planners|render] [--json FILE]
+    taskset -c 0 flockpath bench [--quick] [--only step|grid|planners|render|packed|metrics] [--json FILE]
 
 OPTIONS:
     --quick            Fewer and shorter repetitions (CI smoke run; figures are rougher)
-    --only step|grid|planners|render
+    --only step|grid|planners|render|packed|metrics
                        Run only the step benchmarks (grid, brute force, per planner), only
-                       the Boids grid step benchmark, only the per-planner table, or only
-                       the render benchmark
+                       the Boids grid step benchmark, only the per-planner table, only
+                       the render benchmark, only the packed-vs-spread table, or only the
+                       cost of one metrics summary against N
     --json FILE        Also write the figures as JSON
     -h, --help         Show this help
 
@@ -516,23 +517,30 @@ fn summary(world: &World) -> String {
 fn parse_bench(args: &[String]) -> Result<bench::Options, CliError> {
     let pairs = flag_pairs("bench", args, &["--only", "--json"], &["--quick"], &[])?;
     let mut options = bench::Options::default();
+    let mut only = None;
     for (flag, value) in pairs {
         match flag.as_str() {
             "--quick" => options.quick = true,
             "--json" => options.json = Some(value),
-            "--only" => match value.as_str() {
-                "step" => options.render = false,
-                "grid" => (options.render, options.brute, options.planners) = (false, false, false),
-                "planners" => (options.render, options.step) = (false, false),
-                "render" => (options.step, options.planners) = (false, false),
-                other => {
-                    return Err(usage(format!(
-                        "--only must be `step`, `grid`, `planners` or `render`, got {other:?}"
-                    )))
-                }
-            },
+            "--only" => only = Some(value),
             _ => return Err(usage(format!("unknown option {flag:?} for `flockpath bench`"))),
         }
+    }
+    if let Some(only) = only {
+        let o = &mut options;
+        (o.step, o.brute, o.planners, o.render, o.packed, o.metrics) = match only.as_str() {
+            "step" => (true, true, true, false, false, false),
+            "grid" => (true, false, false, false, false, false),
+            "planners" => (false, false, true, false, false, false),
+            "render" => (false, false, false, true, false, false),
+            "packed" => (false, false, false, false, true, false),
+            "metrics" => (false, false, false, false, false, true),
+            other => {
+                return Err(usage(format!(
+                    "--only must be `step`, `grid`, `planners`, `render`, `packed` or `metrics`, got {other:?}"
+                )))
+            }
+        };
     }
     Ok(options)
 }
