@@ -248,10 +248,11 @@ const PACKED_SIZE: u32 = 1_000;
 /// 1,000 agents 2.5 per px², every body overlapping hundreds of others.
 const PACKED_SIDE: f32 = 20.0;
 
-/// [`planner_scene`] with every agent spawned in a [`PACKED_SIDE`] square round the goal.
+/// [`planner_scene`] with every agent spawned in a [`PACKED_SIDE`] square halfway between the
+/// world's left border and the goal (outside the goal: the agents still have somewhere to go).
 pub fn packed_scene(n: u32, config: &PlannerConfig) -> Scene {
     let mut scene = planner_scene(n, config);
-    let (cx, cy) = (0.5 * scene.width, 0.5 * scene.height);
+    let (cx, cy) = (0.25 * scene.width, 0.5 * scene.height);
     let h = 0.5 * PACKED_SIDE;
     for g in &mut scene.groups {
         g.spawn = flockpath::Region { min: [cx - h, cy - h], max: [cx + h, cy + h] };
