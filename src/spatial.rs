@@ -25,6 +25,8 @@ pub struct SpatialGrid {
     scratch_next: Vec<u32>,
     /// Position x, y and velocity x, y in storage order (padding: NaN).
     columns: [Vec<f32>; 4],
+    /// Most agents in one cell at the last rebuild.
+    max_occupancy: u32,
 }
 
 /// One agent found by a query.
@@ -103,6 +105,7 @@ impl SpatialGrid {
             scratch_cell: Vec::new(),
             scratch_next: Vec::new(),
             columns: Default::default(),
+            max_occupancy: 0,
         }
     }
 
@@ -137,9 +140,12 @@ impl SpatialGrid {
             self.scratch_cell.push(c);
             self.cell_start[c as usize + 1] += 1;
         }
+        let mut max_occupancy = 0;
         for c in 1..self.cell_start.len() {
+            max_occupancy = max_occupancy.max(self.cell_start[c]);
             self.cell_start[c] += self.cell_start[c - 1];
         }
+        self.max_occupancy = max_occupancy;
         // Scatter in id order: stable, so each cell lists its agents by increasing id.
         self.scratch_next.clear();
         self.scratch_next.extend_from_slice(&self.cell_start);
@@ -165,6 +171,11 @@ impl SpatialGrid {
             let (p, v) = (positions[i as usize], velocities.get(i as usize).copied().unwrap_or(Vec2::ZERO));
             (x[slot], y[slot], vx[slot], vy[slot]) = (p.x, p.y, v.x, v.y);
         }
+    }
+
+    /// Most agents in one cell at the last rebuild: a scan of a cell's agents costs up to this.
+    pub fn max_cell_occupancy(&self) -> usize {
+        self.max_occupancy as usize
     }
 
     /// The agents in storage order as padded [`Columns`].
@@ -208,6 +219,43 @@ impl SpatialGrid {
                 }
             }
         }
+    }
+
+    /// [`Self::for_each_within`] that stops after `cap` agents within `radius`: the first `cap`
+    /// in its scan order (rows of cells, by id within a cell), so the result is the same on
+    /// every platform. Returns whether it stopped early (more agents may lie within `radius`).
+    /// Neighbour rules use it so an agent in a pile costs a bounded amount of work.
+    #[inline]
+    pub fn for_each_within_capped(
+        &self,
+        p: Vec2,
+        radius: f32,
+        cap: usize,
+        mut visit: impl FnMut(Neighbour),
+    ) -> bool {
+        let r2 = radius * radius;
+        let x0 = self.cell_coord(p.x - radius, self.cols);
+        let x1 = self.cell_coord(p.x + radius, self.cols);
+        let y0 = self.cell_coord(p.y - radius, self.rows);
+        let y1 = self.cell_coord(p.y + radius, self.rows);
+        let mut left = cap;
+        for cy in y0..=y1 {
+            let row = cy * self.cols;
+            let start = self.cell_start[(row + x0) as usize] as usize;
+            let end = self.cell_start[(row + x1 + 1) as usize] as usize;
+            for k in start..end {
+                let (q, v) = self.slot(k);
+                let d2 = p.distance_squared(q);
+                if d2 <= r2 {
+                    if left == 0 {
+                        return true;
+                    }
+                    left -= 1;
+                    visit(Neighbour { id: self.ids[k], pos: q, vel: v, d2 });
+                }
+            }
+        }
+        false
     }
 
     /// Sets `runs` to the candidates for a query of `radius` around `p`: a superset of
@@ -311,7 +359,20 @@ impl SpatialGrid {
     /// only when it lies within `radius` of that border, against the cell to its right and the
     /// three cells below. A pair in two cells is so seen once, from the earlier cell; with a
     /// body-sized radius and perception-sized cells most agents test their own cell only.
-    pub fn for_each_pair_within(&self, radius: f32, mut visit: impl FnMut(u32, u32)) {
+    pub fn for_each_pair_within(&self, radius: f32, visit: impl FnMut(u32, u32)) {
+        self.for_each_pair_within_capped(radius, usize::MAX, visit);
+    }
+
+    /// [`Self::for_each_pair_within`] with each agent tested against at most `cap` others (the
+    /// first in its scan order: own cell, right cell, row below), so a pile costs at most
+    /// `cap` tests per agent. Returns whether some agent had candidates left untested (then
+    /// pairs may be missing).
+    pub fn for_each_pair_within_capped(
+        &self,
+        radius: f32,
+        cap: usize,
+        mut visit: impl FnMut(u32, u32),
+    ) -> bool {
         let r2 = radius * radius;
         let (cols, rows) = (self.cols as usize, self.rows as usize);
         let [xs, ys, _, _] = &self.columns;
@@ -320,9 +381,13 @@ impl SpatialGrid {
             let c = cy * cols + cx;
             self.cell_start[c] as usize..self.cell_start[c + 1] as usize
         };
-        // Tests agent `k` (at `p`) against the agents stored in `others`.
-        let mut test = |k: usize, p: Vec2, others: Range<usize>| {
-            for other in others {
+        let mut capped = false;
+        // Tests agent `k` (at `p`) against the agents stored in `others`, at most `left` of them.
+        let mut test = |k: usize, p: Vec2, others: Range<usize>, left: &mut usize| {
+            let end = others.end.min(others.start.saturating_add(*left));
+            capped |= end < others.end;
+            *left -= end.saturating_sub(others.start);
+            for other in others.start..end {
                 let d = p - Vec2::new(xs[other], ys[other]);
                 if d.dot(d) < r2 {
                     let (a, b) = (ids[k], ids[other]);
@@ -339,11 +404,12 @@ impl SpatialGrid {
                 let bottom = (cy + 1 < rows).then(|| (cy + 1) as f32 * self.cell_size);
                 let left = cx as f32 * self.cell_size;
                 for k in here.clone() {
+                    let mut budget = cap;
                     let p = Vec2::new(xs[k], ys[k]);
-                    test(k, p, k + 1..here.end);
+                    test(k, p, k + 1..here.end, &mut budget);
                     let near_right = right.is_some_and(|x| x - p.x < radius);
                     if near_right {
-                        test(k, p, cell_range(cx + 1, cy));
+                        test(k, p, cell_range(cx + 1, cy), &mut budget);
                     }
                     if !bottom.is_some_and(|y| y - p.y < radius) {
                         continue;
@@ -352,10 +418,12 @@ impl SpatialGrid {
                     let first = if near_left { cx - 1 } else { cx };
                     let last = if near_right { cx + 1 } else { cx };
                     // Cells first..=last of the next row are contiguous in storage.
-                    test(k, p, cell_range(first, cy + 1).start..cell_range(last, cy + 1).end);
+                    let below = cell_range(first, cy + 1).start..cell_range(last, cy + 1).end;
+                    test(k, p, below, &mut budget);
                 }
             }
         }
+        capped
     }
 }
 
