@@ -22,7 +22,7 @@ use crate::fitness::{Behaviour, FitnessMeasures, FitnessRecorder};
 use crate::geometry::{distance, length, Aabb};
 use crate::planners::PlannerKind;
 use crate::scene::Scene;
-use crate::spatial::{ObstacleIndex, SpatialGrid};
+use crate::spatial::{ObstacleIndex, QueryCap, SpatialGrid};
 use glam::Vec2;
 use serde::Serialize;
 use std::ops::Range;
@@ -44,9 +44,10 @@ pub const QUEUE_HALF_ANGLE_DEG: f32 = 30.0;
 /// The queue order is measured at the end of step 1 and of every step that is a multiple of this
 /// (the plots sample every 5th step, and then every 10th, 20th …, so each plotted value is exact).
 pub const QUEUE_SAMPLE_EVERY: u32 = 5;
-/// Queue order: at most this many neighbours within [`QUEUE_RADIUS`] are looked at per agent
-/// (the first in the grid's scan order), so a pile costs a bounded amount per agent. A crowd of
-/// non-overlapping 4 px discs holds about 650 within 120 px: a pile only reaches it.
+/// Queue order: at most this many neighbours within [`QUEUE_RADIUS`] (and 8 times as many
+/// candidates of the scanned cells) are looked at per agent, the first in the grid's scan order,
+/// so a pile costs a bounded amount per agent. A crowd of non-overlapping 4 px discs holds about
+/// 650 within 120 px: only a pile reaches it.
 pub const QUEUE_NEIGHBOUR_CAP: usize = 1024;
 /// Most agents in one cell of the world's grid for which overlaps are counted on that grid;
 /// beyond it (a pile) they are counted on a grid of body-sized cells instead.
@@ -506,7 +507,8 @@ impl MetricsRecorder {
                 let p = pos[i];
                 let mine = p.distance_squared(target);
                 let mut nearest: Option<(f32, u32, Vec2)> = None;
-                grid.for_each_within_capped(p, QUEUE_RADIUS, QUEUE_NEIGHBOUR_CAP, |n| {
+                let cap = QueryCap { neighbours: QUEUE_NEIGHBOUR_CAP, candidates: 8 * QUEUE_NEIGHBOUR_CAP };
+                grid.for_each_within_capped(p, QUEUE_RADIUS, cap, |n| {
                     if n.id != id
                         && agents.contains(&n.id)
                         && n.pos.distance_squared(target) < mine

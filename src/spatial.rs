@@ -29,6 +29,22 @@ pub struct SpatialGrid {
     max_occupancy: u32,
 }
 
+/// Limits of one capped neighbour query ([`SpatialGrid::for_each_within_capped`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct QueryCap {
+    /// Most agents within the radius visited.
+    pub neighbours: usize,
+    /// Most agents of the scanned cells tested (within the radius or not).
+    pub candidates: usize,
+}
+
+/// The cap of the planners' neighbour rules: an agent considers at most 2,048 neighbours within
+/// its query radius, among at most 8,192 agents of the cells the query scans (the first in scan
+/// order). The widest query (firefly, 200 px on 200 px cells) finds at most about 1,800
+/// non-overlapping 4 px discs within reach among about 5,200 in its cells, so no spread or
+/// jammed crowd reaches the cap; a pile does, and then costs at most this much per agent.
+pub const NEIGHBOUR_CAP: QueryCap = QueryCap { neighbours: 2048, candidates: 8192 };
+
 /// One agent found by a query.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Neighbour {
@@ -221,16 +237,17 @@ impl SpatialGrid {
         }
     }
 
-    /// [`Self::for_each_within`] that stops after `cap` agents within `radius`: the first `cap`
-    /// in its scan order (rows of cells, by id within a cell), so the result is the same on
-    /// every platform. Returns whether it stopped early (more agents may lie within `radius`).
-    /// Neighbour rules use it so an agent in a pile costs a bounded amount of work.
+    /// [`Self::for_each_within`] that stops after visiting `cap.neighbours` agents within
+    /// `radius` or testing `cap.candidates` agents of the cells it scans, whichever comes first:
+    /// the first ones in its scan order (rows of cells, by id within a cell), so the result is
+    /// the same on every platform. Returns whether it stopped early (more agents may lie within
+    /// `radius`). Neighbour rules use it so an agent in a pile costs a bounded amount of work.
     #[inline]
     pub fn for_each_within_capped(
         &self,
         p: Vec2,
         radius: f32,
-        cap: usize,
+        cap: QueryCap,
         mut visit: impl FnMut(Neighbour),
     ) -> bool {
         let r2 = radius * radius;
@@ -238,21 +255,73 @@ impl SpatialGrid {
         let x1 = self.cell_coord(p.x + radius, self.cols);
         let y0 = self.cell_coord(p.y - radius, self.rows);
         let y1 = self.cell_coord(p.y + radius, self.rows);
-        let mut left = cap;
+        let (mut neighbours, mut candidates) = (cap.neighbours, cap.candidates);
         for cy in y0..=y1 {
             let row = cy * self.cols;
             let start = self.cell_start[(row + x0) as usize] as usize;
             let end = self.cell_start[(row + x1 + 1) as usize] as usize;
-            for k in start..end {
+            let scanned = end.min(start.saturating_add(candidates));
+            candidates -= scanned - start;
+            for k in start..scanned {
                 let (q, v) = self.slot(k);
                 let d2 = p.distance_squared(q);
                 if d2 <= r2 {
-                    if left == 0 {
+                    if neighbours == 0 {
                         return true;
                     }
-                    left -= 1;
+                    neighbours -= 1;
                     visit(Neighbour { id: self.ids[k], pos: q, vel: v, d2 });
                 }
+            }
+            if scanned < end {
+                return true;
+            }
+        }
+        false
+    }
+
+    /// Sets `slots` to the storage slots (indexes into [`Self::columns`]) of the agents within
+    /// `radius` of `p`, in [`Self::for_each_within`]'s order, capped like
+    /// [`Self::for_each_within_capped`] (returns whether the cap cut the list short).
+    ///
+    /// The distance test writes every candidate's slot and advances past it only when it is
+    /// within reach: no branch per candidate, whose outcome the CPU could not predict, so a
+    /// caller's loop over the slots then runs without mispredictions either.
+    pub fn gather_within(&self, p: Vec2, radius: f32, cap: QueryCap, slots: &mut Vec<u32>) -> bool {
+        slots.clear();
+        let r2 = radius * radius;
+        let x0 = self.cell_coord(p.x - radius, self.cols);
+        let x1 = self.cell_coord(p.x + radius, self.cols);
+        let y0 = self.cell_coord(p.y - radius, self.rows);
+        let y1 = self.cell_coord(p.y + radius, self.rows);
+        let [xs, ys, _, _] = &self.columns;
+        let mut candidates = cap.candidates;
+        for cy in y0..=y1 {
+            let row = cy * self.cols;
+            let start = self.cell_start[(row + x0) as usize] as usize;
+            let end = self.cell_start[(row + x1 + 1) as usize] as usize;
+            let scanned = end.min(start.saturating_add(candidates));
+            candidates -= scanned - start;
+            let base = slots.len();
+            slots.resize(base + (scanned - start), 0);
+            let mut found = base;
+            if let (Some(out), Some(xs), Some(ys)) =
+                (slots.get_mut(base..), xs.get(start..scanned), ys.get(start..scanned))
+            {
+                let mut n = 0;
+                for (k, (&x, &y)) in (start..scanned).zip(xs.iter().zip(ys)) {
+                    out[n] = k as u32;
+                    n += usize::from(p.distance_squared(Vec2::new(x, y)) <= r2);
+                }
+                found += n;
+            }
+            slots.truncate(found);
+            if slots.len() > cap.neighbours {
+                slots.truncate(cap.neighbours);
+                return true;
+            }
+            if scanned < end {
+                return true;
             }
         }
         false

@@ -535,9 +535,11 @@ fn parse_bench(args: &[String]) -> Result<bench::Options, CliError> {
             "render" => (false, false, false, true, false, false),
             "packed" => (false, false, false, false, true, false),
             "metrics" => (false, false, false, false, false, true),
-            other => return Err(usage(format!(
+            other => {
+                return Err(usage(format!(
                 "--only must be `step`, `grid`, `planners`, `render`, `packed` or `metrics`, got {other:?}"
-            ))),
+            )))
+            }
         };
     }
     Ok(options)
