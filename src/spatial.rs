@@ -237,6 +237,20 @@ impl SpatialGrid {
         }
     }
 
+    /// The storage ranges of the cells a query of `radius` round `p` scans, one per row of
+    /// cells (the cells of a row are contiguous in storage), top row first.
+    #[inline]
+    fn query_rows(&self, p: Vec2, radius: f32) -> impl Iterator<Item = Range<usize>> + '_ {
+        let x0 = self.cell_coord(p.x - radius, self.cols);
+        let x1 = self.cell_coord(p.x + radius, self.cols);
+        let y0 = self.cell_coord(p.y - radius, self.rows);
+        let y1 = self.cell_coord(p.y + radius, self.rows);
+        (y0..=y1).map(move |cy| {
+            let row = cy * self.cols;
+            self.cell_start[(row + x0) as usize] as usize..self.cell_start[(row + x1 + 1) as usize] as usize
+        })
+    }
+
     /// [`Self::for_each_within`] that stops after visiting `cap.neighbours` agents within
     /// `radius` or testing `cap.candidates` agents of the cells it scans, whichever comes first:
     /// the first ones in its scan order (rows of cells, by id within a cell), so the result is
@@ -251,15 +265,8 @@ impl SpatialGrid {
         mut visit: impl FnMut(Neighbour),
     ) -> bool {
         let r2 = radius * radius;
-        let x0 = self.cell_coord(p.x - radius, self.cols);
-        let x1 = self.cell_coord(p.x + radius, self.cols);
-        let y0 = self.cell_coord(p.y - radius, self.rows);
-        let y1 = self.cell_coord(p.y + radius, self.rows);
         let (mut neighbours, mut candidates) = (cap.neighbours, cap.candidates);
-        for cy in y0..=y1 {
-            let row = cy * self.cols;
-            let start = self.cell_start[(row + x0) as usize] as usize;
-            let end = self.cell_start[(row + x1 + 1) as usize] as usize;
+        for Range { start, end } in self.query_rows(p, radius) {
             let scanned = end.min(start.saturating_add(candidates));
             candidates -= scanned - start;
             for k in start..scanned {
@@ -290,16 +297,9 @@ impl SpatialGrid {
     pub fn gather_within(&self, p: Vec2, radius: f32, cap: QueryCap, slots: &mut Vec<u32>) -> bool {
         slots.clear();
         let r2 = radius * radius;
-        let x0 = self.cell_coord(p.x - radius, self.cols);
-        let x1 = self.cell_coord(p.x + radius, self.cols);
-        let y0 = self.cell_coord(p.y - radius, self.rows);
-        let y1 = self.cell_coord(p.y + radius, self.rows);
         let [xs, ys, _, _] = &self.columns;
         let mut candidates = cap.candidates;
-        for cy in y0..=y1 {
-            let row = cy * self.cols;
-            let start = self.cell_start[(row + x0) as usize] as usize;
-            let end = self.cell_start[(row + x1 + 1) as usize] as usize;
+        for Range { start, end } in self.query_rows(p, radius) {
             let scanned = end.min(start.saturating_add(candidates));
             candidates -= scanned - start;
             let base = slots.len();
