@@ -476,6 +476,8 @@ impl Firefly {
         ctx.grid.gather_within(p, near_radius, NEIGHBOUR_CAP, slots);
         let is_own = |other: u32| group.agents.contains(&other);
         let (bodies_before, mut bodies) = (contacts.len(), 0usize);
+        // The largest allowed speed among the bodies kept (the farthest of them).
+        let mut farthest = f32::NEG_INFINITY;
         for &k in slots.iter() {
             let k = k as usize;
             let (other, pos) = (columns.ids[k], Vec2::new(columns.x[k], columns.y[k]));
@@ -496,8 +498,12 @@ impl Firefly {
                 if bodies < MAX_CONTACT_BODIES {
                     contacts.push(contact);
                     bodies += 1;
-                } else {
-                    keep_nearest(contacts.get_mut(bodies_before..).unwrap_or_default(), contact);
+                    farthest = farthest.max(allowed);
+                } else if allowed < farthest {
+                    // Only a nearer body than the farthest kept changes the list (a pile).
+                    let kept = contacts.get_mut(bodies_before..).unwrap_or_default();
+                    keep_nearest(kept, contact);
+                    farthest = kept.iter().fold(f32::NEG_INFINITY, |m, c| m.max(c.allowed));
                 }
                 if on_the_way
                     && heading.dot(pos - p) > 0.0

@@ -264,10 +264,11 @@ pub fn packed_scene(n: u32, config: &PlannerConfig) -> Scene {
 /// one at equal N, and their ratio: the per-agent neighbour caps keep a pile a small constant
 /// times as dear as a spread crowd.
 fn packed_benchmarks(options: &Options, report: &mut Map<String, Value>) -> Result<(), String> {
+    // Ten worlds per repetition: the OS's on-CPU clock is too coarse for one small world.
     let plan = if options.quick {
-        Plan { warmup_steps: 1, steps: 2, agents_per_rep: PACKED_SIZE, reps: 3 }
+        Plan { warmup_steps: 1, steps: 2, agents_per_rep: 10 * PACKED_SIZE, reps: 3 }
     } else {
-        Plan { warmup_steps: 1, steps: 3, agents_per_rep: PACKED_SIZE, reps: 5 }
+        Plan { warmup_steps: 1, steps: 3, agents_per_rep: 10 * PACKED_SIZE, reps: 5 }
     };
     let n = PACKED_SIZE;
     println!();
@@ -316,15 +317,20 @@ fn metrics_benchmarks(options: &Options, report: &mut Map<String, Value>) -> Res
         world.step_n(2);
         let mut samples = Vec::with_capacity(calls);
         for _ in 0..calls {
+            // Enough calls per sample for the OS's coarse on-CPU clock.
+            let repeat = (100_000 / n).max(1);
             let (cpu, start) = (thread_cpu_ns(), Instant::now());
-            let text = serde_json::to_string(&world.metrics()).map_err(|e| e.to_string())?;
+            for _ in 0..repeat {
+                let text = serde_json::to_string(&world.metrics()).map_err(|e| e.to_string())?;
+                std::hint::black_box(text.len());
+            }
             let wall = start.elapsed().as_nanos() as f64 / 1e6;
             // On-CPU time where the OS reports it: a loaded machine inflates wall-clock time.
-            samples.push(match (cpu, thread_cpu_ns()) {
+            let ms = match (cpu, thread_cpu_ns()) {
                 (Some(a), Some(b)) => b.saturating_sub(a) as f64 / 1e6,
                 _ => wall,
-            });
-            std::hint::black_box(text.len());
+            };
+            samples.push(ms / f64::from(repeat));
         }
         let ms = median(&mut samples);
         println!("{:>18}  {:>9}  {:>10.3}", label, n, ms);
