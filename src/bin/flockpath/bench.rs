@@ -326,8 +326,9 @@ fn metrics_benchmarks(options: &Options, report: &mut Map<String, Value>) -> Res
             }
             let wall = start.elapsed().as_nanos() as f64 / 1e6;
             // On-CPU time where the OS reports it: a loaded machine inflates wall-clock time.
+            // (A clock that did not advance, too coarse for these calls, leaves wall-clock time.)
             let ms = match (cpu, thread_cpu_ns()) {
-                (Some(a), Some(b)) => b.saturating_sub(a) as f64 / 1e6,
+                (Some(a), Some(b)) if b > a => (b - a) as f64 / 1e6,
                 _ => wall,
             };
             samples.push(ms / f64::from(repeat));
