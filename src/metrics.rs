@@ -4,6 +4,15 @@
 //! counted once per pair per step; a penetration is an agent whose centre is inside an obstacle
 //! at the end of a step. Key names are a stable contract: add keys, never rename.
 //!
+//! Cost: recording a step is O(N) with a small constant, and so is a summary (what the page polls
+//! every 250 ms); a pile of overlapping agents costs a bounded amount per agent too. Where a
+//! measure would need more, it is bounded per agent (documented where it is): each agent is
+//! tested against at most [`MAX_PAIR_CANDIDATES`] others for overlaps once a cell of the grid
+//! is crowded (`collisions_capped_steps` counts the steps where that cut a count short), and the
+//! queue order, a firefly measure, is taken for firefly groups only, on step 1 and every
+//! [`QUEUE_SAMPLE_EVERY`] steps, each agent looking at no more than [`QUEUE_NEIGHBOUR_CAP`]
+//! neighbours.
+//!
 //! `fitness` holds the five measures of the GA-tuned virtual-force paper (DESIGN §3.5,
 //! [`crate::fitness`]) for any planner, with behaviour B1's parameters and weights (a group moving
 //! at 24 px spacing towards its goal). They cost a k = 7 nearest-neighbour query per agent, so they
@@ -11,10 +20,12 @@
 
 use crate::fitness::{Behaviour, FitnessMeasures, FitnessRecorder};
 use crate::geometry::{distance, length, Aabb};
+use crate::planners::PlannerKind;
 use crate::scene::Scene;
-use crate::spatial::{ObstacleIndex, SpatialGrid};
+use crate::spatial::{ObstacleIndex, QueryCap, SpatialGrid};
 use glam::Vec2;
 use serde::Serialize;
+use std::ops::Range;
 
 /// Steps without progress towards the goal after which an agent counts as stuck.
 pub const STUCK_WINDOW: u32 = 300;
@@ -29,6 +40,22 @@ pub const QUEUE_RADIUS: f32 = 120.0;
 /// Queue order: largest angle (degrees) between an agent's heading and its nearest brighter
 /// neighbour for the agent to count as queued behind it.
 pub const QUEUE_HALF_ANGLE_DEG: f32 = 30.0;
+
+/// The queue order is measured at the end of step 1 and of every step that is a multiple of this
+/// (the plots sample every 5th step, and then every 10th, 20th …, so each plotted value is exact).
+pub const QUEUE_SAMPLE_EVERY: u32 = 5;
+/// Queue order: at most this many neighbours within [`QUEUE_RADIUS`] (and 8 times as many
+/// candidates of the scanned cells) are looked at per agent, the first in the grid's scan order,
+/// so a pile costs a bounded amount per agent. A crowd of non-overlapping 4 px discs holds about
+/// 650 within 120 px: only a pile reaches it.
+pub const QUEUE_NEIGHBOUR_CAP: usize = 1024;
+/// Most agents in one cell of the world's grid for which overlaps are counted on that grid;
+/// beyond it (a pile) they are counted on a grid of body-sized cells instead.
+const CROWDED_CELL: usize = 64;
+/// Overlap counting on the body-sized grid tests each agent against at most this many others
+/// (the first in the grid's scan order): a cell there holds one or two non-overlapping bodies,
+/// so only a pile reaches it, and then the step's count is a lower bound.
+pub const MAX_PAIR_CANDIDATES: usize = 128;
 
 /// The fitness measures are taken every this many steps (on steps 1, 1 + this, …; 3 samples per
 /// simulated second). One sample costs about 2.2 Boids steps at 10k agents (`cargo run --release
@@ -103,11 +130,15 @@ pub struct GroupMetrics {
     pub max_turn_deg: f64,
     /// Agents with a goal that have not arrived and made no progress in the last 300 steps.
     pub stuck_agents: u32,
-    /// Queue order at the last step (firefly, DESIGN §3.3): among agents that have a goal, have
-    /// not arrived, and have a same-group neighbour nearer the goal within 120 px, the share whose
-    /// nearest such neighbour lies within ±30° of their heading (0…1; null if no agent qualifies).
-    /// Random headings give about 1/6; single-file queues approach 1.
+    /// Queue order (firefly groups only, DESIGN §3.3) at step `queue_order_step`: among agents
+    /// that have a goal, have not arrived, and have a same-group neighbour nearer the goal within
+    /// 120 px, the share whose nearest such neighbour lies within ±30° of their heading (0…1;
+    /// null if no agent qualifies or the group is not a firefly group). Random headings give
+    /// about 1/6; single-file queues approach 1.
     pub queue_order: Option<f64>,
+    /// The step `queue_order` was measured at: step 1, then every [`QUEUE_SAMPLE_EVERY`]th step
+    /// (the current step before the first sample); null with `queue_order`.
+    pub queue_order_step: Option<u32>,
     /// The five fitness measures and Gsum (DESIGN §3.5), sampled every
     /// [`FITNESS_SAMPLE_EVERY`] steps; null before the first sample (step 0). A group's measures
     /// average its own agents, whose nearest neighbours may belong to any group.
@@ -126,6 +157,9 @@ pub struct Metrics {
     pub overall: GroupMetrics,
     /// Overlapping pairs at the end of the last step.
     pub collisions_last_step: u32,
+    /// Steps whose overlap count was cut short by the per-agent cap ([`MAX_PAIR_CANDIDATES`]):
+    /// only a pile of overlapping agents reaches it; then the collision counts are lower bounds.
+    pub collisions_capped_steps: u32,
     /// Per-group metrics, in scene order.
     pub groups: Vec<GroupMetrics>,
 }
@@ -144,7 +178,18 @@ pub struct MetricsRecorder {
     groups: Vec<GroupAcc>,
     collisions_last_step: u32,
     collisions_total: u64,
-    pairs: Vec<(u32, u32)>,
+    collisions_capped_steps: u32,
+    /// Body-sized grid for counting overlaps in a pile (built the first time one is met).
+    contact_grid: Option<SpatialGrid>,
+    /// World size (px), for the contact grid.
+    world_size: (f32, f32),
+    /// Each group's agent ids (groups own contiguous ranges).
+    group_agents: Vec<Range<u32>>,
+    /// Groups whose queue order `record` samples (the firefly groups at the start).
+    queue_groups: Vec<bool>,
+    /// Per group `(queued, candidates)` at the last sample, and the step of that sample.
+    queue: Vec<(u32, u32)>,
+    queue_step: Option<u32>,
     fitness: FitnessRecorder,
     /// Steps between fitness samples (0 = none).
     fitness_every: u32,
@@ -182,7 +227,23 @@ impl MetricsRecorder {
             groups: vec![GroupAcc::default(); scene.groups.len()],
             collisions_last_step: 0,
             collisions_total: 0,
-            pairs: Vec::new(),
+            collisions_capped_steps: 0,
+            contact_grid: None,
+            world_size: (scene.width, scene.height),
+            group_agents: {
+                let mut start = 0u32;
+                scene
+                    .groups
+                    .iter()
+                    .map(|g| {
+                        start += g.count;
+                        start - g.count..start
+                    })
+                    .collect()
+            },
+            queue_groups: scene.groups.iter().map(|g| g.planner.kind() == PlannerKind::Firefly).collect(),
+            queue: vec![(0, 0); scene.groups.len()],
+            queue_step: None,
             fitness: FitnessRecorder::new(
                 Behaviour::GroupMoving.fitness_params(),
                 scene.width,
@@ -213,25 +274,36 @@ impl MetricsRecorder {
         obstacles: &ObstacleIndex,
     ) {
         let max_radius = radius.iter().copied().fold(0.0f32, f32::max);
-        // Collisions: pairs closer than the sum of radii, each once.
-        self.pairs.clear();
-        let pairs = &mut self.pairs;
-        grid.for_each_pair_within(2.0 * max_radius, |a, b| {
+        // Collisions: pairs closer than the sum of radii, each once, counted as they are found.
+        let pair_radius = 2.0 * max_radius;
+        let (pair_grid, cap) = if grid.max_cell_occupancy() <= CROWDED_CELL || pos.is_empty() {
+            (grid, usize::MAX)
+        } else {
+            // A pile: the world's cells hold too many agents to test every pair of a cell.
+            let contact = self.contact_grid.get_or_insert_with(|| {
+                let (w, h) = self.world_size;
+                SpatialGrid::new(w, h, pair_radius.max(1.0), pos.len())
+            });
+            contact.rebuild(pos, &[]);
+            (&*contact, MAX_PAIR_CANDIDATES)
+        };
+        let groups = &mut self.groups;
+        let mut count = 0u32;
+        let capped = pair_grid.for_each_pair_within_capped(pair_radius, cap, |a, b| {
             let d2 = pos[a as usize].distance_squared(pos[b as usize]);
             let r = radius[a as usize] + radius[b as usize];
             if d2 < r * r {
-                pairs.push((a, b));
+                count += 1;
+                let (ga, gb) = (group_of[a as usize] as usize, group_of[b as usize] as usize);
+                groups[ga].collisions += 1;
+                if gb != ga {
+                    groups[gb].collisions += 1;
+                }
             }
         });
-        self.collisions_last_step = self.pairs.len() as u32;
-        self.collisions_total += self.pairs.len() as u64;
-        for &(a, b) in &self.pairs {
-            let (ga, gb) = (group_of[a as usize] as usize, group_of[b as usize] as usize);
-            self.groups[ga].collisions += 1;
-            if gb != ga {
-                self.groups[gb].collisions += 1;
-            }
-        }
+        self.collisions_last_step = count;
+        self.collisions_total += u64::from(count);
+        self.collisions_capped_steps += u32::from(capped);
 
         for i in 0..pos.len() {
             let g = group_of[i] as usize;
@@ -291,16 +363,28 @@ impl MetricsRecorder {
                 .extend(group_of.iter().map(|&g| goals.get(g as usize).copied().flatten().map(|(p, _)| p)));
             self.fitness.record_grouped(pos, vel, radius, &self.fitness_goals, obstacles, group_of);
         }
+
+        if self.queue_groups.contains(&true) && (step == 1 || step.is_multiple_of(QUEUE_SAMPLE_EVERY)) {
+            let mut queue = std::mem::take(&mut self.queue);
+            let sampled = &self.queue_groups;
+            let target = |g: usize| goals.get(g).copied().flatten().map(|(t, _)| t);
+            self.queue_order_into(grid, target, |g| sampled.get(g).copied().unwrap_or(false), &mut queue);
+            self.queue = queue;
+            self.queue_step = Some(step);
+        }
     }
 
     /// The metrics so far; `planners` names each group's planner.
+    /// The queue order is reported for firefly groups only (see [`Self::summary_with_queue`]).
     pub fn summary(&self, scene: &Scene, planners: &[&str], steps: u32) -> Metrics {
-        self.summary_with_queue(scene, planners, steps, |_| true)
+        let firefly = PlannerKind::Firefly.name();
+        self.summary_with_queue(scene, planners, steps, |g| planners.get(g).is_some_and(|&p| p == firefly))
     }
 
-    /// [`Self::summary`] with the queue order measured only for the groups `queue_for(g)` picks
-    /// (the others get none). The queue order costs a neighbour query of 120 px per agent, more
-    /// than a Boids step in a dense crowd: the plots measure it for firefly groups only.
+    /// [`Self::summary`] with the queue order reported only for the groups `queue_for(g)` picks
+    /// (the others get null). A group sampled by `record` (a firefly group from the start) costs
+    /// nothing here; any other picked group is measured now, before the first sample too: a
+    /// bounded 120 px neighbour query per agent on a grid built for it.
     pub fn summary_with_queue(
         &self,
         scene: &Scene,
@@ -313,8 +397,9 @@ impl MetricsRecorder {
         let mut groups = Vec::with_capacity(scene.groups.len());
         let mut start = 0usize;
         let mut all = Stats::default();
-        let queue = self.queue_order(scene, steps, queue_for);
+        let queue = self.queue_now(scene, steps, &queue_for);
         let (mut queued, mut queue_candidates) = (0u32, 0u32);
+        let mut queue_step = None;
         for (gi, g) in scene.groups.iter().enumerate() {
             let agents = start..start + g.count as usize;
             start = agents.end;
@@ -332,8 +417,12 @@ impl MetricsRecorder {
             let mut m = to_metrics(acc, &stats, acc.collisions, dt);
             m.name = Some(g.name.clone());
             m.planner = planners.get(gi).map(|s| s.to_string());
-            let (q, c) = queue.get(gi).copied().unwrap_or_default();
+            let (q, c, at) = queue.get(gi).copied().unwrap_or_default();
             m.queue_order = (c > 0).then(|| f64::from(q) / f64::from(c));
+            m.queue_order_step = m.queue_order.map(|_| at);
+            if m.queue_order.is_some() {
+                queue_step = Some(queue_step.map_or(at, |s: u32| s.min(at)));
+            }
             m.fitness =
                 self.fitness.group_measures(gi).map(|f| FitnessMetrics::new(f, self.fitness.frames()));
             (queued, queue_candidates) = (queued + q, queue_candidates + c);
@@ -341,6 +430,7 @@ impl MetricsRecorder {
         }
         let mut overall = to_metrics(&overall, &all, self.collisions_total, dt);
         overall.queue_order = (queue_candidates > 0).then(|| f64::from(queued) / f64::from(queue_candidates));
+        overall.queue_order_step = overall.queue_order.and(queue_step);
         let sampled = self.fitness.frames();
         overall.fitness = (sampled > 0).then(|| FitnessMetrics::new(self.fitness.measures(), sampled));
         Metrics {
@@ -348,39 +438,77 @@ impl MetricsRecorder {
             time_s: f64::from(steps) * dt,
             overall,
             collisions_last_step: self.collisions_last_step,
+            collisions_capped_steps: self.collisions_capped_steps,
             groups,
         }
     }
 
-    /// Per group `(queued, candidates)` for [`GroupMetrics::queue_order`], from the state at the
-    /// end of step `steps`. Builds a grid over the last positions: O(N), never O(N²).
-    fn queue_order(&self, scene: &Scene, steps: u32, queue_for: impl Fn(usize) -> bool) -> Vec<(u32, u32)> {
-        let mut counts = vec![(0u32, 0u32); scene.groups.len()];
-        if !(0..scene.groups.len()).any(&queue_for) {
-            return counts;
+    /// Per group `(queued, candidates, step measured)` for the groups `queue_for` picks: the
+    /// last sample of a sampled group, else measured now on a grid built over the last state.
+    fn queue_now(
+        &self,
+        scene: &Scene,
+        steps: u32,
+        queue_for: &impl Fn(usize) -> bool,
+    ) -> Vec<(u32, u32, u32)> {
+        let sampled =
+            |g: usize| self.queue_step.is_some() && self.queue_groups.get(g).copied().unwrap_or(false);
+        let mut out = vec![(0, 0, steps); scene.groups.len()];
+        for (g, slot) in out.iter_mut().enumerate() {
+            if let (true, true, Some(step)) = (queue_for(g), sampled(g), self.queue_step) {
+                let (q, c) = self.queue.get(g).copied().unwrap_or_default();
+                *slot = (q, c, step);
+            }
         }
+        let measure = |g: usize| queue_for(g) && !sampled(g);
+        if (0..scene.groups.len()).any(measure) {
+            let mut grid = SpatialGrid::new(scene.width, scene.height, QUEUE_RADIUS, self.prev_pos.len());
+            grid.rebuild(&self.prev_pos, &self.prev_vel);
+            let target = |g: usize| {
+                let goal = scene.groups.get(g)?.goal?;
+                Some(scene.goals.get(goal as usize)?.position_at(steps))
+            };
+            let mut counts = vec![(0, 0); scene.groups.len()];
+            self.queue_order_into(&grid, target, measure, &mut counts);
+            for (g, (q, c)) in counts.into_iter().enumerate() {
+                if measure(g) {
+                    out[g] = (q, c, steps);
+                }
+            }
+        }
+        out
+    }
+
+    /// Per group `(queued, candidates)` for [`GroupMetrics::queue_order`] into `counts`, for the
+    /// groups `pick` selects, from the last recorded state; `grid` holds the agents at their
+    /// last positions, `target(g)` is group `g`'s goal then. Each agent looks at no more than
+    /// [`QUEUE_NEIGHBOUR_CAP`] neighbours: O(N), never O(N²).
+    fn queue_order_into(
+        &self,
+        grid: &SpatialGrid,
+        target: impl Fn(usize) -> Option<Vec2>,
+        pick: impl Fn(usize) -> bool,
+        counts: &mut Vec<(u32, u32)>,
+    ) {
+        counts.clear();
+        counts.resize(self.group_agents.len(), (0, 0));
         let pos = &self.prev_pos;
-        let mut grid = SpatialGrid::new(scene.width, scene.height, QUEUE_RADIUS, pos.len());
-        grid.rebuild(pos, &self.prev_vel);
         let cos_limit = libm::cosf(QUEUE_HALF_ANGLE_DEG.to_radians());
-        let mut start = 0usize;
-        for (gi, g) in scene.groups.iter().enumerate() {
-            let agents = start as u32..(start + g.count as usize) as u32;
-            start += g.count as usize;
-            if !queue_for(gi) {
+        for (gi, agents) in self.group_agents.iter().enumerate() {
+            if !pick(gi) {
                 continue;
             }
-            let Some(goal) = g.goal.and_then(|k| scene.goals.get(k as usize)) else { continue };
-            let target = goal.position_at(steps);
+            let Some(target) = target(gi) else { continue };
             for id in agents.clone() {
                 let i = id as usize;
-                if self.arrived_step[i] != NOT_ARRIVED {
+                if self.arrived_step.get(i).is_none_or(|&s| s != NOT_ARRIVED) {
                     continue;
                 }
                 let p = pos[i];
                 let mine = p.distance_squared(target);
                 let mut nearest: Option<(f32, u32, Vec2)> = None;
-                grid.for_each_within(p, QUEUE_RADIUS, |n| {
+                let cap = QueryCap { neighbours: QUEUE_NEIGHBOUR_CAP, candidates: 8 * QUEUE_NEIGHBOUR_CAP };
+                grid.for_each_within_capped(p, QUEUE_RADIUS, cap, |n| {
                     if n.id != id
                         && agents.contains(&n.id)
                         && n.pos.distance_squared(target) < mine
@@ -398,7 +526,6 @@ impl MetricsRecorder {
                 }
             }
         }
-        counts
     }
 
     /// Whether agent `i` (of a group with a goal if `has_goal`) is stuck after `steps` steps: not
@@ -477,6 +604,7 @@ fn to_metrics(acc: &GroupAcc, s: &Stats, collisions: u64, dt: f64) -> GroupMetri
         max_turn_deg: acc.max_turn,
         stuck_agents: s.stuck,
         queue_order: None,
+        queue_order_step: None,
         fitness: None,
     }
 }

@@ -25,7 +25,25 @@ pub struct SpatialGrid {
     scratch_next: Vec<u32>,
     /// Position x, y and velocity x, y in storage order (padding: NaN).
     columns: [Vec<f32>; 4],
+    /// Most agents in one cell at the last rebuild.
+    max_occupancy: u32,
 }
+
+/// Limits of one capped neighbour query ([`SpatialGrid::for_each_within_capped`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct QueryCap {
+    /// Most agents within the radius visited.
+    pub neighbours: usize,
+    /// Most agents of the scanned cells tested (within the radius or not).
+    pub candidates: usize,
+}
+
+/// The cap of the planners' neighbour rules: an agent considers at most 2,048 neighbours within
+/// its query radius, among at most 8,192 agents of the cells the query scans (the first in scan
+/// order). The widest query (firefly, 200 px on 200 px cells) finds at most about 1,800
+/// non-overlapping 4 px discs within reach among about 5,200 in its cells, so no spread or
+/// jammed crowd reaches the cap; a pile does, and then costs at most this much per agent.
+pub const NEIGHBOUR_CAP: QueryCap = QueryCap { neighbours: 2048, candidates: 8192 };
 
 /// One agent found by a query.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -103,6 +121,7 @@ impl SpatialGrid {
             scratch_cell: Vec::new(),
             scratch_next: Vec::new(),
             columns: Default::default(),
+            max_occupancy: 0,
         }
     }
 
@@ -137,9 +156,12 @@ impl SpatialGrid {
             self.scratch_cell.push(c);
             self.cell_start[c as usize + 1] += 1;
         }
+        let mut max_occupancy = 0;
         for c in 1..self.cell_start.len() {
+            max_occupancy = max_occupancy.max(self.cell_start[c]);
             self.cell_start[c] += self.cell_start[c - 1];
         }
+        self.max_occupancy = max_occupancy;
         // Scatter in id order: stable, so each cell lists its agents by increasing id.
         self.scratch_next.clear();
         self.scratch_next.extend_from_slice(&self.cell_start);
@@ -165,6 +187,11 @@ impl SpatialGrid {
             let (p, v) = (positions[i as usize], velocities.get(i as usize).copied().unwrap_or(Vec2::ZERO));
             (x[slot], y[slot], vx[slot], vy[slot]) = (p.x, p.y, v.x, v.y);
         }
+    }
+
+    /// Most agents in one cell at the last rebuild: a scan of a cell's agents costs up to this.
+    pub fn max_cell_occupancy(&self) -> usize {
+        self.max_occupancy as usize
     }
 
     /// The agents in storage order as padded [`Columns`].
@@ -208,6 +235,96 @@ impl SpatialGrid {
                 }
             }
         }
+    }
+
+    /// The storage ranges of the cells a query of `radius` round `p` scans, one per row of
+    /// cells (the cells of a row are contiguous in storage), top row first.
+    #[inline]
+    fn query_rows(&self, p: Vec2, radius: f32) -> impl Iterator<Item = Range<usize>> + '_ {
+        let x0 = self.cell_coord(p.x - radius, self.cols);
+        let x1 = self.cell_coord(p.x + radius, self.cols);
+        let y0 = self.cell_coord(p.y - radius, self.rows);
+        let y1 = self.cell_coord(p.y + radius, self.rows);
+        (y0..=y1).map(move |cy| {
+            let row = cy * self.cols;
+            self.cell_start[(row + x0) as usize] as usize..self.cell_start[(row + x1 + 1) as usize] as usize
+        })
+    }
+
+    /// [`Self::for_each_within`] that stops after visiting `cap.neighbours` agents within
+    /// `radius` or testing `cap.candidates` agents of the cells it scans, whichever comes first:
+    /// the first ones in its scan order (rows of cells, by id within a cell), so the result is
+    /// the same on every platform. Returns whether it stopped early (more agents may lie within
+    /// `radius`). Neighbour rules use it so an agent in a pile costs a bounded amount of work.
+    #[inline]
+    pub fn for_each_within_capped(
+        &self,
+        p: Vec2,
+        radius: f32,
+        cap: QueryCap,
+        mut visit: impl FnMut(Neighbour),
+    ) -> bool {
+        let r2 = radius * radius;
+        let (mut neighbours, mut candidates) = (cap.neighbours, cap.candidates);
+        for Range { start, end } in self.query_rows(p, radius) {
+            let scanned = end.min(start.saturating_add(candidates));
+            candidates -= scanned - start;
+            for k in start..scanned {
+                let (q, v) = self.slot(k);
+                let d2 = p.distance_squared(q);
+                if d2 <= r2 {
+                    if neighbours == 0 {
+                        return true;
+                    }
+                    neighbours -= 1;
+                    visit(Neighbour { id: self.ids[k], pos: q, vel: v, d2 });
+                }
+            }
+            if scanned < end {
+                return true;
+            }
+        }
+        false
+    }
+
+    /// Sets `slots` to the storage slots (indexes into [`Self::columns`]) of the agents within
+    /// `radius` of `p`, in [`Self::for_each_within`]'s order, capped like
+    /// [`Self::for_each_within_capped`] (returns whether the cap cut the list short).
+    ///
+    /// The distance test writes every candidate's slot and advances past it only when it is
+    /// within reach: no branch per candidate, whose outcome the CPU could not predict, so a
+    /// caller's loop over the slots then runs without mispredictions either.
+    pub fn gather_within(&self, p: Vec2, radius: f32, cap: QueryCap, slots: &mut Vec<u32>) -> bool {
+        slots.clear();
+        let r2 = radius * radius;
+        let [xs, ys, _, _] = &self.columns;
+        let mut candidates = cap.candidates;
+        for Range { start, end } in self.query_rows(p, radius) {
+            let scanned = end.min(start.saturating_add(candidates));
+            candidates -= scanned - start;
+            let base = slots.len();
+            slots.resize(base + (scanned - start), 0);
+            let mut found = base;
+            if let (Some(out), Some(xs), Some(ys)) =
+                (slots.get_mut(base..), xs.get(start..scanned), ys.get(start..scanned))
+            {
+                let mut n = 0;
+                for (k, (&x, &y)) in (start..scanned).zip(xs.iter().zip(ys)) {
+                    out[n] = k as u32;
+                    n += usize::from(p.distance_squared(Vec2::new(x, y)) <= r2);
+                }
+                found += n;
+            }
+            slots.truncate(found);
+            if slots.len() > cap.neighbours {
+                slots.truncate(cap.neighbours);
+                return true;
+            }
+            if scanned < end {
+                return true;
+            }
+        }
+        false
     }
 
     /// Sets `runs` to the candidates for a query of `radius` around `p`: a superset of
@@ -311,7 +428,20 @@ impl SpatialGrid {
     /// only when it lies within `radius` of that border, against the cell to its right and the
     /// three cells below. A pair in two cells is so seen once, from the earlier cell; with a
     /// body-sized radius and perception-sized cells most agents test their own cell only.
-    pub fn for_each_pair_within(&self, radius: f32, mut visit: impl FnMut(u32, u32)) {
+    pub fn for_each_pair_within(&self, radius: f32, visit: impl FnMut(u32, u32)) {
+        self.for_each_pair_within_capped(radius, usize::MAX, visit);
+    }
+
+    /// [`Self::for_each_pair_within`] with each agent tested against at most `cap` others (the
+    /// first in its scan order: own cell, right cell, row below), so a pile costs at most
+    /// `cap` tests per agent. Returns whether some agent had candidates left untested (then
+    /// pairs may be missing).
+    pub fn for_each_pair_within_capped(
+        &self,
+        radius: f32,
+        cap: usize,
+        mut visit: impl FnMut(u32, u32),
+    ) -> bool {
         let r2 = radius * radius;
         let (cols, rows) = (self.cols as usize, self.rows as usize);
         let [xs, ys, _, _] = &self.columns;
@@ -320,9 +450,13 @@ impl SpatialGrid {
             let c = cy * cols + cx;
             self.cell_start[c] as usize..self.cell_start[c + 1] as usize
         };
-        // Tests agent `k` (at `p`) against the agents stored in `others`.
-        let mut test = |k: usize, p: Vec2, others: Range<usize>| {
-            for other in others {
+        let mut capped = false;
+        // Tests agent `k` (at `p`) against the agents stored in `others`, at most `left` of them.
+        let mut test = |k: usize, p: Vec2, others: Range<usize>, left: &mut usize| {
+            let end = others.end.min(others.start.saturating_add(*left));
+            capped |= end < others.end;
+            *left -= end.saturating_sub(others.start);
+            for other in others.start..end {
                 let d = p - Vec2::new(xs[other], ys[other]);
                 if d.dot(d) < r2 {
                     let (a, b) = (ids[k], ids[other]);
@@ -339,11 +473,12 @@ impl SpatialGrid {
                 let bottom = (cy + 1 < rows).then(|| (cy + 1) as f32 * self.cell_size);
                 let left = cx as f32 * self.cell_size;
                 for k in here.clone() {
+                    let mut budget = cap;
                     let p = Vec2::new(xs[k], ys[k]);
-                    test(k, p, k + 1..here.end);
+                    test(k, p, k + 1..here.end, &mut budget);
                     let near_right = right.is_some_and(|x| x - p.x < radius);
                     if near_right {
-                        test(k, p, cell_range(cx + 1, cy));
+                        test(k, p, cell_range(cx + 1, cy), &mut budget);
                     }
                     if !bottom.is_some_and(|y| y - p.y < radius) {
                         continue;
@@ -352,10 +487,12 @@ impl SpatialGrid {
                     let first = if near_left { cx - 1 } else { cx };
                     let last = if near_right { cx + 1 } else { cx };
                     // Cells first..=last of the next row are contiguous in storage.
-                    test(k, p, cell_range(first, cy + 1).start..cell_range(last, cy + 1).end);
+                    let below = cell_range(first, cy + 1).start..cell_range(last, cy + 1).end;
+                    test(k, p, below, &mut budget);
                 }
             }
         }
+        capped
     }
 }
 

@@ -11,7 +11,7 @@ use crate::flow_field::{self, FlowField};
 use crate::geometry::{length, unit_or, Aabb, Obstacle};
 use crate::rng::Rng;
 use crate::scene::PathSpec;
-use crate::spatial::{CandidateRuns, Columns, Neighbour};
+use crate::spatial::{CandidateRuns, Columns, Neighbour, NEIGHBOUR_CAP};
 use glam::{BVec4A, Vec2, Vec4};
 use serde::{Deserialize, Serialize};
 use std::ops::Range;
@@ -662,7 +662,7 @@ impl Boids {
         let prm = &self.params;
         let mut away = Vec2::ZERO;
         let mut seen = false;
-        ctx.grid.for_each_within(p, prm.flee_radius, |n| {
+        ctx.grid.for_each_within_capped(p, prm.flee_radius, NEIGHBOUR_CAP, |n| {
             if n.id != id && role_of(ctx, n.id) == Role::Predator {
                 // Until they would meet head-on: the predicted point stays between the two, so
                 // fleeing never turns the prey towards a fast predator.
@@ -914,7 +914,7 @@ fn role_of(ctx: &StepContext, agent: u32) -> Role {
 /// The nearest agent of `role` within `radius` of `p` (not `me`), ties by id.
 fn nearest_of_role(ctx: &StepContext, p: Vec2, radius: f32, role: Role, me: u32) -> Option<Neighbour> {
     let mut best: Option<Neighbour> = None;
-    ctx.grid.for_each_within(p, radius, |n| {
+    ctx.grid.for_each_within_capped(p, radius, NEIGHBOUR_CAP, |n| {
         if n.id != me && best.is_none_or(|b| (n.d2, n.id) < (b.d2, b.id)) && role_of(ctx, n.id) == role {
             best = Some(n);
         }
@@ -1101,9 +1101,16 @@ impl Boids {
     }
 }
 
+/// Most candidates (agents of the cells round an agent, within reach or not) [`flock_sums`]
+/// tests per agent: the first in the grid's storage order. The 3 × 3 cells of perception size
+/// round an agent hold about 320 non-overlapping 4 px discs at most, so only a pile reaches it;
+/// there it bounds an agent's work (a pile of 200,000 would otherwise cost 200,000² tests).
+pub const MAX_FLOCK_CANDIDATES: usize = 1024;
+
 /// The neighbour sums of the agent at `p` over the candidates `runs` of `columns`: every agent
 /// within `reach` of it except those at exactly its position (itself), the separation terms of
-/// those closer than `separation_radius`, velocity and position sums of those in `own_group`.
+/// those closer than `separation_radius`, velocity and position sums of those in `own_group`;
+/// only the first [`MAX_FLOCK_CANDIDATES`] candidates are tested.
 ///
 /// The candidates are tested four at a time (one SIMD register natively and in wasm) without a
 /// branch: whether a candidate is within reach is a coin flip the CPU cannot predict. Each lane
@@ -1126,7 +1133,10 @@ fn flock_sums(
     // The flocking count as floats (exact up to 2^24): a lane add, where a population count
     // is a dozen instructions on the x86-64 baseline.
     let mut flocking = Vec4::ZERO;
+    let mut left = MAX_FLOCK_CANDIDATES;
     for run in runs.runs() {
+        let run = run.start..run.end.min(run.start + left);
+        left -= run.len();
         for at in run.clone().step_by(LANES) {
             let load = |s: &[f32]| s.get(at..at + LANES).map_or(Vec4::NAN, Vec4::from_slice);
             let (x, y) = (load(columns.x), load(columns.y));

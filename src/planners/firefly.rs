@@ -90,6 +90,7 @@ use super::{limit, GroupView, ParamSpec, Planner, StepContext};
 use crate::diagnose::{Explanation, NamedPoint, NamedVector};
 use crate::geometry::{unit_or, Aabb};
 use crate::rng::Rng;
+use crate::spatial::QueryCap;
 use glam::Vec2;
 use serde::{Deserialize, Serialize};
 
@@ -218,14 +219,56 @@ impl FireflyParams {
 pub struct Firefly {
     params: FireflyParams,
     mass: Vec<f32>,
-    /// Scratch list of the bodies one firefly could reach this step, reused across agents.
+    /// Buffers reused across agents.
+    scratch: Scratch,
+}
+
+/// What one firefly's survey works in, reused across agents.
+#[derive(Clone, Debug, Default)]
+struct Scratch {
+    /// The bodies (and surfaces) the firefly could reach this step.
     contacts: Vec<Contact>,
+    /// Grid slots of the agents within a query's radius.
+    slots: Vec<u32>,
+    /// The largest body radius of any agent (px): how far a touching body's centre can lie.
+    widest_body: f32,
+}
+
+impl Scratch {
+    fn new(ctx: &StepContext) -> Self {
+        Self { widest_body: ctx.radii.iter().copied().fold(0.0, f32::max), ..Self::default() }
+    }
+}
+
+/// Most bodies the contact rule of one firefly keeps: the nearest (smallest allowed speed
+/// towards them). Non-overlapping 4 px discs within reach of one number about 8, so only a pile
+/// reaches it; there it keeps [`keep_apart`], whose cost grows with the cube of the contacts,
+/// bounded.
+const MAX_CONTACT_BODIES: usize = 16;
+
+/// Neighbours (and candidates of the scanned cells) one survey query looks at, the first in the
+/// grid's scan order. Within the feeler's reach (110 px) lie at most about 550 non-overlapping
+/// 4 px discs, within the default view (200 px) about 1,800: only a pile reaches the cap.
+const NEIGHBOUR_CAP: QueryCap = QueryCap { neighbours: 2048, candidates: 8192 };
+
+/// Puts `contact` in place of the farthest of `bodies` (largest allowed speed, the last of
+/// equals) if it is nearer: the contact list of a firefly in a pile keeps its nearest bodies.
+fn keep_nearest(bodies: &mut [Contact], contact: Contact) {
+    let mut farthest: Option<&mut Contact> = None;
+    for b in bodies.iter_mut() {
+        if farthest.as_ref().is_none_or(|f| b.allowed >= f.allowed) {
+            farthest = Some(b);
+        }
+    }
+    if let Some(f) = farthest.filter(|f| contact.allowed < f.allowed) {
+        *f = contact;
+    }
 }
 
 impl Firefly {
     /// A planner with these parameters.
     pub fn new(params: FireflyParams) -> Self {
-        Self { params, mass: Vec::new(), contacts: Vec::new() }
+        Self { params, mass: Vec::new(), scratch: Scratch::default() }
     }
 
     /// `β(r) = β0 exp(−γ (r / r_safe)^m)`.
@@ -381,8 +424,10 @@ impl Firefly {
         group: &GroupView,
         id: u32,
         target: Option<Vec2>,
-        contacts: &mut Vec<Contact>,
+        scratch: &mut Scratch,
     ) -> Survey {
+        let Scratch { contacts, slots, widest_body } = scratch;
+        let widest_body = *widest_body;
         let prm = &self.params;
         let i = id as usize;
         let p = ctx.positions[i];
@@ -421,40 +466,81 @@ impl Firefly {
                 contacts.push(Contact { towards, allowed });
             }
         }
-        ctx.grid.for_each_within(p, self.interaction_radius(), |nb| {
-            if nb.id == id {
-                return;
+        // One branch-free pass finds the agents within the feeler's reach (the contacts and the
+        // blocker lie there, and usually the nearest brighter firefly); the rest of the view is
+        // searched only when none of them is brighter.
+        let columns = ctx.grid.columns();
+        let contact_reach = my_radius + widest_body + CONTACT_MARGIN + 2.0 * prm.max_velocity;
+        let near_radius = (prm.feeler_length + prm.safe_distance).max(contact_reach);
+        let near_radius = near_radius.min(self.interaction_radius());
+        ctx.grid.gather_within(p, near_radius, NEIGHBOUR_CAP, slots);
+        let is_own = |other: u32| group.agents.contains(&other);
+        let (bodies_before, mut bodies) = (contacts.len(), 0usize);
+        // The largest allowed speed among the bodies kept (the farthest of them).
+        let mut farthest = f32::NEG_INFINITY;
+        for &k in slots.iter() {
+            let k = k as usize;
+            let (other, pos) = (columns.ids[k], Vec2::new(columns.x[k], columns.y[k]));
+            if other == id {
+                continue;
             }
-            let their_radius = ctx.radii.get(nb.id as usize).copied().unwrap_or(0.0);
+            let d2 = p.distance_squared(pos);
+            let their_radius = ctx.radii.get(other as usize).copied().unwrap_or(0.0);
             // Each of the two moves at most half the gap (less a margin) towards the other per
             // step, whatever the other does, so together they cannot close it in one step.
             // The limit binds only within 2 × max_velocity of touching: the square root only then.
             let reach = my_radius + their_radius + CONTACT_MARGIN + 2.0 * prm.max_velocity;
-            if nb.d2 < reach * reach {
-                let allowed = 0.5 * (nb.d2.sqrt() - my_radius - their_radius - CONTACT_MARGIN);
+            if d2 < reach * reach {
+                let allowed = 0.5 * (d2.sqrt() - my_radius - their_radius - CONTACT_MARGIN);
                 // Coincident bodies part along x, the lower id to the left.
-                let apart = if nb.id < id { Vec2::NEG_X } else { Vec2::X };
-                contacts.push(Contact { towards: unit_or(nb.pos - p, apart), allowed });
+                let apart = if other < id { Vec2::NEG_X } else { Vec2::X };
+                let contact = Contact { towards: unit_or(pos - p, apart), allowed };
+                if bodies < MAX_CONTACT_BODIES {
+                    contacts.push(contact);
+                    bodies += 1;
+                    farthest = farthest.max(allowed);
+                } else if allowed < farthest {
+                    // Only a nearer body than the farthest kept changes the list (a pile).
+                    let kept = contacts.get_mut(bodies_before..).unwrap_or_default();
+                    keep_nearest(kept, contact);
+                    farthest = kept.iter().fold(f32::NEG_INFINITY, |m, c| m.max(c.allowed));
+                }
                 if on_the_way
-                    && heading.dot(nb.pos - p) > 0.0
-                    && target
-                        .is_some_and(|t| group.agents.contains(&nb.id) && nb.pos.distance_squared(t) < my2)
+                    && heading.dot(pos - p) > 0.0
+                    && target.is_some_and(|t| is_own(other) && pos.distance_squared(t) < my2)
                 {
                     survey.brighter_in_contact_ahead = true;
                 }
             }
-            let Some(target) = target else { return };
-            if !group.agents.contains(&nb.id) || nb.pos.distance_squared(target) >= my2 {
-                return;
+            let Some(target) = target else { continue };
+            if !is_own(other) || pos.distance_squared(target) >= my2 {
+                continue;
             }
-            let at_tip = nb.pos.distance_squared(tip);
-            if at_tip < safe2 && survey.blocker.is_none_or(|(d2, j, _)| (at_tip, nb.id) < (d2, j)) {
-                survey.blocker = Some((at_tip, nb.id, nb.pos));
+            let at_tip = pos.distance_squared(tip);
+            if at_tip < safe2 && survey.blocker.is_none_or(|(d2, j, _)| (at_tip, other) < (d2, j)) {
+                survey.blocker = Some((at_tip, other, pos));
             }
-            if nb.d2 <= view2 && survey.nearest.is_none_or(|(d2, j, _)| (nb.d2, nb.id) < (d2, j)) {
-                survey.nearest = Some((nb.d2, nb.id, nb.pos));
+            if d2 <= view2 && survey.nearest.is_none_or(|(d2n, j, _)| (d2, other) < (d2n, j)) {
+                survey.nearest = Some((d2, other, pos));
             }
-        });
+        }
+        let Some(target) = target else { return survey };
+        if survey.nearest.is_none() && near_radius < prm.view_radius {
+            // No brighter firefly within the feeler's reach: the nearest one farther off.
+            let near2 = near_radius * near_radius;
+            ctx.grid.gather_within(p, prm.view_radius, NEIGHBOUR_CAP, slots);
+            for &k in slots.iter() {
+                let k = k as usize;
+                let (other, pos) = (columns.ids[k], Vec2::new(columns.x[k], columns.y[k]));
+                let d2 = p.distance_squared(pos);
+                if other == id || d2 <= near2 || !is_own(other) || pos.distance_squared(target) >= my2 {
+                    continue;
+                }
+                if survey.nearest.is_none_or(|(d2n, j, _)| (d2, other) < (d2n, j)) {
+                    survey.nearest = Some((d2, other, pos));
+                }
+            }
+        }
         survey
     }
 }
@@ -485,8 +571,9 @@ impl Planner for Firefly {
         };
         e.values.push(("brightness 1/|x − target|".into(), 1.0 / p.distance(target).max(1e-3)));
         let heading = unit_or(vel, unit_or(target - p, Vec2::X));
-        let mut contacts = Vec::new();
-        let survey = self.survey(ctx, group, agent, Some(target), &mut contacts);
+        let mut scratch = Scratch::new(ctx);
+        let survey = self.survey(ctx, group, agent, Some(target), &mut scratch);
+        let contacts = scratch.contacts;
         let view2 = prm.view_radius * prm.view_radius;
         ctx.grid.for_each_within(p, prm.view_radius, |nb| {
             if nb.id != agent
@@ -549,18 +636,20 @@ impl Planner for Firefly {
         }
         let unit_len = prm.safe_distance;
         let target = group.goal.map(|(t, _)| t);
-        let mut contacts = std::mem::take(&mut self.contacts);
+        let mut scratch = std::mem::take(&mut self.scratch);
+        scratch.widest_body = ctx.radii.iter().copied().fold(0.0, f32::max);
         for (k, id) in group.agents.clone().enumerate() {
             let i = id as usize;
             let p = ctx.positions[i];
             let vel = ctx.velocities[i];
             let mass = self.mass[k].max(1e-3);
-            let survey = self.survey(ctx, &group, id, target, &mut contacts);
+            let survey = self.survey(ctx, &group, id, target, &mut scratch);
+            let contacts = &scratch.contacts;
             let Some(target) = target else {
                 // No target: every firefly is equally bright; drift with a little noise.
                 let noise = Vec2::new(rng.unit() - 0.5, rng.unit() - 0.5) * (prm.alpha * unit_len);
                 let v = limit(vel + noise / mass, prm.max_velocity);
-                new_velocities[k] = limit(keep_apart(v, &contacts), prm.max_velocity);
+                new_velocities[k] = limit(keep_apart(v, contacts), prm.max_velocity);
                 continue;
             };
             let heading = unit_or(vel, unit_or(target - p, Vec2::X));
@@ -576,8 +665,8 @@ impl Planner for Firefly {
             let mut v = self.braked_velocity(vel, acceleration, heading, &survey);
             v += self.avoid(ctx, p, unit_or(v, heading));
             let free = limit(v, prm.max_velocity);
-            new_velocities[k] = limit(keep_apart(free, &contacts), prm.max_velocity);
+            new_velocities[k] = limit(keep_apart(free, contacts), prm.max_velocity);
         }
-        self.contacts = contacts;
+        self.scratch = scratch;
     }
 }

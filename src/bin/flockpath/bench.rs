@@ -31,13 +31,26 @@ pub struct Options {
     pub planners: bool,
     /// Run the render benchmarks.
     pub render: bool,
+    /// Run the packed-versus-spread table (every planner at equal N).
+    pub packed: bool,
+    /// Time one metrics summary (`World::metrics` as JSON, what the page polls) against N.
+    pub metrics: bool,
     /// Where to write the figures as JSON.
     pub json: Option<String>,
 }
 
 impl Default for Options {
     fn default() -> Self {
-        Self { quick: false, step: true, brute: true, planners: true, render: true, json: None }
+        Self {
+            quick: false,
+            step: true,
+            brute: true,
+            planners: true,
+            render: true,
+            packed: true,
+            metrics: true,
+            json: None,
+        }
     }
 }
 
@@ -76,6 +89,12 @@ pub fn main(options: &Options) -> Result<(), String> {
     }
     if options.planners {
         planner_benchmarks(options, &mut report)?;
+    }
+    if options.packed {
+        packed_benchmarks(options, &mut report)?;
+    }
+    if options.metrics {
+        metrics_benchmarks(options, &mut report)?;
     }
     if options.render {
         render_benchmarks(options, &mut report)?;
@@ -220,6 +239,105 @@ fn planner_benchmarks(options: &Options, report: &mut Map<String, Value>) -> Res
         table.insert(name.to_string(), Value::Object(row));
     }
     report.insert("planner_ns_per_agent_step".into(), Value::Object(table));
+    Ok(())
+}
+
+/// Agents of the packed-versus-spread table.
+const PACKED_SIZE: u32 = 1_000;
+/// Side (px) of the square every agent of a packed scene spawns in, at the world's centre: at
+/// 1,000 agents 2.5 per px², every body overlapping hundreds of others.
+const PACKED_SIDE: f32 = 20.0;
+
+/// [`planner_scene`] with every agent spawned in a [`PACKED_SIDE`] square halfway between the
+/// world's left border and the goal (outside the goal: the agents still have somewhere to go).
+pub fn packed_scene(n: u32, config: &PlannerConfig) -> Scene {
+    let mut scene = planner_scene(n, config);
+    let (cx, cy) = (0.25 * scene.width, 0.5 * scene.height);
+    let h = 0.5 * PACKED_SIDE;
+    for g in &mut scene.groups {
+        g.spawn = flockpath::Region { min: [cx - h, cy - h], max: [cx + h, cy + h] };
+    }
+    scene
+}
+
+/// ns per agent-step of every planner on the spread (constant-density) scene and on the packed
+/// one at equal N, and their ratio: the per-agent neighbour caps keep a pile a small constant
+/// times as dear as a spread crowd.
+fn packed_benchmarks(options: &Options, report: &mut Map<String, Value>) -> Result<(), String> {
+    // Ten worlds per repetition: the OS's on-CPU clock is too coarse for one small world.
+    let plan = if options.quick {
+        Plan { warmup_steps: 1, steps: 2, agents_per_rep: 10 * PACKED_SIZE, reps: 3 }
+    } else {
+        Plan { warmup_steps: 1, steps: 3, agents_per_rep: 10 * PACKED_SIZE, reps: 5 }
+    };
+    let n = PACKED_SIZE;
+    println!();
+    println!(
+        "Packed vs spread: World::step, on-CPU ns per agent-step (median), {n} agents spawned in a {PACKED_SIDE}×{PACKED_SIDE} px \
+         square vs at constant density"
+    );
+    println!("{:>10}  {:>14}  {:>14}  {:>8}", "planner", "spread ns", "packed ns", "ratio");
+    let mut table = Map::new();
+    for &kind in PlannerKind::ALL {
+        let config = kind.default_config();
+        let spread = time_scene(n, &plan, |seed| Scene { seed, ..planner_scene(n, &config) })?;
+        let packed = time_scene(n, &plan, |seed| Scene { seed, ..packed_scene(n, &config) })?;
+        // On-CPU time where the OS reports it: a loaded machine inflates wall-clock time.
+        let (spread, packed) =
+            (spread.cpu_median.unwrap_or(spread.median), packed.cpu_median.unwrap_or(packed.median));
+        let ratio = packed / spread;
+        println!("{:>10}  {:>14.1}  {:>14.1}  {:>7.2}×", kind.name(), spread, packed, ratio);
+        table.insert(kind.name().to_string(), json!({ "spread": spread, "packed": packed, "ratio": ratio }));
+    }
+    report.insert("packed_vs_spread_ns_per_agent_step".into(), Value::Object(table));
+    Ok(())
+}
+
+/// Sizes of the metrics-summary benchmark.
+const METRICS_SIZES: &[u32] = &[1_000, 10_000, 100_000];
+
+/// ms per call of `World::metrics` serialised to JSON (what the page's metrics panel polls every
+/// 250 ms), against N, for Boids and firefly crowds at constant density and a packed Boids crowd.
+fn metrics_benchmarks(options: &Options, report: &mut Map<String, Value>) -> Result<(), String> {
+    let calls = if options.quick { 3 } else { 9 };
+    println!();
+    println!("One metrics summary (World::metrics → JSON), on-CPU ms per call (median of {calls})");
+    println!("{:>18}  {:>9}  {:>10}", "scene", "agents", "ms");
+    let mut table = Map::new();
+    let boids = PlannerKind::Boids.default_config();
+    let firefly = PlannerKind::Firefly.default_config();
+    let mut rows: Vec<(&str, u32, Scene)> = Vec::new();
+    for &n in METRICS_SIZES {
+        rows.push(("boids", n, planner_scene(n, &boids)));
+    }
+    rows.push(("firefly", 10_000, planner_scene(10_000, &firefly)));
+    rows.push(("boids packed", 10_000, packed_scene(10_000, &boids)));
+    for (label, n, scene) in rows {
+        let mut world = World::new(scene).map_err(|e| format!("metrics scene with {n} agents: {e}"))?;
+        world.step_n(2);
+        let mut samples = Vec::with_capacity(calls);
+        for _ in 0..calls {
+            // Enough calls per sample for the OS's coarse on-CPU clock.
+            let repeat = (100_000 / n).max(1);
+            let (cpu, start) = (thread_cpu_ns(), Instant::now());
+            for _ in 0..repeat {
+                let text = serde_json::to_string(&world.metrics()).map_err(|e| e.to_string())?;
+                std::hint::black_box(text.len());
+            }
+            let wall = start.elapsed().as_nanos() as f64 / 1e6;
+            // On-CPU time where the OS reports it: a loaded machine inflates wall-clock time.
+            // (A clock that did not advance, too coarse for these calls, leaves wall-clock time.)
+            let ms = match (cpu, thread_cpu_ns()) {
+                (Some(a), Some(b)) if b > a => (b - a) as f64 / 1e6,
+                _ => wall,
+            };
+            samples.push(ms / f64::from(repeat));
+        }
+        let ms = median(&mut samples);
+        println!("{:>18}  {:>9}  {:>10.3}", label, n, ms);
+        table.insert(format!("{label} {n}"), json!(ms));
+    }
+    report.insert("metrics_summary_ms".into(), Value::Object(table));
     Ok(())
 }
 

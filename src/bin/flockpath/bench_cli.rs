@@ -8,7 +8,7 @@ use flockpath::scene_to_json;
 #[derive(clap::Args, Debug)]
 #[command(
     long_about = "ns per agent-step of World::step and render time per frame\n\n\
-                  Usage: taskset -c 0 flockpath bench [--quick] [--only step|grid|planners|render] [--json FILE]",
+                  Usage: taskset -c 0 flockpath bench [--quick] [--only step|grid|planners|render|packed|metrics] [--json FILE]",
     after_help = "Scenes are presets::constant_density(N, 9.0): about 9 neighbours per agent at every N.\n\
                   Pin to one core (taskset -c 0) so the figures are comparable between runs."
 )]
@@ -17,8 +17,13 @@ pub struct BenchArgs {
     #[arg(long)]
     quick: bool,
     /// Run only the step benchmarks (grid, brute force, per planner), only the Boids grid step
-    /// benchmark, only the per-planner table, or only the render benchmark
-    #[arg(long, value_name = "step|grid|planners|render", value_parser = ["step", "grid", "planners", "render"])]
+    /// benchmark, only the per-planner table, only the render benchmark, only the
+    /// packed-vs-spread table, or only the cost of one metrics summary against N
+    #[arg(
+        long,
+        value_name = "step|grid|planners|render|packed|metrics",
+        value_parser = ["step", "grid", "planners", "render", "packed", "metrics"]
+    )]
     only: Option<String>,
     /// Also write the figures as JSON
     #[arg(long, value_name = "FILE")]
@@ -30,12 +35,17 @@ impl BenchArgs {
     pub fn options(&self) -> bench::Options {
         let mut options =
             bench::Options { quick: self.quick, json: self.json.clone(), ..bench::Options::default() };
-        match self.only.as_deref() {
-            Some("step") => options.render = false,
-            Some("grid") => (options.render, options.brute, options.planners) = (false, false, false),
-            Some("planners") => (options.render, options.step) = (false, false),
-            Some("render") => (options.step, options.planners) = (false, false),
-            _ => {}
+        if let Some(only) = self.only.as_deref() {
+            let o = &mut options;
+            (o.step, o.brute, o.planners, o.render, o.packed, o.metrics) = match only {
+                "step" => (true, true, true, false, false, false),
+                "grid" => (true, false, false, false, false, false),
+                "planners" => (false, false, true, false, false, false),
+                "render" => (false, false, false, true, false, false),
+                "packed" => (false, false, false, false, true, false),
+                // clap accepts only the listed values: this is "metrics".
+                _ => (false, false, false, false, false, true),
+            };
         }
         options
     }
