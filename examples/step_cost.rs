@@ -37,7 +37,7 @@ fn spread(n: u32, kind: PlannerKind) -> Scene {
 /// Median and worst ns per agent-step over `windows` windows of `steps` steps after `skip`.
 fn time(scene: Scene, skip: u32, windows: u32, steps: u32) -> (f64, f64) {
     let n = scene.agent_count() as f64;
-    let mut world = match World::new(scene) {
+    let mut world = match World::new_beyond_cost_limit(scene) {
         Ok(w) => w,
         Err(e) => {
             println!("  refused: {e}");

@@ -90,8 +90,7 @@ fn an_agent_in_a_pile_of_5000_considers_at_most_the_cap() {
 
 #[test]
 fn every_capped_planner_steps_a_pile_of_5000_and_stays_finite() {
-    // IGSA's per-agent constraint query (src/planners/igsa.rs) is not capped yet: left out.
-    for &kind in PlannerKind::ALL.iter().filter(|&&k| k != PlannerKind::Igsa) {
+    for &kind in PlannerKind::ALL {
         let mut world = World::new(pile(5000, kind, (10.0, 10.0))).expect("valid scene");
         world.step_n(2);
         assert!(

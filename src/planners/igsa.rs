@@ -38,9 +38,15 @@ use crate::optim::path::{PathParams, PathPlanning, PathProblem, PlannedPath};
 use crate::optim::{Algorithm, Settings};
 use crate::rng::Rng;
 use crate::scene::Scene;
-use crate::spatial::ObstacleIndex;
+use crate::spatial::{ObstacleIndex, QueryCap};
 use glam::Vec2;
 use serde::{Deserialize, Serialize};
+
+/// Neighbours (and candidates of the scanned cells) one agent's bounding-circle rule looks at,
+/// the first in the grid's scan order. Within its reach (about 20 px) fit about 30
+/// non-overlapping 4 px discs, so only a pile reaches the cap; there it bounds the work per
+/// agent (the constraint list and the feasible-velocity search grow with it).
+const NEIGHBOUR_CAP: QueryCap = QueryCap { neighbours: 128, candidates: 1024 };
 
 /// Most waypoints an edited path may hold.
 pub const MAX_EDITED_WAYPOINTS: usize = 64;
@@ -900,7 +906,7 @@ impl Planner for IgsaPlanner {
             let reach = r + 8.0_f32.max(r) + margin + 2.0 * max_speed + 1.0;
             let mut push = Vec2::ZERO;
             let constraints = &mut self.constraints;
-            ctx.grid.for_each_within(p, reach, |nb| {
+            ctx.grid.for_each_within_capped(p, reach, NEIGHBOUR_CAP, |nb| {
                 if nb.id as usize == i {
                     return;
                 }

@@ -313,7 +313,8 @@ fn metrics_benchmarks(options: &Options, report: &mut Map<String, Value>) -> Res
     rows.push(("firefly", 10_000, planner_scene(10_000, &firefly)));
     rows.push(("boids packed", 10_000, packed_scene(10_000, &boids)));
     for (label, n, scene) in rows {
-        let mut world = World::new(scene).map_err(|e| format!("metrics scene with {n} agents: {e}"))?;
+        let mut world =
+            World::new_beyond_cost_limit(scene).map_err(|e| format!("metrics scene with {n} agents: {e}"))?;
         world.step_n(2);
         let mut samples = Vec::with_capacity(calls);
         for _ in 0..calls {
@@ -386,8 +387,8 @@ fn time_worlds(n: u32, plan: &Plan, brute: bool, scene: impl Fn(u32) -> Scene) -
     for _ in 0..plan.reps {
         let mut worlds = Vec::with_capacity(worlds_per_rep as usize);
         for w in 0..worlds_per_rep {
-            let mut world =
-                World::new(scene(w + 1)).map_err(|e| format!("benchmark scene with {n} agents: {e}"))?;
+            let mut world = World::new_beyond_cost_limit(scene(w + 1))
+                .map_err(|e| format!("benchmark scene with {n} agents: {e}"))?;
             if brute {
                 world.use_brute_force_neighbours();
             }
@@ -466,8 +467,8 @@ fn render_benchmarks(options: &Options, report: &mut Map<String, Value>) -> Resu
     let mut render_ms = Map::new();
     let mut frame_ms = Map::new();
     for &n in RENDER_SIZES {
-        let mut world =
-            World::new(bench_scene(n)).map_err(|e| format!("benchmark scene with {n} agents: {e}"))?;
+        let mut world = World::new_beyond_cost_limit(bench_scene(n))
+            .map_err(|e| format!("benchmark scene with {n} agents: {e}"))?;
         let mut renderer = Renderer::new(CANVAS.0, CANVAS.1);
         for _ in 0..warmup {
             world.step();
