@@ -58,23 +58,50 @@ impl World {
     /// Validates the scene, spawns its agents from the scene's seed and builds the planners
     /// (planning IGSA paths to the end).
     pub fn new(scene: Scene) -> Result<Self, SceneError> {
-        Self::build(scene, true, false)
+        Self::build(scene, true, false, None)
     }
 
     /// [`World::new`] leaving the planning ahead to [`World::advance_planning`], here and after
     /// edits: the page plans in slices within its frame budget. Stepping finishes it first.
     pub fn new_sliced(scene: Scene) -> Result<Self, SceneError> {
-        Self::build(scene, true, true)
+        Self::build(scene, true, true, None)
+    }
+
+    /// A world whose agents start at `positions` (in group order, heading right) instead of
+    /// spawned places, without the spawn's density limit or the cost limit: piles and jams that a
+    /// run can reach (a crowd converging on its goal) but that no scene spawns, for the
+    /// benchmarks and the tests of bounded per-agent work. Not something a link can ask for.
+    #[doc(hidden)]
+    pub fn new_at(scene: Scene, positions: Vec<Vec2>) -> Result<Self, SceneError> {
+        Self::build(scene, false, false, Some(positions))
     }
 
     /// `cost_limit`: refuse scenes over the step-cost limit of [`crate::cost`];
-    /// `sliced_planning`: leave IGSA planning to [`World::advance_planning`].
-    fn build(scene: Scene, cost_limit: bool, sliced_planning: bool) -> Result<Self, SceneError> {
+    /// `sliced_planning`: leave IGSA planning to [`World::advance_planning`];
+    /// `start`: the agents' positions instead of the spawn's.
+    fn build(
+        scene: Scene,
+        cost_limit: bool,
+        sliced_planning: bool,
+        start: Option<Vec<Vec2>>,
+    ) -> Result<Self, SceneError> {
         scene.validate()?;
         let obstacles = ObstacleIndex::new(scene.obstacles.clone(), scene.width, scene.height);
         let total = scene.agent_count() as usize;
         // Placement first: a scene too dense to spawn is refused before any planning.
-        let Spawn { positions: pos, directions: mut vel, .. } = spawn(&scene, &obstacles)?;
+        let (pos, mut vel) = match start {
+            None => {
+                let Spawn { positions, directions, .. } = spawn(&scene, &obstacles)?;
+                (positions, directions)
+            }
+            Some(positions) if positions.len() == total => (positions, vec![Vec2::X; total]),
+            Some(positions) => {
+                return Err(SceneError::BadReference(format!(
+                    "{} start positions for {total} agents",
+                    positions.len()
+                )))
+            }
+        };
         if cost_limit {
             crate::cost::check(&scene)?;
         }
@@ -126,7 +153,7 @@ impl World {
     /// still holds): for native benchmarks that time scenes bigger than the page may run.
     #[doc(hidden)]
     pub fn new_beyond_cost_limit(scene: Scene) -> Result<Self, SceneError> {
-        Self::build(scene, false, false)
+        Self::build(scene, false, false, None)
     }
 
     /// Share of the planning ahead done (IGSA paths), 0…1: the mean over the groups that plan
@@ -316,7 +343,7 @@ impl World {
                     && a.planner == b.planner
             });
         if !same_agents {
-            *self = World::build(scene, true, self.sliced_planning)?;
+            *self = World::build(scene, true, self.sliced_planning, None)?;
             return Ok(());
         }
         let geometry_changed = scene.obstacles != self.scene.obstacles || scene.goals != self.scene.goals;

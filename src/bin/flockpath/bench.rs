@@ -248,16 +248,23 @@ const PACKED_SIZE: u32 = 1_000;
 /// 1,000 agents 2.5 per px², every body overlapping hundreds of others.
 const PACKED_SIDE: f32 = 20.0;
 
-/// [`planner_scene`] with every agent spawned in a [`PACKED_SIDE`] square halfway between the
+/// [`planner_scene`] with every agent piled in a [`PACKED_SIDE`] square halfway between the
 /// world's left border and the goal (outside the goal: the agents still have somewhere to go).
-pub fn packed_scene(n: u32, config: &PlannerConfig) -> Scene {
-    let mut scene = planner_scene(n, config);
+/// No scene spawns such a pile (the spawn keeps bodies apart), but a converging crowd can reach
+/// one, so the world starts from given positions (a fixed low-discrepancy pattern).
+pub fn packed_world(n: u32, config: &PlannerConfig, seed: u32) -> Result<World, String> {
+    const GOLDEN: f64 = 0.618_033_988_749_894_9;
+    let scene = Scene { seed, ..planner_scene(n, config) };
     let (cx, cy) = (0.25 * scene.width, 0.5 * scene.height);
     let h = 0.5 * PACKED_SIDE;
-    for g in &mut scene.groups {
-        g.spawn = flockpath::Region { min: [cx - h, cy - h], max: [cx + h, cy + h] };
-    }
-    scene
+    let positions = (0..n)
+        .map(|i| {
+            let u = (f64::from(i) + 0.5) / f64::from(n.max(1));
+            let v = (f64::from(i) * GOLDEN).fract();
+            glam::Vec2::new(cx - h + PACKED_SIDE * u as f32, cy - h + PACKED_SIDE * v as f32)
+        })
+        .collect();
+    World::new_at(scene, positions).map_err(|e| format!("packed scene with {n} agents: {e}"))
 }
 
 /// ns per agent-step of every planner on the spread (constant-density) scene and on the packed
@@ -273,7 +280,7 @@ fn packed_benchmarks(options: &Options, report: &mut Map<String, Value>) -> Resu
     let n = PACKED_SIZE;
     println!();
     println!(
-        "Packed vs spread: World::step, on-CPU ns per agent-step (median), {n} agents spawned in a {PACKED_SIDE}×{PACKED_SIDE} px \
+        "Packed vs spread: World::step, on-CPU ns per agent-step (median), {n} agents piled in a {PACKED_SIDE}×{PACKED_SIDE} px \
          square vs at constant density"
     );
     println!("{:>10}  {:>14}  {:>14}  {:>8}", "planner", "spread ns", "packed ns", "ratio");
@@ -281,7 +288,7 @@ fn packed_benchmarks(options: &Options, report: &mut Map<String, Value>) -> Resu
     for &kind in PlannerKind::ALL {
         let config = kind.default_config();
         let spread = time_scene(n, &plan, |seed| Scene { seed, ..planner_scene(n, &config) })?;
-        let packed = time_scene(n, &plan, |seed| Scene { seed, ..packed_scene(n, &config) })?;
+        let packed = time_worlds(n, &plan, false, |seed| packed_world(n, &config, seed))?;
         // On-CPU time where the OS reports it: a loaded machine inflates wall-clock time.
         let (spread, packed) =
             (spread.cpu_median.unwrap_or(spread.median), packed.cpu_median.unwrap_or(packed.median));
@@ -306,15 +313,13 @@ fn metrics_benchmarks(options: &Options, report: &mut Map<String, Value>) -> Res
     let mut table = Map::new();
     let boids = PlannerKind::Boids.default_config();
     let firefly = PlannerKind::Firefly.default_config();
-    let mut rows: Vec<(&str, u32, Scene)> = Vec::new();
+    let mut rows: Vec<(&str, u32, World)> = Vec::new();
     for &n in METRICS_SIZES {
-        rows.push(("boids", n, planner_scene(n, &boids)));
+        rows.push(("boids", n, bench_world(planner_scene(n, &boids))?));
     }
-    rows.push(("firefly", 10_000, planner_scene(10_000, &firefly)));
-    rows.push(("boids packed", 10_000, packed_scene(10_000, &boids)));
-    for (label, n, scene) in rows {
-        let mut world =
-            World::new_beyond_cost_limit(scene).map_err(|e| format!("metrics scene with {n} agents: {e}"))?;
+    rows.push(("firefly", 10_000, bench_world(planner_scene(10_000, &firefly))?));
+    rows.push(("boids packed", 10_000, packed_world(10_000, &boids, 1)?));
+    for (label, n, mut world) in rows {
         world.step_n(2);
         let mut samples = Vec::with_capacity(calls);
         for _ in 0..calls {
@@ -367,19 +372,26 @@ fn print_row(n: u32, r: &Timing) {
 }
 
 fn time_steps(n: u32, plan: &Plan, brute: bool) -> Result<Timing, String> {
-    time_worlds(n, plan, brute, |seed| {
-        let mut scene = bench_scene(n);
-        scene.seed = seed;
-        scene
-    })
+    time_worlds(n, plan, brute, |seed| bench_world(Scene { seed, ..bench_scene(n) }))
 }
 
 fn time_scene(n: u32, plan: &Plan, scene: impl Fn(u32) -> Scene) -> Result<Timing, String> {
-    time_worlds(n, plan, false, scene)
+    time_worlds(n, plan, false, |seed| bench_world(scene(seed)))
 }
 
-/// Times `plan` on worlds of `n` agents built by `scene(seed)`.
-fn time_worlds(n: u32, plan: &Plan, brute: bool, scene: impl Fn(u32) -> Scene) -> Result<Timing, String> {
+/// A benchmark's world (beyond the page's cost limit on purpose: the bench times large scenes).
+fn bench_world(scene: Scene) -> Result<World, String> {
+    let n = scene.agent_count();
+    World::new_beyond_cost_limit(scene).map_err(|e| format!("benchmark scene with {n} agents: {e}"))
+}
+
+/// Times `plan` on worlds of `n` agents built by `world(seed)`.
+fn time_worlds(
+    n: u32,
+    plan: &Plan,
+    brute: bool,
+    world: impl Fn(u32) -> Result<World, String>,
+) -> Result<Timing, String> {
     let worlds_per_rep = plan.agents_per_rep.div_ceil(n).max(1);
     let mut samples = Vec::with_capacity(plan.reps);
     let mut cpu_samples = Vec::with_capacity(plan.reps);
@@ -387,8 +399,7 @@ fn time_worlds(n: u32, plan: &Plan, brute: bool, scene: impl Fn(u32) -> Scene) -
     for _ in 0..plan.reps {
         let mut worlds = Vec::with_capacity(worlds_per_rep as usize);
         for w in 0..worlds_per_rep {
-            let mut world = World::new_beyond_cost_limit(scene(w + 1))
-                .map_err(|e| format!("benchmark scene with {n} agents: {e}"))?;
+            let mut world = world(w + 1)?;
             if brute {
                 world.use_brute_force_neighbours();
             }
