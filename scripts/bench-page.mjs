@@ -15,11 +15,12 @@
 // browser's helpers share one core whatever core this script runs on.
 //
 // Scenes come from the `open-field` preset through the page API (`flockpath.load`): one group,
-// its count set to N, its planner to each planner with default parameters. "spread": the spawn
-// region is the whole field; "packed": a 120×200 px region at the left. 1,000 and 10,000 agents
-// use the preset's 800×500 px field; 100,000 agents a field scaled by √10 (the 10,000-agent
-// density), goal scaled with it. A scene the page refuses prints "refused: <message>"; a case
-// whose one step would take seconds is skipped and says why.
+// its count set to N, its planner to each planner with default parameters, the field (and its
+// goal) scaled to the density of the kernel benchmark (`flockpath bench`: about 9 neighbours
+// within the 50 px perception radius) at the preset's 8:5 shape. "spread": the spawn region is
+// the whole field; "packed": a square at the left with room for 1.5 bodies per agent (the spawn
+// keeps bodies apart, so this is about as dense as a scene can start). A scene the page refuses
+// prints "refused: <message>"; a case whose one step would take seconds is skipped and says why.
 
 import { chmod, mkdtemp, rm, writeFile } from 'node:fs/promises';
 import { execFileSync } from 'node:child_process';
@@ -138,19 +139,23 @@ async function loadScene(planner, n, layout) {
   return page.evaluate(async ([planner, n, layout]) => {
     const module = await import('./pkg/flockpath.js');
     const scene = JSON.parse(module.preset_scene_json('open-field'));
-    const scale = n > 10000 ? Math.sqrt(n / 10000) : 1;
-    scene.width *= scale;
-    scene.height *= scale;
+    const density = 9 / (Math.PI * 50 * 50);
+    const width = Math.sqrt((n / density) * 1.6);
+    const height = width / 1.6;
+    const [sx, sy] = [width / scene.width, height / scene.height];
+    scene.width = width;
+    scene.height = height;
     for (const goal of scene.goals) {
-      goal.position = goal.position.map((v) => v * scale);
-      goal.radius *= scale;
+      goal.position = [goal.position[0] * sx, goal.position[1] * sy];
+      goal.radius *= Math.sqrt(sx * sy);
     }
     const group = scene.groups[0];
     group.count = n;
     group.planner = { kind: planner, params: {} };
+    const side = Math.sqrt(n * 1.5) * 2 * group.agent_radius;
     group.spawn = layout === 'spread'
-      ? { min: [10, 10], max: [scene.width - 10, scene.height - 10] }
-      : { min: [40, scene.height / 2 - 100], max: [160, scene.height / 2 + 100] };
+      ? { min: [10, 10], max: [width - 10, height - 10] }
+      : { min: [40, height / 2 - side / 2], max: [40 + side, height / 2 + side / 2] };
     const started = performance.now();
     try {
       window.flockpath.pause();
@@ -356,7 +361,7 @@ try {
   const version = context.browser()?.version() ?? (await page.evaluate(() => navigator.userAgent));
   console.log(`flockpath page benchmark: index.html in headless Chromium (${version}), ` +
     `${pinned ? 'pinned to core 0 (taskset -c 0)' : 'UNPINNED'}, viewport ${VIEWPORT.width}×${VIEWPORT.height}`);
-  console.log(`Scenes: open-field preset, one group; ${seconds} s of play per case after 1 s of warm-up; ` +
+  console.log(`Scenes: open-field preset scaled to the kernel bench's density, one group; ${seconds} s of play per case after 1 s of warm-up; ` +
     `panels as a user first sees them (metrics, plots, timeline). ${CLICKS} Pause clicks per case.`);
   console.log('fps from requestAnimationFrame; p5 = 5th percentile (1000 / 95th-percentile frame); ' +
     'pause = pointerdown → button state changed / → next frame (median/max ms); step = one paused step.');

@@ -95,7 +95,7 @@ test('exports download real files and scenes load from files', async () => {
     });
     await page.dispatchEvent('#stage', 'drop', { dataTransfer: bad });
     await page.waitForFunction(() => !document.getElementById('banner').hidden);
-    assert.match(await page.textContent('#banner-text'), /The file broken\.json was not loaded: .*expected f32/);
+    assert.match(await page.textContent('#banner-text'), /The file broken\.json was not loaded: width is "wide"; allowed: a number in 10…20000 px/);
     assert.equal((await page.evaluate(() => window.flockpath.scene())).name, 'dropped on the canvas');
 
     // Thinning is announced: 20,000 agents fill the 32 MiB budget in about 100 steps.

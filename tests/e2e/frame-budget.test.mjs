@@ -10,7 +10,8 @@ import assert from 'node:assert/strict';
 import { assertNoUnexpectedErrors, frames, openPage, simpleScene } from './helpers.mjs';
 
 const BIG = simpleScene({
-  groups: [{ ...simpleScene().groups[0], count: 20000, spawn: { min: [10, 10], max: [790, 490] } }],
+  // Small bodies: the spawn keeps bodies apart, and 20,000 of radius 4 px do not fit the field.
+  groups: [{ ...simpleScene().groups[0], count: 20000, agent_radius: 1.5, spawn: { min: [10, 10], max: [790, 490] } }],
 });
 
 /** Sets the Speed slider as a user would (an `input` event). */

@@ -126,6 +126,9 @@ function setupPaceReadout(app) {
   };
 }
 
+/** Whether the scene still plans its path ahead (IGSA): then no step may run yet. */
+const planningPending = (app) => !(app.guard((sim) => sim.planning_progress()).value >= 1);
+
 const stepping = () => !document.hidden && document.visibilityState !== 'hidden';
 
 /** Starts the loop; `onFrame(now)` runs after every frame (metrics, FPS). */
@@ -143,7 +146,9 @@ export function startLoop(app, canvas, onFrame) {
   let queued = false;
   channel.port1.onmessage = () => {
     queued = false;
-    if (app.crashed || !app.playing || !stepping() || planningLeft) return;
+    // A scene loaded since this task was queued may still be planning: a step would finish the
+    // planning in one go, so the frame loop's slices take over.
+    if (app.crashed || !app.playing || !stepping() || planningLeft || planningPending(app)) return;
     const wanted = app.stepsPerFrame;
     const { done, ok } = stepWithinBudget(app, wanted);
     // A refused step (not a panic) would repeat every frame: pause and let the banner explain.
