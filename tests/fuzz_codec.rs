@@ -243,7 +243,7 @@ fn the_expensive_scenes_of_the_issue_are_refused_with_the_limit_named() {
         ("cost-firefly-1000-in-10x10.json", &["1000 agents", "density limit"]),
         ("cost-pso-2000-in-50x100.json", &["2000 agents", "density limit"]),
         ("cost-forces-10x10-circle.json", &["1000 agents", "at most 0", "density limit"]),
-        ("cost-firefly-200k-spread.json", &["200000 firefly agents", "100 ms limit"]),
+        ("cost-firefly-200k-spread.json", &["200000 firefly agents", "180 ms limit"]),
         ("cost-igsa-max-params-three-groups.json", &["igsa", "16200000 path segments"]),
     ] {
         let e = refusal(file);
