@@ -12,10 +12,7 @@ fn main() {
     ] {
         for n in [1_000u32, 10_000] {
             // Constant density (about 8 neighbours per 50 px), one goal in the middle.
-            let mut scene = presets::constant_density(n, 8.0);
-            let side = scene.width;
-            scene.goals.push(flockpath::Goal::fixed([side * 0.5, side * 0.5], 20.0));
-            scene.groups[0].goal = Some(0);
+            let mut scene = presets::constant_density_to_centre(n, 8.0, 20.0);
             scene.groups[0].planner = config.clone();
             let mut world = World::new(scene).expect("valid scene");
             world.step_n(20);

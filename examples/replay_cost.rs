@@ -15,10 +15,7 @@ fn median(mut v: Vec<f64>) -> f64 {
 
 fn main() {
     for n in [1_000u32, 10_000] {
-        let mut scene = presets::constant_density(n, 8.0);
-        let side = scene.width;
-        scene.goals.push(flockpath::Goal::fixed([side * 0.5, side * 0.5], 40.0));
-        scene.groups[0].goal = Some(0);
+        let scene = presets::constant_density_to_centre(n, 8.0, 40.0);
         let mut world = World::new(scene).expect("valid scene");
         world.step_n(20);
 

@@ -27,9 +27,7 @@ fn packed(n: u32, kind: PlannerKind) -> Scene {
 }
 
 fn spread(n: u32, kind: PlannerKind) -> Scene {
-    let mut s = presets::constant_density(n, 9.0);
-    s.goals.push(Goal::fixed([0.5 * s.width, 0.5 * s.height], 20.0));
-    s.groups[0].goal = Some(0);
+    let mut s = presets::constant_density_to_centre(n, 9.0, 20.0);
     s.groups[0].planner = kind.default_config();
     s
 }

@@ -27,10 +27,7 @@ fn ms_since(t: Instant) -> f64 {
 
 fn main() {
     for n in [1_000u32, 10_000] {
-        let mut scene = presets::constant_density(n, 8.0);
-        let side = scene.width;
-        scene.goals.push(flockpath::Goal::fixed([side * 0.5, side * 0.5], 40.0));
-        scene.groups[0].goal = Some(0);
+        let scene = presets::constant_density_to_centre(n, 8.0, 40.0);
         let mut start = World::new(scene).expect("valid scene");
         start.step_n(20);
         let steps = if n > 5_000 { 100 } else { 500 };

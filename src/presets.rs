@@ -317,6 +317,17 @@ pub fn constant_density(n: u32, neighbours: f32) -> Scene {
     s
 }
 
+/// [`constant_density`] with every group heading for one goal of `goal_radius` px at the
+/// world's centre (the per-planner benchmarks and cost examples).
+pub fn constant_density_to_centre(n: u32, neighbours: f32, goal_radius: f32) -> Scene {
+    let mut s = constant_density(n, neighbours);
+    s.goals.push(Goal::fixed([0.5 * s.width, 0.5 * s.height], goal_radius));
+    for g in &mut s.groups {
+        g.goal = Some(0);
+    }
+    s
+}
+
 fn pso_group(name: &str, color: &str, count: u32, spawn: ([f32; 2], [f32; 2]), goal: u32) -> Group {
     Group { planner: PlannerConfig::Pso(PsoParams::default()), ..group(name, color, count, spawn, goal) }
 }
