@@ -79,7 +79,7 @@ impl Sim {
     pub fn new(scene_text: &str, width: u32, height: u32) -> Result<Sim, JsValue> {
         console_error_panic_hook::set_once();
         let scene = codec::scene_from_any(scene_text).map_err(scene_error)?;
-        let world = World::new_sliced(scene).map_err(js_error)?;
+        let world = World::new_sliced(scene).map_err(scene_error)?;
         let recording = Recording::of_world(&world, RECORDING_BUDGET_BYTES);
         let replay = Replay::new(&world);
         let mut sim = Sim {
@@ -123,7 +123,7 @@ impl Sim {
     /// Replaces the scene; on error the current scene keeps running unchanged.
     pub fn load(&mut self, scene_text: &str) -> Result<(), JsValue> {
         let scene = codec::scene_from_any(scene_text).map_err(scene_error)?;
-        let before = std::mem::replace(&mut self.world, World::new_sliced(scene).map_err(js_error)?);
+        let before = std::mem::replace(&mut self.world, World::new_sliced(scene).map_err(scene_error)?);
         self.keep_for_cancel(Some(before));
         self.renderer.set_selection(None);
         self.renderer.clear_trails();
