@@ -4,7 +4,7 @@
 //! step (`taskset -c 0 cargo run --release --example fitness_cost`). Timing lives here, never in
 //! the core.
 
-use flockpath::metrics::FITNESS_SAMPLE_EVERY;
+use flockpath::sim::metrics::FITNESS_SAMPLE_EVERY;
 use flockpath::{presets, World};
 use std::time::Instant;
 

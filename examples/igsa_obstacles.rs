@@ -2,10 +2,10 @@
 //! `cargo run --release --example igsa_obstacles -- [iterations] [reps]`). Timing lives here,
 //! never in the core; the planned fitness is printed so before/after runs can be compared.
 
-use flockpath::geometry::Obstacle;
+use flockpath::model::geometry::Obstacle;
+use flockpath::model::params::{IgsaParams, PlannerConfig};
+use flockpath::model::presets;
 use flockpath::planners::igsa::plan_group_path;
-use flockpath::planners::{IgsaParams, PlannerConfig};
-use flockpath::presets;
 use std::time::Instant;
 
 fn main() {

@@ -1,7 +1,7 @@
 //! Prints ns per agent-step of the PSO and firefly planners at 1k and 10k agents (release build:
 //! `cargo run --release --example planner_timing`). Timing lives here, never in the core.
 
-use flockpath::planners::{FireflyParams, PsoParams};
+use flockpath::model::params::{FireflyParams, PsoParams};
 use flockpath::{presets, PlannerConfig, World};
 use std::time::Instant;
 

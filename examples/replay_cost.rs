@@ -3,8 +3,8 @@
 //! Release build,
 //! pinned to one core: `taskset -c 0 cargo run --release --example replay_cost`.
 
-use flockpath::recording::{Recording, DEFAULT_BUDGET_BYTES};
-use flockpath::replay::{checkpoint_bytes_estimate, Replay};
+use flockpath::sim::recording::{Recording, DEFAULT_BUDGET_BYTES};
+use flockpath::sim::replay::{checkpoint_bytes_estimate, Replay};
 use flockpath::{presets, World};
 use std::time::Instant;
 

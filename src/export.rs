@@ -2,9 +2,9 @@
 //! and SVG trails. 3-D tools get the ground plane as x–z with y up (Maya) or x–y with z up and
 //! y flipped (Blender), as the papers did when they imported their paths into Maya.
 
-use crate::recording::Recording;
-use crate::scene::{parse_color, Scene};
-use crate::world::DT;
+use crate::model::scene::DT;
+use crate::model::scene::{parse_color, Scene};
+use crate::sim::recording::Recording;
 use serde::Serialize;
 use std::fmt::Write as _;
 
@@ -264,14 +264,14 @@ pub fn trails_svg(scene: &Scene, rec: &Recording) -> String {
     let _ = writeln!(out, r##"<rect width="100%" height="100%" fill="#f7f7f4"/>"##);
     for o in &scene.obstacles {
         match o {
-            crate::geometry::Obstacle::Circle { center, radius } => {
+            crate::model::geometry::Obstacle::Circle { center, radius } => {
                 let _ = writeln!(
                     out,
                     r##"<circle cx="{}" cy="{}" r="{radius}" fill="#4a5568"/>"##,
                     center[0], center[1]
                 );
             }
-            crate::geometry::Obstacle::Rect { min, max } => {
+            crate::model::geometry::Obstacle::Rect { min, max } => {
                 let _ = writeln!(
                     out,
                     r##"<rect x="{}" y="{}" width="{}" height="{}" fill="#4a5568"/>"##,
@@ -281,7 +281,7 @@ pub fn trails_svg(scene: &Scene, rec: &Recording) -> String {
                     max[1] - min[1]
                 );
             }
-            crate::geometry::Obstacle::Polygon { points } => {
+            crate::model::geometry::Obstacle::Polygon { points } => {
                 let pts: Vec<String> = points.iter().map(|p| format!("{},{}", p[0], p[1])).collect();
                 let _ = writeln!(out, r##"<polygon points="{}" fill="#4a5568"/>"##, pts.join(" "));
             }

@@ -16,34 +16,26 @@
 //! assert!(m.overall.arrived_share > 0.5);
 //! ```
 
-pub mod codec;
-pub mod compare;
-pub mod cost;
-pub mod diagnose;
-pub mod edit;
+pub mod experiments;
 pub mod export;
-pub mod fitness;
-pub mod flow_field;
-pub mod geometry;
-pub mod history;
-pub mod metrics;
+pub mod model;
 pub mod optim;
 pub mod planners;
-pub mod presets;
-pub mod recording;
 pub mod render;
-pub mod replay;
 pub mod rng;
-pub mod scene;
+pub mod sim;
 pub mod spatial;
 pub mod tune;
 #[cfg(target_arch = "wasm32")]
 pub mod web;
-pub mod world;
 
-pub use codec::{scene_from_any, scene_from_fragment, scene_from_json, scene_to_fragment, scene_to_json};
-pub use geometry::Obstacle;
-pub use metrics::{GroupMetrics, Metrics};
-pub use planners::{Planner, PlannerConfig, PlannerKind};
-pub use scene::{Goal, Group, Region, Scene, SceneError, ViewOptions};
-pub use world::{World, DT};
+pub use model::codec::{
+    scene_from_any, scene_from_fragment, scene_from_json, scene_to_fragment, scene_to_json,
+};
+pub use model::geometry::Obstacle;
+pub use model::params::{PlannerConfig, PlannerKind};
+pub use model::presets;
+pub use model::scene::{Goal, Group, Region, Scene, SceneError, ViewOptions, DT};
+pub use planners::Planner;
+pub use sim::metrics::{GroupMetrics, Metrics};
+pub use sim::world::World;

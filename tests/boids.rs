@@ -1,8 +1,8 @@
 //! Boids invariants over long runs of random scenes, and arrival on every preset, in both
 //! arbitration modes (DESIGN §3.1).
 
-use flockpath::geometry::Obstacle;
-use flockpath::planners::{Arbitration, BoidsParams};
+use flockpath::model::geometry::Obstacle;
+use flockpath::model::params::{Arbitration, BoidsParams};
 use flockpath::rng::Rng;
 use flockpath::{presets, Goal, Group, PlannerConfig, Region, Scene, World};
 use glam::Vec2;

@@ -2,11 +2,11 @@
 //! predator/prey, each measured on its preset against what it promises, plus the invariants
 //! (finite state, speed limit, no penetration) over long runs.
 
-use flockpath::planners::boids::FlowGuide;
+use flockpath::model::params::FlowGuide;
 use flockpath::{presets, PlannerConfig, Scene, World};
 use glam::Vec2;
 
-fn boids_params(scene: &mut Scene, group: usize) -> &mut flockpath::planners::BoidsParams {
+fn boids_params(scene: &mut Scene, group: usize) -> &mut flockpath::model::params::BoidsParams {
     match &mut scene.groups[group].planner {
         PlannerConfig::Boids(p) => p,
         other => panic!("group {group} is not Boids: {other:?}"),
@@ -77,7 +77,7 @@ fn without_a_leader_the_flock_spreads_ahead_of_the_first_agent() {
     // The control for the test above: the same flock seeking the goal on its own does overtake
     // the first agent, so "never ahead" is the leader rule's doing.
     let mut scene = presets::boids_leader();
-    boids_params(&mut scene, 0).leader = flockpath::planners::boids::Leader::None;
+    boids_params(&mut scene, 0).leader = flockpath::model::params::Leader::None;
     let mut world = World::new(scene).expect("valid");
     world.step_n(150);
     let mut worst_ahead = f32::MIN;

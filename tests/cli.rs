@@ -71,7 +71,7 @@ fn preset_json(name: &str) -> String {
 fn presets_lists_the_four_presets_with_descriptions() {
     let text = ok(flockpath(&["presets"]));
     let lines: Vec<&str> = text.lines().collect();
-    assert_eq!(lines.len(), flockpath::presets::ALL.len());
+    assert_eq!(lines.len(), flockpath::model::presets::ALL.len());
     for name in ["pillars", "open-field", "two-groups-swap", "corridor"] {
         let line = lines.iter().find(|l| l.split_whitespace().next() == Some(name));
         let line = line.unwrap_or_else(|| panic!("{name} missing from {text}"));
@@ -81,7 +81,7 @@ fn presets_lists_the_four_presets_with_descriptions() {
 
 #[test]
 fn preset_prints_valid_json_that_run_accepts_from_stdin_and_from_a_file() {
-    for p in flockpath::presets::ALL {
+    for p in flockpath::model::presets::ALL {
         let json = preset_json(p.name);
         let scene = flockpath::scene_from_json(&json).expect("preset JSON parses");
         assert_eq!(scene, (p.build)(), "{}", p.name);

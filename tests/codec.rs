@@ -6,9 +6,9 @@
 //! encoder and `<name>.json` the scene it must decode to. When the format changes, add a new
 //! `v<N+1>/` folder and never edit the old ones: old links must keep loading.
 
-use flockpath::geometry::Obstacle;
+use flockpath::model::geometry::Obstacle;
+use flockpath::model::scene::{GoalMotion, ViewOptions};
 use flockpath::rng::Rng;
-use flockpath::scene::{GoalMotion, ViewOptions};
 use flockpath::{
     presets, scene_from_any, scene_from_fragment, scene_from_json, scene_to_fragment, scene_to_json, Goal,
     Group, PlannerKind, Region, Scene,

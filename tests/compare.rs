@@ -1,8 +1,8 @@
 //! Side-by-side comparison: lockstep panes, independent generators, the URL spec round trip and
 //! readable messages for bad specs, the summary CSV.
 
-use flockpath::compare::{Comparison, ComparisonSpec, PaneSpec, SERIES_KEYS};
-use flockpath::planners::PlannerKind;
+use flockpath::model::params::PlannerKind;
+use flockpath::sim::compare::{Comparison, ComparisonSpec, PaneSpec, SERIES_KEYS};
 use flockpath::{presets, PlannerConfig, Scene, World};
 
 fn scene(name: &str) -> Scene {
@@ -166,7 +166,7 @@ fn long_runs_thin_the_series_within_bounds() {
     let mut c = Comparison::new(s, spec("1.scene")).expect("valid");
     c.step_n(12_000);
     let series = c.panes()[0].series();
-    assert!(series.steps.len() <= flockpath::compare::MAX_SERIES_SAMPLES);
+    assert!(series.steps.len() <= flockpath::sim::compare::MAX_SERIES_SAMPLES);
     assert!(series.every > 10);
     assert!(series.steps.windows(2).all(|w| w[1] - w[0] == series.every));
 }

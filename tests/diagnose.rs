@@ -1,9 +1,11 @@
 //! Diagnosis: stuck detection in the U-trap and none in the open field, explanations that add
 //! up to what the step applies, agent picking.
 
-use flockpath::diagnose::{self, agent_at, explain};
-use flockpath::planners::{limit, Boids, BoidsParams, Planner, PlannerKind};
+use flockpath::model::geometry::limit;
+use flockpath::model::params::{BoidsParams, PlannerKind};
+use flockpath::planners::{Boids, Planner};
 use flockpath::rng::Rng;
+use flockpath::sim::diagnose::{self, agent_at, explain};
 use flockpath::{presets, World};
 use glam::Vec2;
 

@@ -1,6 +1,6 @@
 //! Firefly crowd (Zhang, Wei & Chen 2017): invariants, aggregation, single-file queues, arrival.
 
-use flockpath::planners::FireflyParams;
+use flockpath::model::params::FireflyParams;
 use flockpath::{presets, World};
 
 fn seeds() -> u32 {

@@ -2,8 +2,9 @@
 //! overall and per group from the first step, sampled every `FITNESS_SAMPLE_EVERY` steps, in
 //! range, Gsum weighted with B1's weights, and equal to a `FitnessRecorder` fed the same steps.
 
-use flockpath::fitness::{Behaviour, FitnessRecorder};
-use flockpath::metrics::FITNESS_SAMPLE_EVERY;
+use flockpath::model::forces_cases::Behaviour;
+use flockpath::sim::fitness::FitnessRecorder;
+use flockpath::sim::metrics::FITNESS_SAMPLE_EVERY;
 use flockpath::{presets, World};
 use glam::Vec2;
 

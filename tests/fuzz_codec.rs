@@ -12,15 +12,15 @@
 //!
 //! Cost, not only panics: the corpus holds valid-but-expensive scenes (`cost-*`: the dense
 //! spawns, packed crowds, huge populations and heavy IGSA planning of issue 12), and every
-//! decoded input's work is counted by `flockpath::cost::work` (lattice places the spawn
+//! decoded input's work is counted by `flockpath::sim::cost::work` (lattice places the spawn
 //! examined, the step estimate, the IGSA segments to plan): an accepted scene must stay within
 //! the stated budgets, and every `cost-*` entry must be refused or within them, without timing.
 
 use base64::engine::general_purpose::URL_SAFE_NO_PAD;
 use base64::Engine as _;
-use flockpath::cost::{self, Work, MAX_PLANNING_SEGMENT_CHECKS, STEP_BUDGET_NS};
 use flockpath::rng::Rng;
-use flockpath::world::MAX_SPAWN_PLACES;
+use flockpath::sim::cost::{self, Work, MAX_PLANNING_SEGMENT_CHECKS, STEP_BUDGET_NS};
+use flockpath::sim::world::MAX_SPAWN_PLACES;
 use flockpath::{scene_from_any, PlannerConfig, PlannerKind, Region, Scene, SceneError};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 

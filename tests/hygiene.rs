@@ -149,6 +149,6 @@ fn the_scanner_sees_through_comments_and_test_modules_only() {
         vec!["fn a() { x.unwrap(); }", "fn c() { let s = \"http://x\"; v.unwrap(); }"]
     );
     let sources = sources();
-    assert!(sources.iter().any(|(p, c)| p == "src/world.rs" && c.contains("pub fn step(")));
+    assert!(sources.iter().any(|(p, c)| p == "src/sim/world.rs" && c.contains("pub fn step(")));
     assert!(sources.iter().any(|(p, c)| p.starts_with("src/bin/") && c.contains("Instant::now")));
 }

@@ -3,9 +3,9 @@
 //! count, planning never looks at the group, and the optimizer lab's reference run is pinned
 //! (the same digest is checked in Chromium by `tests/web_lab.rs`).
 
-use flockpath::geometry::Obstacle;
+use flockpath::model::geometry::Obstacle;
+use flockpath::model::params::{IgsaParams, PlannerConfig};
 use flockpath::planners::igsa::{plan_group_path, PathSource};
-use flockpath::planners::{IgsaParams, PlannerConfig};
 use flockpath::{presets, Scene, World};
 use glam::Vec2;
 
@@ -119,7 +119,7 @@ fn planning_does_not_look_at_the_group_size() {
 fn gsa_can_be_chosen_and_edited_waypoints_replace_the_plan() {
     let mut scene = presets::igsa_path_2();
     let PlannerConfig::Igsa(params) = &mut scene.groups[0].planner else { panic!("igsa preset") };
-    params.optimizer = flockpath::planners::igsa::PathOptimizer::Gsa;
+    params.optimizer = flockpath::model::params::PathOptimizer::Gsa;
     let gsa = World::new(scene.clone()).expect("valid");
     assert_eq!(gsa.planned_path(0).expect("path").source, PathSource::Gsa);
     // A path straight through the wall: accepted, run, and its crossing segment flagged.

@@ -2,11 +2,11 @@
 //! initialisation's coverage, determinism (same seed, any thread count), valid planned paths.
 //! Budgets are small so the file stays fast in debug builds.
 
+use flockpath::experiments::tables::{run_optimize, OptimizeArgs};
+use flockpath::model::presets;
 use flockpath::optim::igsa::{chaotic_positions, logistic_tent_points};
-use flockpath::optim::path::{PathParams, PathProblem};
-use flockpath::optim::report::{run_optimize, OptimizeArgs};
 use flockpath::optim::{Algorithm, Benchmark, Bounds, Function, Objective, Settings};
-use flockpath::presets;
+use flockpath::planners::igsa::path::{PathParams, PathProblem};
 use flockpath::rng::Rng;
 
 fn run(algorithm: Algorithm, objective: &dyn Objective, settings: &Settings, seed: u32) -> (f64, f64) {
@@ -125,7 +125,7 @@ fn thread_count_does_not_change_results() {
     assert_eq!(one.cells.len(), Algorithm::ALL.len() * 2);
     for (a, b) in one.cells.iter().zip(&four.cells) {
         assert_eq!((a.algorithm, a.function), (b.algorithm, b.function));
-        let bits = |c: &flockpath::optim::report::Cell| {
+        let bits = |c: &flockpath::experiments::tables::Cell| {
             c.curves.iter().flatten().map(|v| v.to_bits()).collect::<Vec<_>>()
         };
         assert_eq!(bits(a), bits(b), "{} on {}", a.algorithm, a.function);

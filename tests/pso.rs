@@ -2,7 +2,7 @@
 //!
 //! Debug builds run fewer seeds and steps so the file stays fast; every assertion still runs.
 
-use flockpath::planners::PsoParams;
+use flockpath::model::params::PsoParams;
 use flockpath::{presets, Obstacle, PlannerConfig, Scene, World};
 
 const PSO_PRESETS: &[&str] = &[

@@ -1,7 +1,7 @@
 //! The PSO hills scene (Chen & Lin 2009, §5.6): a crowd crosses hills of three heights; ground
 //! at or above the climb limit is never walked on, lower hills are crossed, the crowd arrives.
 
-use flockpath::scene::Hill;
+use flockpath::model::scene::Hill;
 use flockpath::{presets, PlannerConfig, World};
 
 #[test]

@@ -1,8 +1,8 @@
 //! Replay and scrub: jumping to step k (back or forward, across checkpoints and thinning) gives
 //! the same digest as the original run at k, and playing on from there stays identical.
 
-use flockpath::presets;
-use flockpath::replay::{Replay, ReplayBudget};
+use flockpath::model::presets;
+use flockpath::sim::replay::{Replay, ReplayBudget};
 use flockpath::World;
 
 fn world(name: &str) -> World {
@@ -38,7 +38,7 @@ fn scrub_matches_the_original(name: &str) {
     // Tight budgets so both thinnings happen during the run.
     let budget = ReplayBudget {
         frame_bytes: 120 * agents * 4,
-        checkpoint_bytes: 3 * flockpath::replay::checkpoint_bytes_estimate(&world(name)),
+        checkpoint_bytes: 3 * flockpath::sim::replay::checkpoint_bytes_estimate(&world(name)),
         checkpoint_every: 50,
     };
     let (mut w, r) = recorded(name, STEPS, budget);
@@ -104,7 +104,7 @@ fn the_recording_stays_within_its_budgets() {
     let agents = w.agent_count();
     let budget = ReplayBudget {
         frame_bytes: 64 * agents * 4,
-        checkpoint_bytes: 4 * flockpath::replay::checkpoint_bytes_estimate(&w),
+        checkpoint_bytes: 4 * flockpath::sim::replay::checkpoint_bytes_estimate(&w),
         checkpoint_every: 20,
     };
     let mut w = w;

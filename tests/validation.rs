@@ -5,7 +5,7 @@
 
 use base64::engine::general_purpose::URL_SAFE_NO_PAD;
 use base64::Engine as _;
-use flockpath::scene::{field_limits, SceneError};
+use flockpath::model::scene::{field_limits, SceneError};
 use flockpath::{presets, scene_from_any, scene_to_json, Scene, World};
 use serde_json::{json, Value};
 

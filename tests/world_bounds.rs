@@ -5,7 +5,7 @@
 //! the world rectangle. The spawn tests check the lattice placement: no two bodies overlap, no
 //! body touches an obstacle, centres stay in their region, the density limit is named.
 
-use flockpath::planners::IgsaParams;
+use flockpath::model::params::IgsaParams;
 use flockpath::rng::Rng;
 use flockpath::{
     presets, Goal, Group, Obstacle, PlannerConfig, PlannerKind, Region, Scene, SceneError, World,
@@ -290,7 +290,7 @@ fn switching_a_big_crowd_to_a_costlier_planner_is_refused_and_the_run_goes_on() 
     let mut world = World::new(scene).expect("20,000 Boids fit the limits");
     world.step();
     let e = world.set_group_planner(0, PlannerKind::Firefly.default_config()).expect_err("too costly");
-    let limit = format!("at most {} firefly agents", flockpath::cost::max_agents(PlannerKind::Firefly));
+    let limit = format!("at most {} firefly agents", flockpath::sim::cost::max_agents(PlannerKind::Firefly));
     assert!(matches!(e, SceneError::TooCostly(_)) && e.to_string().contains(&limit), "{e}");
     assert_eq!(world.scene().groups[0].planner.kind(), PlannerKind::Boids, "the run keeps its planner");
     world.step();

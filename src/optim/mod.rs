@@ -26,9 +26,8 @@ pub mod ga;
 pub mod gsa;
 pub mod igsa;
 pub mod lab;
-pub mod path;
+
 pub mod pso;
-pub mod report;
 
 use crate::rng::Rng;
 
@@ -322,4 +321,30 @@ pub fn gaussian(rng: &mut Rng) -> f64 {
 /// stream, so runs are independent and can execute in any order on any number of threads.
 pub fn run_rng(seed: u32, run: u32) -> Rng {
     Rng::new(seed, run)
+}
+/// Maps `f` over `jobs` in order, on every core natively (rayon) and sequentially in wasm.
+/// Jobs run in chunks so `progress(done, total)` is called from this thread between chunks;
+/// results never depend on the number of threads because each job owns its generator.
+pub fn map_in_order<J: Sync, T: Send>(
+    jobs: &[J],
+    f: &(dyn Fn(&J) -> T + Sync),
+    progress: &mut dyn FnMut(usize, usize),
+) -> Vec<T> {
+    let mut out = Vec::with_capacity(jobs.len());
+    #[cfg(not(target_arch = "wasm32"))]
+    {
+        use rayon::prelude::*;
+        let chunk = (rayon::current_num_threads() * 4).max(1);
+        for part in jobs.chunks(chunk) {
+            let done: Vec<T> = part.par_iter().map(f).collect();
+            out.extend(done);
+            progress(out.len(), jobs.len());
+        }
+    }
+    #[cfg(target_arch = "wasm32")]
+    for job in jobs {
+        out.push(f(job));
+        progress(out.len(), jobs.len());
+    }
+    out
 }

@@ -49,7 +49,7 @@ impl Lanes2 {
         self.x * self.x + self.y * self.y
     }
 
-    /// `Vec2::length` per lane (the hardware square root: see [`crate::geometry::length`]).
+    /// `Vec2::length` per lane (the hardware square root: see [`crate::model::geometry::length`]).
     #[inline]
     pub fn length(self) -> Vec4 {
         sqrt(self.length_squared())
@@ -93,7 +93,7 @@ impl std::ops::Sub for Lanes2 {
 }
 
 /// The square root per lane, in hardware (glam's `Vec4::sqrt` goes through libm: see
-/// [`crate::geometry::length`]).
+/// [`crate::model::geometry::length`]).
 #[inline]
 pub fn sqrt(x: Vec4) -> Vec4 {
     Vec4::from_array(x.to_array().map(f32::sqrt))
@@ -110,7 +110,7 @@ pub fn clamp(x: Vec4, min: f32, max: f32) -> Vec4 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::planners::limit;
+    use crate::model::geometry::limit;
 
     #[test]
     fn lanes_compute_what_the_scalar_code_computes() {

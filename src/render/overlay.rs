@@ -7,9 +7,10 @@
 //! for that one agent), never stored during a step.
 
 use super::{draw_segment, stroke_scene_path, ViewTransform};
-use crate::diagnose::{self, Explanation};
-use crate::planners::PlannerConfig;
-use crate::world::World;
+use crate::model::params::PlannerConfig;
+use crate::planners::explain::Explanation;
+use crate::sim::diagnose;
+use crate::sim::world::World;
 use glam::Vec2;
 use tiny_skia::{PathBuilder, PixmapMut};
 
@@ -255,7 +256,7 @@ fn draw_fireflies(frame: &mut [u8], width: u32, height: u32, view: ViewTransform
         let far = target.map_or(1.0, |t| positions.iter().map(|p| p.distance(t)).fold(1.0f32, f32::max));
         for (&p, &v) in positions.iter().zip(velocities) {
             let heading =
-                crate::geometry::unit_or(v, target.map_or(Vec2::X, |t| (t - p).normalize_or_zero()));
+                crate::model::geometry::unit_or(v, target.map_or(Vec2::X, |t| (t - p).normalize_or_zero()));
             let a = view.to_canvas(p);
             let b = view.to_canvas(p + heading * params.feeler_length);
             draw_segment(frame, w, h, a, b, [0x90, 0x60, 0x00], 150);
@@ -293,7 +294,7 @@ fn glow(frame: &mut [u8], w: usize, h: usize, c: Vec2, brightness: f32) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::presets;
+    use crate::model::presets;
     use crate::render::Renderer;
 
     fn frame(world: &World, overlays: Overlays, inspected: Option<u32>) -> Vec<u8> {

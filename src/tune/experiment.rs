@@ -6,7 +6,7 @@
 //! evaluations-per-second figures.
 
 use super::{Evaluation, GaParams, GenerationStats, TuneTask, Tuner};
-use crate::fitness::{Behaviour, Environment};
+use crate::model::forces_cases::{Behaviour, Environment};
 use serde::Serialize;
 use std::fmt::Write as _;
 

@@ -1,11 +1,13 @@
-//! The compare page's bindings: an opaque handle over `crate::compare::Comparison` with one
+//! The compare page's bindings: an opaque handle over `crate::sim::compare::Comparison` with one
 //! renderer per pane. Conversion and errors only; the panes, series and summary are the core's.
 
 use super::{js_error, to_json};
-use crate::codec;
-use crate::compare::{Comparison, ComparisonSpec, PaneSpec, MAX_PANES, PANE_COLORS, PANE_NAMES, SERIES_KEYS};
-use crate::planners::PlannerKind;
+use crate::model::codec;
+use crate::model::params::PlannerKind;
 use crate::render::Renderer;
+use crate::sim::compare::{
+    Comparison, ComparisonSpec, PaneSpec, MAX_PANES, PANE_COLORS, PANE_NAMES, SERIES_KEYS,
+};
 use wasm_bindgen::prelude::*;
 
 /// A comparison with its pane renderers: the handle the compare page keeps.

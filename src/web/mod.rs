@@ -7,17 +7,17 @@
 
 mod diagnose;
 
-use crate::codec;
-use crate::edit::{self, Edit, ItemRef};
 use crate::export::{self, ExportOptions};
-use crate::history::MetricsHistory;
-use crate::planners::PlannerKind;
-use crate::presets;
-use crate::recording::Recording;
+use crate::model::codec;
+use crate::model::edit::{self, Edit, ItemRef};
+use crate::model::params::PlannerKind;
+use crate::model::presets;
+use crate::model::scene::ViewOptions;
 use crate::render::Renderer;
-use crate::replay::Replay;
-use crate::scene::ViewOptions;
-use crate::world::World;
+use crate::sim::history::MetricsHistory;
+use crate::sim::recording::Recording;
+use crate::sim::replay::Replay;
+use crate::sim::world::World;
 use glam::Vec2;
 use std::fmt::Display;
 use wasm_bindgen::prelude::*;
@@ -41,7 +41,7 @@ fn js_error(e: impl Display) -> JsError {
 
 /// A refused scene as a JS `Error`: its message is the readable text, and its `details` property
 /// (when the parser had its own words and position) what the page shows behind "details".
-fn scene_error(e: crate::scene::SceneError) -> JsValue {
+fn scene_error(e: crate::model::scene::SceneError) -> JsValue {
     let error = js_sys::Error::new(&e.to_string());
     if let Some(detail) = e.detail() {
         // Setting a property on a fresh Error object cannot fail.
@@ -269,7 +269,7 @@ impl Sim {
         Ok(())
     }
 
-    /// Applies an editor operation (JSON of `crate::edit::Edit`); on error nothing changes.
+    /// Applies an editor operation (JSON of `crate::model::edit::Edit`); on error nothing changes.
     pub fn edit(&mut self, edit_json: &str) -> Result<(), JsError> {
         let edit: Edit =
             serde_json::from_str(edit_json).map_err(|e| js_error(format!("cannot read the edit: {e}")))?;
@@ -404,7 +404,7 @@ impl Sim {
 
     /// A copy of the world for [`Sim::cancel_planning`] when a change may start planning ahead.
     fn snapshot_if_planning_ahead(&self) -> Option<World> {
-        let igsa = |g: &crate::scene::Group| g.planner.kind() == PlannerKind::Igsa;
+        let igsa = |g: &crate::model::scene::Group| g.planner.kind() == PlannerKind::Igsa;
         self.world.scene().groups.iter().any(igsa).then(|| self.world.clone())
     }
 

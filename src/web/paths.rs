@@ -2,7 +2,8 @@
 //! waypoints. Conversion only; the core plans, validates and flags crossings.
 
 use super::{js_error, to_json, Sim};
-use crate::planners::{igsa, PlannerConfig};
+use crate::model::params::PlannerConfig;
+use crate::planners::igsa;
 use glam::Vec2;
 use wasm_bindgen::prelude::*;
 

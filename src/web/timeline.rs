@@ -1,5 +1,5 @@
 //! The playground's timeline bindings: jump to any recorded step and describe the recording.
-//! The history itself (checkpoints, quantised positions, thinning) is `crate::replay`.
+//! The history itself (checkpoints, quantised positions, thinning) is `crate::sim::replay`.
 
 use super::{js_error, to_json, Sim};
 use wasm_bindgen::prelude::*;
@@ -40,7 +40,7 @@ impl Sim {
         Ok(resimulated)
     }
 
-    /// The timeline's state as JSON (`crate::replay::ReplayInfo` plus `step`, the current step):
+    /// The timeline's state as JSON (`crate::sim::replay::ReplayInfo` plus `step`, the current step):
     /// `{step, first_step, end_step, frame_every, frames, frame_bytes, frame_budget_bytes,
     /// capacity_steps, frames_thinned, checkpoint_every, checkpoints, checkpoint_bytes,
     /// checkpoint_budget_bytes, checkpoints_thinned, diverged, edits, note}`.

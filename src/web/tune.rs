@@ -3,7 +3,7 @@
 //! the core's [`Tuner`]; no tuning logic lives here.
 
 use super::{js_error, to_json};
-use crate::codec;
+use crate::model::codec;
 use crate::tune::{TuneSetup, Tuner};
 use wasm_bindgen::prelude::*;
 

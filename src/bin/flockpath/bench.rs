@@ -3,8 +3,8 @@
 //!
 //! Wall-clock timing lives here, in `src/bin/`, and nowhere in the core.
 
-use flockpath::planners::boids::{FlowGuide, Leader, Role};
-use flockpath::planners::BoidsParams;
+use flockpath::model::params::boids::{FlowGuide, Leader, Role};
+use flockpath::model::params::BoidsParams;
 use flockpath::render::Renderer;
 use flockpath::spatial::SpatialGrid;
 use flockpath::{presets, PlannerConfig, PlannerKind, Scene, World};
@@ -435,7 +435,7 @@ fn time_worlds(
 /// Mean number of other agents within the perception radius at the end of the run (the scene
 /// promises about nine; flocking clumps agents, so this says what the step really did).
 fn mean_neighbours(world: &World) -> f64 {
-    let radius = flockpath::planners::BoidsParams::default().perception_radius;
+    let radius = flockpath::model::params::BoidsParams::default().perception_radius;
     let scene = world.scene();
     let mut grid = SpatialGrid::new(scene.width, scene.height, radius, world.agent_count());
     grid.rebuild(world.positions(), world.velocities());

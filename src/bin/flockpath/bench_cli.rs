@@ -71,8 +71,8 @@ pub fn density_scene(args: &DensitySceneArgs) -> Result<(), CliError> {
         let names: Vec<&str> = bench::planner_configs().into_iter().map(|(name, _)| name).collect();
         return out(&format!("{}\n", names.join("\n")));
     };
-    if n == 0 || n > flockpath::scene::MAX_AGENTS {
-        return Err(usage(format!("N = {n} is outside 1…{}", flockpath::scene::MAX_AGENTS)));
+    if n == 0 || n > flockpath::model::scene::MAX_AGENTS {
+        return Err(usage(format!("N = {n} is outside 1…{}", flockpath::model::scene::MAX_AGENTS)));
     }
     let scene = match &args.planner {
         None => bench::bench_scene(n),

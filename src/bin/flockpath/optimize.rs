@@ -1,12 +1,12 @@
-//! `flockpath optimize`: the optimizer experiments of `flockpath::optim::report` with their
+//! `flockpath optimize`: the optimizer experiments of `flockpath::experiments::tables` with their
 //! files, their text on stdout and a progress bar.
 
 use crate::progress::Progress;
 use crate::{in_range, out, usage, write_file, CliError};
+use flockpath::experiments::tables::{self, Table};
 use flockpath::optim::functions::Function;
-use flockpath::optim::path::{compare_paths, path_table_text, PathParams};
-use flockpath::optim::report::{self, Table};
 use flockpath::optim::Algorithm;
+use flockpath::planners::igsa::path::{compare_paths, path_table_text, PathParams};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -94,9 +94,9 @@ fn list<T: Copy>(
 }
 
 impl OptimizeArgs {
-    /// The library's options: the defaults of [`report::OptimizeArgs`] with the flags given.
-    fn settings(&self) -> Result<report::OptimizeArgs, CliError> {
-        let mut a = report::OptimizeArgs::default();
+    /// The library's options: the defaults of [`tables::OptimizeArgs`] with the flags given.
+    fn settings(&self) -> Result<tables::OptimizeArgs, CliError> {
+        let mut a = tables::OptimizeArgs::default();
         if let Some(value) = &self.algorithms {
             a.algorithms = list("--algorithms", value, Algorithm::from_name, &[("all", Algorithm::ALL)])?;
         }
@@ -127,10 +127,10 @@ pub fn optimize(args: &OptimizeArgs) -> Result<(), CliError> {
     let start = std::time::Instant::now();
     let clock = move || start.elapsed().as_secs_f64();
     let text = if parsed.bench_force {
-        report::bench_force(&clock)
+        tables::bench_force(&clock)
     } else if parsed.table4 {
         let progress = Progress::new(6, "runs");
-        report::table4(&[100, 500, 1000], parsed.steps, &clock, &mut |done, total| progress.set(done, total))
+        tables::table4(&[100, 500, 1000], parsed.steps, &clock, &mut |done, total| progress.set(done, total))
     } else if parsed.paths {
         paths(&parsed, &clock)?
     } else {
@@ -140,8 +140,8 @@ pub fn optimize(args: &OptimizeArgs) -> Result<(), CliError> {
 }
 
 /// `--paths`: GSA against IGSA as group path planners on the two path scenes.
-fn paths(parsed: &report::OptimizeArgs, clock: &dyn Fn() -> f64) -> Result<String, CliError> {
-    let scenes = [flockpath::presets::igsa_path_1(), flockpath::presets::igsa_path_2()];
+fn paths(parsed: &tables::OptimizeArgs, clock: &dyn Fn() -> f64) -> Result<String, CliError> {
+    let scenes = [flockpath::model::presets::igsa_path_1(), flockpath::model::presets::igsa_path_2()];
     let start = clock();
     let progress = Progress::new(0, "plans");
     let rows = compare_paths(
@@ -158,7 +158,7 @@ fn paths(parsed: &report::OptimizeArgs, clock: &dyn Fn() -> f64) -> Result<Strin
         parsed.settings.population, parsed.settings.iterations, parsed.runs
     );
     text.push_str(&path_table_text(&rows));
-    let _ = writeln!(text, "wall time {:.1} s on {} threads", clock() - start, report::threads());
+    let _ = writeln!(text, "wall time {:.1} s on {} threads", clock() - start, tables::threads());
     if let Some(path) = &parsed.json {
         let json = serde_json::to_string_pretty(&rows).unwrap_or_else(|_| "[]".into());
         write_file("--json file", path, &(json + "\n"))?;
@@ -167,10 +167,10 @@ fn paths(parsed: &report::OptimizeArgs, clock: &dyn Fn() -> f64) -> Result<Strin
 }
 
 /// The Table-3-style experiment with its JSON records and curves.
-fn table(parsed: &report::OptimizeArgs, clock: &(dyn Fn() -> f64 + Sync)) -> Result<String, CliError> {
+fn table(parsed: &tables::OptimizeArgs, clock: &(dyn Fn() -> f64 + Sync)) -> Result<String, CliError> {
     let start = clock();
     let progress = Progress::new(0, "runs");
-    let table = report::run_optimize(parsed, clock, &mut |done, total| progress.set(done, total))
+    let table = tables::run_optimize(parsed, clock, &mut |done, total| progress.set(done, total))
         .map_err(crate::failed)?;
     drop(progress);
     let wall = clock() - start;
@@ -181,7 +181,7 @@ fn table(parsed: &report::OptimizeArgs, clock: &(dyn Fn() -> f64 + Sync)) -> Res
         write_curves(&table, path)?;
     }
     let mut text = table.to_text();
-    let _ = writeln!(text, "wall time {wall:.1} s on {} threads", report::threads());
+    let _ = writeln!(text, "wall time {wall:.1} s on {} threads", tables::threads());
     Ok(text)
 }
 
@@ -208,7 +208,7 @@ mod tests {
     use crate::cli::Cli;
     use clap::Parser as _;
 
-    fn parse(args: &[&str]) -> Result<flockpath::optim::report::OptimizeArgs, String> {
+    fn parse(args: &[&str]) -> Result<flockpath::experiments::tables::OptimizeArgs, String> {
         let cli =
             Cli::try_parse_from(["flockpath", "optimize"].iter().chain(args)).map_err(|e| e.to_string())?;
         match cli.command {

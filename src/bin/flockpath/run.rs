@@ -3,8 +3,8 @@
 use crate::scenes::load_scene;
 use crate::{failed, out, usage, whole_number, write_file, CliError};
 use flockpath::export::{self, ExportOptions};
-use flockpath::history::{self, MetricsHistory};
-use flockpath::recording::Recording;
+use flockpath::sim::history::{self, MetricsHistory};
+use flockpath::sim::recording::Recording;
 use flockpath::{PlannerKind, Scene, World};
 
 /// Most samples `run --metrics-history` keeps before halving its sampling rate.

@@ -3,7 +3,7 @@
 
 use crate::progress::Progress;
 use crate::{failed, out, usage, write_file, CliError};
-use flockpath::fitness::{Behaviour, Environment};
+use flockpath::model::forces_cases::{Behaviour, Environment};
 use flockpath::tune::experiment::{self, Budget};
 
 /// `flockpath tune`.
@@ -183,7 +183,7 @@ pub fn tune(args: &TuneArgs) -> Result<(), CliError> {
                 report.evaluations,
                 report.seconds,
                 report.evaluations_per_second,
-                flockpath::optim::report::threads()
+                flockpath::experiments::tables::threads()
             );
             let summary = serde_json::json!({
                 "behaviour": report.behaviour,
@@ -208,7 +208,7 @@ pub fn tune(args: &TuneArgs) -> Result<(), CliError> {
 mod tests {
     use crate::cli::{Cli, Command};
     use clap::Parser as _;
-    use flockpath::fitness::{Behaviour, Environment};
+    use flockpath::model::forces_cases::{Behaviour, Environment};
 
     fn parse(args: &str) -> Result<(super::Task, super::Budget), String> {
         let argv = ["flockpath", "tune"].into_iter().chain(args.split_whitespace());

@@ -11,7 +11,8 @@
 //!
 //! `Gsum = Sm Gm + Sg Gg + Sc Gc + Sa Ga + Sd Gd` (14.11), S chosen per behaviour.
 
-use crate::geometry::{Aabb, Obstacle};
+use crate::model::forces_cases::Behaviour;
+use crate::model::geometry::{Aabb, Obstacle};
 use crate::spatial::{ObstacleIndex, QueryCap, SpatialGrid};
 use glam::Vec2;
 use serde::{Deserialize, Serialize};
@@ -401,45 +402,7 @@ fn measures_of(sums: &[f64; 5], frames: u64, goal_frames: u64) -> FitnessMeasure
     }
 }
 
-/// The behaviours of the paper's experiment.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Behaviour {
-    /// B1: the group moves to a goal keeping a given spacing.
-    GroupMoving,
-    /// B2: the group follows a moving goal as closely as it can.
-    Following,
-    /// B3: the group surrounds (guards) a moving goal.
-    Guarding,
-}
-
 impl Behaviour {
-    /// All three, in the paper's order.
-    pub const ALL: [Behaviour; 3] = [Behaviour::GroupMoving, Behaviour::Following, Behaviour::Guarding];
-
-    /// `b1`, `b2`, `b3`.
-    pub fn code(self) -> &'static str {
-        match self {
-            Behaviour::GroupMoving => "b1",
-            Behaviour::Following => "b2",
-            Behaviour::Guarding => "b3",
-        }
-    }
-
-    /// Looks a behaviour up by `b1`…`b3` (or its name).
-    pub fn from_code(code: &str) -> Option<Self> {
-        Self::ALL.into_iter().find(|b| b.code().eq_ignore_ascii_case(code) || b.label() == code)
-    }
-
-    /// Readable name.
-    pub fn label(self) -> &'static str {
-        match self {
-            Behaviour::GroupMoving => "group moving",
-            Behaviour::Following => "following",
-            Behaviour::Guarding => "guarding",
-        }
-    }
-
     /// The measures' parameters expressing this behaviour.
     pub fn fitness_params(self) -> FitnessParams {
         let base = FitnessParams::default();
@@ -484,46 +447,6 @@ impl Behaviour {
                 orientation: 5.0,
                 distance: 10.0,
             },
-        }
-    }
-}
-
-/// The environments of the paper's experiment.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Environment {
-    /// E1: open space.
-    Open,
-    /// E2: a wall with a narrow passage.
-    Narrow,
-    /// E3: cluttered with small obstacles.
-    Cluttered,
-}
-
-impl Environment {
-    /// All three, in the paper's order.
-    pub const ALL: [Environment; 3] = [Environment::Open, Environment::Narrow, Environment::Cluttered];
-
-    /// `e1`, `e2`, `e3`.
-    pub fn code(self) -> &'static str {
-        match self {
-            Environment::Open => "e1",
-            Environment::Narrow => "e2",
-            Environment::Cluttered => "e3",
-        }
-    }
-
-    /// Looks an environment up by `e1`…`e3`.
-    pub fn from_code(code: &str) -> Option<Self> {
-        Self::ALL.into_iter().find(|e| e.code().eq_ignore_ascii_case(code))
-    }
-
-    /// Readable name.
-    pub fn label(self) -> &'static str {
-        match self {
-            Environment::Open => "open",
-            Environment::Narrow => "narrow passage",
-            Environment::Cluttered => "cluttered",
         }
     }
 }
@@ -714,8 +637,8 @@ mod tests {
             let total = s.spacing + s.goal + s.collision + s.orientation + s.distance;
             assert!((total - 100.0).abs() < 1e-9, "{b:?}");
         }
-        for e in Environment::ALL {
-            assert_eq!(Environment::from_code(&e.code().to_uppercase()), Some(e));
+        for e in crate::model::forces_cases::Environment::ALL {
+            assert_eq!(crate::model::forces_cases::Environment::from_code(&e.code().to_uppercase()), Some(e));
         }
         assert_eq!(Behaviour::from_code("b4"), None);
     }

@@ -308,6 +308,17 @@ fn polygon_ray_cast(shape: &Obstacle, pts: &[Vec2], from: Vec2, d: Vec2) -> Opti
     })
 }
 
+/// Scales `v` down to length `max` if longer.
+#[inline]
+pub fn limit(v: Vec2, max: f32) -> Vec2 {
+    let len2 = v.length_squared();
+    if len2 > max * max && len2 > 0.0 {
+        v * (max / len2.sqrt())
+    } else {
+        v
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

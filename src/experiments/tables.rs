@@ -5,9 +5,9 @@
 //! The core has no clock: the caller passes one (`clock()` = seconds since any fixed instant)
 //! and a progress callback, both used only for reporting.
 
-use super::functions::{Benchmark, Function};
-use super::gsa::{gravity_accelerations, GravityScratch};
-use super::{run_rng, Algorithm, Settings};
+use crate::optim::functions::{Benchmark, Function};
+use crate::optim::gsa::{gravity_accelerations, GravityScratch};
+use crate::optim::{map_in_order, run_rng, Algorithm, Settings};
 use crate::rng::Rng;
 use serde::Serialize;
 use std::fmt::Write as _;
@@ -137,33 +137,6 @@ pub fn run_once(
         curve.push(opt.best_value());
     }
     RunOutcome { best: opt.best_value(), curve, evaluations: opt.evaluations(), seconds: clock() - start }
-}
-
-/// Maps `f` over `jobs` in order, on every core natively (rayon) and sequentially in wasm.
-/// Jobs run in chunks so `progress(done, total)` is called from this thread between chunks;
-/// results never depend on the number of threads because each job owns its generator.
-pub fn map_in_order<J: Sync, T: Send>(
-    jobs: &[J],
-    f: &(dyn Fn(&J) -> T + Sync),
-    progress: &mut dyn FnMut(usize, usize),
-) -> Vec<T> {
-    let mut out = Vec::with_capacity(jobs.len());
-    #[cfg(not(target_arch = "wasm32"))]
-    {
-        use rayon::prelude::*;
-        let chunk = (rayon::current_num_threads() * 4).max(1);
-        for part in jobs.chunks(chunk) {
-            let done: Vec<T> = part.par_iter().map(f).collect();
-            out.extend(done);
-            progress(out.len(), jobs.len());
-        }
-    }
-    #[cfg(target_arch = "wasm32")]
-    for job in jobs {
-        out.push(f(job));
-        progress(out.len(), jobs.len());
-    }
-    out
 }
 
 fn median(sorted: &[f64]) -> f64 {
@@ -367,14 +340,15 @@ pub fn table4_rows(
     clock: &dyn Fn() -> f64,
     progress: &mut dyn FnMut(usize, usize),
 ) -> Vec<CrowdRow> {
-    use crate::planners::igsa::{plan_group_path, PathOptimizer};
-    use crate::planners::{IgsaParams, PlannerConfig};
+    use crate::model::params::PathOptimizer;
+    use crate::model::params::{IgsaParams, PlannerConfig};
+    use crate::planners::igsa::plan_group_path;
     let mut rows = Vec::new();
     let total = sizes.len() * 2;
     for (k, (&agents, optimizer)) in
         sizes.iter().flat_map(|n| [(n, PathOptimizer::Igsa), (n, PathOptimizer::Gsa)]).enumerate()
     {
-        let mut scene = crate::presets::igsa_crowd(agents);
+        let mut scene = crate::model::presets::igsa_crowd(agents);
         let params = IgsaParams { optimizer, ..IgsaParams::default() };
         scene.groups[0].planner = PlannerConfig::Igsa(params.clone());
         let mut times = Vec::new();

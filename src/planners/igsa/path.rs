@@ -15,10 +15,10 @@
 //! Measures reported per path: length, maximum deflection angle, mean turning angle (degrees),
 //! exact crossings and the smallest sampled clearance.
 
-use super::{Algorithm, Bounds, Objective, Optimizer, Settings};
-use crate::geometry::{v, Aabb, Obstacle};
+use crate::model::geometry::{v, Aabb, Obstacle};
+use crate::model::scene::Scene;
+use crate::optim::{map_in_order, Algorithm, Bounds, Objective, Optimizer, Settings};
 use crate::rng::Rng;
-use crate::scene::Scene;
 use crate::spatial::ObstacleIndex;
 use glam::Vec2;
 use serde::Serialize;
@@ -457,8 +457,7 @@ pub fn compare_paths(
             }
         }
     }
-    let plans =
-        super::report::map_in_order(&jobs, &|&(p, a, seed)| problems[p].1.plan(a, settings, seed), progress);
+    let plans = map_in_order(&jobs, &|&(p, a, seed)| problems[p].1.plan(a, settings, seed), progress);
     let mut rows = Vec::new();
     for (k, chunk) in plans.chunks(runs.max(1) as usize).enumerate() {
         let (p, a, _) = jobs[k * runs.max(1) as usize];

@@ -16,10 +16,10 @@
 //! every value, so a link replays the same runs after a default changes (as the scene codec does).
 //! Example: `1.scene~pso~firefly(2,0.2)` or `1.boids~1=pso;2=firefly`.
 
-use crate::metrics::Metrics;
-use crate::planners::{PlannerConfig, PlannerKind};
-use crate::scene::{Scene, SceneError};
-use crate::world::World;
+use crate::model::params::{PlannerConfig, PlannerKind};
+use crate::model::scene::{Scene, SceneError};
+use crate::sim::metrics::Metrics;
+use crate::sim::world::World;
 use serde::Serialize;
 use std::fmt::Write as _;
 
@@ -627,7 +627,7 @@ fn csv_field(text: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::presets;
+    use crate::model::presets;
 
     #[test]
     fn number_formatting_reads_back_exactly() {

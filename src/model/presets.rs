@@ -1,11 +1,11 @@
 //! Named scenes: one name→builder table shared by the page, the CLI, the tests and the benches.
 
-use crate::fitness::{Behaviour, Environment};
-use crate::geometry::Obstacle;
-use crate::planners::boids::{Arbitration, FlowGuide, Leader, Role};
-use crate::planners::{BoidsParams, FireflyParams, IgsaParams, PlannerConfig, PsoParams};
+use crate::model::forces_cases::{Behaviour, Environment};
+use crate::model::geometry::Obstacle;
+use crate::model::params::boids::{Arbitration, FlowGuide, Leader, Role};
+use crate::model::params::{BoidsParams, FireflyParams, IgsaParams, PlannerConfig, PsoParams};
+use crate::model::scene::{Goal, GoalMotion, Group, Hill, PathSpec, Region, Scene};
 use crate::rng::Rng;
-use crate::scene::{Goal, GoalMotion, Group, Hill, PathSpec, Region, Scene};
 
 /// A named scene builder.
 #[derive(Clone, Copy, Debug)]
@@ -148,8 +148,8 @@ pub fn find(name: &str) -> Option<&'static Preset> {
 }
 
 /// Looks a preset up by name; an unknown name is refused with the list of known ones.
-pub fn lookup(name: &str) -> Result<&'static Preset, crate::scene::SceneError> {
-    find(name).ok_or_else(|| crate::scene::SceneError::UnknownPreset {
+pub fn lookup(name: &str) -> Result<&'static Preset, crate::model::scene::SceneError> {
+    find(name).ok_or_else(|| crate::model::scene::SceneError::UnknownPreset {
         name: name.chars().take(40).collect(),
         known: ALL.iter().map(|p| p.name).collect(),
     })
@@ -287,7 +287,7 @@ pub fn forces_scene(behaviour: Behaviour, environment: Environment) -> Scene {
         }
     }
     let mut flock = group("flock", "#8f3fbf", FORCES_AGENTS, ([40.0, 140.0], [160.0, 260.0]), 0);
-    flock.planner = PlannerConfig::Forces(crate::planners::ForcesParams::default());
+    flock.planner = PlannerConfig::Forces(crate::model::params::ForcesParams::default());
     match behaviour {
         Behaviour::GroupMoving => s.goals.push(Goal::fixed([730.0, 200.0], 40.0)),
         Behaviour::Following | Behaviour::Guarding => {
@@ -307,7 +307,7 @@ pub fn forces_scene(behaviour: Behaviour, environment: Environment) -> Scene {
 /// A square world of `n` wandering agents at constant density, about `neighbours` agents inside
 /// each agent's perception radius (benchmarks: per-agent cost should not grow with `n`).
 pub fn constant_density(n: u32, neighbours: f32) -> Scene {
-    let perception = crate::planners::BoidsParams::default().perception_radius;
+    let perception = crate::model::params::BoidsParams::default().perception_radius;
     let density = neighbours / (std::f32::consts::PI * perception * perception);
     let side = (n as f32 / density).sqrt().max(100.0);
     let mut s = base(&format!("density-{n}"), side, side);

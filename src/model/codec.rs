@@ -20,9 +20,9 @@
 //! written and what is allowed; the parser's own words and position ride along as details.
 //! Scene text and fragments may start with a UTF-8 byte-order mark; a bare name is a preset.
 
-use crate::geometry::Obstacle;
-use crate::planners::{PlannerConfig, PlannerKind};
-use crate::scene::{
+use crate::model::geometry::Obstacle;
+use crate::model::params::{PlannerConfig, PlannerKind};
+use crate::model::scene::{
     allowed_for, Goal, GoalMotion, Group, Hill, PathSpec, Region, Scene, SceneError, ViewOptions,
 };
 use base64::engine::general_purpose::URL_SAFE_NO_PAD;
@@ -170,7 +170,7 @@ pub fn scene_from_any(input: &str) -> Result<Scene, SceneError> {
     } else if trimmed.is_empty() {
         Err(SceneError::Parse("the scene text is empty".into()))
     } else if looks_like_preset_name(trimmed) {
-        crate::presets::lookup(trimmed).map(|p| (p.build)())
+        crate::model::presets::lookup(trimmed).map(|p| (p.build)())
     } else {
         scene_from_fragment(trimmed)
     }
@@ -869,7 +869,7 @@ fn compact_path(segments: &[Segment], json: Option<&serde_json::Value>) -> Strin
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::presets;
+    use crate::model::presets;
 
     #[test]
     fn every_planner_serialises_exactly_its_table_keys() {

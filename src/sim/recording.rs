@@ -4,7 +4,7 @@
 //! records half as often from then on (thinning), and says so in [`Recording::thinned`], so
 //! nothing is dropped silently.
 
-use crate::world::World;
+use crate::sim::world::World;
 use glam::Vec2;
 
 /// Bytes one agent takes in one recorded step (x, y, vx, vy as `f32`).

@@ -4,7 +4,7 @@
 //!
 //! * **Planning, once per group.** The path is K waypoints between the centre of the group's spawn
 //!   region and its goal, optimised by IGSA (or plain GSA, to show the paper's comparison) with the
-//!   fitness of [`crate::optim::path`]: length + obstacle penalty + turning penalty. It happens when
+//!   fitness of [`crate::planners::igsa::path`]: length + obstacle penalty + turning penalty. It happens when
 //!   the planner is built, from the scene's seed, and looks only at the scene's geometry: the same
 //!   scene gives the same path for 10 agents or 1000, and planning time does not grow with the
 //!   group. Moving an obstacle or a goal re-plans ([`Planner::replans_on_edit`]).
@@ -32,15 +32,19 @@
 //!   filled from the far side towards the side the path comes in from, so no one walks through
 //!   those already parked.
 
-use super::{limit, GroupView, ParamSpec, Planner, StepContext};
-use crate::geometry::{unit_or, v, Aabb, Obstacle};
-use crate::optim::path::{PathParams, PathPlanning, PathProblem, PlannedPath};
+pub mod path;
+
+use super::{GroupView, Planner, StepContext};
+use crate::model::geometry::limit;
+use crate::model::geometry::{unit_or, v, Aabb, Obstacle};
+use crate::model::params::igsa::{IgsaParams, PathOptimizer};
+use crate::model::scene::Scene;
 use crate::optim::{Algorithm, Settings};
+use crate::planners::igsa::path::{PathParams, PathPlanning, PathProblem, PlannedPath};
 use crate::rng::Rng;
-use crate::scene::Scene;
 use crate::spatial::{ObstacleIndex, QueryCap};
 use glam::Vec2;
-use serde::{Deserialize, Serialize};
+use serde::Serialize;
 
 /// Neighbours (and candidates of the scanned cells) one agent's bounding-circle rule looks at,
 /// the first in the grid's scan order. Within its reach (about 20 px) fit about 30
@@ -48,10 +52,8 @@ use serde::{Deserialize, Serialize};
 /// agent (the constraint list and the feasible-velocity search grow with it).
 const NEIGHBOUR_CAP: QueryCap = QueryCap { neighbours: 128, candidates: 1024 };
 
-/// Most waypoints an edited path may hold.
-pub const MAX_EDITED_WAYPOINTS: usize = 64;
 /// Random stream of the per-agent lateral offsets (the path planner has its own,
-/// [`crate::optim::path::PATH_STREAM`]).
+/// [`crate::planners::igsa::path::PATH_STREAM`]).
 const OFFSET_STREAM: u32 = 0x1d5a;
 /// Spacing (px) of the precomputed free widths along the path.
 const WIDTH_STEP: f32 = 4.0;
@@ -62,168 +64,22 @@ const ARRIVE_RADIUS: f32 = 20.0;
 /// Slot marker for agents that have not arrived.
 const NO_SLOT: u32 = u32::MAX;
 
-/// Which optimizer plans the path.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+/// Where a group's path came from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
-pub enum PathOptimizer {
-    /// Improved gravitational search (the paper's method).
+pub enum PathSource {
+    /// Planned by IGSA.
     Igsa,
-    /// Plain gravitational search (the paper's baseline).
+    /// Planned by GSA.
     Gsa,
+    /// The user's edited waypoints.
+    Edited,
+    /// The group has no goal: there is nothing to follow.
+    None,
 }
 
-impl PathOptimizer {
-    fn algorithm(self) -> Algorithm {
-        match self {
-            PathOptimizer::Igsa => Algorithm::Igsa,
-            PathOptimizer::Gsa => Algorithm::Gsa,
-        }
-    }
-}
-
-/// IGSA group path control parameters. Lengths in px, speeds in px/step.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct IgsaParams {
-    /// The path optimizer: `igsa` (default, the paper's) or `gsa` (its baseline).
-    pub optimizer: PathOptimizer,
-    /// Population N of the path optimizer. Range 5…200, default 30 (the paper uses 50; 30 plans
-    /// in about 50 ms natively, so a reset in the page does not stall).
-    pub population: u32,
-    /// Iterations T of the path optimizer. Range 10…3000, default 300 (paper: 1000).
-    pub iterations: u32,
-    /// Free waypoints K between start and goal. Range 1…8, default 3 (see `optim::path`).
-    pub waypoint_count: u32,
-    /// Clearance the path keeps from obstacle surfaces (px). Range 0…60, default 12.
-    pub clearance: f32,
-    /// Speed limit (px/step). Range 0.1…10, default 1.5.
-    pub max_speed: f32,
-    /// Largest change of velocity per step (px/step²). Range 0.01…5, default 0.2.
-    pub max_accel: f32,
-    /// Half-width of the column: offsets are drawn in ±spread px. Range 0…200, default 30.
-    pub spread: f32,
-    /// How far ahead along the path an agent aims (px). Range 5…200, default 30.
-    pub look_ahead: f32,
-    /// Gap kept between two bodies: the bounding circles are the bodies grown by half of it
-    /// (px). Range 0…20, default 2.
-    pub margin: f32,
-    /// Edited waypoints (scene px) between start and goal; empty (the default) plans them.
-    /// Not a slider: the page sets it by dragging the path's handles.
-    #[serde(skip_serializing_if = "Vec::is_empty")]
-    pub waypoints: Vec<[f32; 2]>,
-}
-
-impl Default for IgsaParams {
-    fn default() -> Self {
-        Self {
-            optimizer: PathOptimizer::Igsa,
-            population: 30,
-            iterations: 300,
-            waypoint_count: 3,
-            clearance: 12.0,
-            max_speed: 1.5,
-            max_accel: 0.2,
-            spread: 30.0,
-            look_ahead: 30.0,
-            margin: 2.0,
-            waypoints: Vec::new(),
-        }
-    }
-}
-
+/// What IGSA parameters mean to the optimizer (the parameters themselves are plain data).
 impl IgsaParams {
-    /// The parameter table (sliders, range checks, docs). Append only: links store values by
-    /// position. `waypoints` is not in it (a list, not a slider); the codec carries it after
-    /// the table's values.
-    pub const SPECS: &'static [ParamSpec] = &[
-        ParamSpec::choice(
-            "optimizer",
-            "Path optimizer",
-            &["igsa", "gsa"],
-            0,
-            "IGSA (Liu & Liu 2022) or plain GSA, to compare the paths they plan.",
-        ),
-        ParamSpec::number(
-            "population",
-            "Population N",
-            "",
-            (5.0, 200.0, 1.0),
-            30.0,
-            "Particles of the path optimizer.",
-        ),
-        ParamSpec::number(
-            "iterations",
-            "Iterations T",
-            "",
-            (10.0, 3000.0, 10.0),
-            300.0,
-            "Iterations of the path optimizer.",
-        ),
-        ParamSpec::number(
-            "waypoint_count",
-            "Waypoints K",
-            "",
-            (1.0, 8.0, 1.0),
-            3.0,
-            "Free waypoints between start and goal.",
-        ),
-        ParamSpec::number(
-            "clearance",
-            "Path clearance",
-            "px",
-            (0.0, 60.0, 1.0),
-            12.0,
-            "Distance the path keeps from obstacles.",
-        ),
-        ParamSpec::number("max_speed", "Max speed", "px/step", (0.1, 10.0, 0.1), 1.5, "Speed limit."),
-        ParamSpec::number(
-            "max_accel",
-            "Max acceleration",
-            "px/step²",
-            (0.01, 5.0, 0.01),
-            0.2,
-            "Largest change of velocity per step.",
-        ),
-        ParamSpec::number(
-            "spread",
-            "Column half-width",
-            "px",
-            (0.0, 200.0, 1.0),
-            30.0,
-            "Agents follow the path offset sideways by up to this much.",
-        ),
-        ParamSpec::number(
-            "look_ahead",
-            "Look-ahead",
-            "px",
-            (5.0, 200.0, 1.0),
-            30.0,
-            "How far along the path an agent aims.",
-        ),
-        ParamSpec::number(
-            "margin",
-            "Body gap",
-            "px",
-            (0.0, 20.0, 0.5),
-            2.0,
-            "Gap kept between bodies (bounding circles = body + gap/2).",
-        ),
-    ];
-
-    /// Checks what the table cannot: the edited waypoints.
-    pub fn check_waypoints(&self) -> Result<(), String> {
-        if self.waypoints.len() > MAX_EDITED_WAYPOINTS {
-            return Err(format!(
-                "an edited path holds at most {MAX_EDITED_WAYPOINTS} waypoints, this one {}",
-                self.waypoints.len()
-            ));
-        }
-        if let Some(k) = self.waypoints.iter().position(|p| !(p[0].is_finite() && p[1].is_finite())) {
-            return Err(format!("waypoint {} is not a finite point", k + 1));
-        }
-        Ok(())
-    }
-
     /// The path fitness parameters these settings plan with.
     pub fn path_params(&self) -> PathParams {
         PathParams {
@@ -243,18 +99,14 @@ impl IgsaParams {
     }
 }
 
-/// Where a group's path came from.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum PathSource {
-    /// Planned by IGSA.
-    Igsa,
-    /// Planned by GSA.
-    Gsa,
-    /// The user's edited waypoints.
-    Edited,
-    /// The group has no goal: there is nothing to follow.
-    None,
+/// The optimizer behind each choice (a planner concern: the parameters are plain data).
+impl PathOptimizer {
+    fn algorithm(self) -> Algorithm {
+        match self {
+            PathOptimizer::Igsa => Algorithm::Igsa,
+            PathOptimizer::Gsa => Algorithm::Gsa,
+        }
+    }
 }
 
 /// A group's path as planned (or edited), with what the page shows about it.
@@ -986,9 +838,9 @@ mod tests {
 
     #[test]
     fn a_world_planning_in_slices_runs_as_one_planned_at_once() {
-        let mut scene = (crate::presets::find("igsa-path-2").expect("preset").build)();
+        let mut scene = (crate::model::presets::find("igsa-path-2").expect("preset").build)();
         let params = IgsaParams { iterations: 60, population: 12, ..IgsaParams::default() };
-        scene.groups[0].planner = crate::planners::PlannerConfig::Igsa(params.clone());
+        scene.groups[0].planner = crate::model::params::PlannerConfig::Igsa(params.clone());
         let mut at_once = crate::World::new(scene.clone()).expect("valid");
         assert_eq!(at_once.planning_progress(), 1.0);
         let mut sliced = crate::World::new_sliced(scene.clone()).expect("valid");
@@ -1029,7 +881,7 @@ mod tests {
         assert_eq!(p.check_waypoints(), Ok(()));
         p.waypoints.push([f32::NAN, 0.0]);
         assert!(p.check_waypoints().is_err());
-        p.waypoints = vec![[0.0, 0.0]; MAX_EDITED_WAYPOINTS + 1];
+        p.waypoints = vec![[0.0, 0.0]; crate::model::params::igsa::MAX_EDITED_WAYPOINTS + 1];
         assert!(p.check_waypoints().is_err());
     }
 }

@@ -21,7 +21,7 @@
 //! after the edit is checkpointed at s, so jumping to any step replays the edit where it happened.
 //! Stepping on from a step before an edit starts a new future: the recorded steps after it go.
 
-use crate::world::World;
+use crate::sim::world::World;
 use glam::Vec2;
 use serde::Serialize;
 
@@ -438,7 +438,7 @@ impl Replay {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::presets;
+    use crate::model::presets;
 
     fn world(name: &str) -> World {
         World::new((presets::find(name).expect("preset").build)()).expect("valid")

@@ -15,11 +15,11 @@ mod overlay;
 
 pub use overlay::{Overlays, ARROW_COLORS};
 
-use crate::edit::ItemRef;
-use crate::geometry::Obstacle;
-use crate::planners::PlannerConfig;
-use crate::scene::{parse_color, Hill, Scene};
-use crate::world::World;
+use crate::model::edit::ItemRef;
+use crate::model::geometry::Obstacle;
+use crate::model::params::PlannerConfig;
+use crate::model::scene::{parse_color, Hill, Scene};
+use crate::sim::world::World;
 use glam::Vec2;
 use std::f32::consts::TAU;
 use tiny_skia::{
@@ -1063,9 +1063,9 @@ fn draw_selection(pixmap: &mut PixmapMut, scene: &Scene, view: ViewTransform, it
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::planners::PlannerConfig;
-    use crate::presets;
-    use crate::scene::{Goal, Group, Region};
+    use crate::model::params::PlannerConfig;
+    use crate::model::presets;
+    use crate::model::scene::{Goal, Group, Region};
 
     fn pixel(r: &Renderer, x: u32, y: u32) -> [u8; 4] {
         let at = (y as usize * r.width() as usize + x as usize) * 4;

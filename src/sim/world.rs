@@ -1,16 +1,14 @@
 //! The running simulation: agent state as struct-of-arrays, the two-phase step, seeded spawn.
 
-use crate::geometry::{v, Aabb, Obstacle};
-use crate::metrics::{Metrics, MetricsRecorder};
-use crate::planners::{GroupView, Planner, PlannerConfig, StepContext};
+use crate::model::geometry::{v, Aabb, Obstacle};
+use crate::model::params::PlannerConfig;
+use crate::model::scene::{Scene, SceneError};
+use crate::planners::{GroupView, Planner, StepContext};
 use crate::rng::Rng;
-use crate::scene::{Scene, SceneError};
+use crate::sim::metrics::{Metrics, MetricsRecorder};
 use crate::spatial::{ObstacleIndex, SpatialGrid};
 use glam::Vec2;
 use std::ops::Range;
-
-/// Seconds per step: the fixed time step (JS owns the frame loop, Rust owns time).
-pub const DT: f32 = 1.0 / 60.0;
 
 /// Random stream of group `g`'s placement is `STREAM_SPAWN + g` (a group's start does not
 /// depend on the draws of the groups before it); planners draw from [`STREAM_PLAN`].
@@ -76,7 +74,7 @@ impl World {
         Self::build(scene, false, false, Some(positions))
     }
 
-    /// `cost_limit`: refuse scenes over the step-cost limit of [`crate::cost`];
+    /// `cost_limit`: refuse scenes over the step-cost limit of [`crate::sim::cost`];
     /// `sliced_planning`: leave IGSA planning to [`World::advance_planning`];
     /// `start`: the agents' positions instead of the spawn's.
     fn build(
@@ -103,10 +101,11 @@ impl World {
             }
         };
         if cost_limit {
-            crate::cost::check(&scene)?;
+            crate::sim::cost::check(&scene)?;
         }
-        let planners: Vec<Box<dyn Planner>> =
-            (0..scene.groups.len()).map(|gi| scene.groups[gi].planner.build_for_group(&scene, gi)).collect();
+        let planners: Vec<Box<dyn Planner>> = (0..scene.groups.len())
+            .map(|gi| crate::planners::build_for_group(&scene.groups[gi].planner, &scene, gi))
+            .collect();
         let mut group_of = Vec::with_capacity(total);
         let mut radius = Vec::with_capacity(total);
         let mut groups = Vec::with_capacity(scene.groups.len());
@@ -149,7 +148,7 @@ impl World {
         Ok(world)
     }
 
-    /// [`World::new`] without the step-cost limit of [`crate::cost`] (the spawn density limit
+    /// [`World::new`] without the step-cost limit of [`crate::sim::cost`] (the spawn density limit
     /// still holds): for native benchmarks that time scenes bigger than the page may run.
     #[doc(hidden)]
     pub fn new_beyond_cost_limit(scene: Scene) -> Result<Self, SceneError> {
@@ -242,7 +241,7 @@ impl World {
     }
 
     /// The read-only context the planners see at the start of the next step: diagnosis
-    /// ([`crate::diagnose`]) recomputes a planner's terms from it.
+    /// ([`crate::sim::diagnose`]) recomputes a planner's terms from it.
     pub fn step_context(&self) -> StepContext<'_> {
         StepContext {
             positions: &self.pos,
@@ -298,10 +297,10 @@ impl World {
             // its planner.
             let mut changed = Scene { groups: self.scene.groups.clone(), ..Scene::empty(10.0, 10.0) };
             changed.groups[g].planner = config.clone();
-            crate::cost::check(&changed)?;
+            crate::sim::cost::check(&changed)?;
         }
         self.scene.groups[g].planner = config;
-        let planner = self.scene.groups[g].planner.build_for_group(&self.scene, g);
+        let planner = crate::planners::build_for_group(&self.scene.groups[g].planner, &self.scene, g);
         let cell = planner.interaction_radius().max(self.grid.cell_size());
         if cell > self.grid.cell_size() {
             self.grid = SpatialGrid::new(self.scene.width, self.scene.height, cell, self.pos.len());
@@ -313,7 +312,7 @@ impl World {
     }
 
     /// Takes the fitness measures of the metrics every `every` steps from now on (0 = never;
-    /// default [`crate::metrics::FITNESS_SAMPLE_EVERY`]): benchmarks compare their cost.
+    /// default [`crate::sim::metrics::FITNESS_SAMPLE_EVERY`]): benchmarks compare their cost.
     #[doc(hidden)]
     pub fn set_fitness_sample_every(&mut self, every: u32) {
         self.recorder.set_fitness_sample_every(every);
@@ -351,7 +350,8 @@ impl World {
         self.scene = scene;
         for (gi, group) in self.groups.iter_mut().enumerate() {
             if geometry_changed && group.planner.replans_on_edit() {
-                group.planner = self.scene.groups[gi].planner.build_for_group(&self.scene, gi);
+                group.planner =
+                    crate::planners::build_for_group(&self.scene.groups[gi].planner, &self.scene, gi);
             }
         }
         self.plan_now_unless_sliced();
@@ -397,7 +397,7 @@ impl World {
             let max_speed = group.planner.max_speed();
             for v in out.iter_mut() {
                 // A planner bug must not poison the run: non-finite → stop, overspeed → clamp.
-                *v = if v.is_finite() { crate::planners::limit(*v, max_speed) } else { Vec2::ZERO };
+                *v = if v.is_finite() { crate::model::geometry::limit(*v, max_speed) } else { Vec2::ZERO };
             }
         }
 

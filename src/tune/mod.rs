@@ -11,13 +11,12 @@
 //! Step-wise API for a progress display (a Web Worker, the CLI): [`Tuner::new`], then
 //! [`Tuner::generation`] until it returns `None`.
 
-use crate::fitness::{
-    Behaviour, Environment, FitnessMeasures, FitnessParams, FitnessRecorder, FitnessWeights,
-};
-use crate::planners::{ForcesParams, PlannerConfig};
+use crate::model::forces_cases::{Behaviour, Environment};
+use crate::model::params::{ForcesParams, PlannerConfig};
+use crate::model::scene::{Scene, SceneError};
 use crate::rng::Rng;
-use crate::scene::{Scene, SceneError};
-use crate::world::World;
+use crate::sim::fitness::{FitnessMeasures, FitnessParams, FitnessRecorder, FitnessWeights};
+use crate::sim::world::World;
 use glam::Vec2;
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
@@ -182,7 +181,7 @@ impl TuneTask {
     /// The paper's experiment for one behaviour in one environment.
     pub fn new(behaviour: Behaviour, environment: Environment) -> Self {
         Self {
-            scene: crate::presets::forces_scene(behaviour, environment),
+            scene: crate::model::presets::forces_scene(behaviour, environment),
             frames: DEFAULT_FRAMES,
             sample_every: DEFAULT_SAMPLE_EVERY,
             fitness: behaviour.fitness_params(),
@@ -302,7 +301,9 @@ impl TuneSetup {
             return Err(SceneError::OutOfRange(format!("frames {} is outside 1…{MAX_FRAMES}", self.frames)));
         }
         let task = match &self.scene {
-            Some(text) => TuneTask::on_scene(crate::codec::scene_from_any(text)?, behaviour, self.frames),
+            Some(text) => {
+                TuneTask::on_scene(crate::model::codec::scene_from_any(text)?, behaviour, self.frames)
+            }
             None => {
                 let environment = Environment::from_code(&self.environment).ok_or_else(|| {
                     SceneError::BadReference(format!(

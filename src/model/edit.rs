@@ -1,9 +1,9 @@
 //! Scene edits from the editor: add, move, delete and replace items, and picking items under
 //! the pointer. Every edit yields a new validated scene or an error; the old scene is untouched.
 
-use crate::geometry::{v, Obstacle};
-use crate::planners::PlannerConfig;
-use crate::scene::{Goal, Group, PathSpec, Scene, SceneError, DEFAULT_PATH_RADIUS};
+use crate::model::geometry::{v, Obstacle};
+use crate::model::params::PlannerConfig;
+use crate::model::scene::{Goal, Group, PathSpec, Scene, SceneError, DEFAULT_PATH_RADIUS};
 
 /// A path is picked within this many px of its polyline (or the pick tolerance, if larger).
 const PATH_PICK_PX: f32 = 6.0;
@@ -262,7 +262,7 @@ pub fn pick(scene: &Scene, p: Vec2, tolerance: f32) -> Option<ItemRef> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::presets;
+    use crate::model::presets;
 
     #[test]
     fn add_move_delete_round() {
@@ -314,7 +314,7 @@ mod tests {
         let one_point = Edit::AddPath { points: vec![[1.0, 1.0]], radius: None, group: None };
         assert!(matches!(apply(&s, &one_point), Err(SceneError::Field(f)) if f.path == "paths[2].points"));
         let mut pso = s.clone();
-        pso.groups[0].planner = crate::planners::PlannerKind::Pso.default_config();
+        pso.groups[0].planner = crate::model::params::PlannerKind::Pso.default_config();
         let e = apply(&pso, &first).expect_err("PSO does not follow paths");
         assert!(e.to_string().contains("Boids"), "{e}");
         let json = r#"{"op":"add_path","points":[[10,10],[50,50]],"group":0}"#;

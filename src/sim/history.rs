@@ -3,13 +3,13 @@
 //!
 //! A sample is taken every `every` steps. When the history holds its cap of samples it keeps
 //! every other one and samples half as often from then on (thinning, as in
-//! [`crate::recording`]), so a long run always fits and always spans its whole length. Counts
+//! [`crate::sim::recording`]), so a long run always fits and always spans its whole length. Counts
 //! that accumulate (collisions, penetrations) are stored as totals and turned into per-step rates
 //! between neighbouring kept samples when read, so thinning loses no events.
 
-use crate::metrics::{GroupMetrics, Metrics};
-use crate::planners::PlannerKind;
-use crate::world::World;
+use crate::model::params::PlannerKind;
+use crate::sim::metrics::{GroupMetrics, Metrics};
+use crate::sim::world::World;
 
 /// One plotted series: key, label, unit.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -211,7 +211,7 @@ impl MetricsHistory {
                 SERIES.iter().map(|s| self.series(s.key, group).unwrap_or_default()).collect()
             })
             .collect();
-        let dt = f64::from(crate::world::DT);
+        let dt = f64::from(crate::model::scene::DT);
         for (i, &step) in self.steps.iter().enumerate() {
             for (row, series) in columns.iter().enumerate() {
                 let name = match row {
@@ -271,7 +271,7 @@ fn push_row(values: &mut Vec<f32>, g: &GroupMetrics) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::presets;
+    use crate::model::presets;
 
     #[test]
     fn thinning_keeps_the_cap_spans_the_run_and_keeps_rates_exact() {

@@ -3,7 +3,9 @@
 //! Agents are stored cell by cell, in id order inside a cell, so a query visits candidates in
 //! the same order on every platform: float sums over neighbours are reproducible bit for bit.
 
-use crate::geometry::{Aabb, Obstacle};
+pub mod flow_field;
+
+use crate::model::geometry::{Aabb, Obstacle};
 use glam::Vec2;
 use std::ops::Range;
 

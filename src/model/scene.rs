@@ -1,10 +1,13 @@
 //! The scene a user draws: bounds, obstacles, goals, groups of agents, seed; and its validation.
 
-use crate::geometry::{v, Obstacle};
-use crate::planners::PlannerConfig;
+use crate::model::geometry::{v, Obstacle};
+use crate::model::params::PlannerConfig;
 use glam::Vec2;
 use serde::{Deserialize, Serialize};
 use std::fmt;
+
+/// Seconds per step: the fixed time step (JS owns the frame loop, Rust owns time).
+pub const DT: f32 = 1.0 / 60.0;
 
 /// Most agents a scene may hold in total (keeps a typo from freezing the page).
 pub const MAX_AGENTS: u32 = 200_000;
@@ -376,7 +379,7 @@ pub enum SceneError {
     BadReference(String),
     /// The geometry makes the scene unusable (goal inside an obstacle, no room to spawn).
     Blocked(String),
-    /// One step of the scene would cost more than the stated limit ([`crate::cost`]).
+    /// One step of the scene would cost more than the stated limit ([`crate::sim::cost`]).
     TooCostly(String),
     /// One field's value is refused (wrong type, not a finite number, outside its limit, an
     /// unknown key, a missing one): the message names the field by its path, the value and what
@@ -498,7 +501,7 @@ pub struct FieldLimit {
 
 /// Every limit a scene field has, in the words of the refusal messages (the README's table is
 /// checked against it). Planner parameters are listed by their own table
-/// ([`crate::planners::ParamSpec`]).
+/// ([`crate::model::params::ParamSpec`]).
 pub fn field_limits() -> Vec<FieldLimit> {
     let row = |field, allowed: String, why| FieldLimit { field, allowed, why };
     let side = format!("a number in 10…{MAX_SIDE} px");
@@ -548,8 +551,8 @@ pub fn field_limits() -> Vec<FieldLimit> {
         row("hills[].height", format!("a number in 0…{MAX_HILL_HEIGHT} px"), "hills, not pits; tall enough for any scene"),
         row("view.trail_fade", "a number in 0…1".into(), "the share of a trail lost per frame"),
         row("(any object)", "only the keys listed here and in the planner tables; an unknown key is refused".into(), "a misspelt key would otherwise be ignored without a word"),
-        row("(scene text)", format!("at most {} bytes", crate::codec::MAX_INPUT_BYTES), "a file or link larger than any real scene"),
-        row("(unpacked scene string)", format!("at most {} bytes", crate::codec::MAX_SCENE_BYTES), "a guard against deflate bombs"),
+        row("(scene text)", format!("at most {} bytes", crate::model::codec::MAX_INPUT_BYTES), "a file or link larger than any real scene"),
+        row("(unpacked scene string)", format!("at most {} bytes", crate::model::codec::MAX_SCENE_BYTES), "a guard against deflate bombs"),
     ]
 }
 

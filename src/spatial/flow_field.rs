@@ -9,7 +9,7 @@
 //! neighbour, so an agent pressed against a wall is led back into the open. Only exact IEEE
 //! operations (+, ×, ÷, √): the same field on every platform.
 
-use crate::geometry::{Aabb, Obstacle};
+use crate::model::geometry::{Aabb, Obstacle};
 use crate::spatial::ObstacleIndex;
 use glam::Vec2;
 use std::cmp::Reverse;

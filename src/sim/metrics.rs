@@ -14,14 +14,15 @@
 //! neighbours.
 //!
 //! `fitness` holds the five measures of the GA-tuned virtual-force paper (DESIGN §3.5,
-//! [`crate::fitness`]) for any planner, with behaviour B1's parameters and weights (a group moving
+//! [`crate::sim::fitness`]) for any planner, with behaviour B1's parameters and weights (a group moving
 //! at 24 px spacing towards its goal). They cost a k = 7 nearest-neighbour query per agent, so they
 //! are sampled on steps 1, 1 + [`FITNESS_SAMPLE_EVERY`], 1 + 2·[`FITNESS_SAMPLE_EVERY`], … only.
 
-use crate::fitness::{Behaviour, FitnessMeasures, FitnessRecorder};
-use crate::geometry::{distance, length, Aabb};
-use crate::planners::PlannerKind;
-use crate::scene::Scene;
+use crate::model::forces_cases::Behaviour;
+use crate::model::geometry::{distance, length, Aabb};
+use crate::model::params::PlannerKind;
+use crate::model::scene::Scene;
+use crate::sim::fitness::{FitnessMeasures, FitnessRecorder};
 use crate::spatial::{ObstacleIndex, QueryCap, SpatialGrid};
 use glam::Vec2;
 use serde::Serialize;
@@ -392,7 +393,7 @@ impl MetricsRecorder {
         steps: u32,
         queue_for: impl Fn(usize) -> bool,
     ) -> Metrics {
-        let dt = f64::from(crate::world::DT);
+        let dt = f64::from(crate::model::scene::DT);
         let mut overall = GroupAcc::default();
         let mut groups = Vec::with_capacity(scene.groups.len());
         let mut start = 0usize;

@@ -4,7 +4,7 @@
 //!
 //! Per step the model is linear: every agent costs its planner's worst measured time per
 //! agent-step ([`ns_per_agent_step`]). "Worst" is the densest crowd the spawn allows (bodies
-//! packed at the density limit of [`crate::world::spawn`]) heading for a goal in its middle,
+//! packed at the density limit of [`crate::sim::world::spawn`]) heading for a goal in its middle,
 //! measured natively (`cargo run --release --example step_cost`) and scaled by [`wasm_factor`].
 //! The spawn itself is O(N) and refuses regions that cannot hold their count.
 //!
@@ -12,8 +12,8 @@
 //! evaluations, each checking `waypoint_count + 1` segments against the obstacles. The page
 //! plans in slices, so planning never blocks it; this limit keeps the total finite.
 
-use crate::planners::{PlannerConfig, PlannerKind};
-use crate::scene::{Group, Scene, SceneError};
+use crate::model::params::{PlannerConfig, PlannerKind};
+use crate::model::scene::{Group, Scene, SceneError};
 use crate::spatial::ObstacleIndex;
 
 /// Most time one step may take in the browser (ns): 180 ms. The page runs at least one step per
@@ -146,7 +146,7 @@ pub struct Work {
 pub fn work(scene: &Scene) -> Result<Work, SceneError> {
     scene.validate()?;
     let obstacles = ObstacleIndex::new(scene.obstacles.clone(), scene.width, scene.height);
-    let spawn = crate::world::spawn(scene, &obstacles)?;
+    let spawn = crate::sim::world::spawn(scene, &obstacles)?;
     check(scene)?;
     Ok(Work {
         spawn_places: spawn.places_examined,
@@ -158,7 +158,7 @@ pub fn work(scene: &Scene) -> Result<Work, SceneError> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::presets;
+    use crate::model::presets;
 
     #[test]
     fn every_preset_is_within_the_limits() {

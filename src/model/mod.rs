@@ -1,0 +1,13 @@
+//! What users draw and share, with no running simulation: the scene (bounds, obstacles, goals,
+//! groups, seed, the time step), geometry, each group's planner choice and parameter tables as
+//! plain data, the codec (JSON and the versioned URL fragment), edit operations and presets.
+//!
+//! Uses: `rng` only (presets scatter obstacles). Used by every layer above.
+
+pub mod codec;
+pub mod edit;
+pub mod forces_cases;
+pub mod geometry;
+pub mod params;
+pub mod presets;
+pub mod scene;
