@@ -74,7 +74,7 @@ for (const viewport of [{ width: 390, height: 844 }, { width: 768, height: 1024 
           // Dismiss is on screen.
           const before = await box(page, spec.canvas);
           await page.evaluate(() =>
-            import(new URL('js/errors.js', location.href).href).then((m) =>
+            import(new URL('js/core/errors.js', location.href).href).then((m) =>
               m.showMessage('the scene could not be loaded: a message long enough to wrap onto a second line on a phone')));
           assert.deepEqual(await box(page, spec.canvas), before, 'the canvas with the message shown');
           assertOnScreen(await box(page, '#banner-close'), screen, 'the message\'s Dismiss button');

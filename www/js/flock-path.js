@@ -17,7 +17,7 @@
 // sceneString(), digest(); property `playing`, `steps`. Events: `flockpath-ready`,
 // `flockpath-error` (detail: message; also when the wasm cannot be loaded, shown in the box too).
 
-import { PlanningSlices } from './planning.js';
+import { PlanningSlices } from './core/planning.js';
 
 const PKG_URL = new URL('../pkg/flockpath.js', import.meta.url).href;
 /** The wasm (where wasm-bindgen's glue looks by default), named here to say what went wrong. */

@@ -8,7 +8,7 @@
 // a sample, and a cell is written only when its text changed (a write costs a style and layout
 // pass of the whole page).
 
-import { drawPlot } from './plots.js';
+import { drawPlot } from '../core/plot.js';
 
 /** [key, label, format, shown in red when above zero]; tooltips explain the counting rules. */
 const ROWS = [

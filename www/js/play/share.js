@@ -1,22 +1,11 @@
 // The share dialog: the link, an iframe snippet (embed.html), a `<flock-path>` snippet, scene JSON
 // download, and loading a scene JSON by file picker or by dropping it on the canvas.
 
-import { messageOf, showMessage } from './errors.js';
-import { shareUrl, writeSceneToLocation } from './url.js';
+import { download } from '../core/download.js';
+import { messageOf, showMessage } from '../core/errors.js';
+import { shareUrl, writeSceneToLocation } from '../core/url.js';
 
 const $ = (id) => document.getElementById(id);
-
-/** Offers `data` (text or Blob) as a file download named `filename`. */
-export function download(filename, data, type = 'text/plain') {
-  const blob = data instanceof Blob ? data : new Blob([data], { type });
-  const url = URL.createObjectURL(blob);
-  const a = Object.assign(document.createElement('a'), { href: url, download: filename });
-  document.body.append(a);
-  a.click();
-  a.remove();
-  // The download has started from the object URL; free it once the click has been handled.
-  setTimeout(() => URL.revokeObjectURL(url), 10_000);
-}
 
 /** A file name from the scene's name: letters, digits and dashes. */
 export function fileStem(scene) {

@@ -2,8 +2,9 @@
 // Sim's recording, a PNG snapshot of the canvas, and a WebM video (MediaRecorder on the canvas
 // stream) with a recording indicator. The recording's budget and any thinning are stated on screen.
 
-import { messageOf, showMessage } from './errors.js';
-import { download, fileStem } from './share.js';
+import { messageOf, showMessage } from '../core/errors.js';
+import { download } from '../core/download.js';
+import { fileStem } from './share.js';
 
 const $ = (id) => document.getElementById(id);
 

@@ -3,8 +3,8 @@
 // same seed, and fill a 30-run table in a Web Worker. The page owns the frame loop; every
 // number comes from the wasm core.
 
-import { messageOf, setupBanner, showMessage } from './errors.js';
-import { ALGORITHM_COLORS, drawPlot } from './lab-plot.js';
+import { messageOf, setupBanner, showMessage } from '../core/errors.js';
+import { ALGORITHM_COLORS, drawPlot } from './plot.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -13,7 +13,7 @@ const fmt = (v) => (Number.isFinite(v) ? (v === 0 ? '0' : v.toExponential(4)) : 
 
 async function boot() {
   setupBanner();
-  const module = await import('../pkg/flockpath.js');
+  const module = await import('../../pkg/flockpath.js');
   const wasm = await module.default();
   const options = JSON.parse(module.lab_options_json());
   const fnSelect = $('lab-function');
@@ -140,7 +140,7 @@ async function boot() {
     $('lab-30').disabled = true;
     $('lab-cancel').disabled = false;
     $('lab-table-time').textContent = `${s.fn}, d = ${s.dim}, N = ${s.population}, T = ${s.iterations}, seed ${s.seed}: running…`;
-    const worker = new Worker(new URL('./lab-worker.js', import.meta.url), { type: 'module' });
+    const worker = new Worker(new URL('./worker.js', import.meta.url), { type: 'module' });
     state.worker = worker;
     worker.onmessage = ({ data }) => {
       if (data.type === 'progress') {

@@ -2,7 +2,7 @@
 // wasm call goes through (so every thrown error reaches the banner and a panic reaches the panel).
 
 import { History } from './history.js';
-import { SimHost } from './sim-host.js';
+import { SimHost } from '../core/sim-host.js';
 
 /** Colours handed to new groups, in order. */
 export const PALETTE = ['#2f6fdf', '#df4f2f', '#2f9f5f', '#9f4fdf', '#df9f1f', '#1f9fbf', '#df3f8f', '#6f7f8f'];

@@ -1,6 +1,6 @@
 // The page API for course notes, scripts and tests: `window.flockpath` and this module's exports.
 //
-//   import flockpath from './js/api.js';
+//   import flockpath from './js/play/api.js';
 //   await flockpath.ready;
 //   flockpath.load(sceneJson); flockpath.step(600); flockpath.metrics().arrived_share;
 //

@@ -3,7 +3,7 @@
 // (step + render + putImageData). Wall-clock time is fine here: this page measures, it does not
 // simulate. Results go to the page and to `window.benchResults` (read by the driver script).
 
-import init, { Sim } from '../pkg/flockpath.js';
+import init, { Sim } from '../../pkg/flockpath.js';
 
 const SIZES = [1_000, 10_000, 100_000];
 const FRAME_AGENTS = 10_000;

@@ -1,5 +1,5 @@
 // The Tune page: pick a behaviour and an environment (or the playground's scene, passed as
-// `tune.html#s=<fragment>`), press Tune. A Web Worker (tune-worker.js, the same wasm module) runs
+// `tune.html#s=<fragment>`), press Tune. A Web Worker (worker.js, the same wasm module) runs
 // the genetic algorithm one generation per message; this page only shows its reports: progress
 // bar, live plot, best weights, and a preview of the scene with those weights. Cancel terminates
 // the worker. Apply opens `index.html#s=<scene with the best weights>`, so the link keeps them.
@@ -7,10 +7,10 @@
 // Query parameters preset the fields: ?behaviour=b2&environment=e3&seed=4&population=20
 // &generations=5&frames=120&autostart=1. The state is readable as `window.flocktune.state()`.
 
-import { capturePanicReports, isPanic, messageOf, setupBanner, showMessage, showPanic } from './errors.js';
-import { FitnessPlot } from './tune-plot.js';
-import { Preview } from './tune-preview.js';
-import { sceneFromLocation, shareUrl } from './url.js';
+import { capturePanicReports, isPanic, messageOf, setupBanner, showMessage, showPanic } from '../core/errors.js';
+import { FitnessPlot } from './plot.js';
+import { Preview } from './preview.js';
+import { sceneFromLocation, shareUrl } from '../core/url.js';
 
 const $ = (id) => document.getElementById(id);
 const FIELDS = ['behaviour', 'environment', 'seed', 'population', 'generations', 'frames'];
@@ -163,7 +163,7 @@ function start(linkedScene) {
   $('apply').disabled = true;
   setRunning(true);
   status('Starting the worker…');
-  worker = new Worker(new URL('./tune-worker.js', import.meta.url), { type: 'module' });
+  worker = new Worker(new URL('./worker.js', import.meta.url), { type: 'module' });
   worker.addEventListener('message', onWorkerMessage);
   worker.addEventListener('error', (event) => fail(event.message || 'the tuning worker failed to load', false));
   worker.postMessage({ type: 'start', setup });
@@ -205,7 +205,7 @@ async function boot() {
   capturePanicReports();
   let module;
   try {
-    module = await import('../pkg/flockpath.js');
+    module = await import('../../pkg/flockpath.js');
   } catch (error) {
     throw new Error(`the simulation module (pkg/flockpath.js) could not be loaded: ${messageOf(error)}. ` +
       'Build it with: bash scripts/build-wasm.sh');

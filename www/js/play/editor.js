@@ -2,7 +2,7 @@
 // touch behave the same. Every scene change goes through `Sim.edit`; hit testing is `Sim.pick`.
 // The overlay only shows rubber-band previews of gestures in progress.
 
-import { clientToScene, sceneUnitsPerCssPixel, viewTransform } from './view.js';
+import { clientToScene, sceneUnitsPerCssPixel, viewTransform } from '../core/view.js';
 import { PathEditor } from './path-edit.js';
 
 /** Tool names in number-key order (1…7). */

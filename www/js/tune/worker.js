@@ -7,7 +7,7 @@
 //               {type: 'generation', stats, scene, ms}
 //               {type: 'error', message, panic}
 
-import init, { TuneRun } from '../pkg/flockpath.js';
+import init, { TuneRun } from '../../pkg/flockpath.js';
 
 let loaded = null;
 let run = null;

@@ -2,7 +2,7 @@
 // weights so far and replays it from the start after the evaluation's frame count. It counts
 // painted frames so tests can see the page keeps animating while the worker computes.
 
-import { backingSize } from './view.js';
+import { backingSize } from '../core/view.js';
 
 /** Simulation steps per animation frame: an evaluation (400 steps) replays in about 3 s. */
 const STEPS_PER_FRAME = 2;

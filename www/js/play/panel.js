@@ -1,6 +1,8 @@
 // The side panel: the group list and editor, the planner picker and the parameter sliders, all
 // generated from `planners_json()` (the Rust params table), so a new planner needs no JS.
 
+import { formatValue } from '../core/params-form.js';
+
 const el = (tag, props = {}, children = []) => {
   const node = document.createElement(tag);
   for (const [key, value] of Object.entries(props)) {
@@ -11,13 +13,6 @@ const el = (tag, props = {}, children = []) => {
   node.append(...children);
   return node;
 };
-
-/** Shows a number the way its slider step suggests (0.05 → two decimals). */
-export function formatValue(value, step) {
-  if (typeof value !== 'number') return String(value);
-  const decimals = step > 0 && step < 1 ? Math.min(4, Math.ceil(-Math.log10(step) - 1e-9)) : 0;
-  return value.toFixed(decimals);
-}
 
 export class Panel {
   constructor(app) {

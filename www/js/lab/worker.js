@@ -2,7 +2,7 @@
 // run after another, posting progress after each and one table row per algorithm. The page
 // cancels by terminating the worker, so a long run never has to poll for a flag.
 
-import init, { lab_best_of_run } from '../pkg/flockpath.js';
+import init, { lab_best_of_run } from '../../pkg/flockpath.js';
 
 const ready = init();
 

@@ -5,8 +5,8 @@
 // the path again. Listeners run in the capture phase so a gesture that starts on a handle never
 // reaches the editor's own tools.
 
-import { showMessage } from './errors.js';
-import { clientToScene, sceneUnitsPerCssPixel, viewTransform } from './view.js';
+import { showMessage } from '../core/errors.js';
+import { clientToScene, sceneUnitsPerCssPixel, viewTransform } from '../core/view.js';
 
 /** Pick tolerance for a handle, in CSS px (the handles are 5 device px in radius). */
 const HANDLE_TOLERANCE_CSS = 9;

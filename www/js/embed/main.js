@@ -12,7 +12,7 @@
 // 'error', error } instead, and answers every request, waiting or new, with ok: false and that
 // message.
 
-import './flock-path.js';
+import '../flock-path.js';
 
 /** The methods a host may call, each mirroring the page API of the same name. */
 const METHODS = {

@@ -2,8 +2,8 @@
 // and a parameter form generated from the planner table (`planners_json`), plus the pane's spec
 // text for per-group planners. Blitting copies each pane's wasm frame to its canvas.
 
-import { formatValue } from './panel.js';
-import { backingSize } from './view.js';
+import { formatValue } from '../core/params-form.js';
+import { backingSize } from '../core/view.js';
 
 const el = (tag, props = {}, ...children) => {
   const node = Object.assign(document.createElement(tag), props);

@@ -2,11 +2,11 @@
 // (`compare.html#s=<scene>&c=<comparison>`) and the page API `window.flockpathCompare`.
 // Rust owns the panes, their runs, metrics, series and summary; this shell only draws and wires.
 
-import { capturePanicReports, isPanic, messageOf, setupBanner, showMessage, showPanic } from './errors.js';
-import { SimHost } from './sim-host.js';
-import { buildPanes, blitPanes, measurePane } from './compare-panes.js';
-import { drawPlots, drawTable } from './compare-plots.js';
-import { download } from './share.js';
+import { capturePanicReports, isPanic, messageOf, setupBanner, showMessage, showPanic } from '../core/errors.js';
+import { SimHost } from '../core/sim-host.js';
+import { buildPanes, blitPanes, measurePane } from './panes.js';
+import { drawPlots, drawTable } from './plots.js';
+import { download } from '../core/download.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -200,7 +200,7 @@ async function boot() {
   capturePanicReports();
   let module;
   try {
-    module = await import('../pkg/flockpath.js');
+    module = await import('../../pkg/flockpath.js');
   } catch (error) {
     throw new Error(`the simulation module (pkg/flockpath.js) could not be loaded: ${messageOf(error)}. ` +
       'Build it with: bash scripts/build-wasm.sh');

@@ -6,9 +6,9 @@ import { App } from './app.js';
 import { attach, flockpath } from './api.js';
 import { setupControls } from './controls.js';
 import { Editor } from './editor.js';
-import { capturePanicReports, isPanic, messageOf, setupBanner, showMessage, showPanic } from './errors.js';
+import { capturePanicReports, isPanic, messageOf, setupBanner, showMessage, showPanic } from '../core/errors.js';
 import { setupHistoryButtons } from './history.js';
-import { startLoop } from './loop.js';
+import { startLoop } from '../core/loop.js';
 import { setupMetrics } from './metrics.js';
 import { setupInspector } from './inspector.js';
 import { Panel } from './panel.js';
@@ -16,15 +16,15 @@ import { setupExport } from './export.js';
 import { setupShare } from './share.js';
 import { setupSceneLinks } from './scene-links.js';
 import { setupTimeline } from './timeline.js';
-import { keepLocationInSync, sceneFromLocation, watchLocation } from './url.js';
-import { measure, setupView } from './view.js';
+import { keepLocationInSync, sceneFromLocation, watchLocation } from '../core/url.js';
+import { measure, setupView } from '../core/view.js';
 
 async function boot() {
   setupBanner();
   capturePanicReports();
   let module;
   try {
-    module = await import('../pkg/flockpath.js');
+    module = await import('../../pkg/flockpath.js');
   } catch (error) {
     throw new Error(
       `the simulation module (pkg/flockpath.js) could not be loaded: ${messageOf(error)}. ` +
