@@ -1,6 +1,8 @@
 //! Exports of a recorded run: paths as CSV and JSON, a Maya MEL script, a Blender Python script
 //! and SVG trails. 3-D tools get the ground plane as x–z with y up (Maya) or x–y with z up and
 //! y flipped (Blender), as the papers did when they imported their paths into Maya.
+//!
+//! Layer: export. Uses `model` and `sim` (the recording).
 
 use crate::model::scene::DT;
 use crate::model::scene::{parse_color, Scene};

@@ -2,8 +2,21 @@
 //!
 //! The core is plain Rust with no web types: a [`Scene`] is validated and turned into a [`World`]
 //! (agent state as struct-of-arrays, a fixed step, one seeded generator), planners steer groups,
-//! [`metrics`] measures the run and [`render`] rasterises it. `web` (wasm32 only) wraps this for
-//! the page; `src/bin/flockpath/` is the command line.
+//! [`sim::metrics`] measures the run and [`render`] rasterises it. `web` (wasm32 only) wraps this
+//! for the page; `src/bin/flockpath/` is the command line.
+//!
+//! Layers, bottom up; each uses only those before it (`tests/hygiene.rs` holds the table):
+//!
+//! | layer | what it is |
+//! |---|---|
+//! | [`rng`] | the one seeded, portable generator (a leaf) |
+//! | [`model`] | what users draw and share: scene, geometry, planner parameters, codec, edits, presets |
+//! | [`spatial`] | neighbour queries: the agents' grid, the obstacle index, the flow field |
+//! | [`optim`] | optimizers on R^d and benchmark functions (a leaf beside the crowd) |
+//! | [`planners`] | the Planner trait and one file per planner |
+//! | [`sim`] | a run: the world's step, spawn, cost limits, metrics, recording, replay, comparison |
+//! | [`experiments`], [`tune`], [`render`], [`export`] | tables, GA tuning, pixels, files |
+//! | `web` | wasm32 only: conversion and errors for the pages |
 //!
 //! ```
 //! use flockpath::{presets, World};

@@ -1,4 +1,6 @@
 //! The one seeded, portable random generator: PCG32, identical output on every platform.
+//!
+//! Layer: rng, a leaf every layer may use.
 
 use rand_core::{Rng as _, SeedableRng};
 use rand_pcg::Pcg32;

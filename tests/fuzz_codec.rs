@@ -20,7 +20,7 @@ use base64::engine::general_purpose::URL_SAFE_NO_PAD;
 use base64::Engine as _;
 use flockpath::rng::Rng;
 use flockpath::sim::cost::{self, Work, MAX_PLANNING_SEGMENT_CHECKS, STEP_BUDGET_NS};
-use flockpath::sim::world::MAX_SPAWN_PLACES;
+use flockpath::sim::spawn::MAX_SPAWN_PLACES;
 use flockpath::{scene_from_any, PlannerConfig, PlannerKind, Region, Scene, SceneError};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 

@@ -5,7 +5,8 @@
 
 use flockpath::model::geometry::Obstacle;
 use flockpath::model::params::{IgsaParams, PlannerConfig};
-use flockpath::planners::igsa::{plan_group_path, PathSource};
+use flockpath::planners::explain::PathSource;
+use flockpath::planners::igsa::plan_group_path;
 use flockpath::{presets, Scene, World};
 use glam::Vec2;
 

@@ -1,6 +1,6 @@
 //! The papers' experiments as data, with no printing: optimizer runs and the Table-3-style
 //! summaries, the force-step timing and the paper's Table 4 (`flockpath optimize` prints them).
 //!
-//! Uses: `optim`, `model`, `planners`, `rng`.
+//! Layer: experiments. Uses `optim`, `model`, `spatial`, `planners`, `sim` and `rng`.
 
 pub mod tables;

@@ -33,10 +33,7 @@ use serde::{Deserialize, Serialize};
 pub const FRAGMENT_VERSION: &str = "2";
 /// Every version this build reads, oldest first.
 pub const READABLE_VERSIONS: &[&str] = &["1", "2"];
-/// Largest decompressed scene accepted from a URL (bytes): a guard against deflate bombs.
-pub const MAX_SCENE_BYTES: usize = 4 << 20;
-/// Largest text accepted from a URL or file (bytes).
-pub const MAX_INPUT_BYTES: usize = 8 << 20;
+pub use crate::model::scene::{MAX_INPUT_BYTES, MAX_SCENE_BYTES};
 /// The byte-order mark some editors put at the start of a UTF-8 file.
 const BYTE_ORDER_MARK: char = '\u{feff}';
 

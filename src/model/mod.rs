@@ -2,7 +2,7 @@
 //! groups, seed, the time step), geometry, each group's planner choice and parameter tables as
 //! plain data, the codec (JSON and the versioned URL fragment), edit operations and presets.
 //!
-//! Uses: `rng` only (presets scatter obstacles). Used by every layer above.
+//! Layer: model. Uses `rng` only (presets scatter obstacles); every layer above uses it.
 
 pub mod codec;
 pub mod edit;

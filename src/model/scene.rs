@@ -1,6 +1,7 @@
 //! The scene a user draws: bounds, obstacles, goals, groups of agents, seed; and its validation.
 
 use crate::model::geometry::{v, Obstacle};
+use crate::model::params::spec::number_text;
 use crate::model::params::PlannerConfig;
 use glam::Vec2;
 use serde::{Deserialize, Serialize};
@@ -8,6 +9,10 @@ use std::fmt;
 
 /// Seconds per step: the fixed time step (JS owns the frame loop, Rust owns time).
 pub const DT: f32 = 1.0 / 60.0;
+/// Largest decompressed scene accepted from a URL (bytes): a guard against deflate bombs.
+pub const MAX_SCENE_BYTES: usize = 4 << 20;
+/// Largest scene text accepted (a file, a link, a JSON string; the codec checks it) from a URL or file (bytes).
+pub const MAX_INPUT_BYTES: usize = 8 << 20;
 
 /// Most agents a scene may hold in total (keeps a typo from freezing the page).
 pub const MAX_AGENTS: u32 = 200_000;
@@ -464,19 +469,6 @@ impl fmt::Display for SceneError {
 
 impl std::error::Error for SceneError {}
 
-/// A number as a person writes it: `1e30` rather than thirty-one digits, `NaN`, `infinite`.
-pub fn number_text(x: f32) -> String {
-    if x.is_nan() {
-        "NaN".into()
-    } else if x.is_infinite() {
-        if x > 0.0 { "infinite (too large a number)" } else { "-infinite (too large a number)" }.into()
-    } else if x != 0.0 && (x.abs() >= 1e7 || x.abs() < 1e-4) {
-        format!("{x:e}")
-    } else {
-        format!("{x}")
-    }
-}
-
 fn num(x: f32) -> String {
     number_text(x)
 }
@@ -551,8 +543,8 @@ pub fn field_limits() -> Vec<FieldLimit> {
         row("hills[].height", format!("a number in 0…{MAX_HILL_HEIGHT} px"), "hills, not pits; tall enough for any scene"),
         row("view.trail_fade", "a number in 0…1".into(), "the share of a trail lost per frame"),
         row("(any object)", "only the keys listed here and in the planner tables; an unknown key is refused".into(), "a misspelt key would otherwise be ignored without a word"),
-        row("(scene text)", format!("at most {} bytes", crate::model::codec::MAX_INPUT_BYTES), "a file or link larger than any real scene"),
-        row("(unpacked scene string)", format!("at most {} bytes", crate::model::codec::MAX_SCENE_BYTES), "a guard against deflate bombs"),
+        row("(scene text)", format!("at most {} bytes", MAX_INPUT_BYTES), "a file or link larger than any real scene"),
+        row("(unpacked scene string)", format!("at most {} bytes", MAX_SCENE_BYTES), "a guard against deflate bombs"),
     ]
 }
 

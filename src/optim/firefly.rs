@@ -12,7 +12,7 @@
 //! attraction is βmin everywhere. Yang recommends γ ~ 1/L² for a domain of size L, which is the
 //! same thing.
 
-use super::{clamp_coordinate, Algorithm, Objective, Optimizer, Population};
+use super::problem::{clamp_coordinate, Algorithm, Objective, Optimizer, Population};
 use crate::rng::Rng;
 
 /// Parameters of the firefly algorithm.

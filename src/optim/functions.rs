@@ -1,7 +1,7 @@
 //! Benchmark functions: the four of Liu & Liu 2022 Table 2 with its search ranges, plus the
 //! standard Rastrigin and Rosenbrock. Every one has its minimum 0.
 
-use super::{Bounds, Objective};
+use super::problem::{Bounds, Objective};
 use std::f64::consts::{E, PI};
 
 /// A benchmark function (the search range is part of its definition here).

@@ -9,7 +9,7 @@
 //! can refine late. Children are clamped to the box. One generation = one iteration; only the
 //! children are evaluated.
 
-use super::{clamp_coordinate, gaussian, Algorithm, Objective, Optimizer, Population};
+use super::problem::{clamp_coordinate, gaussian, Algorithm, Objective, Optimizer, Population};
 use crate::rng::Rng;
 
 /// Parameters of the GA.

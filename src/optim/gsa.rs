@@ -9,7 +9,7 @@
 //! `x_i = x_i + v_i`. One `rand_j` per pair and one `rand_i` per particle, as the equations
 //! print them (Rashedi's reference code draws one per coordinate).
 
-use super::{Algorithm, Bounds, Objective, Optimizer, Population};
+use super::problem::{Algorithm, Bounds, Objective, Optimizer, Population};
 use crate::rng::Rng;
 
 /// ε in the force denominator (keeps coincident particles finite).

@@ -24,7 +24,7 @@
 //! Out-of-range coordinates are redrawn uniformly, as in GSA.
 
 use super::gsa::{gravity_accelerations, gravity_constant, redraw_outside, GravityScratch};
-use super::{Algorithm, Bounds, Objective, Optimizer, Population};
+use super::problem::{Algorithm, Bounds, Objective, Optimizer, Population};
 use crate::rng::Rng;
 
 /// Nearest neighbours averaged by the neighbourhood move (eq. 14: six).
@@ -187,7 +187,7 @@ impl Igsa {
             if i == keep {
                 self.pop.fitness[i] = kept_f;
             } else {
-                let f = super::sanitize(objective.evaluate(&self.pop.x[i * dim..(i + 1) * dim]));
+                let f = super::problem::sanitize(objective.evaluate(&self.pop.x[i * dim..(i + 1) * dim]));
                 self.pop.evaluations += 1;
                 self.pop.fitness[i] = f;
                 self.pop.offer(i, f);

@@ -8,7 +8,7 @@
 //! crosses one of [`CONTOURS`] equally spaced levels between two neighbouring pixels.
 
 use super::functions::{Benchmark, Function};
-use super::{Algorithm, Objective, Optimizer, Settings};
+use super::problem::{Algorithm, Objective, Optimizer, Settings};
 use crate::rng::Rng;
 
 /// Number of contour levels over the value range.

@@ -6,7 +6,7 @@
 //! and a coordinate leaving the box is clamped with its velocity zeroed (absorbing walls).
 //! The paper gives no velocity limit; 20 % of the range is the customary choice.
 
-use super::{clamp_coordinate, Algorithm, Objective, Optimizer, Population};
+use super::problem::{clamp_coordinate, Algorithm, Objective, Optimizer, Population};
 use crate::rng::Rng;
 
 /// Parameters of PSO.

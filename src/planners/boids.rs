@@ -5,7 +5,7 @@
 //! ("Arbitration"), then `v += a; v = limit(v, max_speed); p += v` (lecture, `Boid::update`).
 
 use super::lanes::{self, Lanes2};
-use super::{GroupView, Planner, StepContext};
+use super::planner::{GroupView, Planner, StepContext};
 use crate::model::geometry::limit;
 use crate::model::geometry::{length, unit_or, Aabb, Obstacle};
 use crate::model::params::boids::{Arbitration, BoidsParams, FlowGuide, Leader, Role};
@@ -552,7 +552,7 @@ impl Guide {
 fn role_of(ctx: &StepContext, agent: u32) -> Role {
     let group = ctx.group_of.get(agent as usize).and_then(|&g| ctx.scene.groups.get(g as usize));
     match group.map(|g| &g.planner) {
-        Some(super::PlannerConfig::Boids(p)) => p.role,
+        Some(crate::model::params::PlannerConfig::Boids(p)) => p.role,
         _ => Role::None,
     }
 }

@@ -1,7 +1,8 @@
-//! What a planner says about one agent's step: named force vectors and points, recomputed on
-//! demand from the same state (plain data; the diagnosis in `sim::diagnose` picks the agent).
+//! What a planner shows about itself, as plain data: one agent's step as named force vectors and
+//! points (recomputed on demand; `sim::diagnose` picks the agent) and a group's planned path.
 
 use glam::Vec2;
+use serde::Serialize;
 use serde_json::json;
 
 /// A named vector drawn as an arrow from the agent (a force, a desired velocity, a feeler).
@@ -101,4 +102,39 @@ impl Explanation {
             "values": self.values.iter().map(|(k, v)| json!({"name": k, "value": v})).collect::<Vec<_>>(),
         })
     }
+}
+
+/// Where a group's path came from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum PathSource {
+    /// Planned by IGSA.
+    Igsa,
+    /// Planned by GSA.
+    Gsa,
+    /// The user's edited waypoints.
+    Edited,
+    /// The group has no goal: there is nothing to follow.
+    None,
+}
+
+/// A group's path as planned (or edited), with what the page shows about it.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct GroupPath {
+    /// Start, waypoints, goal (scene px).
+    pub points: Vec<[f32; 2]>,
+    /// Per segment, whether it crosses an obstacle.
+    pub crossing: Vec<bool>,
+    /// Where the waypoints came from.
+    pub source: PathSource,
+    /// Length (px), maximum and mean turning angle (degrees) of the polyline.
+    pub length: f64,
+    /// Largest deflection at a waypoint (degrees).
+    pub max_turn_deg: f64,
+    /// Mean deflection over the waypoints (degrees).
+    pub mean_turn_deg: f64,
+    /// Fitness the optimizer reached (`None` for an edited path).
+    pub fitness: Option<f64>,
+    /// Objective evaluations the planning spent (0 for an edited path).
+    pub evaluations: u64,
 }

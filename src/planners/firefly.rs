@@ -86,7 +86,7 @@
 //!   brighter one of a pair 0.7 / 0.9 / 1.0 of the gap (dimmer yields): queue order 0.83 / 0.77 /
 //!   0.69 mean, arrival 0.95 / 0.77 / 0.63.
 
-use super::{GroupView, Planner, StepContext};
+use super::planner::{GroupView, Planner, StepContext};
 use crate::model::geometry::limit;
 use crate::model::geometry::{unit_or, Aabb};
 use crate::model::params::FireflyParams;

@@ -5,7 +5,7 @@
 //! limited (the paper's translation and rotation speed limits). Agents see other agents in a
 //! 330° cone up to 20 body sizes (body size = diameter).
 
-use super::{GroupView, Planner, StepContext};
+use super::planner::{GroupView, Planner, StepContext};
 use crate::model::geometry::limit;
 use crate::model::geometry::{unit_or, Aabb, Obstacle};
 use crate::model::params::ForcesParams;

@@ -49,7 +49,7 @@
 //! * With `acceptance` off the candidate is always taken and the world lets these agents pass
 //!   through obstacles: the original PSO of the paper's Fig. 5(b).
 
-use super::{GroupView, Planner, StepContext};
+use super::planner::{GroupView, Planner, StepContext};
 use crate::model::geometry::{unit_or, Aabb, Obstacle};
 use crate::model::params::PsoParams;
 use crate::model::scene::ground_height;

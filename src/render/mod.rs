@@ -10,10 +10,15 @@
 //! byte loop, or single pixels when they are smaller than two device pixels), and the fading
 //! (a byte loop over a stripe of rows). Every layer is opaque, so the premultiplied bytes are
 //! also the straight-alpha bytes `ImageData` wants.
+//!
+//! Layer: render. Uses `model`, `spatial`, `planners` (explanations, planned paths) and `sim`.
 
 mod overlay;
+mod paint;
 
 pub use overlay::{Overlays, ARROW_COLORS};
+pub use paint::ViewTransform;
+use paint::{color, draw_segment, paint, stroke_scene_path};
 
 use crate::model::edit::ItemRef;
 use crate::model::geometry::Obstacle;
@@ -22,9 +27,7 @@ use crate::model::scene::{parse_color, Hill, Scene};
 use crate::sim::world::World;
 use glam::Vec2;
 use std::f32::consts::TAU;
-use tiny_skia::{
-    Color, FillRule, Paint, Path, PathBuilder, Pixmap, PixmapMut, Rect, Stroke, StrokeDash, Transform,
-};
+use tiny_skia::{FillRule, Path, PathBuilder, Pixmap, PixmapMut, Rect, Stroke, Transform};
 
 /// Fill colour of obstacles (RGB). Tests and page checks look for it at an obstacle's centre.
 pub const OBSTACLE_COLOR: [u8; 3] = [0x5b, 0x63, 0x70];
@@ -86,48 +89,6 @@ const PENDING_SEGMENTS_MAX: usize = 16_384;
 const TRAIL_REBUILD_AGENT_STEPS: usize = 500_000;
 /// Steps per frame assumed when a rebuilt trail is faded by its age: the page's default speed.
 const TRAIL_REBUILD_STEPS_PER_FRAME: f32 = 2.0;
-
-/// How scene px map to canvas px: `canvas = scene * scale + offset`. The scene is fitted into the
-/// canvas keeping its aspect ratio, centred, with letterbox bands on the spare sides.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ViewTransform {
-    /// Device px per scene px.
-    pub scale: f32,
-    /// Canvas x of scene x = 0 (device px).
-    pub offset_x: f32,
-    /// Canvas y of scene y = 0 (device px).
-    pub offset_y: f32,
-}
-
-impl ViewTransform {
-    /// The transform fitting a `scene_width × scene_height` scene into a canvas, centred.
-    pub fn fit(scene_width: f32, scene_height: f32, canvas_width: u32, canvas_height: u32) -> Self {
-        let (cw, ch) = (canvas_width as f32, canvas_height as f32);
-        if !(scene_width > 0.0 && scene_height > 0.0) {
-            return Self { scale: 1.0, offset_x: 0.0, offset_y: 0.0 };
-        }
-        let scale = (cw / scene_width).min(ch / scene_height);
-        Self {
-            scale,
-            offset_x: 0.5 * (cw - scene_width * scale),
-            offset_y: 0.5 * (ch - scene_height * scale),
-        }
-    }
-
-    /// Scene px → canvas px.
-    pub fn to_canvas(&self, p: Vec2) -> Vec2 {
-        p * self.scale + Vec2::new(self.offset_x, self.offset_y)
-    }
-
-    /// Canvas px → scene px (for pointer input).
-    pub fn to_scene(&self, p: Vec2) -> Vec2 {
-        (p - Vec2::new(self.offset_x, self.offset_y)) / self.scale
-    }
-
-    fn transform(&self) -> Transform {
-        Transform::from_row(self.scale, 0.0, 0.0, self.scale, self.offset_x, self.offset_y)
-    }
-}
 
 /// What the base layer was drawn from: it is rebuilt when any of this changes.
 #[derive(Clone, Debug, PartialEq)]
@@ -701,42 +662,6 @@ fn heading_bucket(v: Vec2) -> Option<u8> {
     Some(bucket.rem_euclid(HEADING_BUCKETS as i32) as u8)
 }
 
-/// Blends a one-pixel anti-aliased line (Xiaolin Wu's algorithm) from `a` to `b` (canvas px)
-/// into an opaque `w × h` RGBA layer with opacity `alpha`. The pixel column or row of `b` is
-/// left out: the agent's next segment starts there, and drawing it twice would darken every join.
-fn draw_segment(layer: &mut [u8], w: usize, h: usize, a: Vec2, b: Vec2, rgb: [u8; 3], alpha: u8) {
-    // Pixel (i, j) covers [i, i + 1) × [j, j + 1): shift so that pixel centres are integers.
-    let (a, b) = (a - Vec2::splat(0.5), b - Vec2::splat(0.5));
-    let d = b - a;
-    if !d.is_finite() || d.abs().max_element() > (w + h) as f32 {
-        return;
-    }
-    let steep = d.y.abs() > d.x.abs();
-    // Work along the major axis `u`, with `v` the minor one.
-    let (au, av, bu, bv) = if steep { (a.y, a.x, b.y, b.x) } else { (a.x, a.y, b.x, b.y) };
-    let slope = if bu != au { (bv - av) / (bu - au) } else { 0.0 };
-    let (first, last) = (au.round() as i64, bu.round() as i64);
-    let range = if first <= last { first..last } else { last + 1..first + 1 };
-    let mut plot = |u: i64, v: i64, coverage: f32| {
-        let (x, y) = if steep { (v, u) } else { (u, v) };
-        if x < 0 || y < 0 || x >= w as i64 || y >= h as i64 {
-            return;
-        }
-        let k = (coverage * f32::from(alpha)) as u32;
-        let at = (y as usize * w + x as usize) * 4;
-        for (c, &s) in layer[at..at + 3].iter_mut().zip(&rgb) {
-            *c = ((u32::from(*c) * (255 - k) + u32::from(s) * k + 127) / 255) as u8;
-        }
-    };
-    for u in range {
-        let v = av + slope * (u as f32 - au);
-        let base = v.floor();
-        let frac = v - base;
-        plot(u, base as i64, 1.0 - frac);
-        plot(u, base as i64 + 1, frac);
-    }
-}
-
 /// Moves each byte of `trail` towards `base` by `amount / 128` of the gap (`amount` in
 /// 1…128), at least one step, so faded trails reach the base exactly instead of leaving a residue.
 /// 16-bit lanes (|gap · amount| ≤ 255 · 128 fits) let the loop vectorise eight bytes at a time.
@@ -860,17 +785,6 @@ fn crop(pixmap: &Pixmap, half: i32) -> Sprite {
     Sprite { left: x0 as i32 - half, top: y0 as i32 - half, width, height, data: out, spans }
 }
 
-fn color(rgb: [u8; 3], alpha: u8) -> Color {
-    Color::from_rgba8(rgb[0], rgb[1], rgb[2], alpha)
-}
-
-fn paint(rgb: [u8; 3], alpha: u8) -> Paint<'static> {
-    let mut p = Paint::default();
-    p.set_color(color(rgb, alpha));
-    p.anti_alias = true;
-    p
-}
-
 /// The outline of an obstacle in scene px.
 fn obstacle_path(obstacle: &Obstacle) -> Option<Path> {
     match obstacle {
@@ -889,23 +803,6 @@ fn obstacle_path(obstacle: &Obstacle) -> Option<Path> {
             pb.finish()
         }
     }
-}
-
-/// Strokes a path given in scene px with a width and dash pattern in device px (width 0 is a
-/// one-pixel hairline).
-fn stroke_scene_path(
-    pixmap: &mut PixmapMut,
-    pb: PathBuilder,
-    view: ViewTransform,
-    rgb: [u8; 3],
-    alpha: u8,
-    width: f32,
-    dash: Option<[f32; 2]>,
-) {
-    let Some(path) = pb.finish().and_then(|p| p.transform(view.transform())) else { return };
-    let dash = dash.and_then(|[on, off]| StrokeDash::new(vec![on, off], 0.0));
-    let stroke = Stroke { width, dash, ..Stroke::default() };
-    pixmap.stroke_path(&path, &paint(rgb, alpha), &stroke, Transform::identity(), None);
 }
 
 fn push_rect(pb: &mut PathBuilder, min: [f32; 2], max: [f32; 2]) {

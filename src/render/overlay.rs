@@ -6,7 +6,7 @@
 //! The inspected agent's explanation and cost grid are recomputed per frame from the world (only
 //! for that one agent), never stored during a step.
 
-use super::{draw_segment, stroke_scene_path, ViewTransform};
+use super::paint::{draw_segment, stroke_scene_path, ViewTransform};
 use crate::model::params::PlannerConfig;
 use crate::planners::explain::Explanation;
 use crate::sim::diagnose;

@@ -4,7 +4,7 @@
 //!
 //! Per step the model is linear: every agent costs its planner's worst measured time per
 //! agent-step ([`ns_per_agent_step`]). "Worst" is the densest crowd the spawn allows (bodies
-//! packed at the density limit of [`crate::sim::world::spawn`]) heading for a goal in its middle,
+//! packed at the density limit of [`crate::sim::spawn`]) heading for a goal in its middle,
 //! measured natively (`cargo run --release --example step_cost`) and scaled by [`wasm_factor`].
 //! The spawn itself is O(N) and refuses regions that cannot hold their count.
 //!
@@ -146,7 +146,7 @@ pub struct Work {
 pub fn work(scene: &Scene) -> Result<Work, SceneError> {
     scene.validate()?;
     let obstacles = ObstacleIndex::new(scene.obstacles.clone(), scene.width, scene.height);
-    let spawn = crate::sim::world::spawn(scene, &obstacles)?;
+    let spawn = crate::sim::spawn::spawn(scene, &obstacles)?;
     check(scene)?;
     Ok(Work {
         spawn_places: spawn.places_examined,

@@ -64,6 +64,24 @@ pub fn explain(world: &World, agent: u32) -> Option<Explanation> {
     Some(e)
 }
 
+/// The draggable waypoint (interior point of an IGSA group's path) nearest to `p` within
+/// `tolerance` px, as `(group, waypoint index among the interior points)`; later groups win
+/// ties, as they are drawn on top.
+pub fn pick_waypoint(world: &World, p: Vec2, tolerance: f32) -> Option<(u32, u32)> {
+    let mut best: Option<(f32, u32, u32)> = None;
+    for g in 0..world.scene().groups.len() {
+        let Some(path) = world.planned_path(g) else { continue };
+        let inner = path.points.len().saturating_sub(1);
+        for (k, q) in path.points.iter().enumerate().take(inner).skip(1) {
+            let d = p.distance(Vec2::from(*q));
+            if d <= tolerance && best.is_none_or(|(bd, _, _)| d <= bd) {
+                best = Some((d, g as u32, (k - 1) as u32));
+            }
+        }
+    }
+    best.map(|(_, g, k)| (g, k))
+}
+
 /// Ids of the agents that are stuck now (see [`crate::sim::metrics::GroupMetrics::stuck_agents`]).
 pub fn stuck_agents(world: &World) -> Vec<u32> {
     let steps = world.step_count();

@@ -3,7 +3,7 @@
 //! measures, diagnosis of one agent, and the run's timeline (recording, metric history, replay,
 //! lockstep comparison).
 //!
-//! Uses: `model`, `spatial`, `planners`, `rng`.
+//! Layer: sim. Uses `model`, `spatial`, `planners` and `rng`.
 
 pub mod compare;
 pub mod cost;
@@ -13,4 +13,5 @@ pub mod history;
 pub mod metrics;
 pub mod recording;
 pub mod replay;
+pub mod spawn;
 pub mod world;

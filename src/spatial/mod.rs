@@ -2,6 +2,8 @@
 //!
 //! Agents are stored cell by cell, in id order inside a cell, so a query visits candidates in
 //! the same order on every platform: float sums over neighbours are reproducible bit for bit.
+//!
+//! Layer: spatial. Uses `model` only; planners and the world query it.
 
 pub mod flow_field;
 

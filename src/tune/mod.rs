@@ -10,6 +10,8 @@
 //!
 //! Step-wise API for a progress display (a Web Worker, the CLI): [`Tuner::new`], then
 //! [`Tuner::generation`] until it returns `None`.
+//!
+//! Layer: tune. Uses `model`, `planners`, `sim` and `rng`.
 
 use crate::model::forces_cases::{Behaviour, Environment};
 use crate::model::params::{ForcesParams, PlannerConfig};

@@ -4,6 +4,8 @@
 //! The frame crosses as a pointer and a length into wasm memory ([`Sim::frame_ptr`],
 //! [`Sim::frame_len`]); JS wraps it in a `Uint8ClampedArray` after every call, because the view
 //! dies when memory grows.
+//!
+//! Layer: web (wasm32 only). Uses every layer below; converts and reports errors, no simulation logic.
 
 mod diagnose;
 

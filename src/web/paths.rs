@@ -3,7 +3,6 @@
 
 use super::{js_error, to_json, Sim};
 use crate::model::params::PlannerConfig;
-use crate::planners::igsa;
 use glam::Vec2;
 use wasm_bindgen::prelude::*;
 
@@ -19,7 +18,7 @@ impl Sim {
     /// The draggable waypoint within `tolerance` scene px of `(x, y)`: JSON `{group, index}` or
     /// `"null"`.
     pub fn pick_waypoint(&self, x: f32, y: f32, tolerance: f32) -> Result<String, JsError> {
-        let hit = igsa::pick_waypoint(&self.world, Vec2::new(x, y), tolerance)
+        let hit = crate::sim::diagnose::pick_waypoint(&self.world, Vec2::new(x, y), tolerance)
             .map(|(group, index)| serde_json::json!({ "group": group, "index": index }));
         to_json(&hit)
     }

@@ -1,7 +1,7 @@
 //! The parameters of Reynolds steering (DESIGN §3.1): plain data with units and the paper's defaults, and the
 //! table the panel, the codec and validation read. The planner itself is in `crate::planners::boids`.
 
-use super::ParamSpec;
+use super::spec::ParamSpec;
 use serde::{Deserialize, Serialize};
 
 /// How the rules' forces are combined into one acceleration.

@@ -1,7 +1,7 @@
 //! The parameters of the firefly crowd (Zhang et al. 2017, DESIGN §3.3): plain data with units and the paper's defaults, and the
 //! table the panel, the codec and validation read. The planner itself is in `crate::planners::firefly`.
 
-use super::ParamSpec;
+use super::spec::ParamSpec;
 use serde::{Deserialize, Serialize};
 
 /// Firefly parameters. Lengths in px, speeds in px/step, accelerations in px/step².

@@ -1,7 +1,7 @@
 //! The parameters of the GA-tuned virtual forces (DESIGN §3.5): plain data with units and the paper's defaults, and the
 //! table the panel, the codec and validation read. The planner itself is in `crate::planners::forces`.
 
-use super::ParamSpec;
+use super::spec::ParamSpec;
 use serde::{Deserialize, Serialize};
 
 /// Virtual-force parameters. Lengths in px, speeds in px/step, angles in degrees.

@@ -1,7 +1,7 @@
 //! The parameters of IGSA path control (Liu & Liu 2022, DESIGN §3.4): plain data with units and the paper's defaults, and the
 //! table the panel, the codec and validation read. The planner itself is in `crate::planners::igsa`.
 
-use super::ParamSpec;
+use super::spec::ParamSpec;
 use serde::{Deserialize, Serialize};
 
 /// Most waypoints an edited path may hold.

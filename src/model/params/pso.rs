@@ -1,7 +1,7 @@
 //! The parameters of the PSO crowd (Chen & Lin 2009, DESIGN §3.2): plain data with units and the paper's defaults, and the
 //! table the panel, the codec and validation read. The planner itself is in `crate::planners::pso`.
 
-use super::ParamSpec;
+use super::spec::ParamSpec;
 use serde::{Deserialize, Serialize};
 
 /// PSO crowd parameters. Lengths in px, speeds in px/step.

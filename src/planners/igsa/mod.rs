@@ -34,7 +34,8 @@
 
 pub mod path;
 
-use super::{GroupView, Planner, StepContext};
+use super::explain::{GroupPath, PathSource};
+use super::planner::{GroupView, Planner, StepContext};
 use crate::model::geometry::limit;
 use crate::model::geometry::{unit_or, v, Aabb, Obstacle};
 use crate::model::params::igsa::{IgsaParams, PathOptimizer};
@@ -44,7 +45,6 @@ use crate::planners::igsa::path::{PathParams, PathPlanning, PathProblem, Planned
 use crate::rng::Rng;
 use crate::spatial::{ObstacleIndex, QueryCap};
 use glam::Vec2;
-use serde::Serialize;
 
 /// Neighbours (and candidates of the scanned cells) one agent's bounding-circle rule looks at,
 /// the first in the grid's scan order. Within its reach (about 20 px) fit about 30
@@ -63,20 +63,6 @@ const WIDTH_MARCH: f32 = 2.0;
 const ARRIVE_RADIUS: f32 = 20.0;
 /// Slot marker for agents that have not arrived.
 const NO_SLOT: u32 = u32::MAX;
-
-/// Where a group's path came from.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum PathSource {
-    /// Planned by IGSA.
-    Igsa,
-    /// Planned by GSA.
-    Gsa,
-    /// The user's edited waypoints.
-    Edited,
-    /// The group has no goal: there is nothing to follow.
-    None,
-}
 
 /// What IGSA parameters mean to the optimizer (the parameters themselves are plain data).
 impl IgsaParams {
@@ -107,27 +93,6 @@ impl PathOptimizer {
             PathOptimizer::Gsa => Algorithm::Gsa,
         }
     }
-}
-
-/// A group's path as planned (or edited), with what the page shows about it.
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct GroupPath {
-    /// Start, waypoints, goal (scene px).
-    pub points: Vec<[f32; 2]>,
-    /// Per segment, whether it crosses an obstacle.
-    pub crossing: Vec<bool>,
-    /// Where the waypoints came from.
-    pub source: PathSource,
-    /// Length (px), maximum and mean turning angle (degrees) of the polyline.
-    pub length: f64,
-    /// Largest deflection at a waypoint (degrees).
-    pub max_turn_deg: f64,
-    /// Mean deflection over the waypoints (degrees).
-    pub mean_turn_deg: f64,
-    /// Fitness the optimizer reached (`None` for an edited path).
-    pub fitness: Option<f64>,
-    /// Objective evaluations the planning spent (0 for an edited path).
-    pub evaluations: u64,
 }
 
 /// Plans (or takes the edited) path of group `group` of `scene`: what the planner follows. Only
@@ -282,24 +247,6 @@ pub fn segment_crossings(points: &[Vec2], obstacles: &ObstacleIndex) -> Vec<bool
             hit
         })
         .collect()
-}
-
-/// The draggable waypoint (interior point of an IGSA group's path) nearest to `p` within
-/// `tolerance` px, as `(group, waypoint index among the interior points)`; later groups win
-/// ties, as they are drawn on top.
-pub fn pick_waypoint(world: &crate::World, p: Vec2, tolerance: f32) -> Option<(u32, u32)> {
-    let mut best: Option<(f32, u32, u32)> = None;
-    for g in 0..world.scene().groups.len() {
-        let Some(path) = world.planned_path(g) else { continue };
-        let inner = path.points.len().saturating_sub(1);
-        for (k, q) in path.points.iter().enumerate().take(inner).skip(1) {
-            let d = p.distance(v(*q));
-            if d <= tolerance && best.is_none_or(|(bd, _, _)| d <= bd) {
-                best = Some((d, g as u32, (k - 1) as u32));
-            }
-        }
-    }
-    best.map(|(_, g, k)| (g, k))
 }
 
 /// A polyline with its cumulative arc length.
