@@ -2,6 +2,7 @@
 // and a parameter form generated from the planner table (`planners_json`), plus the pane's spec
 // text for per-group planners. Blitting copies each pane's wasm frame to its canvas.
 
+import { blit } from '../core/blit.js';
 import { formatValue } from '../core/params-form.js';
 import { backingSize } from '../core/view.js';
 
@@ -30,9 +31,7 @@ export function blitPanes(app, canvases) {
       canvas.width = width;
       canvas.height = height;
     }
-    const pixels = new Uint8ClampedArray(wasm.memory.buffer, sim.frame_ptr(i), sim.frame_len(i));
-    if (pixels.length !== width * height * 4) return;
-    canvas.getContext('2d', { alpha: false }).putImageData(new ImageData(pixels, width, height), 0, 0);
+    blit(canvas.getContext('2d', { alpha: false }), wasm, sim.frame_ptr(i), sim.frame_len(i), width, height);
   });
 }
 
