@@ -1,4 +1,4 @@
-//! The optimizer lab page's bindings (`www/lab.html`, `www/js/lab*.js`): one optimizer run as an
+//! The optimizer lab page's bindings (`www/lab.html`, `www/js/lab/`): one optimizer run as an
 //! opaque handle, its 2-D picture as a pointer into wasm memory, and single seeded runs for the
 //! page's worker. Conversion only; the runs and the pixels are `crate::optim::lab`.
 
