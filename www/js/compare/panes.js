@@ -3,7 +3,7 @@
 // text for per-group planners. Blitting copies each pane's wasm frame to its canvas.
 
 import { blit } from '../core/blit.js';
-import { formatValue } from '../core/params-form.js';
+import { paramControl, paramReadout } from '../core/params-form.js';
 import { backingSize } from '../core/view.js';
 
 const el = (tag, props = {}, ...children) => {
@@ -41,20 +41,12 @@ function paramForm(app, index, pane) {
   for (const p of spec?.params ?? []) {
     const id = `pane-${index}-${p.key}`;
     const value = pane.params?.[p.key];
-    let input;
-    let readout = null;
-    if (p.choices && p.choices.length) {
-      input = el('select', { id });
-      for (const c of p.choices) input.append(el('option', { value: c, textContent: c, selected: c === value }));
-    } else {
-      input = el('input', { id, type: 'range', min: String(p.min), max: String(p.max), step: String(p.step), value: String(value) });
-      readout = el('output', { textContent: `${formatValue(value, p.step)} ${p.unit}` });
-      input.addEventListener('input', () => (readout.textContent = `${formatValue(Number(input.value), p.step)} ${p.unit}`));
-    }
-    input.title = p.help;
-    input.addEventListener('change', () => {
-      const v = input.tagName === 'SELECT' ? input.value : Number(input.value);
-      app.change((sim) => sim.set_pane_param(index, p.key, JSON.stringify(v)));
+    const readout = p.choices?.length ? null : el('output', { textContent: paramReadout(p, value) });
+    const input = paramControl(p, {
+      id,
+      value,
+      onInput: (v) => (readout.textContent = paramReadout(p, v)),
+      onChange: (v) => app.change((sim) => sim.set_pane_param(index, p.key, JSON.stringify(v))),
     });
     form.append(el('label', { className: 'param', htmlFor: id }, el('span', { textContent: p.label }), input, readout ?? el('span')));
   }
