@@ -46,8 +46,9 @@ fn lab_runs_summarised_match_the_table_cells() {
     let table = run_optimize(&args, &|| 0.0, &mut |_, _| {}).expect("runs");
     for cell in &table.cells {
         let algorithm = Algorithm::from_name(cell.algorithm).expect("known algorithm");
-        let finals: Vec<f64> =
-            (0..args.runs).map(|run| best_of_run(algorithm, Function::Rastrigin, 3, &settings, 9, run)).collect();
+        let finals: Vec<f64> = (0..args.runs)
+            .map(|run| best_of_run(algorithm, Function::Rastrigin, 3, &settings, 9, run))
+            .collect();
         let summary = Summary::of(&finals);
         let bits = |s: [f64; 4]| s.map(f64::to_bits);
         assert_eq!(
