@@ -1,4 +1,5 @@
-// <flock-path>: a live flockpath scene for course notes, in one ES module.
+// <flock-path>: a live flockpath scene for course notes, one ES module to include (it loads its
+// imports, js/core/, from next to itself).
 //
 //   <script type="module" src="flockpath/js/flock-path.js"></script>
 //   <flock-path scene="2.ZZHd…" autoplay controls height="360px"></flock-path>
