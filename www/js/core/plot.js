@@ -3,6 +3,8 @@
 // the lab's convergence curves on a log scale). The numbers come from the core; the pages only say
 // which lines, ranges and ticks to draw. A non-finite value leaves a gap in its line.
 
+import { backingSize } from './view.js';
+
 const INK = '#5a6676';
 const GRID = '#e4e2da';
 
@@ -120,16 +122,14 @@ function prepare(canvas, fit) {
     ctx.setTransform(1, 0, 0, 1, 0, 0);
     return { ctx, width: canvas.width, height: canvas.height };
   }
-  const ratio = window.devicePixelRatio || 1;
   const cssWidth = canvas.clientWidth || 150;
   const cssHeight = canvas.clientHeight || 60;
-  const width = Math.max(1, Math.round(cssWidth * ratio));
-  const height = Math.max(1, Math.round(cssHeight * ratio));
+  const { width, height } = backingSize(cssWidth, cssHeight, null);
   if (canvas.width !== width || canvas.height !== height) {
     canvas.width = width;
     canvas.height = height;
   }
-  ctx.setTransform(ratio, 0, 0, ratio, 0, 0);
+  ctx.setTransform(width / cssWidth, 0, 0, height / cssHeight, 0, 0);
   return { ctx, width: cssWidth, height: cssHeight };
 }
 
