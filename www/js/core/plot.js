@@ -67,7 +67,12 @@ export function drawPlot(canvas, chart) {
   }
   ctx.textAlign = 'center';
   ctx.textBaseline = 'top';
-  for (const tick of chart.xTicks ?? []) ctx.fillText(tick.text, x(tick.value), bottom + 6);
+  // A label centred on its tick, but never cut at the canvas's edges.
+  const centred = (text, at) => {
+    const half = ctx.measureText(text).width / 2;
+    return Math.min(Math.max(at, half + 1), width - half - 1);
+  };
+  for (const tick of chart.xTicks ?? []) ctx.fillText(tick.text, centred(tick.text, x(tick.value)), bottom + 6);
   if (chart.xLabel) ctx.fillText(chart.xLabel, (left + right) / 2, bottom + 6);
 
   for (const line of lines) {
