@@ -18,6 +18,8 @@
 // `flockpath-error` (detail: message; also when the wasm cannot be loaded, shown in the box too).
 
 import { PlanningSlices } from './core/planning.js';
+// Prints a still of each scene instead of a blank box.
+import './core/print.js';
 
 const PKG_URL = new URL('../pkg/flockpath.js', import.meta.url).href;
 /** The wasm (where wasm-bindgen's glue looks by default), named here to say what went wrong. */
