@@ -129,3 +129,28 @@ test('?theme=projector and #…&theme=projector open the page in the projector t
     }
   }
 });
+
+test('embed.html#…&theme=projector draws its <flock-path> in the projector theme', async () => {
+  const field = async (hash) => {
+    const { page, errors, close } = await openPath(`embed.html#s=pillars${hash}`, {
+      ready: () => window.flockpathEmbed?.sim !== undefined && window.flockpathEmbed.steps >= 0,
+    });
+    try {
+      await page.evaluate(() => window.flockpathEmbed.pause());
+      await frames(page, 3);
+      const rgb = await page.evaluate(() => {
+        const el = window.flockpathEmbed;
+        const [scale, ox, oy] = el.sim.view();
+        const canvas = el.shadowRoot.querySelector('canvas');
+        const d = canvas.getContext('2d').getImageData(Math.round(3 * scale + ox), Math.round(3 * scale + oy), 1, 1).data;
+        return [d[0], d[1], d[2]];
+      });
+      assertNoUnexpectedErrors(errors);
+      return rgb;
+    } finally {
+      await close();
+    }
+  };
+  assert.deepEqual(await field(''), [0xf6, 0xf5, 0xf0], 'standard field');
+  assert.deepEqual(await field('&theme=projector'), [255, 255, 255], 'projector field');
+});
