@@ -25,6 +25,8 @@ import { messageOf } from './core/errors.js';
 import { startLoop } from './core/loop.js';
 import { SimHost } from './core/sim-host.js';
 import { measure, observeSize } from './core/view.js';
+// Prints a still of each scene instead of a blank box.
+import './core/print.js';
 
 let shared = null;
 
