@@ -81,9 +81,14 @@ fn check_input_size(text: &str) -> Result<(), SceneError> {
     Ok(())
 }
 
+/// Why writing a scene as JSON cannot fail: its types derive `Serialize`, every map key is a
+/// string, and serde_json writes a non-finite float as `null` (which reading refuses, by name).
+/// A failure would be a bug in these types, so it panics loudly rather than writing `""`.
+const SCENE_SERIALISES: &str = "a Scene always serialises to JSON (derived Serialize, string keys)";
+
 /// The scene as pretty JSON.
 pub fn scene_to_json(scene: &Scene) -> String {
-    serde_json::to_string_pretty(scene).unwrap_or_default()
+    serde_json::to_string_pretty(scene).expect(SCENE_SERIALISES)
 }
 
 /// The URL fragment value (`s=` part) for a scene, in the current version.
@@ -95,7 +100,7 @@ pub fn scene_to_fragment(scene: &Scene) -> String {
         Ok(back) if &back == scene => serde_json::to_vec(&compact),
         _ => serde_json::to_vec(scene),
     }
-    .unwrap_or_default();
+    .expect(SCENE_SERIALISES);
     format!("{FRAGMENT_VERSION}.{}", pack(&json))
 }
 
@@ -370,8 +375,7 @@ impl CompactScene {
 /// values that are not sliders (an IGSA group's edited waypoints). Links without that object
 /// decode as before.
 fn planner_params(config: &PlannerConfig) -> Vec<serde_json::Value> {
-    let params = serde_json::to_value(config).ok().and_then(|mut v| v.get_mut("params").map(std::mem::take));
-    let params = params.unwrap_or_default();
+    let params = config.params_json();
     let specs = config.kind().param_specs();
     let mut values: Vec<serde_json::Value> =
         specs.iter().map(|spec| params.get(spec.key).cloned().unwrap_or_default()).collect();
@@ -382,15 +386,10 @@ fn planner_params(config: &PlannerConfig) -> Vec<serde_json::Value> {
         }
         values.pop();
     }
-    if let Some(object) = params.as_object() {
-        let extras: serde_json::Map<String, serde_json::Value> = object
-            .iter()
-            .filter(|(key, _)| !specs.iter().any(|s| s.key == key.as_str()))
-            .map(|(key, value)| (key.clone(), value.clone()))
-            .collect();
-        if !extras.is_empty() {
-            values.push(serde_json::Value::Object(extras));
-        }
+    let extras: serde_json::Map<String, serde_json::Value> =
+        params.into_iter().filter(|(key, _)| !specs.iter().any(|s| s.key == key.as_str())).collect();
+    if !extras.is_empty() {
+        values.push(serde_json::Value::Object(extras));
     }
     values
 }
@@ -420,19 +419,12 @@ fn planner_with(name: &str, values: &[serde_json::Value]) -> Result<PlannerConfi
             format!("at most {} values for {} (its parameter table)", specs.len(), kind.label()),
         ));
     }
-    let mut params = serde_json::to_value(kind.default_config())
-        .ok()
-        .and_then(|mut v| v.get_mut("params").map(std::mem::take))
-        .unwrap_or_default();
+    let mut params = kind.default_config().params_json();
     for (spec, value) in specs.iter().zip(values) {
-        if let Some(object) = params.as_object_mut() {
-            object.insert(spec.key.to_string(), value.clone());
-        }
+        params.insert(spec.key.to_string(), value.clone());
     }
     for (key, value) in extras.into_iter().flatten() {
-        if let Some(object) = params.as_object_mut() {
-            object.insert(key.clone(), value.clone());
-        }
+        params.insert(key.clone(), value.clone());
     }
     let keyed = serde_json::json!({ "kind": kind.name(), "params": params });
     let config: PlannerConfig = serde_path_to_error::deserialize(&keyed).map_err(|e| {

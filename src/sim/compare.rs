@@ -240,10 +240,7 @@ fn parse_planner(text: &str) -> Result<PlannerConfig, SpecError> {
         }
         None => (text, ""),
     };
-    let kind = PlannerKind::from_name(name).ok_or_else(|| {
-        let names: Vec<&str> = PlannerKind::ALL.iter().map(|k| k.name()).collect();
-        SpecError(format!("unknown planner {name:?}; known: scene, {}", names.join(", ")))
-    })?;
+    let kind = PlannerKind::parse(name).map_err(|e| SpecError(e.also_accepting(&["scene"]).to_string()))?;
     let specs = kind.param_specs();
     let mut params = serde_json::Map::new();
     let values: Vec<&str> = if values.is_empty() { Vec::new() } else { values.split(',').collect() };
@@ -292,7 +289,7 @@ fn parse_planner(text: &str) -> Result<PlannerConfig, SpecError> {
     let config: PlannerConfig =
         serde_json::from_value(serde_json::json!({ "kind": kind.name(), "params": params }))
             .map_err(|e| SpecError(format!("{}: {e}", kind.name())))?;
-    config.validate().map_err(|e| SpecError(format!("{}: {e}", kind.name())))?;
+    config.check().map_err(|e| SpecError(format!("{}: {e}", kind.name())))?;
     Ok(config)
 }
 

@@ -20,10 +20,7 @@ pub struct CompareSim {
 }
 
 fn planner_kind(name: &str) -> Result<PlannerKind, JsError> {
-    PlannerKind::from_name(name).ok_or_else(|| {
-        let names: Vec<&str> = PlannerKind::ALL.iter().map(|k| k.name()).collect();
-        js_error(format!("unknown planner {name:?}; known: scene, {}", names.join(", ")))
-    })
+    PlannerKind::parse(name).map_err(|e| js_error(e.also_accepting(&["scene"])))
 }
 
 #[wasm_bindgen]

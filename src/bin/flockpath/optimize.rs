@@ -160,7 +160,8 @@ fn paths(parsed: &tables::OptimizeArgs, clock: &dyn Fn() -> f64) -> Result<Strin
     text.push_str(&path_table_text(&rows));
     let _ = writeln!(text, "wall time {:.1} s on {} threads", clock() - start, tables::threads());
     if let Some(path) = &parsed.json {
-        let json = serde_json::to_string_pretty(&rows).unwrap_or_else(|_| "[]".into());
+        let json = serde_json::to_string_pretty(&rows)
+            .map_err(|e| crate::failed(format!("cannot write the JSON report: {e}")))?;
         write_file("--json file", path, &(json + "\n"))?;
     }
     Ok(text)
