@@ -68,14 +68,15 @@ fn preset_json(name: &str) -> String {
 }
 
 #[test]
-fn presets_lists_the_four_presets_with_descriptions() {
+fn presets_lists_every_preset_in_menu_order_with_its_description() {
     let text = ok(flockpath(&["presets"]));
     let lines: Vec<&str> = text.lines().collect();
-    assert_eq!(lines.len(), flockpath::model::presets::ALL.len());
-    for name in ["pillars", "open-field", "two-groups-swap", "corridor"] {
-        let line = lines.iter().find(|l| l.split_whitespace().next() == Some(name));
-        let line = line.unwrap_or_else(|| panic!("{name} missing from {text}"));
-        assert!(line.len() > name.len() + 10, "{name} has no description: {line:?}");
+    let all = flockpath::model::presets::ALL;
+    assert_eq!(lines.len(), all.len(), "{text}");
+    for (line, preset) in lines.iter().zip(all) {
+        assert_eq!(line.split_whitespace().next(), Some(preset.name), "{line:?}");
+        assert!(preset.description.len() > 10, "{} has no description", preset.name);
+        assert_eq!(line[preset.name.len()..].trim(), preset.description, "{line:?}");
     }
 }
 

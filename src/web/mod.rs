@@ -218,7 +218,7 @@ impl Sim {
         codec::scene_to_json(self.world.scene())
     }
 
-    /// The current scene as a URL fragment value (`1.…`).
+    /// The current scene as a URL fragment value (`2.…`).
     pub fn scene_string(&self) -> String {
         codec::scene_to_fragment(self.world.scene())
     }
