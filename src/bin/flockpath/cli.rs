@@ -124,7 +124,7 @@ fn dispatch() -> Result<(), CliError> {
         Command::Run(args) => run::run(&args),
         Command::Url(args) => scenes::url(&args),
         Command::Scene(args) => scenes::scene(&args),
-        Command::Bench(args) => bench::main(&args.options()).map_err(failed),
+        Command::Bench(args) => bench::main(&args.options()),
         Command::Optimize(args) => optimize::optimize(&args),
         Command::Tune(args) => tune::tune(&args),
         Command::DensityScene(args) => bench_cli::density_scene(&args),
