@@ -54,6 +54,8 @@ fn as_written(error: SceneError, text: &str) -> SceneError {
     if !field.value.contains("infinite") {
         return SceneError::Field(field);
     }
+    // Only to show the number as typed: the text already parsed as a scene, and if this re-read
+    // failed the refusal would keep its own words.
     let json: Option<serde_json::Value> = serde_json::from_str(text).ok();
     let mut node = json.as_ref();
     for part in field.path.split('.') {
@@ -483,6 +485,7 @@ fn refusal(error: &serde_path_to_error::Error<serde_json::Error>, text: &str, la
         return SceneError::Parse(format!("the scene text ends too early ({at}): was it cut short?"));
     }
     let mut segments: Vec<Segment> = error.path().iter().cloned().collect();
+    // Best-effort re-reads that locate the field; the parser's error itself is what is reported.
     let json: Option<serde_json::Value> = serde_json::from_str(text).ok();
     let token = token_at(text, inner.line(), inner.column());
     // The text's structure with a word JSON cannot hold (NaN) replaced by 0: it tells a compact

@@ -197,13 +197,12 @@ fn describe_config(config: &PlannerConfig) -> String {
 
 /// The planner's parameter values as spec text, by table position.
 fn param_values(config: &PlannerConfig) -> Vec<String> {
-    let json = serde_json::to_value(config).unwrap_or_default();
-    let params = json.get("params");
+    let params = config.params_json();
     config
         .kind()
         .param_specs()
         .iter()
-        .map(|spec| match params.and_then(|p| p.get(spec.key)) {
+        .map(|spec| match params.get(spec.key) {
             Some(serde_json::Value::String(s)) => s.clone(),
             Some(serde_json::Value::Bool(b)) => if *b { "on" } else { "off" }.to_string(),
             Some(serde_json::Value::Number(n)) => format_number(n.as_f64().unwrap_or_default()),
