@@ -231,3 +231,32 @@ fn help_is_available_for_the_tool_and_its_commands() {
     }
     assert!(ok(flockpath(&["help", "bench"])).contains("--quick"));
 }
+
+/// One wording per unknown name, whichever front-end meets it: the command line shows the
+/// library's typed error (`UnknownPlanner`, `UnknownCase`, `UnknownName`) inside clap's or its own
+/// line, the same text the page and the comparison show.
+#[test]
+fn unknown_names_are_worded_by_the_library() {
+    use flockpath::model::forces_cases::Behaviour;
+    use flockpath::optim::Algorithm;
+    use flockpath::PlannerKind;
+    let planner = PlannerKind::parse("ants").expect_err("no planner ants").to_string();
+    let names: Vec<&str> = PlannerKind::ALL.iter().map(|k| k.name()).collect();
+    assert_eq!(planner, format!("unknown planner \"ants\"; known: {}", names.join(", ")));
+    fails_naming(flockpath(&["run", "--scene", "pillars", "--steps", "5", "--planner", "ants"]), &planner);
+    let spec = flockpath::sim::compare::ComparisonSpec::parse("1.boids~ants").expect_err("no planner ants");
+    assert_eq!(
+        spec.to_string(),
+        format!("comparison: unknown planner \"ants\"; known: scene, {}", names.join(", "))
+    );
+
+    let behaviour = Behaviour::parse("b4").expect_err("no b4").to_string();
+    assert_eq!(behaviour, "unknown behaviour \"b4\"; known: b1, b2, b3");
+    fails_naming(flockpath(&["tune", "--behaviour", "b4", "--environment", "e1", "--seed", "1"]), &behaviour);
+    let setup = flockpath::tune::TuneSetup { behaviour: "b4".into(), ..Default::default() };
+    assert_eq!(setup.task().map(|_| ()).expect_err("no b4").to_string(), behaviour);
+
+    let algorithm = Algorithm::parse("nope").expect_err("no algorithm nope").to_string();
+    assert_eq!(algorithm, "unknown algorithm \"nope\"; known: gsa, igsa, pso, firefly, ga");
+    fails_naming(flockpath(&["optimize", "--algorithms", "nope"]), &algorithm);
+}

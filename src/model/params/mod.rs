@@ -265,12 +265,33 @@ mod tests {
     }
 
     #[test]
+    fn unknown_planners_are_refused_in_one_wording() {
+        assert_eq!(PlannerKind::parse("pso"), Ok(PlannerKind::Pso));
+        let names: Vec<&str> = PlannerKind::ALL.iter().map(|k| k.name()).collect();
+        let e = PlannerKind::parse("teleport").expect_err("no such planner");
+        assert_eq!(e.to_string(), format!("unknown planner \"teleport\"; known: {}", names.join(", ")));
+        let e = e.also_accepting(&["scene"]);
+        assert_eq!(
+            e.to_string(),
+            format!("unknown planner \"teleport\"; known: scene, {}", names.join(", "))
+        );
+        let long = "x".repeat(500);
+        assert_eq!(PlannerKind::parse(&long).expect_err("long").name.len(), 40, "a pasted paragraph is cut");
+    }
+
+    #[test]
     fn set_param_checks_range_and_key() {
         let mut c = PlannerConfig::default();
         assert!(c.set_param("max_speed", serde_json::json!(3.0)).is_ok());
         assert!(matches!(&c, PlannerConfig::Boids(p) if p.max_speed == 3.0));
-        assert!(c.set_param("max_speed", serde_json::json!(1e9)).is_err());
-        assert!(c.set_param("nope", serde_json::json!(1)).is_err());
+        let refused = c.set_param("max_speed", serde_json::json!(1e9)).expect_err("out of range");
+        assert!(matches!(&refused, SetParamError::Refused(e) if e.key == "max_speed"), "{refused:?}");
+        assert_eq!(
+            c.set_param("nope", serde_json::json!(1)),
+            Err(SetParamError::UnknownKey { planner: "Boids steering", key: "nope".into() })
+        );
+        let wrong = c.set_param("max_speed", serde_json::json!("fast")).expect_err("a string");
+        assert!(matches!(&wrong, SetParamError::WrongType { label: "Max speed", .. }), "{wrong:?}");
         assert!(c.set_param("arbitration", serde_json::json!("priority")).is_ok());
         assert!(c.set_param("arbitration", serde_json::json!("chaos")).is_err());
         assert!(matches!(&c, PlannerConfig::Boids(p) if p.max_speed == 3.0));
