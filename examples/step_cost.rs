@@ -2,7 +2,8 @@
 //! planner in its worst valid scene (a square crowd packed at the spawn density limit, heading
 //! for a goal in its middle) against the constant-density scene of the benchmarks, natively.
 //! `taskset -c 0 cargo run --release --example step_cost [N] [PLANNER]`. Timing lives here, never
-//! in the core.
+//! in the core. Figures are on-CPU time where the OS reports it (Linux `schedstat`): on a machine
+//! shared with other work, wall-clock time also counts the time other processes held the core.
 
 use flockpath::{presets, Goal, PlannerKind, Region, Scene, World};
 use std::time::Instant;
@@ -32,7 +33,14 @@ fn spread(n: u32, kind: PlannerKind) -> Scene {
     s
 }
 
-/// Median and worst ns per agent-step over `windows` windows of `steps` steps after `skip`.
+/// Nanoseconds this thread has spent on a CPU (Linux `schedstat`), if the OS reports it.
+fn cpu_ns() -> Option<u64> {
+    let text = std::fs::read_to_string("/proc/thread-self/schedstat").ok()?;
+    text.split_whitespace().next()?.parse().ok()
+}
+
+/// Median and worst ns per agent-step over `windows` windows of `steps` steps after `skip`
+/// (on-CPU where the OS reports it, else wall-clock).
 fn time(scene: Scene, skip: u32, windows: u32, steps: u32) -> (f64, f64) {
     let n = scene.agent_count() as f64;
     let mut world = match World::new_beyond_cost_limit(scene) {
@@ -45,9 +53,13 @@ fn time(scene: Scene, skip: u32, windows: u32, steps: u32) -> (f64, f64) {
     world.step_n(skip);
     let mut samples: Vec<f64> = (0..windows)
         .map(|_| {
-            let start = Instant::now();
+            let (start, cpu_start) = (Instant::now(), cpu_ns());
             world.step_n(steps);
-            start.elapsed().as_nanos() as f64 / (n * f64::from(steps))
+            let spent = match (cpu_start, cpu_ns()) {
+                (Some(a), Some(b)) => b.saturating_sub(a) as f64,
+                _ => start.elapsed().as_nanos() as f64,
+            };
+            spent / (n * f64::from(steps))
         })
         .collect();
     samples.sort_by(f64::total_cmp);
@@ -56,7 +68,8 @@ fn time(scene: Scene, skip: u32, windows: u32, steps: u32) -> (f64, f64) {
 
 fn main() {
     let n: u32 = std::env::args().nth(1).and_then(|a| a.parse().ok()).unwrap_or(2_000);
-    println!("{n} agents, ns per agent-step (median / worst of 10-step windows), native release");
+    let clock = if cpu_ns().is_some() { "on-CPU" } else { "wall-clock" };
+    println!("{n} agents, {clock} ns per agent-step (median / worst of 10-step windows), native release");
     println!(
         "{:>8}  {:>20}  {:>20}  {:>20}",
         "planner", "spread (steps 0-100)", "packed (0-100)", "packed (300-400)"

@@ -13,7 +13,7 @@ use crate::model::scene::PathSpec;
 use crate::planners::explain::{Explanation, NamedVector};
 use crate::rng::Rng;
 use crate::spatial::flow_field::{self, FlowField};
-use crate::spatial::{CandidateRuns, Columns, Neighbour, NEIGHBOUR_CAP};
+use crate::spatial::{CandidateRuns, CandidateSample, Columns, Neighbour, NEIGHBOUR_CAP};
 use glam::{BVec4A, Vec2, Vec4};
 use std::ops::Range;
 
@@ -25,6 +25,10 @@ pub struct Boids {
     side_whisker: Vec2,
     /// Scratch: the candidate neighbours being tested (reused to avoid allocating).
     candidates: CandidateRuns,
+    /// Scratch: the sampled candidates of a pile ([`FLOCK_SAMPLE_ABOVE`]).
+    sample: CandidateSample,
+    /// Candidates tested by the last `plan` (counted, for tests of the work per agent).
+    visits: Visits,
     /// Scratch: each agent's neighbour sums in this step.
     sums: Vec<FlockSums>,
     /// The flow field towards the goal and what it was built from (flow field guidance).
@@ -88,6 +92,8 @@ impl Boids {
             params,
             side_whisker: Vec2::from_angle(SIDE_WHISKER_ANGLE),
             candidates: CandidateRuns::default(),
+            sample: CandidateSample::default(),
+            visits: Visits::default(),
             sums: Vec::new(),
             flow: None,
             path_segment: Vec::new(),
@@ -98,6 +104,11 @@ impl Boids {
     /// The planner's parameters.
     pub fn params(&self) -> &BoidsParams {
         &self.params
+    }
+
+    /// The candidates the last [`Planner::plan`] tested for its neighbour sums (counted).
+    pub fn visits(&self) -> Visits {
+        self.visits
     }
 
     /// Updates what the extensions remember between steps, from the state at the start of the
@@ -419,24 +430,29 @@ impl Planner for Boids {
         sums.clear();
         sums.resize(group.agents.len(), FlockSums::default());
         let mut block = std::mem::take(&mut self.candidates);
+        let mut sample = std::mem::take(&mut self.sample);
         let reach = self.interaction_radius();
         let everyone_is_own = group.agents.start == 0 && group.agents.end as usize >= ctx.positions.len();
         let sep_r = self.params.separation_radius;
         let columns = ctx.grid.columns();
-        let mut sum_one = |id: u32, p: Vec2, runs: &CandidateRuns| {
+        let mut visits = Visits::default();
+        let mut sum_one = |id: u32, p: Vec2, (from, runs): (Columns, &[Range<usize>])| {
             if let Some(out) = sums.get_mut((id - group.agents.start) as usize) {
-                *out = flock_sums(columns, runs, p, reach, sep_r, &group.agents, everyone_is_own);
+                let tested: usize = runs.iter().map(ExactSizeIterator::len).sum();
+                visits.count(tested);
+                *out = flock_sums(from, runs, p, reach, sep_r, &group.agents, everyone_is_own);
             }
         };
         let grid_agents = ctx.grid.ids_in_cell_order().len();
         if grid_agents == ctx.positions.len() && group.agents.len() * 4 >= grid_agents {
-            // Cell by cell: the agents of a cell share their candidates, and the cells they
-            // read stay in the cache.
+            // Cell by cell: the agents of a cell share their candidates (sampled once per cell
+            // in a pile), and the cells they read stay in the cache.
             ctx.grid.for_each_candidate_block(reach, &mut block, |slots, runs| {
+                let tested = flock_candidates(columns, runs, &mut sample);
                 for k in slots {
                     let id = columns.ids[k];
                     if group.agents.contains(&id) {
-                        sum_one(id, Vec2::new(columns.x[k], columns.y[k]), runs);
+                        sum_one(id, Vec2::new(columns.x[k], columns.y[k]), tested);
                     }
                 }
             });
@@ -445,9 +461,10 @@ impl Planner for Boids {
             for id in group.agents.clone() {
                 let p = ctx.positions[id as usize];
                 ctx.grid.candidate_runs(p, reach, &mut block);
-                sum_one(id, p, &block);
+                sum_one(id, p, flock_candidates(columns, &block, &mut sample));
             }
         }
+        self.visits = visits;
         // Plain rules four agents at a time (the same arithmetic lane by lane), the rest and
         // every extension one at a time.
         let four_at_a_time = if self.is_plain(ctx) { sums.len() / LANES * LANES } else { 0 };
@@ -465,6 +482,7 @@ impl Planner for Boids {
             *out = limit(ctx.velocities[id as usize] + forces.acceleration, self.params.max_speed);
         }
         self.candidates = block;
+        self.sample = sample;
         self.sums = sums;
     }
 
@@ -476,10 +494,11 @@ impl Planner for Boids {
             ctx.grid.candidate_runs(p, self.interaction_radius(), &mut runs);
             let everyone_is_own = group.agents.start == 0 && group.agents.end as usize >= ctx.positions.len();
             let sep_r = self.params.separation_radius;
-            let columns = ctx.grid.columns();
+            let mut sample = CandidateSample::default();
+            let (columns, runs) = flock_candidates(ctx.grid.columns(), &runs, &mut sample);
             sums = flock_sums(
                 columns,
-                &runs,
+                runs,
                 p,
                 self.interaction_radius(),
                 sep_r,
@@ -748,15 +767,56 @@ impl Boids {
 }
 
 /// Most candidates (agents of the cells round an agent, within reach or not) [`flock_sums`]
-/// tests per agent: the first in the grid's storage order. The 3 × 3 cells of perception size
-/// round an agent hold about 320 non-overlapping 4 px discs at most, so only a pile reaches it;
-/// there it bounds an agent's work (a pile of 200,000 would otherwise cost 200,000² tests).
-pub const MAX_FLOCK_CANDIDATES: usize = 1024;
+/// tests one by one. The 3 × 3 cells of perception size round an agent (150 × 150 px with the
+/// default 50 px) hold at most about 350 bodies of the default 4 px radius side by side (the
+/// spawn's density limit, one per 8 × 8 px: 351), so only a jam pressed tighter than that or a
+/// pile of overlapping bodies has more; then [`FLOCK_SAMPLE`] of them, evenly spaced, stand for
+/// all ([`flock_candidates`]), which bounds an agent's work however dense the pile.
+pub const FLOCK_SAMPLE_ABOVE: usize = 384;
+
+/// Candidates sampled from cells holding more than [`FLOCK_SAMPLE_ABOVE`]. Alignment and
+/// cohesion are means over the flockmates found, and separation steers along the direction of
+/// its sum: an even sample of the neighbourhood estimates all three without scaling.
+pub const FLOCK_SAMPLE: usize = FLOCK_SAMPLE_ABOVE;
+
+/// The candidates [`flock_sums`] tests for the candidate runs `runs` of `columns`: the runs
+/// themselves, or in a pile (more than [`FLOCK_SAMPLE_ABOVE`]) [`FLOCK_SAMPLE`] of them,
+/// evenly spaced, copied into `sample` ([`CandidateSample`]).
+fn flock_candidates<'a>(
+    columns: Columns<'a>,
+    runs: &'a CandidateRuns,
+    sample: &'a mut CandidateSample,
+) -> (Columns<'a>, &'a [Range<usize>]) {
+    if runs.len() <= FLOCK_SAMPLE_ABOVE {
+        (columns, runs.runs())
+    } else {
+        sample.fill(columns, runs.runs(), FLOCK_SAMPLE);
+        (sample.columns(), sample.runs())
+    }
+}
+
+/// How many candidates a [`Boids`] step tested for its neighbour sums, counted per agent.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Visits {
+    /// Agents whose sums were computed.
+    pub agents: u64,
+    /// Candidates tested, all agents together.
+    pub total: u64,
+    /// The most candidates one agent tested.
+    pub max_per_agent: u64,
+}
+
+impl Visits {
+    fn count(&mut self, tested: usize) {
+        self.agents += 1;
+        self.total += tested as u64;
+        self.max_per_agent = self.max_per_agent.max(tested as u64);
+    }
+}
 
 /// The neighbour sums of the agent at `p` over the candidates `runs` of `columns`: every agent
 /// within `reach` of it except those at exactly its position (itself), the separation terms of
-/// those closer than `separation_radius`, velocity and position sums of those in `own_group`;
-/// only the first [`MAX_FLOCK_CANDIDATES`] candidates are tested.
+/// those closer than `separation_radius`, velocity and position sums of those in `own_group`.
 ///
 /// The candidates are tested four at a time (one SIMD register natively and in wasm) without a
 /// branch: whether a candidate is within reach is a coin flip the CPU cannot predict. Each lane
@@ -766,7 +826,7 @@ pub const MAX_FLOCK_CANDIDATES: usize = 1024;
 #[inline]
 fn flock_sums(
     columns: Columns<'_>,
-    runs: &CandidateRuns,
+    runs: &[Range<usize>],
     p: Vec2,
     reach: f32,
     separation_radius: f32,
@@ -779,10 +839,7 @@ fn flock_sums(
     // The flocking count as floats (exact up to 2^24): a lane add, where a population count
     // is a dozen instructions on the x86-64 baseline.
     let mut flocking = Vec4::ZERO;
-    let mut left = MAX_FLOCK_CANDIDATES;
-    for run in runs.runs() {
-        let run = run.start..run.end.min(run.start + left);
-        left -= run.len();
+    for run in runs {
         for at in run.clone().step_by(LANES) {
             let load = |s: &[f32]| s.get(at..at + LANES).map_or(Vec4::NAN, Vec4::from_slice);
             let (x, y) = (load(columns.x), load(columns.y));
