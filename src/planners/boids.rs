@@ -768,16 +768,16 @@ impl Boids {
 
 /// Most candidates (agents of the cells round an agent, within reach or not) [`flock_sums`]
 /// tests one by one. The 3 × 3 cells of perception size round an agent (150 × 150 px with the
-/// default 50 px) hold at most about 350 bodies of the default 4 px radius side by side (the
-/// spawn's density limit, one per 8 × 8 px: 351), so only a jam pressed tighter than that or a
-/// pile of overlapping bodies has more; then [`FLOCK_SAMPLE`] of them, evenly spaced, stand for
-/// all ([`flock_candidates`]), which bounds an agent's work however dense the pile.
-pub const FLOCK_SAMPLE_ABOVE: usize = 384;
+/// default 50 px) hold at most 361 bodies of the default 4 px radius on the spawn's lattice
+/// (one per 8 × 8 px) and 418 touching in the densest (hexagonal) packing, so only a crowd
+/// pressed into overlapping or a pile has more; then [`FLOCK_SAMPLE`] of them, evenly spaced,
+/// stand for all ([`flock_candidates`]), which bounds an agent's work however dense the pile.
+pub const FLOCK_SAMPLE_ABOVE: usize = 448;
 
 /// Candidates sampled from cells holding more than [`FLOCK_SAMPLE_ABOVE`]. Alignment and
 /// cohesion are means over the flockmates found, and separation steers along the direction of
 /// its sum: an even sample of the neighbourhood estimates all three without scaling.
-pub const FLOCK_SAMPLE: usize = FLOCK_SAMPLE_ABOVE;
+pub const FLOCK_SAMPLE: usize = 384;
 
 /// The candidates [`flock_sums`] tests for the candidate runs `runs` of `columns`: the runs
 /// themselves, or in a pile (more than [`FLOCK_SAMPLE_ABOVE`]) [`FLOCK_SAMPLE`] of them,
@@ -921,6 +921,104 @@ mod tests {
                 }
             }
             assert!(checked >= 6 * 200, "{checked} agents checked");
+        }
+    }
+
+    /// `count` Boids agents at the positions of a fixed low-discrepancy pattern over a `side` px
+    /// square at (100, 100), heading for a goal on the right: a jam no spawn makes (the spawn
+    /// keeps bodies apart) but a converging crowd can reach.
+    fn pile(count: u32, side: f32) -> World {
+        let mut scene = presets::constant_density(count, 9.0);
+        scene.groups[0].spawn = crate::Region { min: [100.0, 100.0], max: [100.0 + side, 100.0 + side] };
+        let positions = (0..count)
+            .map(|i| {
+                let u = (f64::from(i) + 0.5) / f64::from(count);
+                let v = (f64::from(i) * 0.618_033_988_749_894_9).fract();
+                Vec2::new(100.0 + side * u as f32, 100.0 + side * v as f32)
+            })
+            .collect();
+        World::new_at(scene, positions).expect("valid scene")
+    }
+
+    /// Plans one step of group 0 of `world` as the world would: the planner and what it visited.
+    fn plan_group_0(world: &World) -> (Boids, Vec<Vec2>) {
+        let ctx = world.step_context();
+        let PlannerConfig::Boids(params) = world.scene().groups[0].planner.clone() else {
+            panic!("a Boids group");
+        };
+        let view = world.group_view(0).expect("group");
+        let mut planner = Boids::new(params);
+        let mut planned = vec![Vec2::ZERO; view.agents.len()];
+        planner.plan(&ctx, view, &mut Rng::new(1, 1), &mut planned);
+        (planner, planned)
+    }
+
+    /// In a pile of 5,000 agents within 40 × 40 px, the cells round every agent hold all 5,000:
+    /// each agent's neighbour sums test exactly [`FLOCK_SAMPLE`] of them (counted), not 5,000
+    /// (or the 1,024 of the former cap), and `explain` sees the same sample as `plan`.
+    #[test]
+    fn a_jammed_step_tests_at_most_the_sample_per_agent() {
+        let n = 5_000;
+        let world = pile(n, 40.0);
+        let ctx = world.step_context();
+        let mut runs = CandidateRuns::default();
+        let reach = BoidsParams::default().perception_radius;
+        ctx.grid.candidate_runs(world.positions()[0], reach, &mut runs);
+        assert_eq!(runs.len(), n as usize, "every agent of the pile is a candidate of every other");
+        let (planner, planned) = plan_group_0(&world);
+        let visits = planner.visits();
+        assert_eq!(visits.agents, u64::from(n));
+        assert_eq!(visits.max_per_agent, FLOCK_SAMPLE as u64);
+        assert_eq!(visits.total, u64::from(n) * FLOCK_SAMPLE as u64);
+        assert!(planned.iter().all(|v| v.is_finite()));
+        let view = world.group_view(0).expect("group");
+        for id in (0..n).step_by(97) {
+            let e = planner.explain(&ctx, &view, id);
+            let one = limit(ctx.velocities[id as usize] + e.applied, planner.params.max_speed);
+            assert_eq!(planned[id as usize].to_array().map(f32::to_bits), one.to_array().map(f32::to_bits));
+        }
+        // Separation still pushes the pile apart: the sampled sums are not zero.
+        assert!(planned.iter().filter(|v| v.length() > 0.1).count() > n as usize / 2);
+    }
+
+    /// Crowds of 4 px bodies side by side never reach the sampling threshold, so every agent
+    /// tests all its candidates as before sampling existed: the spawn at its density limit (one
+    /// body per 8 × 8 px) and bodies touching in hexagonal packing, the densest there is.
+    #[test]
+    fn crowds_without_overlap_test_every_candidate() {
+        let mut lattice = presets::constant_density(6_400, 9.0);
+        lattice.groups[0].spawn = crate::Region { min: [100.0, 100.0], max: [740.0, 740.0] };
+        lattice.groups[0].agent_radius = 4.0;
+        let lattice = World::new(lattice).expect("valid scene at the density limit");
+        let mut hex = presets::constant_density(6_400, 9.0);
+        hex.groups[0].agent_radius = 4.0;
+        let rows = 3.0_f32.sqrt() * 4.0;
+        let positions = (0..6_400)
+            .map(|i| {
+                Vec2::new(
+                    100.0 + 8.0 * (i % 80) as f32 + 4.0 * ((i / 80) % 2) as f32,
+                    100.0 + rows * (i / 80) as f32,
+                )
+            })
+            .collect();
+        let hex = World::new_at(hex, positions).expect("valid hexagonal crowd");
+        for (name, world) in [("lattice", lattice), ("hexagonal", hex)] {
+            let (planner, _) = plan_group_0(&world);
+            let ctx = world.step_context();
+            let reach = planner.interaction_radius();
+            let mut runs = CandidateRuns::default();
+            let all: usize = world
+                .positions()
+                .iter()
+                .map(|&p| {
+                    ctx.grid.candidate_runs(p, reach, &mut runs);
+                    runs.len()
+                })
+                .sum();
+            let visits = planner.visits();
+            assert_eq!(visits.total, all as u64, "{name}: no agent was sampled");
+            assert!(visits.max_per_agent <= FLOCK_SAMPLE_ABOVE as u64, "{name}: {visits:?}");
+            assert!(visits.max_per_agent >= 300, "{name}: the crowd is dense: {visits:?}");
         }
     }
 }

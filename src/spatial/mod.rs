@@ -825,6 +825,66 @@ mod tests {
     }
 
     #[test]
+    fn a_sample_spreads_evenly_over_all_runs_and_keeps_small_ones_whole() {
+        let (w, h, cell) = (300.0, 200.0, 20.0);
+        let points = scattered_points(5, 3000, (w, h), cell);
+        let velocities: Vec<Vec2> = (0..points.len()).map(|i| Vec2::new(i as f32, -(i as f32))).collect();
+        let mut grid = SpatialGrid::new(w, h, cell, points.len());
+        grid.rebuild(&points, &velocities);
+        let (columns, mut runs, mut sample) =
+            (grid.columns(), CandidateRuns::default(), CandidateSample::default());
+        grid.candidate_runs(Vec2::new(150.0, 100.0), 45.0, &mut runs);
+        assert!(runs.runs().len() >= 3 && runs.len() > 200, "{:?}", runs.runs());
+        let all: Vec<usize> = runs.runs().iter().flat_map(Clone::clone).collect();
+        for count in [1, 7, 64, 200, all.len(), all.len() + 10] {
+            sample.fill(columns, runs.runs(), count);
+            let taken = count.min(all.len());
+            assert_eq!(sample.runs(), &[0..taken]);
+            let s = sample.columns();
+            for k in 0..taken {
+                let slot = all[k * all.len() / taken];
+                assert_eq!(s.ids[k], columns.ids[slot]);
+                let id = s.ids[k] as usize;
+                assert_eq!((s.x[k], s.y[k]), (points[id].x, points[id].y));
+                assert_eq!((s.vx[k], s.vy[k]), (velocities[id].x, velocities[id].y));
+            }
+            // Padding after the sample, as after the grid's own columns.
+            assert!(
+                s.ids[taken..].iter().all(|&id| id == u32::MAX) && s.ids.len() == taken + CANDIDATE_LANES
+            );
+            assert!(s.x[taken..].iter().all(|x| x.is_nan()));
+        }
+    }
+
+    #[test]
+    fn any_within_capped_answers_as_testing_every_visited_agent() {
+        let (w, h, cell) = (200.0, 200.0, 20.0);
+        let points = scattered_points(3, 4000, (w, h), cell);
+        let mut grid = SpatialGrid::new(w, h, cell, points.len());
+        grid.rebuild(&points, &[]);
+        let cap = QueryCap { neighbours: 40, candidates: 90 };
+        let mut answers = [0; 2];
+        for (i, &p) in points.iter().enumerate().step_by(7) {
+            for radius in [1.0, 4.0, 15.0] {
+                let hit = |n: Neighbour| n.id != i as u32 && n.d2 < 6.0 && n.id % 3 == 0;
+                let mut expected = false;
+                grid.for_each_within_capped(p, radius, cap, |n| expected |= hit(n));
+                let mut tested = 0;
+                let any = grid.any_within_capped(p, radius, cap, |n| {
+                    tested += 1;
+                    hit(n)
+                });
+                assert_eq!(any, expected, "agent {i} radius {radius}");
+                answers[usize::from(any)] += 1;
+                if any {
+                    assert!(tested <= cap.neighbours);
+                }
+            }
+        }
+        assert!(answers[0] > 100 && answers[1] > 100, "both answers occur: {answers:?}");
+    }
+
+    #[test]
     fn single_cell_grid_scans_everything() {
         let points = vec![Vec2::new(1.0, 1.0), Vec2::new(99.0, 99.0)];
         let mut grid = SpatialGrid::single_cell(100.0, 100.0);
