@@ -103,6 +103,9 @@ async function launch() {
     headless: true,
     args: CHROMIUM_ARGS,
     viewport: VIEWPORT,
+    // The page's service worker (offline use) would answer from its cache: the bench times
+    // what www/ serves now.
+    serviceWorkers: 'block',
   });
   page = context.pages()[0] ?? (await context.newPage());
 }
