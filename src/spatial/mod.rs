@@ -159,7 +159,7 @@ impl CandidateSample {
         for c in &mut self.columns {
             c.extend([f32::NAN; CANDIDATE_LANES]);
         }
-        self.run = [0..count];
+        self.run = [Range { start: 0, end: count }];
     }
 
     /// The sampled agents as padded [`Columns`].
@@ -839,7 +839,7 @@ mod tests {
         for count in [1, 7, 64, 200, all.len(), all.len() + 10] {
             sample.fill(columns, runs.runs(), count);
             let taken = count.min(all.len());
-            assert_eq!(sample.runs(), &[0..taken]);
+            assert_eq!(sample.runs(), std::slice::from_ref(&(0..taken)));
             let s = sample.columns();
             for k in 0..taken {
                 let slot = all[k * all.len() / taken];
@@ -866,7 +866,7 @@ mod tests {
         let mut answers = [0; 2];
         for (i, &p) in points.iter().enumerate().step_by(7) {
             for radius in [1.0, 4.0, 15.0] {
-                let hit = |n: Neighbour| n.id != i as u32 && n.d2 < 6.0 && n.id % 3 == 0;
+                let hit = |n: Neighbour| n.id != i as u32 && n.d2 < 6.0 && n.id.is_multiple_of(3);
                 let mut expected = false;
                 grid.for_each_within_capped(p, radius, cap, |n| expected |= hit(n));
                 let mut tested = 0;
