@@ -106,8 +106,7 @@ async function launch() {
     headless: true,
     args: CHROMIUM_ARGS,
     viewport: VIEWPORT,
-    // The page's service worker (offline use) would answer from its cache: the bench times
-    // what www/ serves now.
+    // The offline service worker would add its fetch handler to every request: not what is measured.
     serviceWorkers: 'block',
   });
   page = context.pages()[0] ?? (await context.newPage());
