@@ -1,11 +1,11 @@
 //! The page's diagnosis and metrics-plot bindings on [`Sim`]: agent picking, the inspector's
 //! explanation, overlay switches, stuck flags and the metrics time series. Conversion only; the
-//! work is done by [`crate::sim::diagnose`], [`crate::sim::history`] and the renderer.
+//! work is done by [`crate::sim::diagnose`], [`crate::sim::metric_series`] and the renderer.
 
 use super::{js_error, to_json, Sim};
 use crate::render::{Overlays, ARROW_COLORS};
 use crate::sim::diagnose;
-use crate::sim::history::SERIES;
+use crate::sim::metric_series::SERIES;
 use glam::Vec2;
 use wasm_bindgen::prelude::*;
 
@@ -71,7 +71,7 @@ impl Sim {
     /// and the next new step drops them then.
     fn current_history(&mut self) {
         if self.history.groups() != self.world.scene().groups.len() {
-            self.history.clear(crate::sim::history::DEFAULT_EVERY);
+            self.history.clear();
         }
     }
 

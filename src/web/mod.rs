@@ -16,7 +16,8 @@ use crate::model::params::PlannerKind;
 use crate::model::presets;
 use crate::model::scene::ViewOptions;
 use crate::render::Renderer;
-use crate::sim::history::MetricsHistory;
+use crate::sim::limits::PAGE_RECORDING_BUDGET_BYTES as RECORDING_BUDGET_BYTES;
+use crate::sim::metric_series::MetricSeries;
 use crate::sim::recording::Recording;
 use crate::sim::replay::Replay;
 use crate::sim::world::World;
@@ -56,9 +57,6 @@ fn to_json<T: serde::Serialize>(value: &T) -> Result<String, JsError> {
     serde_json::to_string(value).map_err(js_error)
 }
 
-/// Memory the page's recording of a run may use before it thins (stated on screen).
-const RECORDING_BUDGET_BYTES: usize = 32 << 20;
-
 /// A running scene with its renderer and the recording of its run: the handle the page keeps.
 #[wasm_bindgen]
 pub struct Sim {
@@ -68,7 +66,7 @@ pub struct Sim {
     /// The run's history for the timeline (see `timeline.rs`).
     replay: Replay,
     /// The metrics over time for the plots (a run that restarts starts a new one).
-    history: MetricsHistory,
+    history: MetricSeries,
     /// The world shown before the current one started planning ahead (IGSA paths), which
     /// [`Sim::cancel_planning`] goes back to; `None` when nothing is being planned.
     before_planning: Option<World>,
@@ -89,7 +87,7 @@ impl Sim {
             renderer: Renderer::new(width, height),
             recording,
             replay,
-            history: MetricsHistory::default(),
+            history: MetricSeries::default(),
             before_planning: None,
         };
         sim.show_scene_view();
@@ -400,7 +398,7 @@ impl Sim {
         self.show_scene_view();
         self.recording = Recording::of_world(&self.world, RECORDING_BUDGET_BYTES);
         self.replay = Replay::new(&self.world);
-        self.history = MetricsHistory::default();
+        self.history = MetricSeries::default();
         true
     }
 

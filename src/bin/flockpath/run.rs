@@ -3,16 +3,12 @@
 use crate::scenes::load_scene;
 use crate::{failed, out, usage, whole_number, write_file, CliError};
 use flockpath::export::{self, ExportOptions};
-use flockpath::sim::history::{self, MetricsHistory};
+use flockpath::sim::limits::{
+    CLI_MAX_STEPS as MAX_STEPS, CLI_METRIC_SERIES_CAP, CLI_RECORDING_BUDGET_BYTES, METRIC_SERIES_EVERY,
+};
+use flockpath::sim::metric_series::MetricSeries;
 use flockpath::sim::recording::Recording;
 use flockpath::{PlannerKind, Scene, World};
-
-/// Most samples `run --metrics-history` keeps before halving its sampling rate.
-const HISTORY_CAP: usize = 4096;
-/// Most steps one `run` may ask for (about 4.6 hours of simulated time at 60 steps/s).
-const MAX_STEPS: u32 = 1_000_000;
-/// Memory the CLI's recording of a run may use before it thins (a note goes to stderr).
-const RECORDING_BUDGET_BYTES: usize = 1 << 30;
 
 /// `flockpath run`.
 #[derive(clap::Args, Debug)]
@@ -116,9 +112,9 @@ pub fn run(args: &RunArgs) -> Result<(), CliError> {
         scene.seed = seed;
     }
     let mut world = World::new(scene).map_err(|e| failed(format!("cannot run the scene: {e}")))?;
-    let mut recording = recording_wanted.then(|| Recording::of_world(&world, RECORDING_BUDGET_BYTES));
+    let mut recording = recording_wanted.then(|| Recording::of_world(&world, CLI_RECORDING_BUDGET_BYTES));
     let history_file = args.metrics_history.as_deref();
-    let mut history = history_file.map(|_| MetricsHistory::new(history::DEFAULT_EVERY, HISTORY_CAP));
+    let mut history = history_file.map(|_| MetricSeries::new(METRIC_SERIES_EVERY, CLI_METRIC_SERIES_CAP));
     if recording.is_none() && history.is_none() {
         world.step_n(steps);
     } else {
