@@ -1,13 +1,12 @@
-//! `flockpath run`: simulate a scene, report its metrics, write the exports asked for.
+//! `flockpath run`: simulate a scene (a `Run` without a timeline), report its metrics, write the
+//! exports asked for.
 
 use crate::scenes::load_scene;
 use crate::{failed, out, usage, whole_number, write_file, CliError};
 use flockpath::export::{self, ExportOptions};
-use flockpath::sim::limits::{
-    CLI_MAX_STEPS as MAX_STEPS, CLI_METRIC_SERIES_CAP, CLI_RECORDING_BUDGET_BYTES, METRIC_SERIES_EVERY,
-};
-use flockpath::sim::metric_series::MetricSeries;
+use flockpath::sim::limits::{CLI_MAX_STEPS as MAX_STEPS, CLI_RECORDING_BUDGET_BYTES};
 use flockpath::sim::recording::Recording;
+use flockpath::sim::run::{Run, RunOptions};
 use flockpath::{PlannerKind, Scene, World};
 
 /// `flockpath run`.
@@ -111,29 +110,17 @@ pub fn run(args: &RunArgs) -> Result<(), CliError> {
     if let Some(seed) = args.seed {
         scene.seed = seed;
     }
-    let mut world = World::new(scene).map_err(|e| failed(format!("cannot run the scene: {e}")))?;
-    let mut recording = recording_wanted.then(|| Recording::of_world(&world, CLI_RECORDING_BUDGET_BYTES));
     let history_file = args.metrics_history.as_deref();
-    let mut history = history_file.map(|_| MetricSeries::new(METRIC_SERIES_EVERY, CLI_METRIC_SERIES_CAP));
-    if recording.is_none() && history.is_none() {
-        world.step_n(steps);
-    } else {
-        for _ in 0..steps {
-            world.step();
-            if let Some(r) = recording.as_mut() {
-                r.capture_world(&world);
-            }
-            if let Some(h) = history.as_mut() {
-                h.sample(&world);
-            }
-        }
+    let options = RunOptions::command_line(recording_wanted, history_file.is_some());
+    let mut run = Run::new(scene, options).map_err(|e| failed(format!("cannot run the scene: {e}")))?;
+    run.step(steps);
+    let world = run.world();
+    if recording_wanted {
+        write_exports(args, world, run.recording(), export_options)?;
     }
-    if let Some(recording) = &recording {
-        write_exports(args, &world, recording, export_options)?;
-    }
-    if let (Some(h), Some(file)) = (&history, history_file) {
+    if let Some(file) = history_file {
         let names: Vec<String> = world.scene().groups.iter().map(|g| g.name.clone()).collect();
-        write_file("metrics history file", file, &h.to_csv(&names))?;
+        write_file("metrics history file", file, &run.metric_series().to_csv(&names))?;
     }
     let metrics = world.metrics();
     let json = serde_json::to_string_pretty(&metrics)
@@ -142,9 +129,9 @@ pub fn run(args: &RunArgs) -> Result<(), CliError> {
         Some("-") => out(&format!("{json}\n")),
         Some(file) => {
             write_file("metrics file", file, &format!("{json}\n"))?;
-            out(&summary(&world))
+            out(&summary(world))
         }
-        None => out(&summary(&world)),
+        None => out(&summary(world)),
     }
 }
 
@@ -158,7 +145,8 @@ fn write_exports(
     let scene = world.scene();
     if recording.thinned() > 0 {
         eprintln!(
-            "flockpath: note: the recording outgrew its 1 GiB budget and keeps every {}th step",
+            "flockpath: note: the recording outgrew its {} GiB budget and keeps every {}th step",
+            CLI_RECORDING_BUDGET_BYTES >> 30,
             recording.every()
         );
     }
