@@ -554,6 +554,46 @@ impl Comparison {
         Ok(())
     }
 
+    /// Gives pane `pane` `kind` for every group with its defaults, or the scene's own planners
+    /// for `None`; restarts every pane. On error nothing changes.
+    pub fn set_pane_planner(&mut self, pane: usize, kind: Option<PlannerKind>) -> Result<(), SpecError> {
+        let mut spec = self.spec();
+        *pane_slot(&mut spec, pane)? = kind.map_or_else(PaneSpec::scene, PaneSpec::every_group);
+        self.set_spec(spec)
+    }
+
+    /// Sets one parameter of pane `pane`'s every-group planner; restarts every pane. On error
+    /// (no such pane, a pane running the scene's planners, a value out of range) nothing changes.
+    pub fn set_pane_param(
+        &mut self,
+        pane: usize,
+        key: &str,
+        value: serde_json::Value,
+    ) -> Result<(), SpecError> {
+        let mut spec = self.spec();
+        let config = pane_slot(&mut spec, pane)?.all.as_mut().ok_or_else(|| {
+            SpecError("this pane runs the scene's own planners: pick a planner for it first".into())
+        })?;
+        config.set_param(key, value).map_err(SpecError)?;
+        self.set_spec(spec)
+    }
+
+    /// Adds a pane running `kind` for every group (`None`: the scene's planners); restarts.
+    /// Errors past [`MAX_PANES`].
+    pub fn add_pane(&mut self, kind: Option<PlannerKind>) -> Result<(), SpecError> {
+        let mut spec = self.spec();
+        spec.panes.push(kind.map_or_else(PaneSpec::scene, PaneSpec::every_group));
+        self.set_spec(spec)
+    }
+
+    /// Removes pane `pane`; restarts. Errors for a missing pane or the last one.
+    pub fn remove_pane(&mut self, pane: usize) -> Result<(), SpecError> {
+        let mut spec = self.spec();
+        pane_slot(&mut spec, pane)?;
+        spec.panes.remove(pane);
+        self.set_spec(spec)
+    }
+
     /// Replaces the scene, keeping the spec (restarts); on error nothing changes.
     pub fn set_scene(&mut self, scene: Scene) -> Result<(), SpecError> {
         *self = Self::new(scene, self.spec())?;
@@ -622,6 +662,11 @@ impl Comparison {
     pub fn digests(&self) -> Vec<u64> {
         self.panes.iter().map(|p| p.world.digest()).collect()
     }
+}
+
+/// Pane `pane` of `spec`, or an error naming it (counted from 1).
+fn pane_slot(spec: &mut ComparisonSpec, pane: usize) -> Result<&mut PaneSpec, SpecError> {
+    spec.panes.get_mut(pane).ok_or_else(|| SpecError(format!("there is no pane {}", pane as u64 + 1)))
 }
 
 /// Quotes a CSV field when it holds a comma, quote or line break.
