@@ -66,3 +66,10 @@ pub const CLI_LAB_DIMENSION: usize = 10_000;
 pub const PAGE_LAB_ITERATIONS: u32 = 100_000;
 /// `flockpath optimize`'s most iterations per run.
 pub const CLI_LAB_ITERATIONS: u32 = 10_000_000;
+
+// Not here, and why: the lab page's form (`www/lab.html`) offers smaller ranges than the wasm
+// API above accepts (d ≤ 200, N ≤ 500, T ≤ 10,000; a script calling the API may go up to the
+// limits above), and the tuning page's form caps its
+// population at 2,000 where `crate::tune` accepts 100,000 (the command line's limit). The
+// playground's agent-count field repeats the scene's `MAX_AGENTS` (200,000). These are inputs'
+// `max` attributes in HTML/JS, which cannot name a Rust constant.

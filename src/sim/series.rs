@@ -77,6 +77,7 @@ impl<T> BoundedSeries<T> {
         }
         self.steps.push(step);
         self.values.extend(row);
+        debug_assert_eq!(self.values.len(), self.steps.len() * width, "a row of the wrong width");
         true
     }
 
@@ -126,9 +127,9 @@ impl<T> BoundedSeries<T> {
             if step.is_multiple_of(self.every) || Some(step) == self.anchor || keep(step) {
                 if kept != s {
                     self.steps[kept] = step;
-                    for j in 0..width {
-                        self.values.swap(s * width + j, kept * width + j);
-                    }
+                    // Move row `s` down to row `kept` (any `T`: swapped, not copied).
+                    let (low, high) = self.values.split_at_mut(s * width);
+                    low[kept * width..(kept + 1) * width].swap_with_slice(&mut high[..width]);
                 }
                 kept += 1;
             }
