@@ -79,7 +79,8 @@ function addToggle() {
   button.addEventListener('click', () => {
     writeToLocation(setTheme(current === 'projector' ? 'standard' : 'projector'));
   });
-  menu.prepend(button);
+  // Last in the menu: opening it still focuses the first view link.
+  menu.append(button);
 }
 
 setTheme(themeFromLocation());
