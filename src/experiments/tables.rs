@@ -61,6 +61,14 @@ impl Default for OptimizeArgs {
     }
 }
 
+/// Why the optimizer experiments could not run.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum OptimizeError {
+    /// No algorithm, no function or zero runs: the table would be empty.
+    #[error("optimize: nothing to run (no algorithm, function or run)")]
+    NothingToRun,
+}
+
 /// One independent run: its final best value, best-so-far per iteration (index 0 = after
 /// initialisation), evaluations and time.
 #[derive(Clone, Debug, PartialEq)]
@@ -186,9 +194,9 @@ pub fn run_optimize(
     args: &OptimizeArgs,
     clock: &(dyn Fn() -> f64 + Sync),
     progress: &mut dyn FnMut(usize, usize),
-) -> Result<Table, String> {
+) -> Result<Table, OptimizeError> {
     if args.algorithms.is_empty() || args.functions.is_empty() || args.runs == 0 {
-        return Err("optimize: nothing to run (no algorithm, function or run)".into());
+        return Err(OptimizeError::NothingToRun);
     }
     let mut jobs = Vec::new();
     for &a in &args.algorithms {
@@ -281,7 +289,9 @@ impl Table {
 
     /// The JSON records (an array, one object per cell).
     pub fn to_json(&self) -> String {
-        serde_json::to_string_pretty(&self.cells).unwrap_or_else(|_| "[]".into())
+        // Cells are plain derived records with string keys: writing them cannot fail (a
+        // non-finite value is written as null), so a failure is a bug and panics loudly.
+        serde_json::to_string_pretty(&self.cells).expect("optimizer cells always serialise")
     }
 
     /// Convergence curves of `function` (or all functions) as CSV with a header.

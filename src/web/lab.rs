@@ -9,17 +9,11 @@ use crate::optim::{Algorithm, Function, Settings};
 use wasm_bindgen::prelude::*;
 
 fn algorithm(name: &str) -> Result<Algorithm, JsError> {
-    Algorithm::from_name(name).ok_or_else(|| {
-        let known: Vec<&str> = Algorithm::ALL.iter().map(|a| a.name()).collect();
-        js_error(format!("unknown algorithm {name:?}; known: {}", known.join(", ")))
-    })
+    Algorithm::parse(name).map_err(js_error)
 }
 
 fn function(name: &str) -> Result<Function, JsError> {
-    Function::from_name(name).ok_or_else(|| {
-        let known: Vec<&str> = Function::ALL.iter().map(|f| f.name()).collect();
-        js_error(format!("unknown function {name:?}; known: {}", known.join(", ")))
-    })
+    Function::parse(name).map_err(js_error)
 }
 
 fn settings(dim: u32, population: u32, iterations: u32) -> Result<Settings, JsError> {

@@ -27,6 +27,7 @@ use wasm_bindgen::prelude::*;
 mod compare;
 pub mod lab;
 mod paths;
+mod seed;
 mod timeline;
 pub mod tune;
 
@@ -217,7 +218,7 @@ impl Sim {
         codec::scene_to_json(self.world.scene())
     }
 
-    /// The current scene as a URL fragment value (`1.…`).
+    /// The current scene as a URL fragment value (`2.…`).
     pub fn scene_string(&self) -> String {
         codec::scene_to_fragment(self.world.scene())
     }
@@ -260,10 +261,7 @@ impl Sim {
 
     /// Switches a group (0-based) to another planner with that planner's default parameters.
     pub fn set_group_planner(&mut self, group: u32, planner_name: &str) -> Result<(), JsError> {
-        let kind = PlannerKind::from_name(planner_name).ok_or_else(|| {
-            let names: Vec<&str> = PlannerKind::ALL.iter().map(|k| k.name()).collect();
-            js_error(format!("unknown planner {planner_name:?}; known: {}", names.join(", ")))
-        })?;
+        let kind = PlannerKind::parse(planner_name).map_err(js_error)?;
         let before = (kind == PlannerKind::Igsa).then(|| self.world.clone());
         self.world.set_group_planner(group as usize, kind.default_config()).map_err(js_error)?;
         self.keep_for_cancel(before);

@@ -21,12 +21,15 @@ async function sources(dir = JS) {
   return out;
 }
 
-/** Every static (`import … from '…'`, `import '…'`), re-export and dynamic import's target. */
+/**
+ * Every static (`import … from '…'`, `import '…'`), re-export, dynamic import and module worker's
+ * target (a service worker's URL, `sw.js`, is not an import).
+ */
 export function importsOf(text) {
   const found = [];
   const patterns = [/^\s*import\s[^'"]*?from\s*['"]([^'"]+)['"]/gm, /^\s*import\s*['"]([^'"]+)['"]/gm,
     /^\s*export\s[^'"]*?from\s*['"]([^'"]+)['"]/gm, /\bimport\(\s*['"]([^'"]+)['"]\s*\)/g,
-    /new URL\(\s*['"](\.{1,2}\/[^'"]+\.js)['"]\s*,\s*import\.meta\.url\)/g];
+    /new (?:Shared)?Worker\(\s*new URL\(\s*['"]([^'"]+)['"]\s*,\s*import\.meta\.url\)/g];
   for (const pattern of patterns) for (const m of text.matchAll(pattern)) found.push(m[1]);
   return found;
 }
@@ -73,6 +76,7 @@ test('the import scanner finds every kind of import line', () => {
     "const m = await import('../../pkg/flockpath.js');",
     "new Worker(new URL('./worker.js', import.meta.url), { type: 'module' });",
     "import {\n  d,\n  e,\n} from '../tune/d.js';",
+    "navigator.serviceWorker.register(new URL('../../sw.js', import.meta.url));",
   ].join('\n');
   assert.deepEqual(importsOf(text).sort(), [
     '../../pkg/flockpath.js', '../core/a.js', '../flock-path.js', '../tune/d.js', './b.js', './c.js', './worker.js',

@@ -23,7 +23,7 @@ function booted() {
 }
 
 /**
- * Loads a scene: JSON text, a scene object, a URL fragment value (`1.…`), a `#s=…` fragment or
+ * Loads a scene: JSON text, a scene object, a URL fragment value (`2.…`), a `#s=…` fragment or
  * a whole URL. Returns the loaded scene object; throws a readable Error and keeps the current
  * scene when the input is refused.
  */

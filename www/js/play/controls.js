@@ -5,11 +5,6 @@ import { setupPlayback, typingInto } from '../core/playback.js';
 
 const $ = (id) => document.getElementById(id);
 
-/** A fresh seed from the browser's CSPRNG: user input, not simulation randomness. */
-export function randomSeed() {
-  return crypto.getRandomValues(new Uint32Array(1))[0];
-}
-
 export function setupControls(app, editor) {
   const playbackKey = setupPlayback(app);
 
@@ -29,7 +24,11 @@ export function setupControls(app, editor) {
     app.change((sim) => sim.set_seed(value), { clearSelection: false });
   };
   seed.addEventListener('change', () => setSeed(Number(seed.value)));
-  $('new-seed').addEventListener('click', () => setSeed(randomSeed()));
+  // "new seed": drawn in Rust (rng::fresh_seed, the browser's CSPRNG), then set like a typed one.
+  $('new-seed').addEventListener('click', () => {
+    const fresh = app.guard(() => app.module.fresh_seed());
+    if (fresh.ok) setSeed(fresh.value);
+  });
   app.addEventListener('scene', showSeed);
   showSeed();
 
