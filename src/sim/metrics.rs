@@ -11,7 +11,7 @@
 //! is crowded (`collisions_capped_steps` counts the steps where that cut a count short), and the
 //! queue order, a firefly measure, is taken for firefly groups only, on step 1 and every
 //! [`QUEUE_SAMPLE_EVERY`] steps, each agent looking at no more than [`QUEUE_NEIGHBOUR_CAP`]
-//! neighbours.
+//! neighbours within [`QUEUE_AHEAD_RADII`] body radii.
 //!
 //! `fitness` holds the five measures of the GA-tuned virtual-force paper (DESIGN §3.5,
 //! [`crate::sim::fitness`]) for any planner, with behaviour B1's parameters and weights (a group moving
@@ -35,21 +35,24 @@ pub const NEAR_OBSTACLE: f32 = 30.0;
 /// Below this speed (px/step) no turn is measured: a parked agent's heading jitters without
 /// meaning (a twentieth of the Boids default max speed).
 const MIN_TURN_SPEED: f32 = 0.1;
-/// Queue order: brighter neighbours (nearer the goal) farther than this (px) are not looked for;
-/// about a firefly's feeler reach (h + r_safe = 110 px).
-pub const QUEUE_RADIUS: f32 = 120.0;
-/// Queue order: largest angle (degrees) between an agent's heading and its nearest brighter
-/// neighbour for the agent to count as queued behind it.
+/// Queue order: an agent is queued when a brighter neighbour of its group (nearer the goal) is
+/// this many of its body radii ahead or closer, centre to centre: 16 px for the default 4 px
+/// body, a gap of one body between the two discs. Fireflies in file on `firefly-migration`
+/// follow 8–16 px behind the one ahead (seed 1, step 300: 59 of the 73 not arrived; 36 within
+/// 12 px); the spawn lattice leaves 0–1 of 80 that close (seeds 1–4).
+pub const QUEUE_AHEAD_RADII: f32 = 4.0;
+/// Queue order: largest angle (degrees) between an agent's heading and the brighter neighbour
+/// for the agent to count as queued behind it.
 pub const QUEUE_HALF_ANGLE_DEG: f32 = 30.0;
 
 /// The queue order is measured at the end of step 1 and of every step that is a multiple of this
 /// (the plots sample every 5th step, and then every 10th, 20th …, so each plotted value is exact).
 pub const QUEUE_SAMPLE_EVERY: u32 = 5;
-/// Queue order: at most this many neighbours within [`QUEUE_RADIUS`] (and 8 times as many
-/// candidates of the scanned cells) are looked at per agent, the first in the grid's scan order,
-/// so a pile costs a bounded amount per agent. A crowd of non-overlapping 4 px discs holds about
-/// 650 within 120 px: only a pile reaches it.
-pub const QUEUE_NEIGHBOUR_CAP: usize = 1024;
+/// Queue order: at most this many neighbours within [`QUEUE_AHEAD_RADII`] radii (and 128 times
+/// as many candidates of the scanned cells) are looked at per agent, the first in the grid's
+/// scan order, so a pile costs a bounded amount per agent. Non-overlapping discs hold at most
+/// about 20 others within 4 radii: only a pile reaches it.
+pub const QUEUE_NEIGHBOUR_CAP: usize = 64;
 /// Most agents in one cell of the world's grid for which overlaps are counted on that grid;
 /// beyond it (a pile) they are counted on a grid of body-sized cells instead.
 const CROWDED_CELL: usize = 64;
@@ -138,10 +141,11 @@ pub struct GroupMetrics {
     /// Agents with a goal that have not arrived and made no progress in the last 300 steps.
     pub stuck_agents: u32,
     /// Queue order (firefly groups only, DESIGN §3.3) at step `queue_order_step`: among agents
-    /// that have a goal, have not arrived, and have a same-group neighbour nearer the goal within
-    /// 120 px, the share whose nearest such neighbour lies within ±30° of their heading (0…1;
-    /// null if no agent qualifies or the group is not a firefly group). Random headings give
-    /// about 1/6; single-file queues approach 1.
+    /// that have a goal and have not arrived, the share with a neighbour of their group nearer
+    /// the goal (brighter) close ahead: within 4 body radii (16 px for 4 px bodies), centre to
+    /// centre, and within ±30° of their heading (0…1; null if no agent qualifies or the group is
+    /// not a firefly group). A crowd spread out at the spawn reads near 0; single files, where
+    /// everyone but each file's head follows close behind a brighter one, approach 1.
     pub queue_order: Option<f64>,
     /// The step `queue_order` was measured at: step 1, then every [`QUEUE_SAMPLE_EVERY`]th step
     /// (the current step before the first sample); null with `queue_order`.
@@ -196,6 +200,8 @@ pub struct MetricsRecorder {
     group_agents: Vec<Range<u32>>,
     /// Groups whose queue order `record` samples (the firefly groups at the start).
     queue_groups: Vec<bool>,
+    /// Each group's body radius (px): the queue order's reach is a multiple of it.
+    group_radius: Vec<f32>,
     /// Per group `(queued, candidates)` at the last sample, and the step of that sample.
     queue: Vec<(u32, u32)>,
     queue_step: Option<u32>,
@@ -251,6 +257,7 @@ impl MetricsRecorder {
                     .collect()
             },
             queue_groups: scene.groups.iter().map(|g| g.planner.kind() == PlannerKind::Firefly).collect(),
+            group_radius: scene.groups.iter().map(|g| g.agent_radius).collect(),
             queue: vec![(0, 0); scene.groups.len()],
             queue_step: None,
             fitness: FitnessRecorder::new(
@@ -393,7 +400,7 @@ impl MetricsRecorder {
     /// [`Self::summary`] with the queue order reported only for the groups `queue_for(g)` picks
     /// (the others get null). A group sampled by `record` (a firefly group from the start) costs
     /// nothing here; any other picked group is measured now, before the first sample too: a
-    /// bounded 120 px neighbour query per agent on a grid built for it.
+    /// bounded neighbour query of 4 body radii per agent on a grid built for it.
     pub fn summary_with_queue(
         &self,
         scene: &Scene,
@@ -465,6 +472,7 @@ impl MetricsRecorder {
         let sampled =
             |g: usize| self.queue_step.is_some() && self.queue_groups.get(g).copied().unwrap_or(false);
         let mut out = vec![(0, 0, steps); scene.groups.len()];
+        let reach = scene.groups.iter().map(|g| g.agent_radius).fold(0.0f32, f32::max) * QUEUE_AHEAD_RADII;
         for (g, slot) in out.iter_mut().enumerate() {
             if let (true, true, Some(step)) = (queue_for(g), sampled(g), self.queue_step) {
                 let (q, c) = self.queue.get(g).copied().unwrap_or_default();
@@ -473,7 +481,7 @@ impl MetricsRecorder {
         }
         let measure = |g: usize| queue_for(g) && !sampled(g);
         if (0..scene.groups.len()).any(measure) {
-            let mut grid = SpatialGrid::new(scene.width, scene.height, QUEUE_RADIUS, self.prev_pos.len());
+            let mut grid = SpatialGrid::new(scene.width, scene.height, reach.max(1.0), self.prev_pos.len());
             grid.rebuild(&self.prev_pos, &self.prev_vel);
             let target = |g: usize| {
                 let goal = scene.groups.get(g)?.goal?;
@@ -493,7 +501,8 @@ impl MetricsRecorder {
     /// Per group `(queued, candidates)` for [`GroupMetrics::queue_order`] into `counts`, for the
     /// groups `pick` selects, from the last recorded state; `grid` holds the agents at their
     /// last positions, `target(g)` is group `g`'s goal then. Each agent looks at no more than
-    /// [`QUEUE_NEIGHBOUR_CAP`] neighbours: O(N), never O(N²).
+    /// [`QUEUE_NEIGHBOUR_CAP`] neighbours within [`QUEUE_AHEAD_RADII`] of its radii: O(N), never
+    /// O(N²).
     fn queue_order_into(
         &self,
         grid: &SpatialGrid,
@@ -505,36 +514,36 @@ impl MetricsRecorder {
         counts.resize(self.group_agents.len(), (0, 0));
         let pos = &self.prev_pos;
         let cos_limit = libm::cosf(QUEUE_HALF_ANGLE_DEG.to_radians());
+        let cap = QueryCap { neighbours: QUEUE_NEIGHBOUR_CAP, candidates: 128 * QUEUE_NEIGHBOUR_CAP };
         for (gi, agents) in self.group_agents.iter().enumerate() {
             if !pick(gi) {
                 continue;
             }
             let Some(target) = target(gi) else { continue };
+            let reach = self.group_radius.get(gi).copied().unwrap_or(0.0) * QUEUE_AHEAD_RADII;
             for id in agents.clone() {
                 let i = id as usize;
                 if self.arrived_step.get(i).is_none_or(|&s| s != NOT_ARRIVED) {
                     continue;
                 }
-                let p = pos[i];
-                let mine = p.distance_squared(target);
-                let mut nearest: Option<(f32, u32, Vec2)> = None;
-                let cap = QueryCap { neighbours: QUEUE_NEIGHBOUR_CAP, candidates: 8 * QUEUE_NEIGHBOUR_CAP };
-                grid.for_each_within_capped(p, QUEUE_RADIUS, cap, |n| {
-                    if n.id != id
-                        && agents.contains(&n.id)
-                        && n.pos.distance_squared(target) < mine
-                        && nearest.is_none_or(|(d2, j, _)| (n.d2, n.id) < (d2, j))
-                    {
-                        nearest = Some((n.d2, n.id, n.pos));
-                    }
-                });
-                let Some((d2, _, q)) = nearest else { continue };
                 counts[gi].1 += 1;
                 let v = self.prev_vel[i];
                 let speed = v.length();
-                if speed > MIN_TURN_SPEED && d2 > 0.0 && v.dot(q - p) >= cos_limit * speed * d2.sqrt() {
-                    counts[gi].0 += 1;
+                if speed <= MIN_TURN_SPEED {
+                    continue;
                 }
+                let p = pos[i];
+                let mine = p.distance_squared(target);
+                let mut queued = false;
+                grid.for_each_within_capped(p, reach, cap, |n| {
+                    queued = queued
+                        || (n.id != id
+                            && agents.contains(&n.id)
+                            && n.d2 > 0.0
+                            && n.pos.distance_squared(target) < mine
+                            && v.dot(n.pos - p) >= cos_limit * speed * n.d2.sqrt());
+                });
+                counts[gi].0 += u32::from(queued);
             }
         }
     }
