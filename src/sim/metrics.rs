@@ -120,6 +120,9 @@ pub struct GroupMetrics {
     /// Overlapping agent pairs, summed over steps (a pair across two groups counts in both groups
     /// and once overall).
     pub collisions_agent_agent: u64,
+    /// The overlapping pairs of `collisions_agent_agent` in which at least one agent had not
+    /// arrived (it was moving): without the pile-up of agents at their goal.
+    pub collisions_moving: u64,
     /// Agents whose centre is inside an obstacle, summed over steps.
     pub penetrations_agent_obstacle: u64,
     /// Mean speed over agents and steps (px/step).
@@ -191,6 +194,7 @@ pub struct MetricsRecorder {
     groups: Vec<GroupAcc>,
     collisions_last_step: u32,
     collisions_total: u64,
+    collisions_moving_total: u64,
     collisions_capped_steps: u32,
     /// Body-sized grid for counting overlaps in a pile (built the first time one is met).
     contact_grid: Option<SpatialGrid>,
@@ -215,6 +219,7 @@ pub struct MetricsRecorder {
 #[derive(Clone, Debug, Default)]
 struct GroupAcc {
     collisions: u64,
+    collisions_moving: u64,
     penetrations: u64,
     speed_sum: f64,
     speed_samples: u64,
@@ -242,6 +247,7 @@ impl MetricsRecorder {
             groups: vec![GroupAcc::default(); scene.groups.len()],
             collisions_last_step: 0,
             collisions_total: 0,
+            collisions_moving_total: 0,
             collisions_capped_steps: 0,
             contact_grid: None,
             world_size: (scene.width, scene.height),
@@ -271,6 +277,17 @@ impl MetricsRecorder {
         }
     }
 
+    /// Records that agent `i` arrived at step `step` (the world parked it at its goal, perhaps
+    /// at the edge of the crowd parked there rather than inside the goal's radius); an agent
+    /// that arrived earlier keeps its first step. No effect for an id out of range.
+    pub fn arrive(&mut self, i: usize, step: u32) {
+        if let Some(s) = self.arrived_step.get_mut(i) {
+            if *s == NOT_ARRIVED {
+                *s = step;
+            }
+        }
+    }
+
     /// Takes the fitness measures on steps 1, 1 + `every`, … from now on (0 = never).
     pub fn set_fitness_sample_every(&mut self, every: u32) {
         self.fitness_every = every;
@@ -289,38 +306,6 @@ impl MetricsRecorder {
         grid: &SpatialGrid,
         obstacles: &ObstacleIndex,
     ) {
-        let max_radius = radius.iter().copied().fold(0.0f32, f32::max);
-        // Collisions: pairs closer than the sum of radii, each once, counted as they are found.
-        let pair_radius = 2.0 * max_radius;
-        let (pair_grid, cap) = if grid.max_cell_occupancy() <= CROWDED_CELL || pos.is_empty() {
-            (grid, usize::MAX)
-        } else {
-            // A pile: the world's cells hold too many agents to test every pair of a cell.
-            let contact = self.contact_grid.get_or_insert_with(|| {
-                let (w, h) = self.world_size;
-                SpatialGrid::new(w, h, pair_radius.max(1.0), pos.len())
-            });
-            contact.rebuild(pos, &[]);
-            (&*contact, MAX_PAIR_CANDIDATES)
-        };
-        let groups = &mut self.groups;
-        let mut count = 0u32;
-        let capped = pair_grid.for_each_pair_within_capped(pair_radius, cap, |a, b| {
-            let d2 = pos[a as usize].distance_squared(pos[b as usize]);
-            let r = radius[a as usize] + radius[b as usize];
-            if d2 < r * r {
-                count += 1;
-                let (ga, gb) = (group_of[a as usize] as usize, group_of[b as usize] as usize);
-                groups[ga].collisions += 1;
-                if gb != ga {
-                    groups[gb].collisions += 1;
-                }
-            }
-        });
-        self.collisions_last_step = count;
-        self.collisions_total += u64::from(count);
-        self.collisions_capped_steps += u32::from(capped);
-
         for i in 0..pos.len() {
             let g = group_of[i] as usize;
             let acc = &mut self.groups[g];
@@ -372,6 +357,45 @@ impl MetricsRecorder {
             self.prev_vel[i] = v;
             self.prev_speed[i] = speed;
         }
+
+        // Collisions after arrivals (a pair with an agent not yet arrived is a moving one).
+        let max_radius = radius.iter().copied().fold(0.0f32, f32::max);
+        // Collisions: pairs closer than the sum of radii, each once, counted as they are found.
+        let pair_radius = 2.0 * max_radius;
+        let (pair_grid, cap) = if grid.max_cell_occupancy() <= CROWDED_CELL || pos.is_empty() {
+            (grid, usize::MAX)
+        } else {
+            // A pile: the world's cells hold too many agents to test every pair of a cell.
+            let contact = self.contact_grid.get_or_insert_with(|| {
+                let (w, h) = self.world_size;
+                SpatialGrid::new(w, h, pair_radius.max(1.0), pos.len())
+            });
+            contact.rebuild(pos, &[]);
+            (&*contact, MAX_PAIR_CANDIDATES)
+        };
+        let groups = &mut self.groups;
+        let arrived = &self.arrived_step;
+        let (mut count, mut moving_count) = (0u32, 0u32);
+        let capped = pair_grid.for_each_pair_within_capped(pair_radius, cap, |a, b| {
+            let d2 = pos[a as usize].distance_squared(pos[b as usize]);
+            let r = radius[a as usize] + radius[b as usize];
+            if d2 < r * r {
+                count += 1;
+                let moving = arrived[a as usize] == NOT_ARRIVED || arrived[b as usize] == NOT_ARRIVED;
+                moving_count += u32::from(moving);
+                let (ga, gb) = (group_of[a as usize] as usize, group_of[b as usize] as usize);
+                groups[ga].collisions += 1;
+                groups[ga].collisions_moving += u64::from(moving);
+                if gb != ga {
+                    groups[gb].collisions += 1;
+                    groups[gb].collisions_moving += u64::from(moving);
+                }
+            }
+        });
+        self.collisions_last_step = count;
+        self.collisions_total += u64::from(count);
+        self.collisions_moving_total += u64::from(moving_count);
+        self.collisions_capped_steps += u32::from(capped);
 
         if self.fitness_every > 0 && step % self.fitness_every == 1 % self.fitness_every {
             self.fitness_goals.clear();
@@ -431,7 +455,7 @@ impl MetricsRecorder {
             overall.turn_sum += acc.turn_sum;
             overall.turn_samples += acc.turn_samples;
             overall.max_turn = overall.max_turn.max(acc.max_turn);
-            let mut m = to_metrics(acc, &stats, acc.collisions, dt, scale);
+            let mut m = to_metrics(acc, &stats, (acc.collisions, acc.collisions_moving), dt, scale);
             m.name = Some(g.name.clone());
             m.planner = planners.get(gi).map(|s| s.to_string());
             let (q, c, at) = queue.get(gi).copied().unwrap_or_default();
@@ -445,7 +469,8 @@ impl MetricsRecorder {
             (queued, queue_candidates) = (queued + q, queue_candidates + c);
             groups.push(m);
         }
-        let mut overall = to_metrics(&overall, &all, self.collisions_total, dt, scale);
+        let mut overall =
+            to_metrics(&overall, &all, (self.collisions_total, self.collisions_moving_total), dt, scale);
         overall.queue_order = (queue_candidates > 0).then(|| f64::from(queued) / f64::from(queue_candidates));
         overall.queue_order_step = overall.queue_order.and(queue_step);
         let sampled = self.fitness.frames();
@@ -605,7 +630,8 @@ fn ratio(num: f64, den: u64) -> f64 {
     }
 }
 
-fn to_metrics(acc: &GroupAcc, s: &Stats, collisions: u64, dt: f64, scale: Scale) -> GroupMetrics {
+fn to_metrics(acc: &GroupAcc, s: &Stats, collisions: (u64, u64), dt: f64, scale: Scale) -> GroupMetrics {
+    let (collisions, collisions_moving) = collisions;
     let mean_time = (s.arrived > 0).then(|| s.arrival_steps_sum / f64::from(s.arrived));
     let mean_speed = ratio(acc.speed_sum, acc.speed_samples);
     let near_speed = (acc.near_samples > 0).then(|| acc.near_speed_sum / acc.near_samples as f64);
@@ -618,6 +644,7 @@ fn to_metrics(acc: &GroupAcc, s: &Stats, collisions: u64, dt: f64, scale: Scale)
         mean_time_to_goal: mean_time,
         mean_time_to_goal_s: mean_time.map(|t| t * dt),
         collisions_agent_agent: collisions,
+        collisions_moving,
         penetrations_agent_obstacle: acc.penetrations,
         mean_speed,
         mean_speed_m_s: scale.m_s(mean_speed),
