@@ -54,6 +54,8 @@ fn as_written(error: SceneError, text: &str) -> SceneError {
     if !field.value.contains("infinite") {
         return SceneError::Field(field);
     }
+    // Only to show the number as typed: the text already parsed as a scene, and if this re-read
+    // failed the refusal would keep its own words.
     let json: Option<serde_json::Value> = serde_json::from_str(text).ok();
     let mut node = json.as_ref();
     for part in field.path.split('.') {
@@ -82,9 +84,14 @@ fn check_input_size(text: &str) -> Result<(), SceneError> {
     Ok(())
 }
 
+/// Why writing a scene as JSON cannot fail: its types derive `Serialize`, every map key is a
+/// string, and serde_json writes a non-finite float as `null` (which reading refuses, by name).
+/// A failure would be a bug in these types, so it panics loudly rather than writing `""`.
+const SCENE_SERIALISES: &str = "a Scene always serialises to JSON (derived Serialize, string keys)";
+
 /// The scene as pretty JSON.
 pub fn scene_to_json(scene: &Scene) -> String {
-    serde_json::to_string_pretty(scene).unwrap_or_default()
+    serde_json::to_string_pretty(scene).expect(SCENE_SERIALISES)
 }
 
 /// The URL fragment value (`s=` part) for a scene, in the current version.
@@ -96,7 +103,7 @@ pub fn scene_to_fragment(scene: &Scene) -> String {
         Ok(back) if &back == scene => serde_json::to_vec(&compact),
         _ => serde_json::to_vec(scene),
     }
-    .unwrap_or_default();
+    .expect(SCENE_SERIALISES);
     format!("{FRAGMENT_VERSION}.{}", pack(&json))
 }
 
@@ -380,8 +387,7 @@ impl CompactScene {
 /// values that are not sliders (an IGSA group's edited waypoints). Links without that object
 /// decode as before.
 fn planner_params(config: &PlannerConfig) -> Vec<serde_json::Value> {
-    let params = serde_json::to_value(config).ok().and_then(|mut v| v.get_mut("params").map(std::mem::take));
-    let params = params.unwrap_or_default();
+    let params = config.params_json();
     let specs = config.kind().param_specs();
     let mut values: Vec<serde_json::Value> =
         specs.iter().map(|spec| params.get(spec.key).cloned().unwrap_or_default()).collect();
@@ -392,15 +398,10 @@ fn planner_params(config: &PlannerConfig) -> Vec<serde_json::Value> {
         }
         values.pop();
     }
-    if let Some(object) = params.as_object() {
-        let extras: serde_json::Map<String, serde_json::Value> = object
-            .iter()
-            .filter(|(key, _)| !specs.iter().any(|s| s.key == key.as_str()))
-            .map(|(key, value)| (key.clone(), value.clone()))
-            .collect();
-        if !extras.is_empty() {
-            values.push(serde_json::Value::Object(extras));
-        }
+    let extras: serde_json::Map<String, serde_json::Value> =
+        params.into_iter().filter(|(key, _)| !specs.iter().any(|s| s.key == key.as_str())).collect();
+    if !extras.is_empty() {
+        values.push(serde_json::Value::Object(extras));
     }
     values
 }
@@ -430,19 +431,12 @@ fn planner_with(name: &str, values: &[serde_json::Value]) -> Result<PlannerConfi
             format!("at most {} values for {} (its parameter table)", specs.len(), kind.label()),
         ));
     }
-    let mut params = serde_json::to_value(kind.default_config())
-        .ok()
-        .and_then(|mut v| v.get_mut("params").map(std::mem::take))
-        .unwrap_or_default();
+    let mut params = kind.default_config().params_json();
     for (spec, value) in specs.iter().zip(values) {
-        if let Some(object) = params.as_object_mut() {
-            object.insert(spec.key.to_string(), value.clone());
-        }
+        params.insert(spec.key.to_string(), value.clone());
     }
     for (key, value) in extras.into_iter().flatten() {
-        if let Some(object) = params.as_object_mut() {
-            object.insert(key.clone(), value.clone());
-        }
+        params.insert(key.clone(), value.clone());
     }
     let keyed = serde_json::json!({ "kind": kind.name(), "params": params });
     let config: PlannerConfig = serde_path_to_error::deserialize(&keyed).map_err(|e| {
@@ -491,6 +485,7 @@ fn refusal(error: &serde_path_to_error::Error<serde_json::Error>, text: &str, la
         return SceneError::Parse(format!("the scene text ends too early ({at}): was it cut short?"));
     }
     let mut segments: Vec<Segment> = error.path().iter().cloned().collect();
+    // Best-effort re-reads that locate the field; the parser's error itself is what is reported.
     let json: Option<serde_json::Value> = serde_json::from_str(text).ok();
     let token = token_at(text, inner.line(), inner.column());
     // The text's structure with a word JSON cannot hold (NaN) replaced by 0: it tells a compact

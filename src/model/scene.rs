@@ -457,7 +457,7 @@ pub struct Group {
 }
 
 fn default_color() -> String {
-    "#2f6fdf".to_string()
+    crate::model::palette::BLUE.to_string()
 }
 
 fn default_agent_radius() -> f32 {
@@ -929,7 +929,7 @@ impl Scene {
                 check_simple_polygon(points).map_err(|problem| {
                     SceneError::field(
                         format!("obstacles[{i}].points"),
-                        problem,
+                        problem.to_string(),
                         "a simple polygon: edges meet only at shared corners, non-zero area",
                     )
                 })?;
@@ -953,8 +953,8 @@ fn count_in(path: impl Fn() -> String, n: usize, lo: usize, hi: usize) -> Result
 /// Checks that `points` form a simple polygon: not all on one line, and no two edges meet except
 /// neighbours at their shared corner (which also rules out zero area). Repeated consecutive points count once (an editor's
 /// double click). Edges are swept in order of their left end, so only edges whose x ranges
-/// overlap are compared. The problem is described in words, naming the points (from 0).
-fn check_simple_polygon(points: &[[f32; 2]]) -> Result<(), String> {
+/// overlap are compared. The problem names the points (from 0).
+fn check_simple_polygon(points: &[[f32; 2]]) -> Result<(), PolygonFault> {
     let mut corners: Vec<(usize, [f64; 2])> = Vec::with_capacity(points.len());
     for (k, p) in points.iter().enumerate() {
         let q = [f64::from(p[0]), f64::from(p[1])];
@@ -967,10 +967,10 @@ fn check_simple_polygon(points: &[[f32; 2]]) -> Result<(), String> {
     }
     let n = corners.len();
     if n < 3 {
-        return Err(format!("a polygon of {n} distinct point(s)"));
+        return Err(PolygonFault::TooFewPoints(n));
     }
     if corners.iter().all(|c| orientation(corners[0].1, corners[1].1, c.1) == 0.0) {
-        return Err("a polygon with no area (its points lie on one line)".into());
+        return Err(PolygonFault::NoArea);
     }
     let edge = |k: usize| (corners[k].1, corners[(k + 1) % n].1);
     let mut order: Vec<usize> = (0..n).collect();
@@ -994,17 +994,34 @@ fn check_simple_polygon(points: &[[f32; 2]]) -> Result<(), String> {
             };
             if crossing {
                 let (first, second) = (a.min(b), a.max(b));
-                let name = |k: usize| format!("{}→{}", corners[k].0, corners[(k + 1) % n].0);
-                return Err(format!(
-                    "a polygon whose edges {} and {} {}",
-                    name(first),
-                    name(second),
-                    if neighbours { "fold back onto each other" } else { "cross or touch" }
-                ));
+                let edge = |k: usize| [corners[k].0, corners[(k + 1) % n].0];
+                return Err(if neighbours {
+                    PolygonFault::FoldsBack(edge(first), edge(second))
+                } else {
+                    PolygonFault::EdgesCross(edge(first), edge(second))
+                });
             }
         }
     }
     Ok(())
+}
+
+/// Why points do not form a simple polygon; shown as the refused value of `obstacles[i].points`.
+/// Edges are named by their end points' indices (from 0): `[2, 3]` is the edge 2→3.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
+enum PolygonFault {
+    /// Fewer than three distinct points (repeats counted once).
+    #[error("a polygon of {0} distinct point(s)")]
+    TooFewPoints(usize),
+    /// Every point lies on one line.
+    #[error("a polygon with no area (its points lie on one line)")]
+    NoArea,
+    /// Two neighbouring edges fold back onto each other.
+    #[error("a polygon whose edges {}→{} and {}→{} fold back onto each other", .0[0], .0[1], .1[0], .1[1])]
+    FoldsBack([usize; 2], [usize; 2]),
+    /// Two edges that are not neighbours cross or touch.
+    #[error("a polygon whose edges {}→{} and {}→{} cross or touch", .0[0], .0[1], .1[0], .1[1])]
+    EdgesCross([usize; 2], [usize; 2]),
 }
 
 /// Twice the signed area of triangle `a, b, c`, in f64 (scene coordinates are f32).
