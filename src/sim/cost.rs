@@ -35,6 +35,8 @@ pub fn wasm_factor(kind: PlannerKind) -> f64 {
         PlannerKind::Firefly => 1.25,
         PlannerKind::Forces => 1.25,
         PlannerKind::Igsa => 1.3,
+        PlannerKind::Orca => 1.5,
+        PlannerKind::SocialForce => 1.5,
     }
 }
 
@@ -55,6 +57,8 @@ pub fn native_ns_per_agent_step(kind: PlannerKind) -> f64 {
         PlannerKind::Firefly => 12_000.0,
         PlannerKind::Forces => 14_000.0,
         PlannerKind::Igsa => 1_200.0,
+        PlannerKind::Orca => 5_000.0,
+        PlannerKind::SocialForce => 5_000.0,
     }
 }
 
