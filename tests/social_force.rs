@@ -5,7 +5,7 @@
 //! `tests/web_baselines.rs`); the planner is selectable by link and by the CLI.
 
 use flockpath::model::params::{Guidance, SocialForceParams};
-use flockpath::planners::social_force::{agent_forces, driving, wall_contact, wall_repulsion};
+use flockpath::planners::social_force::{agent_forces, driving, wall_contact, wall_repulsion, Body};
 use flockpath::{
     presets, scene_from_fragment, scene_to_fragment, Goal, Group, PlannerConfig, Region, Scene, World, DT,
 };
@@ -137,6 +137,11 @@ fn pedestrians_at_low_density_never_touch() {
     assert_eq!(world.metrics().overall.arrived_share, 1.0);
 }
 
+/// A body of radius 0.25 m.
+fn body(position: Vec2, velocity: Vec2) -> Body {
+    Body { position, velocity, radius: 0.25 }
+}
+
 #[test]
 fn the_agent_force_is_the_gradient_of_the_elliptical_potential() {
     // −∇V(b(r)) computed analytically equals central differences of V(b) = V⁰ e^{−b/σ}.
@@ -148,7 +153,7 @@ fn the_agent_force_is_the_gradient_of_the_elliptical_potential() {
         p.agent_strength * (-(b / p.agent_range)).exp()
     };
     for r in [Vec2::new(1.0, 0.4), Vec2::new(-0.8, 1.1), Vec2::new(2.5, -0.5)] {
-        let (f, contact) = agent_forces(&p, r, Vec2::ZERO, 0.25, Vec2::ZERO, Vec2::ZERO, v_b, 0.25);
+        let (f, contact) = agent_forces(&p, body(r, Vec2::ZERO), Vec2::ZERO, body(Vec2::ZERO, v_b));
         let h = 1e-3;
         let grad = Vec2::new(
             (potential(r + Vec2::X * h) - potential(r - Vec2::X * h)) / (2.0 * h),
@@ -159,10 +164,8 @@ fn the_agent_force_is_the_gradient_of_the_elliptical_potential() {
     }
     // Behind the pedestrian (outside its 200° view) the force is weighted by c = 0.5.
     let d = SocialForceParams::default();
-    let ahead =
-        agent_forces(&d, Vec2::ZERO, Vec2::ZERO, 0.25, Vec2::X, Vec2::new(1.0, 0.0), Vec2::ZERO, 0.25).0;
-    let behind =
-        agent_forces(&d, Vec2::ZERO, Vec2::ZERO, 0.25, Vec2::X, Vec2::new(-1.0, 0.0), Vec2::ZERO, 0.25).0;
+    let ahead = agent_forces(&d, body(Vec2::ZERO, Vec2::ZERO), Vec2::X, body(Vec2::X, Vec2::ZERO)).0;
+    let behind = agent_forces(&d, body(Vec2::ZERO, Vec2::ZERO), Vec2::X, body(Vec2::NEG_X, Vec2::ZERO)).0;
     assert!((behind.length() - 0.5 * ahead.length()).abs() < 1e-6, "{ahead} {behind}");
 }
 

@@ -93,19 +93,22 @@ fn friction_rate(p: &SocialForceParams, overlap: f32) -> f32 {
     (p.friction * overlap / p.mass).min(MAX_FRICTION_SHARE / DT)
 }
 
-/// Everything pedestrian α at `r_a` (m) with velocity `v_a` (m/s), radius `radius_a` (m) and
-/// desired direction `e` feels from pedestrian β (HM's repulsion with `w(e, f)`, HFV eq. 2): the social
-/// repulsion and the contact forces, per unit mass.
-pub fn agent_forces(
-    p: &SocialForceParams,
-    r_a: Vec2,
-    v_a: Vec2,
-    radius_a: f32,
-    e: Vec2,
-    r_b: Vec2,
-    v_b: Vec2,
-    radius_b: f32,
-) -> (Vec2, Vec2) {
+/// A pedestrian's body as the forces see it, in SI units.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Body {
+    /// Position (m).
+    pub position: Vec2,
+    /// Velocity (m/s).
+    pub velocity: Vec2,
+    /// Radius (m).
+    pub radius: f32,
+}
+
+/// Everything pedestrian `a` with desired direction `e` (unit, or zero when it has none) feels
+/// from pedestrian `b` (HM's repulsion with `w(e, f)`, HFV eq. 2): the social repulsion and the
+/// contact forces, per unit mass.
+pub fn agent_forces(p: &SocialForceParams, a: Body, e: Vec2, b: Body) -> (Vec2, Vec2) {
+    let (r_a, v_a, r_b, v_b) = (a.position, a.velocity, b.position, b.velocity);
     let r = r_a - r_b;
     let d = length(r);
     if d <= 0.0 {
@@ -132,7 +135,7 @@ pub fn agent_forces(
     } else {
         Vec2::ZERO
     };
-    let overlap = radius_a + radius_b - d;
+    let overlap = a.radius + b.radius - d;
     let contact = if overlap > 0.0 {
         let t = n.perp();
         let sliding = (v_b - v_a).dot(t);
@@ -200,7 +203,8 @@ impl SocialForce {
             let q = Vec2::new(columns.x[k], columns.y[k]) * to_m;
             let w = Vec2::new(columns.vx[k], columns.vy[k]) * to_ms;
             let rb = ctx.radii[other as usize] * to_m;
-            let (social, contact) = agent_forces(prm, p, v, radius, e, q, w, rb);
+            let me = Body { position: p, velocity: v, radius };
+            let (social, contact) = agent_forces(prm, me, e, Body { position: q, velocity: w, radius: rb });
             if social != Vec2::ZERO || contact != Vec2::ZERO {
                 seen(other);
             }
