@@ -35,6 +35,7 @@ pub fn wasm_factor(kind: PlannerKind) -> f64 {
         PlannerKind::Firefly => 1.25,
         PlannerKind::Forces => 1.25,
         PlannerKind::Igsa => 1.3,
+        // Not yet measured in the browser: the largest factor of the others.
         PlannerKind::Orca => 1.5,
         PlannerKind::SocialForce => 1.5,
     }
@@ -46,7 +47,10 @@ pub fn wasm_factor(kind: PlannerKind) -> f64 {
 /// Measured with `examples/step_cost.rs` on a quiet machine (`taskset -c 0`, the worst 10-step
 /// window of steps 0–100 and 300–400, at 2,000 and at 10,000 agents), rounded up: boids 1,505
 /// (spread 180–220), pso 4,146 (spread 580–840), firefly 11,965 (spread 1,110–1,220), forces
-/// 13,750 (spread 820–1,250), igsa 1,132 (spread 210–280). A jam costs 4–12× a spread crowd:
+/// 13,750 (spread 820–1,250), igsa 1,132 (spread 210–280); orca 11,287 (spread 5,250–6,410) and
+/// social_force 88,465 (spread 5,910–9,060), measured 2026-11-25 on a loaded machine (load 6–14):
+/// the social force sums every neighbour within 5 m (up to its cap of 512), so a packed crowd
+/// costs it 10× a spread one. A jam costs 4–12× a spread crowd:
 /// every agent has many more neighbours within its planner's reach (the per-agent caps of
 /// [`crate::spatial::NEIGHBOUR_CAP`] bound piles beyond that). Re-measure when a planner's
 /// cost changes.
@@ -57,8 +61,8 @@ pub fn native_ns_per_agent_step(kind: PlannerKind) -> f64 {
         PlannerKind::Firefly => 12_000.0,
         PlannerKind::Forces => 14_000.0,
         PlannerKind::Igsa => 1_200.0,
-        PlannerKind::Orca => 5_000.0,
-        PlannerKind::SocialForce => 5_000.0,
+        PlannerKind::Orca => 11_500.0,
+        PlannerKind::SocialForce => 90_000.0,
     }
 }
 
