@@ -20,17 +20,28 @@ pub struct ExportOptions {
 }
 
 impl ExportOptions {
-    /// Options from user input: `fps` in 1…240 and `scale` finite and > 0, else a message
+    /// Options from user input: `fps` in 1…240 and `scale` finite and > 0, else an error
     /// naming the value.
-    pub fn checked(fps: f32, scale: f32) -> Result<Self, String> {
+    pub fn checked(fps: f32, scale: f32) -> Result<Self, ExportError> {
         if !(fps.is_finite() && (1.0..=240.0).contains(&fps)) {
-            return Err(format!("the frame rate must be 1…240 fps, not {fps}"));
+            return Err(ExportError::FrameRate(fps));
         }
         if !(scale.is_finite() && scale > 0.0) {
-            return Err(format!("the scale must be a number > 0, not {scale}"));
+            return Err(ExportError::Scale(scale));
         }
         Ok(Self { fps, scale })
     }
+}
+
+/// Why an export's options were refused.
+#[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
+pub enum ExportError {
+    /// Keyframes per second outside 1…240 (or not a number).
+    #[error("the frame rate must be 1…240 fps, not {0}")]
+    FrameRate(f32),
+    /// A scene-to-3-D scale that is not a finite number above 0.
+    #[error("the scale must be a number > 0, not {0}")]
+    Scale(f32),
 }
 
 impl Default for ExportOptions {
@@ -113,7 +124,9 @@ pub fn paths_json(scene: &Scene, rec: &Recording) -> String {
         steps: rec.steps(),
         agents,
     };
-    serde_json::to_string(&doc).unwrap_or_default()
+    // Plain derived records with string keys: writing them cannot fail (a non-finite number is
+    // written as null), so a failure is a bug and panics loudly rather than exporting "".
+    serde_json::to_string(&doc).expect("the paths document always serialises")
 }
 
 /// For each animation frame 1, 2, …: the recorded frame index nearest its time.

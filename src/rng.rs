@@ -1,9 +1,17 @@
-//! The one seeded, portable random generator: PCG32, identical output on every platform.
+//! The one seeded, portable random generator: PCG32, identical output on every platform; and
+//! the one door to entropy, [`fresh_seed`], for a front-end's "new seed" (never inside a run).
+//!
+//! [`Rng`] implements `rand_core`'s `TryRng` (so its `Rng`: `next_u32`, `next_u64`,
+//! `fill_bytes`), and any `rand`-ecosystem code can draw from it. The float and range helpers
+//! below stay hand-written on purpose: `rand`'s distributions draw differently (53-bit floats
+//! from one `u64`, rejection sampling for ranges), and switching would change every seeded run
+//! and every shared link.
 //!
 //! Layer: rng, a leaf every layer may use.
 
-use rand_core::{Rng as _, SeedableRng};
+use rand_core::{Rng as _, SeedableRng, TryRng};
 use rand_pcg::Pcg32;
+use std::convert::Infallible;
 
 /// Seeded generator; every random draw of a run comes from one of these.
 #[derive(Clone, Debug)]
@@ -18,6 +26,11 @@ impl Rng {
     /// A uniform `u32`.
     pub fn next_u32(&mut self) -> u32 {
         self.0.next_u32()
+    }
+
+    /// A uniform `u64`: the first `u32` drawn is the low half (`rand_core`'s convention).
+    pub fn next_u64(&mut self) -> u64 {
+        self.0.next_u64()
     }
 
     /// Uniform in `[0, 1)` with 24 bits of precision (exact in `f32`).
@@ -44,6 +57,34 @@ impl Rng {
     }
 }
 
+impl TryRng for Rng {
+    type Error = Infallible;
+
+    fn try_next_u32(&mut self) -> Result<u32, Infallible> {
+        self.0.try_next_u32()
+    }
+
+    fn try_next_u64(&mut self) -> Result<u64, Infallible> {
+        self.0.try_next_u64()
+    }
+
+    fn try_fill_bytes(&mut self, dst: &mut [u8]) -> Result<(), Infallible> {
+        self.0.try_fill_bytes(dst)
+    }
+}
+
+/// The system's random source could not give a fresh seed.
+#[derive(Debug, thiserror::Error)]
+#[error("cannot draw a fresh seed: the system's random source failed ({0})")]
+pub struct EntropyError(getrandom::Error);
+
+/// A fresh 32-bit seed from the operating system (natively) or `crypto.getRandomValues`
+/// (in the browser, through getrandom's `wasm_js` backend). For a front-end's "new seed" only:
+/// a run itself never draws entropy, so the same scene and seed replay the same run.
+pub fn fresh_seed() -> Result<u32, EntropyError> {
+    getrandom::u32().map_err(EntropyError)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -65,5 +106,31 @@ mod tests {
         let mut again = Rng::new(1, 0);
         assert_eq!(first, (0..3).map(|_| again.next_u32()).collect::<Vec<_>>());
         assert!(Rng::new(9, 9).unit() < 1.0);
+    }
+
+    #[test]
+    fn the_rand_core_traits_draw_the_same_stream() {
+        // Through the trait or the inherent methods, one generator gives one sequence.
+        fn via_trait(rng: &mut impl rand_core::Rng) -> (u32, u64, [u8; 6]) {
+            let mut bytes = [0u8; 6];
+            let a = rng.next_u32();
+            let b = rng.next_u64();
+            rng.fill_bytes(&mut bytes);
+            (a, b, bytes)
+        }
+        let (a, b, bytes) = via_trait(&mut Rng::new(5, 2));
+        let mut direct = Rng::new(5, 2);
+        assert_eq!(a, direct.next_u32());
+        let (lo, hi) = (direct.next_u32(), direct.next_u32());
+        assert_eq!(b, (u64::from(hi) << 32) | u64::from(lo));
+        let (w0, w1) = (direct.next_u32().to_le_bytes(), direct.next_u32().to_le_bytes());
+        assert_eq!(bytes, [w0[0], w0[1], w0[2], w0[3], w1[0], w1[1]]);
+    }
+
+    #[test]
+    fn fresh_seeds_differ() {
+        // Four draws of 32 bits all equal by chance: probability 2^-96.
+        let seeds: Vec<u32> = (0..4).map(|_| fresh_seed().expect("the OS has a random source")).collect();
+        assert!(seeds.windows(2).any(|w| w[0] != w[1]), "{seeds:?}");
     }
 }

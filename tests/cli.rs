@@ -68,14 +68,15 @@ fn preset_json(name: &str) -> String {
 }
 
 #[test]
-fn presets_lists_the_four_presets_with_descriptions() {
+fn presets_lists_every_preset_in_menu_order_with_its_description() {
     let text = ok(flockpath(&["presets"]));
     let lines: Vec<&str> = text.lines().collect();
-    assert_eq!(lines.len(), flockpath::model::presets::ALL.len());
-    for name in ["pillars", "open-field", "two-groups-swap", "corridor"] {
-        let line = lines.iter().find(|l| l.split_whitespace().next() == Some(name));
-        let line = line.unwrap_or_else(|| panic!("{name} missing from {text}"));
-        assert!(line.len() > name.len() + 10, "{name} has no description: {line:?}");
+    let all = flockpath::model::presets::ALL;
+    assert_eq!(lines.len(), all.len(), "{text}");
+    for (line, preset) in lines.iter().zip(all) {
+        assert_eq!(line.split_whitespace().next(), Some(preset.name), "{line:?}");
+        assert!(preset.description.len() > 10, "{} has no description", preset.name);
+        assert_eq!(line[preset.name.len()..].trim(), preset.description, "{line:?}");
     }
 }
 
@@ -229,4 +230,33 @@ fn help_is_available_for_the_tool_and_its_commands() {
         assert!(run.contains(flag), "{flag} missing from run --help");
     }
     assert!(ok(flockpath(&["help", "bench"])).contains("--quick"));
+}
+
+/// One wording per unknown name, whichever front-end meets it: the command line shows the
+/// library's typed error (`UnknownPlanner`, `UnknownCase`, `UnknownName`) inside clap's or its own
+/// line, the same text the page and the comparison show.
+#[test]
+fn unknown_names_are_worded_by_the_library() {
+    use flockpath::model::forces_cases::Behaviour;
+    use flockpath::optim::Algorithm;
+    use flockpath::PlannerKind;
+    let planner = PlannerKind::parse("ants").expect_err("no planner ants").to_string();
+    let names: Vec<&str> = PlannerKind::ALL.iter().map(|k| k.name()).collect();
+    assert_eq!(planner, format!("unknown planner \"ants\"; known: {}", names.join(", ")));
+    fails_naming(flockpath(&["run", "--scene", "pillars", "--steps", "5", "--planner", "ants"]), &planner);
+    let spec = flockpath::sim::compare::ComparisonSpec::parse("1.boids~ants").expect_err("no planner ants");
+    assert_eq!(
+        spec.to_string(),
+        format!("comparison: unknown planner \"ants\"; known: scene, {}", names.join(", "))
+    );
+
+    let behaviour = Behaviour::parse("b4").expect_err("no b4").to_string();
+    assert_eq!(behaviour, "unknown behaviour \"b4\"; known: b1, b2, b3");
+    fails_naming(flockpath(&["tune", "--behaviour", "b4", "--environment", "e1", "--seed", "1"]), &behaviour);
+    let setup = flockpath::tune::TuneSetup { behaviour: "b4".into(), ..Default::default() };
+    assert_eq!(setup.task().map(|_| ()).expect_err("no b4").to_string(), behaviour);
+
+    let algorithm = Algorithm::parse("nope").expect_err("no algorithm nope").to_string();
+    assert_eq!(algorithm, "unknown algorithm \"nope\"; known: gsa, igsa, pso, firefly, ga");
+    fails_naming(flockpath(&["optimize", "--algorithms", "nope"]), &algorithm);
 }

@@ -3,10 +3,9 @@
 //! file), so a shared URL replays the same run everywhere.
 //!
 //! When the digest changes on purpose (a planner, the step, the spawn or the generator changed
-//! behaviour by design), regenerate the file with
-//! `cargo test --test golden -- --nocapture print_the_current_digest`, copy the printed value into
-//! `tests/data/golden-digest.txt`, and say in the commit message why every old URL now replays
-//! differently. When it changes by accident (a refactor, a dependency bump, a different float
+//! behaviour by design), `cargo test --test golden` fails with the current digest in its message:
+//! copy it into `tests/data/golden-digest.txt`, and say in the commit message why every old URL
+//! now replays differently. When it changes by accident (a refactor, a dependency bump, a different float
 //! summation order), find the cause instead: that is exactly what this test is for.
 
 use flockpath::{presets, World};
@@ -31,7 +30,12 @@ fn golden() -> String {
 fn pillars_seed_7_matches_the_golden_digest() {
     let expected = golden();
     assert_eq!(expected.len(), 16, "golden file must hold 16 hex digits, holds {expected:?}");
-    assert_eq!(format!("{:016x}", run(SEED)), expected);
+    let actual = format!("{:016x}", run(SEED));
+    assert_eq!(
+        actual, expected,
+        "pillars seed {SEED} after {STEPS} steps gives {actual}; if the change is deliberate, paste it \
+         into tests/data/golden-digest.txt (module docs)"
+    );
 }
 
 #[test]
@@ -43,10 +47,4 @@ fn the_same_scene_and_seed_give_the_same_digest() {
 #[test]
 fn a_different_seed_gives_a_different_digest() {
     assert_ne!(run(SEED), run(SEED + 1));
-}
-
-#[test]
-fn print_the_current_digest() {
-    // Not an assertion: prints the value to paste into the golden file (see the module docs).
-    println!("pillars seed {SEED} after {STEPS} steps: {:016x}", run(SEED));
 }

@@ -127,6 +127,23 @@ fn no_clock_or_unseeded_generator_outside_the_command_line() {
     }
 }
 
+/// Entropy enters only as a seed: `getrandom` is named in `src/rng.rs` alone, and
+/// `rng::fresh_seed` is called only by the front-ends (`src/web/`, `src/bin/`), never inside a run.
+#[test]
+fn entropy_enters_only_as_a_fresh_seed_from_a_front_end() {
+    for (path, code) in sources() {
+        if path != "src/rng.rs" {
+            let hits = offending_lines(&code, "getrandom");
+            assert!(hits.is_empty(), "{path} names getrandom; use crate::rng::fresh_seed: {hits:?}");
+        }
+        let front_end = path == "src/rng.rs" || path.starts_with("src/web/") || path.starts_with("src/bin/");
+        if !front_end {
+            let hits = offending_lines(&code, "fresh_seed");
+            assert!(hits.is_empty(), "{path} draws a fresh seed inside the core: {hits:?}");
+        }
+    }
+}
+
 #[test]
 fn no_unwrap_in_shipped_code() {
     for (path, code) in sources() {

@@ -24,6 +24,7 @@ use crate::model::geometry::Obstacle;
 use crate::model::params::{PlannerConfig, PlannerKind};
 use crate::model::scene::{
     allowed_for, Goal, GoalMotion, Group, Hill, PathSpec, Region, Scene, SceneError, ViewOptions,
+    DEFAULT_PX_PER_METRE,
 };
 use base64::engine::general_purpose::URL_SAFE_NO_PAD;
 use base64::Engine as _;
@@ -53,6 +54,8 @@ fn as_written(error: SceneError, text: &str) -> SceneError {
     if !field.value.contains("infinite") {
         return SceneError::Field(field);
     }
+    // Only to show the number as typed: the text already parsed as a scene, and if this re-read
+    // failed the refusal would keep its own words.
     let json: Option<serde_json::Value> = serde_json::from_str(text).ok();
     let mut node = json.as_ref();
     for part in field.path.split('.') {
@@ -81,9 +84,14 @@ fn check_input_size(text: &str) -> Result<(), SceneError> {
     Ok(())
 }
 
+/// Why writing a scene as JSON cannot fail: its types derive `Serialize`, every map key is a
+/// string, and serde_json writes a non-finite float as `null` (which reading refuses, by name).
+/// A failure would be a bug in these types, so it panics loudly rather than writing `""`.
+const SCENE_SERIALISES: &str = "a Scene always serialises to JSON (derived Serialize, string keys)";
+
 /// The scene as pretty JSON.
 pub fn scene_to_json(scene: &Scene) -> String {
-    serde_json::to_string_pretty(scene).unwrap_or_default()
+    serde_json::to_string_pretty(scene).expect(SCENE_SERIALISES)
 }
 
 /// The URL fragment value (`s=` part) for a scene, in the current version.
@@ -95,7 +103,7 @@ pub fn scene_to_fragment(scene: &Scene) -> String {
         Ok(back) if &back == scene => serde_json::to_vec(&compact),
         _ => serde_json::to_vec(scene),
     }
-    .unwrap_or_default();
+    .expect(SCENE_SERIALISES);
     format!("{FRAGMENT_VERSION}.{}", pack(&json))
 }
 
@@ -193,9 +201,11 @@ fn fragment_value(input: &str) -> &str {
     after_hash
 }
 
-/// Version 2's compact scene: `[name, width, height, seed, obstacles, goals, groups, view]`, and
-/// a ninth element `terrain` only when the scene has paths or hills: links made before those
-/// existed have eight elements and still decode, to a scene without them.
+/// Version 2's compact scene: `[name, width, height, seed, obstacles, goals, groups, view]`, a
+/// ninth element `terrain` when the scene has paths or hills, and a tenth `px_per_metre` when
+/// the scale is not the default (then `terrain` is written, perhaps empty, to keep positions).
+/// Links made before those existed have eight or nine elements and still decode, to a scene
+/// without them; a scene at the default scale writes exactly what it wrote before the scale.
 #[derive(Debug, Serialize, Deserialize)]
 struct CompactScene(
     String,
@@ -206,7 +216,8 @@ struct CompactScene(
     Vec<CompactGoal>,
     Vec<CompactGroup>,
     CompactView,
-    #[serde(default, skip_serializing_if = "CompactTerrain::is_empty")] CompactTerrain,
+    #[serde(default, skip_serializing_if = "Option::is_none")] Option<CompactTerrain>,
+    #[serde(default, skip_serializing_if = "Option::is_none")] Option<f32>,
 );
 
 /// `[paths, hills]`: a path is `[radius, [[x, y], …]]`, a hill `[x, y, radius, height]`.
@@ -248,6 +259,11 @@ struct CompactView(bool, f32);
 
 impl CompactScene {
     fn from_scene(s: &Scene) -> Self {
+        let terrain = CompactTerrain(
+            s.paths.iter().map(|p| (p.radius, p.points.clone())).collect(),
+            s.hills.iter().map(|h| [h.center[0], h.center[1], h.radius, h.height]).collect(),
+        );
+        let scale = (s.px_per_metre.to_bits() != DEFAULT_PX_PER_METRE.to_bits()).then_some(s.px_per_metre);
         let obstacles = s
             .obstacles
             .iter()
@@ -293,15 +309,15 @@ impl CompactScene {
             goals,
             groups,
             CompactView(s.view.trails, s.view.trail_fade),
-            CompactTerrain(
-                s.paths.iter().map(|p| (p.radius, p.points.clone())).collect(),
-                s.hills.iter().map(|h| [h.center[0], h.center[1], h.radius, h.height]).collect(),
-            ),
+            (!terrain.is_empty() || scale.is_some()).then_some(terrain),
+            scale,
         )
     }
 
     fn to_scene(&self) -> Result<Scene, SceneError> {
-        let CompactScene(name, width, height, seed, obstacles, goals, groups, view, terrain) = self;
+        let CompactScene(name, width, height, seed, obstacles, goals, groups, view, terrain, scale) = self;
+        let empty = CompactTerrain::default();
+        let terrain = terrain.as_ref().unwrap_or(&empty);
         let obstacles = obstacles
             .iter()
             .map(|o| match o {
@@ -361,6 +377,7 @@ impl CompactScene {
                 .iter()
                 .map(|&[x, y, radius, height]| Hill { center: [x, y], radius, height })
                 .collect(),
+            px_per_metre: scale.unwrap_or(DEFAULT_PX_PER_METRE),
         })
     }
 }
@@ -370,8 +387,7 @@ impl CompactScene {
 /// values that are not sliders (an IGSA group's edited waypoints). Links without that object
 /// decode as before.
 fn planner_params(config: &PlannerConfig) -> Vec<serde_json::Value> {
-    let params = serde_json::to_value(config).ok().and_then(|mut v| v.get_mut("params").map(std::mem::take));
-    let params = params.unwrap_or_default();
+    let params = config.params_json();
     let specs = config.kind().param_specs();
     let mut values: Vec<serde_json::Value> =
         specs.iter().map(|spec| params.get(spec.key).cloned().unwrap_or_default()).collect();
@@ -382,15 +398,10 @@ fn planner_params(config: &PlannerConfig) -> Vec<serde_json::Value> {
         }
         values.pop();
     }
-    if let Some(object) = params.as_object() {
-        let extras: serde_json::Map<String, serde_json::Value> = object
-            .iter()
-            .filter(|(key, _)| !specs.iter().any(|s| s.key == key.as_str()))
-            .map(|(key, value)| (key.clone(), value.clone()))
-            .collect();
-        if !extras.is_empty() {
-            values.push(serde_json::Value::Object(extras));
-        }
+    let extras: serde_json::Map<String, serde_json::Value> =
+        params.into_iter().filter(|(key, _)| !specs.iter().any(|s| s.key == key.as_str())).collect();
+    if !extras.is_empty() {
+        values.push(serde_json::Value::Object(extras));
     }
     values
 }
@@ -420,19 +431,12 @@ fn planner_with(name: &str, values: &[serde_json::Value]) -> Result<PlannerConfi
             format!("at most {} values for {} (its parameter table)", specs.len(), kind.label()),
         ));
     }
-    let mut params = serde_json::to_value(kind.default_config())
-        .ok()
-        .and_then(|mut v| v.get_mut("params").map(std::mem::take))
-        .unwrap_or_default();
+    let mut params = kind.default_config().params_json();
     for (spec, value) in specs.iter().zip(values) {
-        if let Some(object) = params.as_object_mut() {
-            object.insert(spec.key.to_string(), value.clone());
-        }
+        params.insert(spec.key.to_string(), value.clone());
     }
     for (key, value) in extras.into_iter().flatten() {
-        if let Some(object) = params.as_object_mut() {
-            object.insert(key.clone(), value.clone());
-        }
+        params.insert(key.clone(), value.clone());
     }
     let keyed = serde_json::json!({ "kind": kind.name(), "params": params });
     let config: PlannerConfig = serde_path_to_error::deserialize(&keyed).map_err(|e| {
@@ -481,6 +485,7 @@ fn refusal(error: &serde_path_to_error::Error<serde_json::Error>, text: &str, la
         return SceneError::Parse(format!("the scene text ends too early ({at}): was it cut short?"));
     }
     let mut segments: Vec<Segment> = error.path().iter().cloned().collect();
+    // Best-effort re-reads that locate the field; the parser's error itself is what is reported.
     let json: Option<serde_json::Value> = serde_json::from_str(text).ok();
     let token = token_at(text, inner.line(), inner.column());
     // The text's structure with a word JSON cannot hold (NaN) replaced by 0: it tells a compact
@@ -859,6 +864,7 @@ fn compact_path(segments: &[Segment], json: Option<&serde_json::Value>) -> Strin
             (Some(i), None) => format!("hills[{i}]"),
             _ => "hills".into(),
         },
+        (9, _) => "px_per_metre".into(),
         _ => keyed_path(segments),
     }
 }

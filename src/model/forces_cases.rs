@@ -4,6 +4,17 @@
 
 use serde::{Deserialize, Serialize};
 
+/// A behaviour or environment code that names none of the paper's cases.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum UnknownCase {
+    /// Not `b1`, `b2` or `b3`.
+    #[error("unknown behaviour {0:?}; known: b1, b2, b3")]
+    Behaviour(String),
+    /// Not `e1`, `e2` or `e3`.
+    #[error("unknown environment {0:?}; known: e1, e2, e3")]
+    Environment(String),
+}
+
 /// The behaviours of the paper's experiment.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -46,6 +57,11 @@ impl Behaviour {
         Self::ALL.into_iter().find(|b| b.code().eq_ignore_ascii_case(code) || b.label() == code)
     }
 
+    /// [`Self::from_code`] for user input: an unknown code is refused with the known ones.
+    pub fn parse(code: &str) -> Result<Self, UnknownCase> {
+        Self::from_code(code).ok_or_else(|| UnknownCase::Behaviour(code.chars().take(40).collect()))
+    }
+
     /// Readable name.
     pub fn label(self) -> &'static str {
         match self {
@@ -72,6 +88,11 @@ impl Environment {
     /// Looks an environment up by `e1`…`e3`.
     pub fn from_code(code: &str) -> Option<Self> {
         Self::ALL.into_iter().find(|e| e.code().eq_ignore_ascii_case(code))
+    }
+
+    /// [`Self::from_code`] for user input: an unknown code is refused with the known ones.
+    pub fn parse(code: &str) -> Result<Self, UnknownCase> {
+        Self::from_code(code).ok_or_else(|| UnknownCase::Environment(code.chars().take(40).collect()))
     }
 
     /// Readable name.

@@ -1,7 +1,7 @@
 //! Benchmark functions: the four of Liu & Liu 2022 Table 2 with its search ranges, plus the
 //! standard Rastrigin and Rosenbrock. Every one has its minimum 0.
 
-use super::problem::{Bounds, Objective};
+use super::problem::{Bounds, Objective, UnknownName};
 use std::f64::consts::{E, PI};
 
 /// A benchmark function (the search range is part of its definition here).
@@ -51,6 +51,14 @@ impl Function {
     /// Looks a function up by its CLI name.
     pub fn from_name(name: &str) -> Option<Self> {
         Self::ALL.iter().copied().find(|f| f.name() == name)
+    }
+
+    /// [`Self::from_name`] for user input: an unknown name is refused with the known ones.
+    pub fn parse(name: &str) -> Result<Self, UnknownName> {
+        Self::from_name(name).ok_or_else(|| {
+            let known: Vec<&str> = Self::ALL.iter().map(|f| f.name()).collect();
+            UnknownName::Function(name.chars().take(40).collect(), known.join(", "))
+        })
     }
 
     /// Half-width `h` of the search range `[−h, h]` in every coordinate.

@@ -6,8 +6,9 @@
 //! so we use Rashedi's standard form. `M_i = m_i / Σ m_j`; `G(t) = G0 · exp(−α t / T)`;
 //! `a_i = Σ_{j ∈ Kbest, j ≠ i} rand_j · G · M_j · (x_j − x_i) / (R_ij + ε)` (the force
 //! `F_ij = G M_i M_j (x_j − x_i)/(R_ij + ε)` divided by `M_i`); `v_i = rand_i · v_i + a_i`;
-//! `x_i = x_i + v_i`. One `rand_j` per pair and one `rand_i` per particle, as the equations
-//! print them (Rashedi's reference code draws one per coordinate).
+//! `x_i = x_i + v_i`. One `rand_j` per pair (scaling the whole pull of `j` on `i`), and a fresh
+//! `rand_i` for every coordinate of every particle's velocity (as Rashedi's reference code
+//! draws it).
 
 use super::problem::{Algorithm, Bounds, Objective, Optimizer, Population};
 use crate::rng::Rng;

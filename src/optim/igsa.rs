@@ -9,11 +9,13 @@
 //!    reaches 0 or 1 we draw a fresh `y` from the seeded generator (the paper, working in
 //!    MATLAB, does not say; without this the map degenerates to the bare logistic map).
 //! 2. **Adaptive velocity** (eq. 11–13): `v = R·v + c1·a + c2·(gbest − x)` with
-//!    `c1 = 1 − t³/T³`, `c2 = t³/T³`, R uniform in [0, 1) per particle; `a` is GSA's
-//!    acceleration with G(t) = G0 exp(−α t/T), all particles attracting (eq. 6 sums over all).
+//!    `c1 = 1 − t³/T³`, `c2 = t³/T³`, R uniform in [0, 1) drawn afresh for every coordinate of
+//!    every particle; `a` is GSA's acceleration with G(t) = G0 exp(−α t/T), all particles
+//!    attracting (eq. 6 sums over all).
 //! 3. **Neighbourhood move** (eq. 14): the printed `x̂ = x + rand · mean(6 nearest)` is not
 //!    translation-invariant (shifting the problem changes the move), so we use
-//!    `x̂ = x + rand · (mean of the 6 nearest − x)`. It is a trial move kept only when it
+//!    `x̂ = x + rand · (mean of the 6 nearest − x)`, one `rand` per particle (the whole move is
+//!    scaled, so it heads straight for the neighbours' mean). It is a trial move kept only when it
 //!    improves the particle (the paper calls it a way "to explore a wider range"; applied
 //!    unconditionally it would only contract the swarm). Each iteration therefore costs 2N
 //!    evaluations; [`Optimizer::evaluations`] reports them.

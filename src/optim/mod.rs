@@ -41,7 +41,7 @@ pub use gsa::{Gsa, GsaParams};
 pub use igsa::{Igsa, IgsaParams};
 pub use problem::{
     clamp_coordinate, gaussian, run_rng, sanitize, Algorithm, Bounds, Objective, Optimizer, Population,
-    Settings,
+    Settings, UnknownName,
 };
 pub use pso::{Pso, PsoParams};
 

@@ -102,6 +102,27 @@ impl Algorithm {
     pub fn from_name(name: &str) -> Option<Self> {
         Self::ALL.iter().copied().find(|a| a.name() == name)
     }
+
+    /// [`Self::from_name`] for user input: an unknown name is refused with the known ones.
+    pub fn parse(name: &str) -> Result<Self, UnknownName> {
+        Self::from_name(name).ok_or_else(|| UnknownName::Algorithm(name.chars().take(40).collect()))
+    }
+}
+
+fn algorithm_names() -> String {
+    Algorithm::ALL.iter().map(|a| a.name()).collect::<Vec<_>>().join(", ")
+}
+
+/// A name that names no optimizer or benchmark function; the page's lab and the CLI word it the
+/// same way (`unknown algorithm "x"; known: gsa, igsa, pso, firefly, ga`).
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum UnknownName {
+    /// Not one of [`Algorithm::ALL`].
+    #[error("unknown algorithm {0:?}; known: {known}", known = algorithm_names())]
+    Algorithm(String),
+    /// Not one of `Function::ALL` (the names it lists are given by the caller's table).
+    #[error("unknown function {0:?}; known: {1}")]
+    Function(String, String),
 }
 
 /// Run settings shared by every algorithm.

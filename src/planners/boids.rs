@@ -13,7 +13,7 @@ use crate::model::scene::PathSpec;
 use crate::planners::explain::{Explanation, NamedVector};
 use crate::rng::Rng;
 use crate::spatial::flow_field::{self, FlowField};
-use crate::spatial::{CandidateRuns, Columns, Neighbour, NEIGHBOUR_CAP};
+use crate::spatial::{CandidateRuns, CandidateSample, Columns, Neighbour, NEIGHBOUR_CAP};
 use glam::{BVec4A, Vec2, Vec4};
 use std::ops::Range;
 
@@ -25,6 +25,10 @@ pub struct Boids {
     side_whisker: Vec2,
     /// Scratch: the candidate neighbours being tested (reused to avoid allocating).
     candidates: CandidateRuns,
+    /// Scratch: the sampled candidates of a pile ([`FLOCK_SAMPLE_ABOVE`]).
+    sample: CandidateSample,
+    /// Candidates tested by the last `plan` (counted, for tests of the work per agent).
+    visits: Visits,
     /// Scratch: each agent's neighbour sums in this step.
     sums: Vec<FlockSums>,
     /// The flow field towards the goal and what it was built from (flow field guidance).
@@ -88,6 +92,8 @@ impl Boids {
             params,
             side_whisker: Vec2::from_angle(SIDE_WHISKER_ANGLE),
             candidates: CandidateRuns::default(),
+            sample: CandidateSample::default(),
+            visits: Visits::default(),
             sums: Vec::new(),
             flow: None,
             path_segment: Vec::new(),
@@ -98,6 +104,11 @@ impl Boids {
     /// The planner's parameters.
     pub fn params(&self) -> &BoidsParams {
         &self.params
+    }
+
+    /// The candidates the last [`Planner::plan`] tested for its neighbour sums (counted).
+    pub fn visits(&self) -> Visits {
+        self.visits
     }
 
     /// Updates what the extensions remember between steps, from the state at the start of the
@@ -419,24 +430,29 @@ impl Planner for Boids {
         sums.clear();
         sums.resize(group.agents.len(), FlockSums::default());
         let mut block = std::mem::take(&mut self.candidates);
+        let mut sample = std::mem::take(&mut self.sample);
         let reach = self.interaction_radius();
         let everyone_is_own = group.agents.start == 0 && group.agents.end as usize >= ctx.positions.len();
         let sep_r = self.params.separation_radius;
         let columns = ctx.grid.columns();
-        let mut sum_one = |id: u32, p: Vec2, runs: &CandidateRuns| {
+        let mut visits = Visits::default();
+        let mut sum_one = |id: u32, p: Vec2, (from, runs): (Columns, &[Range<usize>])| {
             if let Some(out) = sums.get_mut((id - group.agents.start) as usize) {
-                *out = flock_sums(columns, runs, p, reach, sep_r, &group.agents, everyone_is_own);
+                let tested: usize = runs.iter().map(ExactSizeIterator::len).sum();
+                visits.count(tested);
+                *out = flock_sums(from, runs, p, reach, sep_r, &group.agents, everyone_is_own);
             }
         };
         let grid_agents = ctx.grid.ids_in_cell_order().len();
         if grid_agents == ctx.positions.len() && group.agents.len() * 4 >= grid_agents {
-            // Cell by cell: the agents of a cell share their candidates, and the cells they
-            // read stay in the cache.
+            // Cell by cell: the agents of a cell share their candidates (sampled once per cell
+            // in a pile), and the cells they read stay in the cache.
             ctx.grid.for_each_candidate_block(reach, &mut block, |slots, runs| {
+                let tested = flock_candidates(columns, runs, &mut sample);
                 for k in slots {
                     let id = columns.ids[k];
                     if group.agents.contains(&id) {
-                        sum_one(id, Vec2::new(columns.x[k], columns.y[k]), runs);
+                        sum_one(id, Vec2::new(columns.x[k], columns.y[k]), tested);
                     }
                 }
             });
@@ -445,9 +461,10 @@ impl Planner for Boids {
             for id in group.agents.clone() {
                 let p = ctx.positions[id as usize];
                 ctx.grid.candidate_runs(p, reach, &mut block);
-                sum_one(id, p, &block);
+                sum_one(id, p, flock_candidates(columns, &block, &mut sample));
             }
         }
+        self.visits = visits;
         // Plain rules four agents at a time (the same arithmetic lane by lane), the rest and
         // every extension one at a time.
         let four_at_a_time = if self.is_plain(ctx) { sums.len() / LANES * LANES } else { 0 };
@@ -465,6 +482,7 @@ impl Planner for Boids {
             *out = limit(ctx.velocities[id as usize] + forces.acceleration, self.params.max_speed);
         }
         self.candidates = block;
+        self.sample = sample;
         self.sums = sums;
     }
 
@@ -476,10 +494,11 @@ impl Planner for Boids {
             ctx.grid.candidate_runs(p, self.interaction_radius(), &mut runs);
             let everyone_is_own = group.agents.start == 0 && group.agents.end as usize >= ctx.positions.len();
             let sep_r = self.params.separation_radius;
-            let columns = ctx.grid.columns();
+            let mut sample = CandidateSample::default();
+            let (columns, runs) = flock_candidates(ctx.grid.columns(), &runs, &mut sample);
             sums = flock_sums(
                 columns,
-                &runs,
+                runs,
                 p,
                 self.interaction_radius(),
                 sep_r,
@@ -748,15 +767,56 @@ impl Boids {
 }
 
 /// Most candidates (agents of the cells round an agent, within reach or not) [`flock_sums`]
-/// tests per agent: the first in the grid's storage order. The 3 × 3 cells of perception size
-/// round an agent hold about 320 non-overlapping 4 px discs at most, so only a pile reaches it;
-/// there it bounds an agent's work (a pile of 200,000 would otherwise cost 200,000² tests).
-pub const MAX_FLOCK_CANDIDATES: usize = 1024;
+/// tests one by one. The 3 × 3 cells of perception size round an agent (150 × 150 px with the
+/// default 50 px) hold at most 361 bodies of the default 4 px radius on the spawn's lattice
+/// (one per 8 × 8 px) and 418 touching in the densest (hexagonal) packing, so only a crowd
+/// pressed into overlapping or a pile has more; then [`FLOCK_SAMPLE`] of them, evenly spaced,
+/// stand for all ([`flock_candidates`]), which bounds an agent's work however dense the pile.
+pub const FLOCK_SAMPLE_ABOVE: usize = 448;
+
+/// Candidates sampled from cells holding more than [`FLOCK_SAMPLE_ABOVE`]. Alignment and
+/// cohesion are means over the flockmates found, and separation steers along the direction of
+/// its sum: an even sample of the neighbourhood estimates all three without scaling.
+pub const FLOCK_SAMPLE: usize = 384;
+
+/// The candidates [`flock_sums`] tests for the candidate runs `runs` of `columns`: the runs
+/// themselves, or in a pile (more than [`FLOCK_SAMPLE_ABOVE`]) [`FLOCK_SAMPLE`] of them,
+/// evenly spaced, copied into `sample` ([`CandidateSample`]).
+fn flock_candidates<'a>(
+    columns: Columns<'a>,
+    runs: &'a CandidateRuns,
+    sample: &'a mut CandidateSample,
+) -> (Columns<'a>, &'a [Range<usize>]) {
+    if runs.len() <= FLOCK_SAMPLE_ABOVE {
+        (columns, runs.runs())
+    } else {
+        sample.fill(columns, runs.runs(), FLOCK_SAMPLE);
+        (sample.columns(), sample.runs())
+    }
+}
+
+/// How many candidates a [`Boids`] step tested for its neighbour sums, counted per agent.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Visits {
+    /// Agents whose sums were computed.
+    pub agents: u64,
+    /// Candidates tested, all agents together.
+    pub total: u64,
+    /// The most candidates one agent tested.
+    pub max_per_agent: u64,
+}
+
+impl Visits {
+    fn count(&mut self, tested: usize) {
+        self.agents += 1;
+        self.total += tested as u64;
+        self.max_per_agent = self.max_per_agent.max(tested as u64);
+    }
+}
 
 /// The neighbour sums of the agent at `p` over the candidates `runs` of `columns`: every agent
 /// within `reach` of it except those at exactly its position (itself), the separation terms of
-/// those closer than `separation_radius`, velocity and position sums of those in `own_group`;
-/// only the first [`MAX_FLOCK_CANDIDATES`] candidates are tested.
+/// those closer than `separation_radius`, velocity and position sums of those in `own_group`.
 ///
 /// The candidates are tested four at a time (one SIMD register natively and in wasm) without a
 /// branch: whether a candidate is within reach is a coin flip the CPU cannot predict. Each lane
@@ -766,7 +826,7 @@ pub const MAX_FLOCK_CANDIDATES: usize = 1024;
 #[inline]
 fn flock_sums(
     columns: Columns<'_>,
-    runs: &CandidateRuns,
+    runs: &[Range<usize>],
     p: Vec2,
     reach: f32,
     separation_radius: f32,
@@ -779,10 +839,7 @@ fn flock_sums(
     // The flocking count as floats (exact up to 2^24): a lane add, where a population count
     // is a dozen instructions on the x86-64 baseline.
     let mut flocking = Vec4::ZERO;
-    let mut left = MAX_FLOCK_CANDIDATES;
-    for run in runs.runs() {
-        let run = run.start..run.end.min(run.start + left);
-        left -= run.len();
+    for run in runs {
         for at in run.clone().step_by(LANES) {
             let load = |s: &[f32]| s.get(at..at + LANES).map_or(Vec4::NAN, Vec4::from_slice);
             let (x, y) = (load(columns.x), load(columns.y));
@@ -864,6 +921,104 @@ mod tests {
                 }
             }
             assert!(checked >= 6 * 200, "{checked} agents checked");
+        }
+    }
+
+    /// `count` Boids agents at the positions of a fixed low-discrepancy pattern over a `side` px
+    /// square at (100, 100), heading for a goal on the right: a jam no spawn makes (the spawn
+    /// keeps bodies apart) but a converging crowd can reach.
+    fn pile(count: u32, side: f32) -> World {
+        let mut scene = presets::constant_density(count, 9.0);
+        scene.groups[0].spawn = crate::Region { min: [100.0, 100.0], max: [100.0 + side, 100.0 + side] };
+        let positions = (0..count)
+            .map(|i| {
+                let u = (f64::from(i) + 0.5) / f64::from(count);
+                let v = (f64::from(i) * 0.618_033_988_749_894_9).fract();
+                Vec2::new(100.0 + side * u as f32, 100.0 + side * v as f32)
+            })
+            .collect();
+        World::new_at(scene, positions).expect("valid scene")
+    }
+
+    /// Plans one step of group 0 of `world` as the world would: the planner and what it visited.
+    fn plan_group_0(world: &World) -> (Boids, Vec<Vec2>) {
+        let ctx = world.step_context();
+        let PlannerConfig::Boids(params) = world.scene().groups[0].planner.clone() else {
+            panic!("a Boids group");
+        };
+        let view = world.group_view(0).expect("group");
+        let mut planner = Boids::new(params);
+        let mut planned = vec![Vec2::ZERO; view.agents.len()];
+        planner.plan(&ctx, view, &mut Rng::new(1, 1), &mut planned);
+        (planner, planned)
+    }
+
+    /// In a pile of 5,000 agents within 40 × 40 px, the cells round every agent hold all 5,000:
+    /// each agent's neighbour sums test exactly [`FLOCK_SAMPLE`] of them (counted), not 5,000
+    /// (or the 1,024 of the former cap), and `explain` sees the same sample as `plan`.
+    #[test]
+    fn a_jammed_step_tests_at_most_the_sample_per_agent() {
+        let n = 5_000;
+        let world = pile(n, 40.0);
+        let ctx = world.step_context();
+        let mut runs = CandidateRuns::default();
+        let reach = BoidsParams::default().perception_radius;
+        ctx.grid.candidate_runs(world.positions()[0], reach, &mut runs);
+        assert_eq!(runs.len(), n as usize, "every agent of the pile is a candidate of every other");
+        let (planner, planned) = plan_group_0(&world);
+        let visits = planner.visits();
+        assert_eq!(visits.agents, u64::from(n));
+        assert_eq!(visits.max_per_agent, FLOCK_SAMPLE as u64);
+        assert_eq!(visits.total, u64::from(n) * FLOCK_SAMPLE as u64);
+        assert!(planned.iter().all(|v| v.is_finite()));
+        let view = world.group_view(0).expect("group");
+        for id in (0..n).step_by(97) {
+            let e = planner.explain(&ctx, &view, id);
+            let one = limit(ctx.velocities[id as usize] + e.applied, planner.params.max_speed);
+            assert_eq!(planned[id as usize].to_array().map(f32::to_bits), one.to_array().map(f32::to_bits));
+        }
+        // Separation still pushes the pile apart: the sampled sums are not zero.
+        assert!(planned.iter().filter(|v| v.length() > 0.1).count() > n as usize / 2);
+    }
+
+    /// Crowds of 4 px bodies side by side never reach the sampling threshold, so every agent
+    /// tests all its candidates as before sampling existed: the spawn at its density limit (one
+    /// body per 8 × 8 px) and bodies touching in hexagonal packing, the densest there is.
+    #[test]
+    fn crowds_without_overlap_test_every_candidate() {
+        let mut lattice = presets::constant_density(6_400, 9.0);
+        lattice.groups[0].spawn = crate::Region { min: [100.0, 100.0], max: [740.0, 740.0] };
+        lattice.groups[0].agent_radius = 4.0;
+        let lattice = World::new(lattice).expect("valid scene at the density limit");
+        let mut hex = presets::constant_density(6_400, 9.0);
+        hex.groups[0].agent_radius = 4.0;
+        let rows = 3.0_f32.sqrt() * 4.0;
+        let positions = (0..6_400)
+            .map(|i| {
+                Vec2::new(
+                    100.0 + 8.0 * (i % 80) as f32 + 4.0 * ((i / 80) % 2) as f32,
+                    100.0 + rows * (i / 80) as f32,
+                )
+            })
+            .collect();
+        let hex = World::new_at(hex, positions).expect("valid hexagonal crowd");
+        for (name, world) in [("lattice", lattice), ("hexagonal", hex)] {
+            let (planner, _) = plan_group_0(&world);
+            let ctx = world.step_context();
+            let reach = planner.interaction_radius();
+            let mut runs = CandidateRuns::default();
+            let all: usize = world
+                .positions()
+                .iter()
+                .map(|&p| {
+                    ctx.grid.candidate_runs(p, reach, &mut runs);
+                    runs.len()
+                })
+                .sum();
+            let visits = planner.visits();
+            assert_eq!(visits.total, all as u64, "{name}: no agent was sampled");
+            assert!(visits.max_per_agent <= FLOCK_SAMPLE_ABOVE as u64, "{name}: {visits:?}");
+            assert!(visits.max_per_agent >= 300, "{name}: the crowd is dense: {visits:?}");
         }
     }
 }

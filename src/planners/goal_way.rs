@@ -4,7 +4,7 @@
 //! speed zero, so an arrived crowd stops instead of piling onto the goal's centre).
 
 use crate::model::geometry::{distance, unit_or};
-use crate::model::params::guidance::{Guidance, PX_PER_METRE};
+use crate::model::params::guidance::Guidance;
 use crate::model::scene::Scene;
 use crate::planners::planner::{GroupView, StepContext};
 use crate::spatial::flow_field::{self, FlowField};
@@ -12,8 +12,7 @@ use glam::Vec2;
 
 /// Pixels per metre of `scene`: the baselines' SI parameters are converted with it.
 pub fn px_per_metre(scene: &Scene) -> f32 {
-    let _ = scene;
-    PX_PER_METRE
+    scene.px_per_metre
 }
 
 /// What a cached flow field was built from: a field is rebuilt when one of these changes.

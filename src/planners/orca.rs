@@ -31,9 +31,8 @@
 use super::goal_way::{px_per_metre, GoalWay};
 use super::planner::{GroupView, Planner, StepContext};
 use crate::model::geometry::{length, unit_or, Aabb, Obstacle};
-use crate::model::params::guidance::PX_PER_METRE;
 use crate::model::params::OrcaParams;
-use crate::model::scene::DT;
+use crate::model::scene::{DEFAULT_PX_PER_METRE, DT};
 use crate::planners::explain::{Explanation, NamedVector};
 use crate::rng::Rng;
 use crate::spatial::QueryCap;
@@ -290,7 +289,7 @@ struct Near {
 impl Orca {
     /// A planner with these parameters at the default scene scale.
     pub fn new(params: OrcaParams) -> Self {
-        Self::with_scale(params, PX_PER_METRE)
+        Self::with_scale(params, DEFAULT_PX_PER_METRE)
     }
 
     /// A planner with these parameters for a scene of `px_per_metre`.

@@ -28,9 +28,8 @@
 use super::goal_way::{px_per_metre, GoalWay};
 use super::planner::{GroupView, Planner, StepContext};
 use crate::model::geometry::{length, limit, Aabb, Obstacle};
-use crate::model::params::guidance::PX_PER_METRE;
 use crate::model::params::SocialForceParams;
-use crate::model::scene::DT;
+use crate::model::scene::{DEFAULT_PX_PER_METRE, DT};
 use crate::planners::explain::{Explanation, NamedVector};
 use crate::rng::Rng;
 use crate::spatial::QueryCap;
@@ -160,7 +159,7 @@ pub struct SocialForce {
 impl SocialForce {
     /// A planner with these parameters at the default scene scale.
     pub fn new(params: SocialForceParams) -> Self {
-        Self::with_scale(params, PX_PER_METRE)
+        Self::with_scale(params, DEFAULT_PX_PER_METRE)
     }
 
     /// A planner with these parameters for a scene of `px_per_metre`.

@@ -197,13 +197,12 @@ fn describe_config(config: &PlannerConfig) -> String {
 
 /// The planner's parameter values as spec text, by table position.
 fn param_values(config: &PlannerConfig) -> Vec<String> {
-    let json = serde_json::to_value(config).unwrap_or_default();
-    let params = json.get("params");
+    let params = config.params_json();
     config
         .kind()
         .param_specs()
         .iter()
-        .map(|spec| match params.and_then(|p| p.get(spec.key)) {
+        .map(|spec| match params.get(spec.key) {
             Some(serde_json::Value::String(s)) => s.clone(),
             Some(serde_json::Value::Bool(b)) => if *b { "on" } else { "off" }.to_string(),
             Some(serde_json::Value::Number(n)) => format_number(n.as_f64().unwrap_or_default()),
@@ -240,10 +239,7 @@ fn parse_planner(text: &str) -> Result<PlannerConfig, SpecError> {
         }
         None => (text, ""),
     };
-    let kind = PlannerKind::from_name(name).ok_or_else(|| {
-        let names: Vec<&str> = PlannerKind::ALL.iter().map(|k| k.name()).collect();
-        SpecError(format!("unknown planner {name:?}; known: scene, {}", names.join(", ")))
-    })?;
+    let kind = PlannerKind::parse(name).map_err(|e| SpecError(e.also_accepting(&["scene"]).to_string()))?;
     let specs = kind.param_specs();
     let mut params = serde_json::Map::new();
     let values: Vec<&str> = if values.is_empty() { Vec::new() } else { values.split(',').collect() };
@@ -292,7 +288,7 @@ fn parse_planner(text: &str) -> Result<PlannerConfig, SpecError> {
     let config: PlannerConfig =
         serde_json::from_value(serde_json::json!({ "kind": kind.name(), "params": params }))
             .map_err(|e| SpecError(format!("{}: {e}", kind.name())))?;
-    config.validate().map_err(|e| SpecError(format!("{}: {e}", kind.name())))?;
+    config.check().map_err(|e| SpecError(format!("{}: {e}", kind.name())))?;
     Ok(config)
 }
 

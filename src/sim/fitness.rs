@@ -329,10 +329,10 @@ impl FitnessRecorder {
             } else {
                 false
             };
-            let mut hit = false;
-            self.grid.for_each_within_capped(p, r + max_radius, FITNESS_QUERY_CAP, |q| {
+            // The first overlap settles it (in a jam, usually the first candidate or so).
+            let mut hit = self.grid.any_within_capped(p, r + max_radius, FITNESS_QUERY_CAP, |q| {
                 let rq = radius.get(q.id as usize).copied().unwrap_or(0.0);
-                hit |= q.id != j as u32 && q.d2 < (r + rq) * (r + rq);
+                q.id != j as u32 && q.d2 < (r + rq) * (r + rq)
             });
             if !hit && !obstacles.is_empty() {
                 // The world pushes agents out to `radius + 0.01`: only a real overlap counts.

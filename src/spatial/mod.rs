@@ -99,6 +99,79 @@ impl CandidateRuns {
     pub fn runs(&self) -> &[Range<usize>] {
         &self.runs
     }
+
+    /// How many candidates the runs hold.
+    pub fn len(&self) -> usize {
+        self.runs.iter().map(ExactSizeIterator::len).sum()
+    }
+
+    /// Whether the runs hold no candidate.
+    pub fn is_empty(&self) -> bool {
+        self.runs.iter().all(|r| r.is_empty())
+    }
+}
+
+/// A fixed, evenly spaced subset of a query's candidates, copied into padded columns of its own
+/// (the same layout as [`Columns`], one run): what a neighbour rule looks at in a pile, where
+/// the cells round an agent hold far more agents than a crowd of non-overlapping bodies can.
+///
+/// Of `total` candidates (the runs one after the other, in the grid's storage order) the `k`-th
+/// sampled is candidate `⌊k · total / count⌋`, for `k` in `0..count`: the same subset on every
+/// platform, spread over all the scanned cells instead of the first few. Filled once, it serves
+/// every agent that shares the runs (the agents of one cell), so the copy costs little per agent.
+#[derive(Clone, Debug, Default)]
+pub struct CandidateSample {
+    /// Sampled agent ids, then [`CANDIDATE_LANES`] padding entries (`u32::MAX`).
+    ids: Vec<u32>,
+    /// Position x, y and velocity x, y of the sampled agents, then padding (NaN).
+    columns: [Vec<f32>; 4],
+    /// The one run of sampled candidates: `0..count`.
+    run: [Range<usize>; 1],
+}
+
+impl CandidateSample {
+    /// Samples `count` of the candidates `runs` of `columns` (all of them, in order, when they
+    /// hold no more than `count`).
+    pub fn fill(&mut self, columns: Columns<'_>, runs: &[Range<usize>], count: usize) {
+        let total: usize = runs.iter().map(ExactSizeIterator::len).sum();
+        let count = count.min(total);
+        self.ids.clear();
+        for c in &mut self.columns {
+            c.clear();
+        }
+        let mut rest = runs.iter();
+        let (mut run, mut before) = (rest.next().cloned().unwrap_or_default(), 0usize);
+        for k in 0..count {
+            // ⌊k · total / count⌋ < total: exact in u64 for any in-memory count.
+            let at = (k as u64 * total as u64 / count as u64) as usize;
+            while at >= before + run.len() {
+                before += run.len();
+                run = rest.next().cloned().unwrap_or_default();
+            }
+            let slot = run.start + (at - before);
+            self.ids.push(columns.ids.get(slot).copied().unwrap_or(u32::MAX));
+            let [x, y, vx, vy] = &mut self.columns;
+            for (out, from) in [(x, columns.x), (y, columns.y), (vx, columns.vx), (vy, columns.vy)] {
+                out.push(from.get(slot).copied().unwrap_or(f32::NAN));
+            }
+        }
+        self.ids.extend([u32::MAX; CANDIDATE_LANES]);
+        for c in &mut self.columns {
+            c.extend([f32::NAN; CANDIDATE_LANES]);
+        }
+        self.run = [Range { start: 0, end: count }];
+    }
+
+    /// The sampled agents as padded [`Columns`].
+    pub fn columns(&self) -> Columns<'_> {
+        let [x, y, vx, vy] = &self.columns;
+        Columns { ids: &self.ids, x, y, vx, vy }
+    }
+
+    /// The sampled candidates as runs of [`Self::columns`]: one run, `0..count`.
+    pub fn runs(&self) -> &[Range<usize>] {
+        &self.run
+    }
 }
 
 impl SpatialGrid {
@@ -286,6 +359,44 @@ impl SpatialGrid {
             }
             if scanned < end {
                 return true;
+            }
+        }
+        false
+    }
+
+    /// Whether `hit` holds for some agent within `radius` of `p` among the first
+    /// `cap.candidates` agents of the cells scanned (and the first `cap.neighbours` of them within
+    /// `radius`), in [`Self::for_each_within_capped`]'s order: the same answer as testing every
+    /// agent that query visits, but it stops at the first hit. An overlap test in a crowd of
+    /// bodies touching each other so costs a few candidates instead of the whole cap.
+    #[inline]
+    pub fn any_within_capped(
+        &self,
+        p: Vec2,
+        radius: f32,
+        cap: QueryCap,
+        mut hit: impl FnMut(Neighbour) -> bool,
+    ) -> bool {
+        let r2 = radius * radius;
+        let (mut neighbours, mut candidates) = (cap.neighbours, cap.candidates);
+        for Range { start, end } in self.query_rows(p, radius) {
+            let scanned = end.min(start.saturating_add(candidates));
+            candidates -= scanned - start;
+            for k in start..scanned {
+                let (q, v) = self.slot(k);
+                let d2 = p.distance_squared(q);
+                if d2 <= r2 {
+                    if neighbours == 0 {
+                        return false;
+                    }
+                    neighbours -= 1;
+                    if hit(Neighbour { id: self.ids[k], pos: q, vel: v, d2 }) {
+                        return true;
+                    }
+                }
+            }
+            if scanned < end {
+                return false;
             }
         }
         false
@@ -711,6 +822,66 @@ mod tests {
         assert_eq!(seen, vec![0, 2]);
         assert!(index.contains(Vec2::new(500.0, 505.0)));
         assert!(!index.contains(Vec2::new(700.0, 700.0)));
+    }
+
+    #[test]
+    fn a_sample_spreads_evenly_over_all_runs_and_keeps_small_ones_whole() {
+        let (w, h, cell) = (300.0, 200.0, 20.0);
+        let points = scattered_points(5, 3000, (w, h), cell);
+        let velocities: Vec<Vec2> = (0..points.len()).map(|i| Vec2::new(i as f32, -(i as f32))).collect();
+        let mut grid = SpatialGrid::new(w, h, cell, points.len());
+        grid.rebuild(&points, &velocities);
+        let (columns, mut runs, mut sample) =
+            (grid.columns(), CandidateRuns::default(), CandidateSample::default());
+        grid.candidate_runs(Vec2::new(150.0, 100.0), 45.0, &mut runs);
+        assert!(runs.runs().len() >= 3 && runs.len() > 200, "{:?}", runs.runs());
+        let all: Vec<usize> = runs.runs().iter().flat_map(Clone::clone).collect();
+        for count in [1, 7, 64, 200, all.len(), all.len() + 10] {
+            sample.fill(columns, runs.runs(), count);
+            let taken = count.min(all.len());
+            assert_eq!(sample.runs(), std::slice::from_ref(&(0..taken)));
+            let s = sample.columns();
+            for k in 0..taken {
+                let slot = all[k * all.len() / taken];
+                assert_eq!(s.ids[k], columns.ids[slot]);
+                let id = s.ids[k] as usize;
+                assert_eq!((s.x[k], s.y[k]), (points[id].x, points[id].y));
+                assert_eq!((s.vx[k], s.vy[k]), (velocities[id].x, velocities[id].y));
+            }
+            // Padding after the sample, as after the grid's own columns.
+            assert!(
+                s.ids[taken..].iter().all(|&id| id == u32::MAX) && s.ids.len() == taken + CANDIDATE_LANES
+            );
+            assert!(s.x[taken..].iter().all(|x| x.is_nan()));
+        }
+    }
+
+    #[test]
+    fn any_within_capped_answers_as_testing_every_visited_agent() {
+        let (w, h, cell) = (200.0, 200.0, 20.0);
+        let points = scattered_points(3, 4000, (w, h), cell);
+        let mut grid = SpatialGrid::new(w, h, cell, points.len());
+        grid.rebuild(&points, &[]);
+        let cap = QueryCap { neighbours: 40, candidates: 90 };
+        let mut answers = [0; 2];
+        for (i, &p) in points.iter().enumerate().step_by(7) {
+            for radius in [1.0, 4.0, 15.0] {
+                let hit = |n: Neighbour| n.id != i as u32 && n.d2 < 6.0 && n.id.is_multiple_of(3);
+                let mut expected = false;
+                grid.for_each_within_capped(p, radius, cap, |n| expected |= hit(n));
+                let mut tested = 0;
+                let any = grid.any_within_capped(p, radius, cap, |n| {
+                    tested += 1;
+                    hit(n)
+                });
+                assert_eq!(any, expected, "agent {i} radius {radius}");
+                answers[usize::from(any)] += 1;
+                if any {
+                    assert!(tested <= cap.neighbours);
+                }
+            }
+        }
+        assert!(answers[0] > 100 && answers[1] > 100, "both answers occur: {answers:?}");
     }
 
     #[test]

@@ -5,7 +5,7 @@
 //! The core has no clock: the caller passes one, used only for the seconds and
 //! evaluations-per-second figures.
 
-use super::{Evaluation, GaParams, GenerationStats, TuneTask, Tuner};
+use super::{Evaluation, GaParams, GenerationStats, TuneError, TuneTask, Tuner};
 use crate::model::forces_cases::{Behaviour, Environment};
 use serde::Serialize;
 use std::fmt::Write as _;
@@ -101,14 +101,14 @@ pub fn tune_pair(
     budget: &Budget,
     clock: &dyn Fn() -> f64,
     log: &mut dyn FnMut(&str),
-) -> Result<TuneReport, String> {
+) -> Result<TuneReport, TuneError> {
     let mut task = TuneTask::new(behaviour, environment);
     task.frames = budget.frames;
     task.sample_every = budget.sample_every;
     let agents = task.scene.agent_count();
     let start = clock();
-    let mut tuner = Tuner::new(task, budget.ga.clone(), seed).map_err(|e| e.to_string())?;
-    let best = tuner.run(|s| log(&progress_line(s, clock() - start))).ok_or("the run evaluated nothing")?;
+    let mut tuner = Tuner::new(task, budget.ga.clone(), seed)?;
+    let best = tuner.run(|s| log(&progress_line(s, clock() - start))).ok_or(TuneError::NothingEvaluated)?;
     let seconds = clock() - start;
     let evaluations = tuner.history().last().map_or(0, |s| s.evaluations);
     Ok(TuneReport {
@@ -161,7 +161,7 @@ pub fn run_table(
     budget: &Budget,
     clock: &dyn Fn() -> f64,
     log: &mut dyn FnMut(&str),
-) -> Result<TableReport, String> {
+) -> Result<TableReport, TuneError> {
     let mut runs = Vec::new();
     // Seed-major: after the first seed every pair and the cross-scene check have a result.
     for &seed in seeds {

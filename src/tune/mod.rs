@@ -13,7 +13,7 @@
 //!
 //! Layer: tune. Uses `model`, `planners`, `sim` and `rng`.
 
-use crate::model::forces_cases::{Behaviour, Environment};
+use crate::model::forces_cases::{Behaviour, Environment, UnknownCase};
 use crate::model::params::{ForcesParams, PlannerConfig};
 use crate::model::scene::{Scene, SceneError};
 use crate::rng::Rng;
@@ -24,6 +24,38 @@ use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
 
 pub mod experiment;
+
+/// Why a tuning run could not start (or produced nothing).
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum TuneError {
+    /// The settings JSON did not read (the reader's words: an unknown key, a wrong type).
+    #[error("cannot read the tuning settings: {0}")]
+    Settings(String),
+    /// An unknown behaviour or environment code.
+    #[error(transparent)]
+    UnknownCase(#[from] UnknownCase),
+    /// Frames per evaluation outside `1…MAX_FRAMES`.
+    #[error("frames {0} is outside 1…{MAX_FRAMES}")]
+    Frames(u32),
+    /// A generation limit outside `1…1000`.
+    #[error("generations {0} is outside 1…1000")]
+    Generations(u32),
+    /// A population outside `2…100000`.
+    #[error("population {0} is outside 2…100000")]
+    Population(u32),
+    /// A crossover or mutation rate outside `0…1`.
+    #[error("crossover and mutation rates must be in 0…1")]
+    Rates,
+    /// The scene to tune in has no agents.
+    #[error("the scene has no agents to tune")]
+    NoAgents,
+    /// The scene to tune in was refused.
+    #[error(transparent)]
+    Scene(#[from] SceneError),
+    /// The run ended before evaluating a single chromosome.
+    #[error("the run evaluated nothing")]
+    NothingEvaluated,
+}
 
 /// Bits per gene.
 pub const GENE_BITS: u32 = 10;
@@ -290,34 +322,27 @@ pub const MAX_FRAMES: u32 = 3_600;
 
 impl TuneSetup {
     /// Reads a setup from JSON.
-    pub fn from_json(text: &str) -> Result<Self, SceneError> {
-        serde_json::from_str(text).map_err(|e| SceneError::Parse(format!("tuning settings: {e}")))
+    pub fn from_json(text: &str) -> Result<Self, TuneError> {
+        serde_json::from_str(text).map_err(|e| TuneError::Settings(e.to_string()))
     }
 
     /// The task it describes: the environment's scene or its own, scored by the behaviour.
-    pub fn task(&self) -> Result<TuneTask, SceneError> {
-        let behaviour = Behaviour::from_code(&self.behaviour).ok_or_else(|| {
-            SceneError::BadReference(format!("unknown behaviour {:?}; known: b1, b2, b3", self.behaviour))
-        })?;
+    pub fn task(&self) -> Result<TuneTask, TuneError> {
+        let behaviour = Behaviour::parse(&self.behaviour)?;
         if !(1..=MAX_FRAMES).contains(&self.frames) {
-            return Err(SceneError::OutOfRange(format!("frames {} is outside 1…{MAX_FRAMES}", self.frames)));
+            return Err(TuneError::Frames(self.frames));
         }
         let task = match &self.scene {
             Some(text) => {
                 TuneTask::on_scene(crate::model::codec::scene_from_any(text)?, behaviour, self.frames)
             }
             None => {
-                let environment = Environment::from_code(&self.environment).ok_or_else(|| {
-                    SceneError::BadReference(format!(
-                        "unknown environment {:?}; known: e1, e2, e3",
-                        self.environment
-                    ))
-                })?;
+                let environment = Environment::parse(&self.environment)?;
                 TuneTask { frames: self.frames, ..TuneTask::new(behaviour, environment) }
             }
         };
         if task.scene.agent_count() == 0 {
-            return Err(SceneError::OutOfRange("the scene has no agents to tune".into()));
+            return Err(TuneError::NoAgents);
         }
         Ok(task)
     }
@@ -328,12 +353,9 @@ impl TuneSetup {
     }
 
     /// A tuner ready for its first generation.
-    pub fn tuner(&self) -> Result<Tuner, SceneError> {
+    pub fn tuner(&self) -> Result<Tuner, TuneError> {
         if !(1..=1_000).contains(&self.generations) {
-            return Err(SceneError::OutOfRange(format!(
-                "generations {} is outside 1…1000",
-                self.generations
-            )));
+            return Err(TuneError::Generations(self.generations));
         }
         Tuner::new(self.task()?, self.ga(), self.seed)
     }
@@ -376,18 +398,20 @@ pub struct Tuner {
 
 impl Tuner {
     /// Checks the task's scene, draws the random first generation from `seed`.
-    pub fn new(task: TuneTask, ga: GaParams, seed: u32) -> Result<Self, SceneError> {
+    pub fn new(task: TuneTask, ga: GaParams, seed: u32) -> Result<Self, TuneError> {
         if ga.population < 2 || ga.population > 100_000 {
-            return Err(SceneError::OutOfRange(format!("population {} is outside 2…100000", ga.population)));
+            return Err(TuneError::Population(ga.population));
         }
         let rates = [ga.crossover_rate, ga.mutation_rate];
         if rates.iter().any(|r| !(0.0..=1.0).contains(r)) {
-            return Err(SceneError::OutOfRange("crossover and mutation rates must be in 0…1".into()));
+            return Err(TuneError::Rates);
         }
         World::new(task.scene_with([0.5; GENES]))?;
         let mut rng = Rng::new(seed, STREAM_GA);
         let population = (0..ga.population)
-            .map(|_| ((u64::from(rng.next_u32()) << 32) | u64::from(rng.next_u32())) & CHROMOSOME_MASK)
+            // The first u32 drawn was always the high half: rotating `next_u64` (low half first)
+            // keeps every tuned result of a seed unchanged.
+            .map(|_| rng.next_u64().rotate_left(32) & CHROMOSOME_MASK)
             .collect();
         Ok(Self {
             task,

@@ -20,10 +20,7 @@ pub struct CompareSim {
 }
 
 fn planner_kind(name: &str) -> Result<PlannerKind, JsError> {
-    PlannerKind::from_name(name).ok_or_else(|| {
-        let names: Vec<&str> = PlannerKind::ALL.iter().map(|k| k.name()).collect();
-        js_error(format!("unknown planner {name:?}; known: scene, {}", names.join(", ")))
-    })
+    PlannerKind::parse(name).map_err(|e| js_error(e.also_accepting(&["scene"])))
 }
 
 #[wasm_bindgen]
@@ -225,10 +222,7 @@ impl CompareSim {
             .enumerate()
             .map(|(i, p)| {
                 let (planner, params) = match &p.spec().all {
-                    Some(c) => {
-                        let json = serde_json::to_value(c).unwrap_or_default();
-                        (c.kind().name(), json.get("params").cloned().unwrap_or_default())
-                    }
+                    Some(c) => (c.kind().name(), serde_json::Value::Object(c.params_json())),
                     None => ("scene", serde_json::Value::Null),
                 };
                 let one = ComparisonSpec { panes: vec![p.spec().clone()] }.to_spec_string();
@@ -260,15 +254,15 @@ impl CompareSim {
             .iter()
             .enumerate()
             .map(|(i, p)| {
-                let mut v = serde_json::to_value(p.series()).unwrap_or_default();
+                let mut v = serde_json::to_value(p.series()).map_err(js_error)?;
                 if let Some(o) = v.as_object_mut() {
                     o.insert("pane".into(), PANE_NAMES.get(i).copied().unwrap_or_default().into());
                     o.insert("label".into(), p.label().into());
                     o.insert("color".into(), PANE_COLORS.get(i).copied().unwrap_or_default().into());
                 }
-                v
+                Ok(v)
             })
-            .collect();
+            .collect::<Result<_, JsError>>()?;
         to_json(&serde_json::json!({ "keys": SERIES_KEYS, "panes": panes }))
     }
 

@@ -15,7 +15,7 @@ use crate::model::edit::{self, Edit, ItemRef};
 use crate::model::params::PlannerKind;
 use crate::model::presets;
 use crate::model::scene::ViewOptions;
-use crate::render::Renderer;
+use crate::render::{Renderer, Theme};
 use crate::sim::history::MetricsHistory;
 use crate::sim::recording::Recording;
 use crate::sim::replay::Replay;
@@ -27,6 +27,7 @@ use wasm_bindgen::prelude::*;
 mod compare;
 pub mod lab;
 mod paths;
+mod seed;
 mod timeline;
 pub mod tune;
 
@@ -217,7 +218,7 @@ impl Sim {
         codec::scene_to_json(self.world.scene())
     }
 
-    /// The current scene as a URL fragment value (`1.…`).
+    /// The current scene as a URL fragment value (`2.…`).
     pub fn scene_string(&self) -> String {
         codec::scene_to_fragment(self.world.scene())
     }
@@ -260,10 +261,7 @@ impl Sim {
 
     /// Switches a group (0-based) to another planner with that planner's default parameters.
     pub fn set_group_planner(&mut self, group: u32, planner_name: &str) -> Result<(), JsError> {
-        let kind = PlannerKind::from_name(planner_name).ok_or_else(|| {
-            let names: Vec<&str> = PlannerKind::ALL.iter().map(|k| k.name()).collect();
-            js_error(format!("unknown planner {planner_name:?}; known: {}", names.join(", ")))
-        })?;
+        let kind = PlannerKind::parse(planner_name).map_err(js_error)?;
         let before = (kind == PlannerKind::Igsa).then(|| self.world.clone());
         self.world.set_group_planner(group as usize, kind.default_config()).map_err(js_error)?;
         self.keep_for_cancel(before);
@@ -310,6 +308,22 @@ impl Sim {
     /// scene's view options. Throws outside 0…1.
     pub fn set_trail_fade(&mut self, fade: f32) -> Result<(), JsError> {
         self.set_view(ViewOptions { trail_fade: fade, ..self.world.scene().view })
+    }
+
+    /// Draws in the render theme `name` ("standard" or "projector") from the next frame on: a
+    /// page option, not part of the scene (links and runs do not change). Throws on another name.
+    pub fn set_theme(&mut self, name: &str) -> Result<(), JsError> {
+        let theme = Theme::from_name(name).ok_or_else(|| {
+            let known: Vec<&str> = Theme::ALL.iter().map(|t| t.name()).collect();
+            JsError::new(&format!("unknown theme {name:?}; known: {}", known.join(", ")))
+        })?;
+        self.renderer.set_theme(theme);
+        Ok(())
+    }
+
+    /// The render theme's name.
+    pub fn theme(&self) -> String {
+        self.renderer.theme().name().to_string()
     }
 
     /// The recording of the current run as JSON: `{frames, first_step, last_step, every,

@@ -3,6 +3,7 @@
 //!
 //! Wall-clock timing lives here, in `src/bin/`, and nowhere in the core.
 
+use crate::{failed, CliError};
 use flockpath::model::params::boids::{FlowGuide, Leader, Role};
 use flockpath::model::params::BoidsParams;
 use flockpath::render::Renderer;
@@ -74,7 +75,7 @@ struct Plan {
 }
 
 /// Runs the benchmarks and prints the figures.
-pub fn main(options: &Options) -> Result<(), String> {
+pub fn main(options: &Options) -> Result<(), CliError> {
     println!("flockpath bench — {} build", if cfg!(debug_assertions) { "DEBUG (slow!)" } else { "release" });
     println!("Pin to one core for stable figures: taskset -c 0 flockpath bench");
     println!(
@@ -100,14 +101,15 @@ pub fn main(options: &Options) -> Result<(), String> {
         render_benchmarks(options, &mut report)?;
     }
     if let Some(file) = &options.json {
-        let text = serde_json::to_string_pretty(&Value::Object(report)).map_err(|e| e.to_string())?;
-        std::fs::write(file, format!("{text}\n")).map_err(|e| format!("cannot write {file:?}: {e}"))?;
+        let text = serde_json::to_string_pretty(&Value::Object(report)).map_err(failed)?;
+        std::fs::write(file, format!("{text}\n"))
+            .map_err(|e| failed(format!("cannot write {file:?}: {e}")))?;
         println!("figures written to {file}");
     }
     Ok(())
 }
 
-fn step_benchmarks(options: &Options, report: &mut Map<String, Value>) -> Result<(), String> {
+fn step_benchmarks(options: &Options, report: &mut Map<String, Value>) -> Result<(), CliError> {
     let grid_plan = if options.quick {
         Plan { warmup_steps: 2, steps: 5, agents_per_rep: 20_000, reps: 3 }
     } else {
@@ -206,7 +208,7 @@ pub fn planner_scene(n: u32, config: &PlannerConfig) -> Scene {
 /// ns per agent-step of every planner (and the Boids extensions) at 1k and 10k agents, on the
 /// constant-density scene heading for a central goal (from spawn, so the figures compare the
 /// same moment of every run).
-fn planner_benchmarks(options: &Options, report: &mut Map<String, Value>) -> Result<(), String> {
+fn planner_benchmarks(options: &Options, report: &mut Map<String, Value>) -> Result<(), CliError> {
     let plan = if options.quick {
         Plan { warmup_steps: 2, steps: 3, agents_per_rep: 10_000, reps: 3 }
     } else {
@@ -252,7 +254,7 @@ const PACKED_SIDE: f32 = 20.0;
 /// world's left border and the goal (outside the goal: the agents still have somewhere to go).
 /// No scene spawns such a pile (the spawn keeps bodies apart), but a converging crowd can reach
 /// one, so the world starts from given positions (a fixed low-discrepancy pattern).
-pub fn packed_world(n: u32, config: &PlannerConfig, seed: u32) -> Result<World, String> {
+pub fn packed_world(n: u32, config: &PlannerConfig, seed: u32) -> Result<World, CliError> {
     const GOLDEN: f64 = 0.618_033_988_749_894_9;
     let scene = Scene { seed, ..planner_scene(n, config) };
     let (cx, cy) = (0.25 * scene.width, 0.5 * scene.height);
@@ -264,13 +266,13 @@ pub fn packed_world(n: u32, config: &PlannerConfig, seed: u32) -> Result<World, 
             glam::Vec2::new(cx - h + PACKED_SIDE * u as f32, cy - h + PACKED_SIDE * v as f32)
         })
         .collect();
-    World::new_at(scene, positions).map_err(|e| format!("packed scene with {n} agents: {e}"))
+    World::new_at(scene, positions).map_err(|e| failed(format!("packed scene with {n} agents: {e}")))
 }
 
 /// ns per agent-step of every planner on the spread (constant-density) scene and on the packed
 /// one at equal N, and their ratio: the per-agent neighbour caps keep a pile a small constant
 /// times as dear as a spread crowd.
-fn packed_benchmarks(options: &Options, report: &mut Map<String, Value>) -> Result<(), String> {
+fn packed_benchmarks(options: &Options, report: &mut Map<String, Value>) -> Result<(), CliError> {
     // Ten worlds per repetition: the OS's on-CPU clock is too coarse for one small world.
     let plan = if options.quick {
         Plan { warmup_steps: 1, steps: 2, agents_per_rep: 10 * PACKED_SIZE, reps: 3 }
@@ -305,7 +307,7 @@ const METRICS_SIZES: &[u32] = &[1_000, 10_000, 100_000];
 
 /// ms per call of `World::metrics` serialised to JSON (what the page's metrics panel polls every
 /// 250 ms), against N, for Boids and firefly crowds at constant density and a packed Boids crowd.
-fn metrics_benchmarks(options: &Options, report: &mut Map<String, Value>) -> Result<(), String> {
+fn metrics_benchmarks(options: &Options, report: &mut Map<String, Value>) -> Result<(), CliError> {
     let calls = if options.quick { 3 } else { 9 };
     println!();
     println!("One metrics summary (World::metrics → JSON), on-CPU ms per call (median of {calls})");
@@ -327,7 +329,7 @@ fn metrics_benchmarks(options: &Options, report: &mut Map<String, Value>) -> Res
             let repeat = (100_000 / n).max(1);
             let (cpu, start) = (thread_cpu_ns(), Instant::now());
             for _ in 0..repeat {
-                let text = serde_json::to_string(&world.metrics()).map_err(|e| e.to_string())?;
+                let text = serde_json::to_string(&world.metrics()).map_err(failed)?;
                 std::hint::black_box(text.len());
             }
             let wall = start.elapsed().as_nanos() as f64 / 1e6;
@@ -371,18 +373,18 @@ fn print_row(n: u32, r: &Timing) {
     );
 }
 
-fn time_steps(n: u32, plan: &Plan, brute: bool) -> Result<Timing, String> {
+fn time_steps(n: u32, plan: &Plan, brute: bool) -> Result<Timing, CliError> {
     time_worlds(n, plan, brute, |seed| bench_world(Scene { seed, ..bench_scene(n) }))
 }
 
-fn time_scene(n: u32, plan: &Plan, scene: impl Fn(u32) -> Scene) -> Result<Timing, String> {
+fn time_scene(n: u32, plan: &Plan, scene: impl Fn(u32) -> Scene) -> Result<Timing, CliError> {
     time_worlds(n, plan, false, |seed| bench_world(scene(seed)))
 }
 
 /// A benchmark's world (beyond the page's cost limit on purpose: the bench times large scenes).
-fn bench_world(scene: Scene) -> Result<World, String> {
+fn bench_world(scene: Scene) -> Result<World, CliError> {
     let n = scene.agent_count();
-    World::new_beyond_cost_limit(scene).map_err(|e| format!("benchmark scene with {n} agents: {e}"))
+    World::new_beyond_cost_limit(scene).map_err(|e| failed(format!("benchmark scene with {n} agents: {e}")))
 }
 
 /// Times `plan` on worlds of `n` agents built by `world(seed)`.
@@ -390,8 +392,8 @@ fn time_worlds(
     n: u32,
     plan: &Plan,
     brute: bool,
-    world: impl Fn(u32) -> Result<World, String>,
-) -> Result<Timing, String> {
+    world: impl Fn(u32) -> Result<World, CliError>,
+) -> Result<Timing, CliError> {
     let worlds_per_rep = plan.agents_per_rep.div_ceil(n).max(1);
     let mut samples = Vec::with_capacity(plan.reps);
     let mut cpu_samples = Vec::with_capacity(plan.reps);
@@ -467,7 +469,7 @@ const CANVAS: (u32, u32) = (1280, 800);
 /// Sizes of the render benchmark.
 const RENDER_SIZES: &[u32] = &[1_000, 10_000];
 
-fn render_benchmarks(options: &Options, report: &mut Map<String, Value>) -> Result<(), String> {
+fn render_benchmarks(options: &Options, report: &mut Map<String, Value>) -> Result<(), CliError> {
     let (frames, reps, warmup) = if options.quick { (10, 3, 5) } else { (60, 7, 30) };
     println!();
     println!(
@@ -479,7 +481,7 @@ fn render_benchmarks(options: &Options, report: &mut Map<String, Value>) -> Resu
     let mut frame_ms = Map::new();
     for &n in RENDER_SIZES {
         let mut world = World::new_beyond_cost_limit(bench_scene(n))
-            .map_err(|e| format!("benchmark scene with {n} agents: {e}"))?;
+            .map_err(|e| failed(format!("benchmark scene with {n} agents: {e}")))?;
         let mut renderer = Renderer::new(CANVAS.0, CANVAS.1);
         for _ in 0..warmup {
             world.step();

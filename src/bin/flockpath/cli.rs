@@ -86,14 +86,14 @@ impl std::fmt::Display for CliError {
 
 impl std::error::Error for CliError {}
 
-/// A usage mistake found after parsing.
-pub fn usage(msg: impl Into<String>) -> CliError {
-    CliError::Usage(msg.into())
+/// A usage mistake found after parsing (a message, or a library's typed error).
+pub fn usage(msg: impl std::fmt::Display) -> CliError {
+    CliError::Usage(msg.to_string())
 }
 
-/// A failure of the work itself.
-pub fn failed(msg: impl Into<String>) -> CliError {
-    CliError::Failed(msg.into())
+/// A failure of the work itself (a message, or a library's typed error).
+pub fn failed(msg: impl std::fmt::Display) -> CliError {
+    CliError::Failed(msg.to_string())
 }
 
 pub fn main() -> ExitCode {
@@ -124,7 +124,7 @@ fn dispatch() -> Result<(), CliError> {
         Command::Run(args) => run::run(&args),
         Command::Url(args) => scenes::url(&args),
         Command::Scene(args) => scenes::scene(&args),
-        Command::Bench(args) => bench::main(&args.options()).map_err(failed),
+        Command::Bench(args) => bench::main(&args.options()),
         Command::Optimize(args) => optimize::optimize(&args),
         Command::Tune(args) => tune::tune(&args),
         Command::DensityScene(args) => bench_cli::density_scene(&args),

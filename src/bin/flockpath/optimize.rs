@@ -5,7 +5,7 @@ use crate::progress::Progress;
 use crate::{in_range, out, usage, write_file, CliError};
 use flockpath::experiments::tables::{self, Table};
 use flockpath::optim::functions::Function;
-use flockpath::optim::Algorithm;
+use flockpath::optim::{Algorithm, UnknownName};
 use flockpath::planners::igsa::path::{compare_paths, path_table_text, PathParams};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -76,7 +76,7 @@ pub struct OptimizeArgs {
 fn list<T: Copy>(
     flag: &str,
     value: &str,
-    lookup: fn(&str) -> Option<T>,
+    lookup: fn(&str) -> Result<T, UnknownName>,
     groups: &[(&str, &[T])],
 ) -> Result<Vec<T>, CliError> {
     let mut out = Vec::new();
@@ -84,7 +84,8 @@ fn list<T: Copy>(
         if let Some((_, all)) = groups.iter().find(|(g, _)| *g == name) {
             out.extend_from_slice(all);
         } else {
-            out.push(lookup(name).ok_or_else(|| usage(format!("{flag}: unknown name {name:?}")))?);
+            let groups: Vec<&str> = groups.iter().map(|(g, _)| *g).collect();
+            out.push(lookup(name).map_err(|e| usage(format!("{flag}: {e}, or {}", groups.join(", "))))?);
         }
     }
     if out.is_empty() {
@@ -98,11 +99,11 @@ impl OptimizeArgs {
     fn settings(&self) -> Result<tables::OptimizeArgs, CliError> {
         let mut a = tables::OptimizeArgs::default();
         if let Some(value) = &self.algorithms {
-            a.algorithms = list("--algorithms", value, Algorithm::from_name, &[("all", Algorithm::ALL)])?;
+            a.algorithms = list("--algorithms", value, Algorithm::parse, &[("all", Algorithm::ALL)])?;
         }
         if let Some(value) = &self.functions {
             let groups: &[(&str, &[Function])] = &[("all", Function::ALL), ("paper", Function::PAPER)];
-            a.functions = list("--functions", value, Function::from_name, groups)?;
+            a.functions = list("--functions", value, Function::parse, groups)?;
         }
         a.dim = self.dim.unwrap_or(a.dim);
         a.settings.population = self.pop.unwrap_or(a.settings.population);
@@ -160,7 +161,8 @@ fn paths(parsed: &tables::OptimizeArgs, clock: &dyn Fn() -> f64) -> Result<Strin
     text.push_str(&path_table_text(&rows));
     let _ = writeln!(text, "wall time {:.1} s on {} threads", clock() - start, tables::threads());
     if let Some(path) = &parsed.json {
-        let json = serde_json::to_string_pretty(&rows).unwrap_or_else(|_| "[]".into());
+        let json = serde_json::to_string_pretty(&rows)
+            .map_err(|e| crate::failed(format!("cannot write the JSON report: {e}")))?;
         write_file("--json file", path, &(json + "\n"))?;
     }
     Ok(text)

@@ -30,7 +30,7 @@ pub struct RunArgs {
     #[arg(long, value_name = "N", value_parser = whole_number::<u32>, allow_negative_numbers = true)]
     steps: u32,
     /// Give every group this planner with its default parameters
-    #[arg(long, value_name = "NAME", value_parser = planner_kind)]
+    #[arg(long, value_name = "NAME", value_parser = PlannerKind::parse)]
     planner: Option<PlannerKind>,
     /// Replace the scene's seed (0…4294967295)
     #[arg(long, value_name = "S", value_parser = whole_number::<u32>, allow_negative_numbers = true)]
@@ -65,13 +65,6 @@ pub struct RunArgs {
     /// Scene px → 3-D units in the MEL/Python exports (default 0.01)
     #[arg(long, value_name = "S", value_parser = real, allow_negative_numbers = true)]
     scale: Option<f32>,
-}
-
-fn planner_kind(name: &str) -> Result<PlannerKind, String> {
-    PlannerKind::from_name(name).ok_or_else(|| {
-        let known: Vec<&str> = PlannerKind::ALL.iter().map(|k| k.name()).collect();
-        format!("unknown planner {name:?}; available: {}", known.join(", "))
-    })
 }
 
 fn real(text: &str) -> Result<f32, String> {

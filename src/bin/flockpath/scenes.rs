@@ -96,6 +96,6 @@ fn looks_like_path(s: &str) -> bool {
     if t.starts_with('{') || t.contains("#s=") || t.contains("://") {
         return false;
     }
-    // Fragment values are base64url (no `/`) after a version prefix such as `1.`.
+    // Fragment values are base64url (no `/`) after a version prefix such as `2.`.
     t.contains('/') || t.contains('\\') || t.ends_with(".json") || !t.contains('.')
 }

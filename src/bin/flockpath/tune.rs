@@ -21,10 +21,10 @@ use flockpath::tune::experiment::{self, Budget};
 )]
 pub struct TuneArgs {
     /// Behaviour to tune for: b1 (group moving), b2 (following) or b3 (guarding)
-    #[arg(long, alias = "behavior", value_name = "b1|b2|b3", value_parser = behaviour)]
+    #[arg(long, alias = "behavior", value_name = "b1|b2|b3", value_parser = Behaviour::parse)]
     behaviour: Option<Behaviour>,
     /// Environment to tune in: e1 (open), e2 (narrow) or e3 (cluttered)
-    #[arg(long, value_name = "e1|e2|e3", value_parser = environment)]
+    #[arg(long, value_name = "e1|e2|e3", value_parser = Environment::parse)]
     environment: Option<Environment>,
     /// Seed of the genetic algorithm (one run)
     #[arg(long, value_name = "S", value_parser = crate::whole_number::<u32>)]
@@ -61,14 +61,6 @@ pub struct TuneArgs {
 /// A list of seeds (a newtype so clap takes it as one value).
 #[derive(Clone, Debug)]
 struct Seeds(Vec<u32>);
-
-fn behaviour(code: &str) -> Result<Behaviour, String> {
-    Behaviour::from_code(code).ok_or_else(|| format!("unknown behaviour {code:?}: use b1, b2 or b3"))
-}
-
-fn environment(code: &str) -> Result<Environment, String> {
-    Environment::from_code(code).ok_or_else(|| format!("unknown environment {code:?}: use e1, e2 or e3"))
-}
 
 fn seeds(list: &str) -> Result<Seeds, String> {
     let seeds = list

@@ -1,12 +1,8 @@
 //! What the baseline planners (ORCA, social force) head for: the goal in a straight line or the
-//! goal's flow field round the obstacles ([`Guidance`]), and the scene scale their SI parameters
-//! are converted with ([`PX_PER_METRE`]).
+//! goal's flow field round the obstacles ([`Guidance`]). Their SI parameters are converted with
+//! the scene's scale (`Scene::px_per_metre`, 20 px per metre by default).
 
 use serde::{Deserialize, Serialize};
-
-/// Pixels per metre of every scene, until scenes carry their own scale: the baselines' lengths
-/// (m) and speeds (m/s) are converted with it (20 px = 1 m, so a 4 px body radius is 0.2 m).
-pub const PX_PER_METRE: f32 = 20.0;
 
 /// How an agent's preferred direction is chosen (its desired velocity's direction).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]

@@ -147,16 +147,24 @@ impl IgsaParams {
     ];
 
     /// Checks what the table cannot: the edited waypoints.
-    pub fn check_waypoints(&self) -> Result<(), String> {
+    pub fn check_waypoints(&self) -> Result<(), WaypointError> {
         if self.waypoints.len() > MAX_EDITED_WAYPOINTS {
-            return Err(format!(
-                "an edited path holds at most {MAX_EDITED_WAYPOINTS} waypoints, this one {}",
-                self.waypoints.len()
-            ));
+            return Err(WaypointError::TooMany(self.waypoints.len()));
         }
         if let Some(k) = self.waypoints.iter().position(|p| !(p[0].is_finite() && p[1].is_finite())) {
-            return Err(format!("waypoint {} is not a finite point", k + 1));
+            return Err(WaypointError::NotFinite(k + 1));
         }
         Ok(())
     }
+}
+
+/// Why an IGSA group's edited waypoints were refused.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum WaypointError {
+    /// More than [`MAX_EDITED_WAYPOINTS`] waypoints (holds the count).
+    #[error("an edited path holds at most {MAX_EDITED_WAYPOINTS} waypoints, this one {0}")]
+    TooMany(usize),
+    /// Waypoint number `k` (from 1) has a NaN or infinite coordinate.
+    #[error("waypoint {0} is not a finite point")]
+    NotFinite(usize),
 }

@@ -16,8 +16,8 @@ pub mod spec;
 pub use boids::{Arbitration, BoidsParams, FlowGuide, Leader, Role};
 pub use firefly::FireflyParams;
 pub use forces::ForcesParams;
-pub use guidance::{Guidance, PX_PER_METRE};
-pub use igsa::{IgsaParams, PathOptimizer};
+pub use guidance::Guidance;
+pub use igsa::{IgsaParams, PathOptimizer, WaypointError};
 pub use orca::OrcaParams;
 pub use pso::PsoParams;
 use serde::{Deserialize, Serialize};
@@ -75,6 +75,11 @@ impl PlannerKind {
         Self::ALL.iter().copied().find(|k| k.name() == name)
     }
 
+    /// [`Self::from_name`] for user input: an unknown name is refused with the known ones.
+    pub fn parse(name: &str) -> Result<Self, UnknownPlanner> {
+        Self::from_name(name).ok_or_else(|| UnknownPlanner::new(name))
+    }
+
     /// Human-readable label.
     pub fn label(self) -> &'static str {
         match self {
@@ -113,6 +118,59 @@ impl PlannerKind {
             PlannerKind::SocialForce => SocialForceParams::SPECS,
         }
     }
+}
+
+/// A planner name that names no planner. Every front-end words it the same way:
+/// `unknown planner "teleport"; known: boids, pso, firefly, forces, igsa`.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("unknown planner {name:?}; known: {}", self.known().join(", "))]
+pub struct UnknownPlanner {
+    /// The name given (at most 40 characters of it).
+    pub name: String,
+    /// Other words the caller accepts in the same place, listed first (the comparison's
+    /// `scene`).
+    pub also: &'static [&'static str],
+}
+
+impl UnknownPlanner {
+    /// The refusal of `name` (cut to 40 characters: a pasted paragraph is not repeated back).
+    pub fn new(name: &str) -> Self {
+        Self { name: name.chars().take(40).collect(), also: &[] }
+    }
+
+    /// The same refusal where `also` are accepted too (listed before the planners).
+    pub fn also_accepting(self, also: &'static [&'static str]) -> Self {
+        Self { also, ..self }
+    }
+
+    /// Every accepted word, in the order the message lists them.
+    pub fn known(&self) -> Vec<&'static str> {
+        self.also.iter().copied().chain(PlannerKind::ALL.iter().map(|k| k.name())).collect()
+    }
+}
+
+/// Why [`PlannerConfig::set_param`] refused a value; the planner is left unchanged.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum SetParamError {
+    /// The planner's table has no such key.
+    #[error("{planner} has no parameter {key:?}")]
+    UnknownKey {
+        /// The planner's label (`Boids steering`).
+        planner: &'static str,
+        /// The key asked for.
+        key: String,
+    },
+    /// The value has the wrong JSON type for the parameter (a string for a number, …).
+    #[error("{label}: {problem}")]
+    WrongType {
+        /// The parameter's label on its slider.
+        label: &'static str,
+        /// The JSON reader's words.
+        problem: String,
+    },
+    /// The value is outside the table's range or choices.
+    #[error(transparent)]
+    Refused(#[from] ParamError),
 }
 
 /// A planner with its parameters, as stored in a scene's group.
@@ -155,49 +213,49 @@ impl PlannerConfig {
         }
     }
 
-    /// Checks every parameter against its table range.
-    pub fn validate(&self) -> Result<(), String> {
-        self.check().map_err(|e| e.to_string())
-    }
-
-    /// [`Self::validate`] with the refused parameter named by its key, value and range.
+    /// Checks every parameter against its table range (and IGSA's edited waypoints); a refusal
+    /// names the parameter by its key, value and range.
     pub fn check(&self) -> Result<(), ParamError> {
-        let value = serde_json::to_value(self).map_err(|e| ParamError {
-            key: String::new(),
-            label: "parameters",
-            value: e.to_string(),
-            allowed: "values that can be written as JSON".into(),
-        })?;
-        let params = value.get("params").cloned().unwrap_or_default();
-        check_params(self.kind().param_specs(), &params)?;
+        check_params(self.kind().param_specs(), &self.params_json())?;
         match self {
             PlannerConfig::Igsa(p) => p.check_waypoints().map_err(|problem| ParamError {
                 key: "waypoints".into(),
                 label: "Waypoints",
-                value: problem,
+                value: problem.to_string(),
                 allowed: "finite points".into(),
             }),
             _ => Ok(()),
         }
     }
 
-    /// Sets one parameter by its table key from a JSON value; checks the range.
-    pub fn set_param(&mut self, key: &str, value: serde_json::Value) -> Result<(), String> {
+    /// This planner's parameters as the JSON object a scene holds (`{"max_speed": 2, …}`).
+    pub fn params_json(&self) -> serde_json::Map<String, serde_json::Value> {
+        // Serialising a parameter struct cannot fail: derived `Serialize`, string keys only, and
+        // serde_json writes a non-finite float as null (which check_params then refuses).
+        match serde_json::to_value(self).expect("planner parameters always serialise") {
+            serde_json::Value::Object(mut tagged) => match tagged.remove("params") {
+                Some(serde_json::Value::Object(params)) => params,
+                _ => serde_json::Map::new(),
+            },
+            _ => serde_json::Map::new(),
+        }
+    }
+
+    /// Sets one parameter by its table key from a JSON value; checks the range. On an error
+    /// nothing changes.
+    pub fn set_param(&mut self, key: &str, value: serde_json::Value) -> Result<(), SetParamError> {
         let kind = self.kind();
         let spec = kind
             .param_specs()
             .iter()
             .find(|s| s.key == key)
-            .ok_or_else(|| format!("{} has no parameter {key:?}", kind.label()))?;
-        let mut json = serde_json::to_value(&*self).map_err(|e| e.to_string())?;
-        let params = json
-            .get_mut("params")
-            .and_then(|p| p.as_object_mut())
-            .ok_or_else(|| "planner parameters are not an object".to_string())?;
+            .ok_or_else(|| SetParamError::UnknownKey { planner: kind.label(), key: key.to_string() })?;
+        let mut params = self.params_json();
         params.insert(spec.key.to_string(), value);
-        let updated: PlannerConfig =
-            serde_json::from_value(json).map_err(|e| format!("{}: {e}", spec.label))?;
-        updated.validate()?;
+        let tagged = serde_json::json!({ "kind": kind.name(), "params": params });
+        let updated: PlannerConfig = serde_json::from_value(tagged)
+            .map_err(|e| SetParamError::WrongType { label: spec.label, problem: e.to_string() })?;
+        updated.check()?;
         *self = updated;
         Ok(())
     }
@@ -233,8 +291,23 @@ mod tests {
                     assert_eq!(value.as_str(), Some(spec.choices[spec.default as usize]), "{}", spec.key);
                 }
             }
-            assert_eq!(kind.default_config().validate(), Ok(()));
+            assert_eq!(kind.default_config().check(), Ok(()));
         }
+    }
+
+    #[test]
+    fn unknown_planners_are_refused_in_one_wording() {
+        assert_eq!(PlannerKind::parse("pso"), Ok(PlannerKind::Pso));
+        let names: Vec<&str> = PlannerKind::ALL.iter().map(|k| k.name()).collect();
+        let e = PlannerKind::parse("teleport").expect_err("no such planner");
+        assert_eq!(e.to_string(), format!("unknown planner \"teleport\"; known: {}", names.join(", ")));
+        let e = e.also_accepting(&["scene"]);
+        assert_eq!(
+            e.to_string(),
+            format!("unknown planner \"teleport\"; known: scene, {}", names.join(", "))
+        );
+        let long = "x".repeat(500);
+        assert_eq!(PlannerKind::parse(&long).expect_err("long").name.len(), 40, "a pasted paragraph is cut");
     }
 
     #[test]
@@ -242,8 +315,14 @@ mod tests {
         let mut c = PlannerConfig::default();
         assert!(c.set_param("max_speed", serde_json::json!(3.0)).is_ok());
         assert!(matches!(&c, PlannerConfig::Boids(p) if p.max_speed == 3.0));
-        assert!(c.set_param("max_speed", serde_json::json!(1e9)).is_err());
-        assert!(c.set_param("nope", serde_json::json!(1)).is_err());
+        let refused = c.set_param("max_speed", serde_json::json!(1e9)).expect_err("out of range");
+        assert!(matches!(&refused, SetParamError::Refused(e) if e.key == "max_speed"), "{refused:?}");
+        assert_eq!(
+            c.set_param("nope", serde_json::json!(1)),
+            Err(SetParamError::UnknownKey { planner: "Boids steering", key: "nope".into() })
+        );
+        let wrong = c.set_param("max_speed", serde_json::json!("fast")).expect_err("a string");
+        assert!(matches!(&wrong, SetParamError::WrongType { label: "Max speed", .. }), "{wrong:?}");
         assert!(c.set_param("arbitration", serde_json::json!("priority")).is_ok());
         assert!(c.set_param("arbitration", serde_json::json!("chaos")).is_err());
         assert!(matches!(&c, PlannerConfig::Boids(p) if p.max_speed == 3.0));

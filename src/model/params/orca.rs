@@ -2,7 +2,7 @@
 //! Manocha, "Reciprocal n-body collision avoidance", Robotics Research 2011): plain data in SI
 //! units and the table the panel, the codec and validation read. The planner itself is in
 //! `crate::planners::orca`; lengths and speeds are converted to px and px/step with the scene's
-//! scale ([`super::guidance::PX_PER_METRE`]) and the step ([`crate::DT`]).
+//! scale (`Scene::px_per_metre`) and the step ([`crate::DT`]).
 //!
 //! The paper fixes no values (its experiments are in its robots' units): the counts follow its
 //! reference implementation's examples (10 neighbours), the speeds and horizons are a walking

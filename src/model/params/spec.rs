@@ -96,7 +96,8 @@ impl ParamSpec {
 }
 
 /// A planner parameter refused by its table.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("{label} ({key}) is {value}; allowed: {allowed}")]
 pub struct ParamError {
     /// The parameter's key in the planner's params (`max_speed`).
     pub key: String,
@@ -106,12 +107,6 @@ pub struct ParamError {
     pub value: String,
     /// What is allowed, with the unit (`a number in 0.1…20 px/step`).
     pub allowed: String,
-}
-
-impl std::fmt::Display for ParamError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "{} ({}) is {}; allowed: {}", self.label, self.key, self.value, self.allowed)
-    }
 }
 
 impl ParamSpec {
@@ -131,7 +126,10 @@ impl ParamSpec {
     }
 }
 
-pub(super) fn check_params(specs: &[ParamSpec], params: &serde_json::Value) -> Result<(), ParamError> {
+pub(super) fn check_params(
+    specs: &[ParamSpec],
+    params: &serde_json::Map<String, serde_json::Value>,
+) -> Result<(), ParamError> {
     for spec in specs {
         let Some(value) = params.get(spec.key) else { continue };
         let refuse = |shown: String| ParamError {

@@ -755,6 +755,8 @@ impl Planner for IgsaPlanner {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::model::params::igsa::MAX_EDITED_WAYPOINTS;
+    use crate::model::params::WaypointError;
 
     #[test]
     fn polyline_points_and_projection() {
@@ -827,8 +829,12 @@ mod tests {
         let mut p = IgsaParams { waypoints: vec![[1.0, 2.0]], ..IgsaParams::default() };
         assert_eq!(p.check_waypoints(), Ok(()));
         p.waypoints.push([f32::NAN, 0.0]);
-        assert!(p.check_waypoints().is_err());
-        p.waypoints = vec![[0.0, 0.0]; crate::model::params::igsa::MAX_EDITED_WAYPOINTS + 1];
-        assert!(p.check_waypoints().is_err());
+        assert_eq!(p.check_waypoints(), Err(WaypointError::NotFinite(2)));
+        assert_eq!(
+            p.check_waypoints().map_err(|e| e.to_string()),
+            Err("waypoint 2 is not a finite point".into())
+        );
+        p.waypoints = vec![[0.0, 0.0]; MAX_EDITED_WAYPOINTS + 1];
+        assert_eq!(p.check_waypoints(), Err(WaypointError::TooMany(MAX_EDITED_WAYPOINTS + 1)));
     }
 }
