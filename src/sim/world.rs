@@ -46,6 +46,9 @@ pub struct World {
     /// Whether planning ahead (IGSA paths) is left to [`World::advance_planning`] instead of
     /// being done at once when planners are built (the page plans in slices).
     sliced_planning: bool,
+    /// A periodic band `[start, end)` of x (px): an agent whose centre leaves it at one end
+    /// re-enters at the other ([`World::set_periodic_x`]).
+    periodic_x: Option<(f32, f32)>,
 }
 
 impl World {
@@ -138,6 +141,7 @@ impl World {
             rng,
             recorder,
             sliced_planning,
+            periodic_x: None,
         };
         world.grid.rebuild(&world.pos, &world.vel);
         world.plan_now_unless_sliced();
@@ -307,6 +311,15 @@ impl World {
         Ok(())
     }
 
+    /// Makes x periodic over `[start, end)` px (`None`: off, the default): an agent whose centre
+    /// leaves the band at one end re-enters at the other, as in the periodic corridor of the
+    /// validation suite's fundamental diagram. Neighbours are not seen across the seam, and the
+    /// path-length metric counts the jump. Not part of the scene (a link cannot ask for it).
+    /// An empty or non-finite band is ignored.
+    pub fn set_periodic_x(&mut self, band: Option<(f32, f32)>) {
+        self.periodic_x = band.filter(|(a, b)| a.is_finite() && b.is_finite() && b > a);
+    }
+
     /// Takes the fitness measures of the metrics every `every` steps from now on (0 = never;
     /// default [`crate::sim::metrics::FITNESS_SAMPLE_EVERY`]): benchmarks compare their cost.
     #[doc(hidden)]
@@ -402,6 +415,14 @@ impl World {
             let previous = self.pos[i];
             let mut v = self.next_vel[i];
             let mut p = previous + v;
+            if let Some((start, end)) = self.periodic_x {
+                // Only a centre leaving the band wraps (one outside it stays outside).
+                if p.x >= end && previous.x < end {
+                    p.x -= end - start;
+                } else if p.x < start && previous.x >= start {
+                    p.x += end - start;
+                }
+            }
             let solid = solid[self.group_of[i] as usize];
             if solid {
                 resolve_obstacles(&self.obstacles, &mut p, &mut v, self.radius[i]);
