@@ -29,6 +29,7 @@ pub mod lab;
 mod paths;
 mod timeline;
 pub mod tune;
+pub mod validation;
 
 /// Installs the panic hook so a Rust panic shows its message in the console (runs on load).
 #[wasm_bindgen(start)]
