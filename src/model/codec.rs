@@ -24,6 +24,7 @@ use crate::model::geometry::Obstacle;
 use crate::model::params::{PlannerConfig, PlannerKind};
 use crate::model::scene::{
     allowed_for, Goal, GoalMotion, Group, Hill, PathSpec, Region, Scene, SceneError, ViewOptions,
+    DEFAULT_PX_PER_METRE,
 };
 use base64::engine::general_purpose::URL_SAFE_NO_PAD;
 use base64::Engine as _;
@@ -193,9 +194,11 @@ fn fragment_value(input: &str) -> &str {
     after_hash
 }
 
-/// Version 2's compact scene: `[name, width, height, seed, obstacles, goals, groups, view]`, and
-/// a ninth element `terrain` only when the scene has paths or hills: links made before those
-/// existed have eight elements and still decode, to a scene without them.
+/// Version 2's compact scene: `[name, width, height, seed, obstacles, goals, groups, view]`, a
+/// ninth element `terrain` when the scene has paths or hills, and a tenth `px_per_metre` when
+/// the scale is not the default (then `terrain` is written, perhaps empty, to keep positions).
+/// Links made before those existed have eight or nine elements and still decode, to a scene
+/// without them; a scene at the default scale writes exactly what it wrote before the scale.
 #[derive(Debug, Serialize, Deserialize)]
 struct CompactScene(
     String,
@@ -206,7 +209,8 @@ struct CompactScene(
     Vec<CompactGoal>,
     Vec<CompactGroup>,
     CompactView,
-    #[serde(default, skip_serializing_if = "CompactTerrain::is_empty")] CompactTerrain,
+    #[serde(default, skip_serializing_if = "Option::is_none")] Option<CompactTerrain>,
+    #[serde(default, skip_serializing_if = "Option::is_none")] Option<f32>,
 );
 
 /// `[paths, hills]`: a path is `[radius, [[x, y], …]]`, a hill `[x, y, radius, height]`.
@@ -248,6 +252,11 @@ struct CompactView(bool, f32);
 
 impl CompactScene {
     fn from_scene(s: &Scene) -> Self {
+        let terrain = CompactTerrain(
+            s.paths.iter().map(|p| (p.radius, p.points.clone())).collect(),
+            s.hills.iter().map(|h| [h.center[0], h.center[1], h.radius, h.height]).collect(),
+        );
+        let scale = (s.px_per_metre.to_bits() != DEFAULT_PX_PER_METRE.to_bits()).then_some(s.px_per_metre);
         let obstacles = s
             .obstacles
             .iter()
@@ -293,15 +302,15 @@ impl CompactScene {
             goals,
             groups,
             CompactView(s.view.trails, s.view.trail_fade),
-            CompactTerrain(
-                s.paths.iter().map(|p| (p.radius, p.points.clone())).collect(),
-                s.hills.iter().map(|h| [h.center[0], h.center[1], h.radius, h.height]).collect(),
-            ),
+            (!terrain.is_empty() || scale.is_some()).then_some(terrain),
+            scale,
         )
     }
 
     fn to_scene(&self) -> Result<Scene, SceneError> {
-        let CompactScene(name, width, height, seed, obstacles, goals, groups, view, terrain) = self;
+        let CompactScene(name, width, height, seed, obstacles, goals, groups, view, terrain, scale) = self;
+        let empty = CompactTerrain::default();
+        let terrain = terrain.as_ref().unwrap_or(&empty);
         let obstacles = obstacles
             .iter()
             .map(|o| match o {
@@ -361,6 +370,7 @@ impl CompactScene {
                 .iter()
                 .map(|&[x, y, radius, height]| Hill { center: [x, y], radius, height })
                 .collect(),
+            px_per_metre: scale.unwrap_or(DEFAULT_PX_PER_METRE),
         })
     }
 }
@@ -859,6 +869,7 @@ fn compact_path(segments: &[Segment], json: Option<&serde_json::Value>) -> Strin
             (Some(i), None) => format!("hills[{i}]"),
             _ => "hills".into(),
         },
+        (9, _) => "px_per_metre".into(),
         _ => keyed_path(segments),
     }
 }

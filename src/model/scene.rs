@@ -23,7 +23,8 @@ pub const MAX_OBSTACLES: usize = 5_000;
 /// Most vertices a polygon obstacle may have.
 pub const MAX_POLYGON_POINTS: usize = 1_000;
 
-/// A whole scene. Units: px for lengths, steps for time (one step is [`crate::DT`] seconds).
+/// A whole scene. Units: px for lengths, steps for time (one step is [`crate::DT`] seconds);
+/// `px_per_metre` relates px to metres ([`Scale`]).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Scene {
@@ -55,6 +56,98 @@ pub struct Scene {
     /// Hills of the ground (a height field of Gaussian bumps): drawn as shading, a cost for PSO.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub hills: Vec<Hill>,
+    /// How many px make one metre ([`Scale`]); default [`DEFAULT_PX_PER_METRE`]. Left out of the
+    /// JSON and the link while it holds the default, so scenes saved before it existed keep
+    /// their exact text. Only metrics and metre-based settings read it: the simulation runs in px.
+    #[serde(default = "default_px_per_metre", skip_serializing_if = "is_default_px_per_metre")]
+    pub px_per_metre: f32,
+}
+
+/// Pixels per metre of a scene that does not say (20 px = 1 m: a 4 px body radius is 0.2 m,
+/// about a pedestrian's shoulder half-width).
+pub const DEFAULT_PX_PER_METRE: f32 = 20.0;
+/// Smallest scale a scene may state (px per metre).
+pub const MIN_PX_PER_METRE: f32 = 1.0;
+/// Largest scale a scene may state (px per metre).
+pub const MAX_PX_PER_METRE: f32 = 1000.0;
+
+fn default_px_per_metre() -> f32 {
+    DEFAULT_PX_PER_METRE
+}
+
+fn is_default_px_per_metre(x: &f32) -> bool {
+    x.to_bits() == DEFAULT_PX_PER_METRE.to_bits()
+}
+
+/// A scene's length scale: converts px ↔ metres and px/step ↔ m/s (one step is [`DT`] s, the
+/// f32 nearest 1/60, as the metrics' `time_s` counts it).
+///
+/// The simulation works in px and steps; this is the one place where metres come in. Build one
+/// with [`Scene::scale`] (or [`Scale::new`] for a stated number), then convert:
+///
+/// ```
+/// use flockpath::model::scene::{Scale, Scene};
+/// let scale = Scene::empty(800.0, 600.0).scale(); // 20 px = 1 m by default
+/// assert_eq!(scale.metres(40.0), 2.0);
+/// assert_eq!(scale.px(1.5), 30.0);
+/// // 1.34 m/s, a pedestrian's mean free walking speed, in px per step (≈ 0.447) and back:
+/// let v = scale.px_per_step(1.34);
+/// assert!((v - 1.34 * 20.0 / 60.0).abs() < 1e-6);
+/// assert!((scale.m_s(v) - 1.34).abs() < 1e-12);
+/// // 2 persons on 10 000 px² = 25 m²:
+/// assert_eq!(2.0 / scale.square_metres(10_000.0), 0.08);
+/// ```
+///
+/// Everything is in f64: measurements are summed in f64, and a planner setting converted from
+/// metres is cast to f32 once (`scale.px_per_step(1.34) as f32`). The scale is not checked here;
+/// [`Scene::validate`] refuses a scene whose `px_per_metre` is outside
+/// [`MIN_PX_PER_METRE`]…[`MAX_PX_PER_METRE`] or not a number.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Scale {
+    px_per_metre: f64,
+}
+
+impl Default for Scale {
+    fn default() -> Self {
+        Self::new(DEFAULT_PX_PER_METRE)
+    }
+}
+
+impl Scale {
+    /// A scale of `px_per_metre` pixels per metre.
+    pub fn new(px_per_metre: f32) -> Self {
+        Self { px_per_metre: f64::from(px_per_metre) }
+    }
+
+    /// Pixels per metre.
+    pub fn px_per_metre(self) -> f64 {
+        self.px_per_metre
+    }
+
+    /// A length in px, in metres.
+    pub fn metres(self, px: f64) -> f64 {
+        px / self.px_per_metre
+    }
+
+    /// A length in metres, in px.
+    pub fn px(self, metres: f64) -> f64 {
+        metres * self.px_per_metre
+    }
+
+    /// An area in px², in m².
+    pub fn square_metres(self, px2: f64) -> f64 {
+        px2 / (self.px_per_metre * self.px_per_metre)
+    }
+
+    /// A speed in px/step, in m/s.
+    pub fn m_s(self, px_per_step: f64) -> f64 {
+        px_per_step / self.px_per_metre / f64::from(DT)
+    }
+
+    /// A speed in m/s, in px/step.
+    pub fn px_per_step(self, m_s: f64) -> f64 {
+        m_s * self.px_per_metre * f64::from(DT)
+    }
 }
 
 /// Most paths a scene may hold.
@@ -505,6 +598,11 @@ pub fn field_limits() -> Vec<FieldLimit> {
     vec![
         row("width", side.clone(), "a world from a dot to a large poster; bigger worlds cost memory per grid cell"),
         row("height", side, "as width"),
+        row(
+            "px_per_metre",
+            format!("a number in {MIN_PX_PER_METRE}…{MAX_PX_PER_METRE} px per metre (default {DEFAULT_PX_PER_METRE})"),
+            "the scale of metres and m/s in metrics and metre-based settings; the run itself is in px",
+        ),
         row("seed", "a whole number 0…4294967295".into(), "a 32-bit seed: same scene + same seed = same run"),
         row("obstacles", format!("a list of at most {MAX_OBSTACLES} obstacles"), "every step tests agents against nearby obstacles"),
         row("obstacles[].shape", "\"circle\", \"rect\" or \"polygon\"".into(), "the shapes the geometry knows"),
@@ -616,7 +714,13 @@ impl Scene {
             view: ViewOptions::default(),
             paths: vec![],
             hills: vec![],
+            px_per_metre: DEFAULT_PX_PER_METRE,
         }
+    }
+
+    /// The scene's length scale ([`Scale`]): px ↔ m, px/step ↔ m/s.
+    pub fn scale(&self) -> Scale {
+        Scale::new(self.px_per_metre)
     }
 
     /// Total number of agents over all groups.
@@ -632,6 +736,7 @@ impl Scene {
     pub fn validate(&self) -> Result<(), SceneError> {
         number_in(|| "width".into(), self.width, 10.0, false, MAX_SIDE)?;
         number_in(|| "height".into(), self.height, 10.0, false, MAX_SIDE)?;
+        number_in(|| "px_per_metre".into(), self.px_per_metre, MIN_PX_PER_METRE, false, MAX_PX_PER_METRE)?;
         count_in(|| "obstacles".into(), self.obstacles.len(), 0, MAX_OBSTACLES)?;
         let polygon_points: usize = self
             .obstacles

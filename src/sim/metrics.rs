@@ -21,7 +21,7 @@
 use crate::model::forces_cases::Behaviour;
 use crate::model::geometry::{distance, length, Aabb};
 use crate::model::params::PlannerKind;
-use crate::model::scene::Scene;
+use crate::model::scene::{Scale, Scene};
 use crate::sim::fitness::{FitnessMeasures, FitnessRecorder};
 use crate::spatial::{ObstacleIndex, QueryCap, SpatialGrid};
 use glam::Vec2;
@@ -121,10 +121,16 @@ pub struct GroupMetrics {
     pub penetrations_agent_obstacle: u64,
     /// Mean speed over agents and steps (px/step).
     pub mean_speed: f64,
+    /// `mean_speed` in m/s (the scene's `px_per_metre`, one step = DT s).
+    pub mean_speed_m_s: f64,
     /// Mean speed of agents within 30 px of an obstacle surface (px/step; null if none came near).
     pub mean_speed_near_obstacles: Option<f64>,
+    /// `mean_speed_near_obstacles` in m/s.
+    pub mean_speed_near_obstacles_m_s: Option<f64>,
     /// Mean distance travelled per agent (px).
     pub mean_path_length: f64,
+    /// `mean_path_length` in metres.
+    pub mean_path_length_m: f64,
     /// Mean turning angle per step (degrees), over moving agents.
     pub mean_turn_deg: f64,
     /// Largest turning angle in one step (degrees).
@@ -153,6 +159,8 @@ pub struct Metrics {
     pub steps: u32,
     /// Seconds simulated (steps × DT).
     pub time_s: f64,
+    /// The scene's scale (px per metre) behind the `_m` and `_m_s` keys.
+    pub px_per_metre: f64,
     /// Overall metrics.
     #[serde(flatten)]
     pub overall: GroupMetrics,
@@ -394,6 +402,7 @@ impl MetricsRecorder {
         queue_for: impl Fn(usize) -> bool,
     ) -> Metrics {
         let dt = f64::from(crate::model::scene::DT);
+        let scale = scene.scale();
         let mut overall = GroupAcc::default();
         let mut groups = Vec::with_capacity(scene.groups.len());
         let mut start = 0usize;
@@ -415,7 +424,7 @@ impl MetricsRecorder {
             overall.turn_sum += acc.turn_sum;
             overall.turn_samples += acc.turn_samples;
             overall.max_turn = overall.max_turn.max(acc.max_turn);
-            let mut m = to_metrics(acc, &stats, acc.collisions, dt);
+            let mut m = to_metrics(acc, &stats, acc.collisions, dt, scale);
             m.name = Some(g.name.clone());
             m.planner = planners.get(gi).map(|s| s.to_string());
             let (q, c, at) = queue.get(gi).copied().unwrap_or_default();
@@ -429,7 +438,7 @@ impl MetricsRecorder {
             (queued, queue_candidates) = (queued + q, queue_candidates + c);
             groups.push(m);
         }
-        let mut overall = to_metrics(&overall, &all, self.collisions_total, dt);
+        let mut overall = to_metrics(&overall, &all, self.collisions_total, dt, scale);
         overall.queue_order = (queue_candidates > 0).then(|| f64::from(queued) / f64::from(queue_candidates));
         overall.queue_order_step = overall.queue_order.and(queue_step);
         let sampled = self.fitness.frames();
@@ -437,6 +446,7 @@ impl MetricsRecorder {
         Metrics {
             steps,
             time_s: f64::from(steps) * dt,
+            px_per_metre: scale.px_per_metre(),
             overall,
             collisions_last_step: self.collisions_last_step,
             collisions_capped_steps: self.collisions_capped_steps,
@@ -586,8 +596,11 @@ fn ratio(num: f64, den: u64) -> f64 {
     }
 }
 
-fn to_metrics(acc: &GroupAcc, s: &Stats, collisions: u64, dt: f64) -> GroupMetrics {
+fn to_metrics(acc: &GroupAcc, s: &Stats, collisions: u64, dt: f64, scale: Scale) -> GroupMetrics {
     let mean_time = (s.arrived > 0).then(|| s.arrival_steps_sum / f64::from(s.arrived));
+    let mean_speed = ratio(acc.speed_sum, acc.speed_samples);
+    let near_speed = (acc.near_samples > 0).then(|| acc.near_speed_sum / acc.near_samples as f64);
+    let path_length = ratio(s.path_sum, u64::from(s.agents));
     GroupMetrics {
         name: None,
         planner: None,
@@ -597,10 +610,12 @@ fn to_metrics(acc: &GroupAcc, s: &Stats, collisions: u64, dt: f64) -> GroupMetri
         mean_time_to_goal_s: mean_time.map(|t| t * dt),
         collisions_agent_agent: collisions,
         penetrations_agent_obstacle: acc.penetrations,
-        mean_speed: ratio(acc.speed_sum, acc.speed_samples),
-        mean_speed_near_obstacles: (acc.near_samples > 0)
-            .then(|| acc.near_speed_sum / acc.near_samples as f64),
-        mean_path_length: ratio(s.path_sum, u64::from(s.agents)),
+        mean_speed,
+        mean_speed_m_s: scale.m_s(mean_speed),
+        mean_speed_near_obstacles: near_speed,
+        mean_speed_near_obstacles_m_s: near_speed.map(|v| scale.m_s(v)),
+        mean_path_length: path_length,
+        mean_path_length_m: scale.metres(path_length),
         mean_turn_deg: ratio(acc.turn_sum, acc.turn_samples),
         max_turn_deg: acc.max_turn,
         stuck_agents: s.stuck,
