@@ -37,7 +37,8 @@ fn validate_writes_the_table_the_json_and_the_csv_files() {
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(out.status.success(), "{stdout}\n{}", String::from_utf8_lossy(&out.stderr));
     assert!(stdout.contains("t1-free-walking") && stdout.contains("of 4 passed"), "{stdout}");
-    let report: Value = serde_json::from_str(&std::fs::read_to_string(&json).expect("report written")).expect("JSON");
+    let report: Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).expect("report written")).expect("JSON");
     assert_eq!(report["px_per_metre"], 20.0);
     let rows = report["rows"].as_array().expect("rows");
     assert_eq!(rows.len(), 4);
@@ -67,7 +68,10 @@ fn validate_writes_the_table_the_json_and_the_csv_files() {
 fn validate_refuses_unknown_names_with_usage_errors() {
     let out = flockpath(&["validate", "--tests", "t99"]);
     assert_eq!(out.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&out.stderr).contains("t4-fundamental-diagram"), "the message lists the tests");
+    assert!(
+        String::from_utf8_lossy(&out.stderr).contains("t4-fundamental-diagram"),
+        "the message lists the tests"
+    );
     let out = flockpath(&["validate", "--planners", "nope", "--tests", "t1"]);
     assert_eq!(out.status.code(), Some(2));
     let help = flockpath(&["validate", "--help"]);
@@ -101,7 +105,9 @@ fn run_pedpy_writes_metres_and_the_frame_rate() {
         .collect();
     // 60 agents × 11 frames (step 0 included), 5 columns, inside the 40 m × 25 m world.
     assert_eq!(data.len(), 60 * 11);
-    assert!(data.iter().all(|r| r.len() == 5 && (0.0..=40.0).contains(&r[2]) && (0.0..=25.0).contains(&r[3])));
+    assert!(data
+        .iter()
+        .all(|r| r.len() == 5 && (0.0..=40.0).contains(&r[2]) && (0.0..=25.0).contains(&r[3])));
     assert_eq!((data[0][0], data[0][1]), (1.0, 0.0));
     assert_eq!(data.last().map(|r| (r[0], r[1])), Some((60.0, 10.0)));
     let _ = std::fs::remove_file(&scene);
@@ -138,7 +144,10 @@ fn pedpy_ids_change_when_a_walker_wraps() {
     let traj = Trajectories {
         frame_s: 0.5,
         group: vec![0],
-        frames: [19.0, 19.8, 0.6, 1.4].iter().map(|&x| Frame { pos: vec![Vec2::new(x, 1.0)], vel: vec![Vec2::ZERO] }).collect(),
+        frames: [19.0, 19.8, 0.6, 1.4]
+            .iter()
+            .map(|&x| Frame { pos: vec![Vec2::new(x, 1.0)], vel: vec![Vec2::ZERO] })
+            .collect(),
     };
     let text = trajectory_text(&traj, Some(20.0), "wrap");
     let ids: Vec<&str> = text.lines().filter(|l| !l.starts_with('#')).map(|l| &l[..1]).collect();

@@ -44,7 +44,8 @@ pub fn validation_options_json() -> Result<String, JsError> {
 pub fn validation_run_json(test_id: &str, planner: &str) -> Result<String, JsError> {
     console_error_panic_hook::set_once();
     let test = find_test(test_id).ok_or_else(|| js_error(format!("unknown test {test_id:?}")))?;
-    let kind = PlannerKind::from_name(planner).ok_or_else(|| js_error(format!("unknown planner {planner:?}")))?;
+    let kind =
+        PlannerKind::from_name(planner).ok_or_else(|| js_error(format!("unknown planner {planner:?}")))?;
     to_json(&test.run(kind))
 }
 

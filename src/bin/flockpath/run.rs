@@ -3,7 +3,6 @@
 use crate::scenes::load_scene;
 use crate::{failed, out, usage, whole_number, write_file, CliError};
 use flockpath::experiments::validation::pedpy;
-use flockpath::experiments::validation::units::PX_PER_METRE;
 use flockpath::export::{self, ExportOptions};
 use flockpath::sim::history::{self, MetricsHistory};
 use flockpath::sim::recording::Recording;
@@ -62,7 +61,7 @@ pub struct RunArgs {
     #[arg(long, value_name = "FILE")]
     svg: Option<String>,
     /// Write the paths for PedPy (`pedpy.load_trajectory_from_txt`): `id frame x y z` in metres
-    /// at 20 px per metre, with the frame rate in the header
+    /// (at the scene's px_per_metre, default 20), with the frame rate in the header
     #[arg(long, value_name = "FILE")]
     pedpy: Option<String>,
     /// Keyframes per second of the MEL/Python exports (1…240, default 24)
@@ -97,7 +96,7 @@ impl RunArgs {
             ("--blender", self.blender.as_deref(), export::blender_py),
             ("--svg", self.svg.as_deref(), |scene, rec, _| export::trails_svg(scene, rec)),
             ("--pedpy", self.pedpy.as_deref(), |scene, rec, _| {
-                let traj = pedpy::from_recording(scene, rec, PX_PER_METRE);
+                let traj = pedpy::from_recording(scene, rec, scene.px_per_metre);
                 pedpy::trajectory_text(&traj, None, &scene.name)
             }),
         ]

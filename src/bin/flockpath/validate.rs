@@ -79,7 +79,8 @@ fn tests(value: Option<&str>) -> Result<Vec<&'static TestSpec>, CliError> {
                 return Ok(t);
             }
             // The first word of an id (`t1`, `juelich`), else a prefix.
-            let mut matches: Vec<&TestSpec> = TESTS.iter().filter(|t| t.id.split('-').next() == Some(n)).collect();
+            let mut matches: Vec<&TestSpec> =
+                TESTS.iter().filter(|t| t.id.split('-').next() == Some(n)).collect();
             if matches.is_empty() {
                 matches = TESTS.iter().filter(|t| t.id.starts_with(n)).collect();
             }
@@ -105,7 +106,8 @@ pub fn validate(args: &ValidateArgs) -> Result<(), CliError> {
         std::fs::create_dir_all(dir).map_err(|e| failed(format!("cannot create --csv-dir {dir:?}: {e}")))?;
     }
     if let Some(dir) = &args.pedpy_dir {
-        std::fs::create_dir_all(dir).map_err(|e| failed(format!("cannot create --pedpy-dir {dir:?}: {e}")))?;
+        std::fs::create_dir_all(dir)
+            .map_err(|e| failed(format!("cannot create --pedpy-dir {dir:?}: {e}")))?;
     }
     let pairs: Vec<(&TestSpec, PlannerKind)> =
         chosen.iter().flat_map(|&t| kinds.iter().map(move |&k| (t, k))).collect();
@@ -121,14 +123,19 @@ pub fn validate(args: &ValidateArgs) -> Result<(), CliError> {
             r
         })
         .collect();
-    let mut report = Report { px_per_metre: reports.first().map_or(20.0, |r| r.px_per_metre), rows: vec![], curves: vec![] };
+    let mut report = Report {
+        px_per_metre: reports.first().map_or(20.0, |r| r.px_per_metre),
+        rows: vec![],
+        curves: vec![],
+    };
     for r in reports {
         report.rows.extend(r.rows);
         report.curves.extend(r.curves);
     }
     drop(progress);
     if let Some(file) = &args.json {
-        let json = serde_json::to_string_pretty(&report).map_err(|e| failed(format!("cannot write the report: {e}")))?;
+        let json = serde_json::to_string_pretty(&report)
+            .map_err(|e| failed(format!("cannot write the report: {e}")))?;
         write_file("--json file", file, &format!("{json}\n"))?;
     }
     if let Some(dir) = &args.csv_dir {
@@ -156,7 +163,8 @@ fn write_pedpy(dir: &Path, kinds: &[PlannerKind]) -> Result<(), CliError> {
         for &rho in T4_DENSITIES {
             let count = (rho * length * width).round() as u32;
             let (rec, _) = periodic_run(kind, count, length, width).map_err(failed)?;
-            let title = format!("T4 periodic corridor {length} m x {width} m, {rho} persons/m2, {}", kind.name());
+            let title =
+                format!("T4 periodic corridor {length} m x {width} m, {rho} persons/m2, {}", kind.name());
             let file = dir.join(format!("t4-{}-rho{rho}.txt", kind.name()));
             write_file("--pedpy-dir file", file, &trajectory_text(&rec.traj, Some(length), &title))?;
         }
@@ -219,7 +227,8 @@ fn table_text(report: &Report) -> String {
             let _ = writeln!(out, "\n{}  — criterion: {}", r.test, r.criterion);
             last = &r.test;
         }
-        let _ = writeln!(out, "  {:<10} {:<4}  {}", r.planner, if r.pass { "pass" } else { "FAIL" }, r.measured);
+        let _ =
+            writeln!(out, "  {:<10} {:<4}  {}", r.planner, if r.pass { "pass" } else { "FAIL" }, r.measured);
     }
     out
 }

@@ -80,7 +80,10 @@ impl Trajectories {
     pub fn arrival_times(&self, inside: impl Fn(Vec2) -> bool) -> Vec<Option<f32>> {
         (0..self.agents())
             .map(|a| {
-                self.frames.iter().position(|f| f.pos.get(a).is_some_and(|&p| inside(p))).map(|k| self.time(k as f32))
+                self.frames
+                    .iter()
+                    .position(|f| f.pos.get(a).is_some_and(|&p| inside(p)))
+                    .map(|k| self.time(k as f32))
             })
             .collect()
     }
@@ -96,7 +99,9 @@ impl Trajectories {
 
     /// Agents whose centre is inside a wall (`inside`) in some frame: wall crossings.
     pub fn agents_ever_inside(&self, inside: impl Fn(Vec2) -> bool) -> usize {
-        (0..self.agents()).filter(|&a| self.frames.iter().any(|f| f.pos.get(a).is_some_and(|&p| inside(p)))).count()
+        (0..self.agents())
+            .filter(|&a| self.frames.iter().any(|f| f.pos.get(a).is_some_and(|&p| inside(p))))
+            .count()
     }
 
     /// Density (persons/m²), speed along +x (m/s) and specific flow (persons/(m·s)) in `area`,
@@ -344,7 +349,12 @@ mod tests {
             frame_s: 1.0,
             group: vec![0; 4],
             frames: vec![Frame {
-                pos: vec![Vec2::new(1.0, 0.0), Vec2::new(5.0, 0.0), Vec2::new(9.0, 0.0), Vec2::new(20.0, 0.0)],
+                pos: vec![
+                    Vec2::new(1.0, 0.0),
+                    Vec2::new(5.0, 0.0),
+                    Vec2::new(9.0, 0.0),
+                    Vec2::new(20.0, 0.0),
+                ],
                 vel: vec![Vec2::ZERO, Vec2::new(0.05, 0.0), Vec2::new(1.0, 0.0), Vec2::ZERO],
             }],
         };

@@ -40,7 +40,8 @@ pub fn trajectory_text(traj: &Trajectories, period: Option<f32>, title: &str) ->
 
 /// A recording (px, every `rec.every()` steps) of `scene` as trajectories in metres.
 pub fn from_recording(scene: &Scene, rec: &Recording, px_per_metre: f32) -> Trajectories {
-    let group = scene.groups.iter().enumerate().flat_map(|(g, gr)| std::iter::repeat_n(g as u32, gr.count as usize));
+    let group =
+        scene.groups.iter().enumerate().flat_map(|(g, gr)| std::iter::repeat_n(g as u32, gr.count as usize));
     let to_mps = 1.0 / (px_per_metre * DT);
     Trajectories {
         frame_s: rec.every() as f32 * DT,

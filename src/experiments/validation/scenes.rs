@@ -13,11 +13,19 @@ const COLOURS: &[&str] = &["#2f6fdf", "#d9482b", "#2b9d48", "#a23bc4", "#d49a1c"
 
 /// A scene of `w × h` metres.
 fn world(name: &str, w: f32, h: f32) -> Scene {
-    Scene { name: name.into(), ..Scene::empty(px(w), px(h)) }
+    Scene { name: name.into(), px_per_metre: PX_PER_METRE, ..Scene::empty(px(w), px(h)) }
 }
 
 /// A group of `count` walkers spawned in `[min, max]` (m) heading for goal `goal`.
-fn walkers(name: &str, k: usize, count: u32, min: [f32; 2], max: [f32; 2], goal: u32, cfg: &PlannerConfig) -> Group {
+fn walkers(
+    name: &str,
+    k: usize,
+    count: u32,
+    min: [f32; 2],
+    max: [f32; 2],
+    goal: u32,
+    cfg: &PlannerConfig,
+) -> Group {
     Group {
         name: name.into(),
         color: COLOURS[k % COLOURS.len()].into(),
@@ -52,7 +60,13 @@ pub fn free_walking(cfg: &PlannerConfig) -> Scene {
 /// `count` walkers spread over it heading for a goal 19 m past its end (so they keep walking
 /// right). The world is `length + 20` m long: the playground, which has no periodic corridor,
 /// shows the crowd walking on to that goal. Returns the scene and the periodic band (px).
-pub fn periodic_corridor(name: &str, cfg: &PlannerConfig, count: u32, length: f32, width: f32) -> (Scene, (f32, f32)) {
+pub fn periodic_corridor(
+    name: &str,
+    cfg: &PlannerConfig,
+    count: u32,
+    length: f32,
+    width: f32,
+) -> (Scene, (f32, f32)) {
     let mut s = world(name, length + 20.0, width);
     s.goals.push(goal([length + 19.0, width * 0.5], (width * 0.5).min(0.5)));
     s.groups.push(walkers("crowd", 0, count, [0.0, 0.0], [length, width], 0, cfg));
@@ -101,7 +115,14 @@ impl Corner {
 
 /// T15's straight comparison: a corridor `length` × `width` m with the crowd in its first
 /// `start_len` metres and the goal at its end; arrivals counted in the last 2 m.
-pub fn straight(name: &str, cfg: &PlannerConfig, count: u32, length: f32, width: f32, start_len: f32) -> Scene {
+pub fn straight(
+    name: &str,
+    cfg: &PlannerConfig,
+    count: u32,
+    length: f32,
+    width: f32,
+    start_len: f32,
+) -> Scene {
     let mut s = world(name, length, width);
     s.goals.push(goal([length - 1.0, width * 0.5], (width * 0.5).min(1.0)));
     s.groups.push(walkers("crowd", 0, count, [0.2, 0.2], [start_len, width - 0.2], 0, cfg));
@@ -182,7 +203,13 @@ impl Room {
 
     /// The room with doors in `doors`; `groups` lists each group's door, count and spawn
     /// rectangle relative to the interior (m).
-    pub fn scene(&self, name: &str, cfg: &PlannerConfig, doors: &[Side], groups: &[(Side, u32, [f32; 4])]) -> Scene {
+    pub fn scene(
+        &self,
+        name: &str,
+        cfg: &PlannerConfig,
+        doors: &[Side],
+        groups: &[(Side, u32, [f32; 4])],
+    ) -> Scene {
         let size = self.side + 2.0 * self.margin;
         let mut s = world(name, size, size);
         s.obstacles = self.walls(doors);
@@ -237,7 +264,8 @@ pub fn large_room(cfg: &PlannerConfig, four: bool, count: u32) -> (Scene, Room) 
 /// T8's room: 10 m square, one 1.5 m door on the right, `count` walkers.
 pub fn small_room(cfg: &PlannerConfig, count: u32) -> (Scene, Room) {
     let room = Room { side: 10.0, margin: 4.0, door: 1.5 };
-    let scene = room.scene("validate-t8-room", cfg, &[Side::Right], &[(Side::Right, count, [0.4, 0.4, 7.0, 9.6])]);
+    let scene =
+        room.scene("validate-t8-room", cfg, &[Side::Right], &[(Side::Right, count, [0.4, 0.4, 7.0, 9.6])]);
     (scene, room)
 }
 
@@ -280,7 +308,15 @@ pub fn demographics(kind: PlannerKind) -> Result<(Scene, Vec<(usize, f32)>), Str
             let v = rng.range(lo, hi);
             let cfg = config_at_speed(kind, v)?;
             let x = k as f32 * 1.6;
-            s.groups.push(walkers(&format!("{name} {}", k + 1), a, 2, [x + 0.2, y + 0.3], [x + 1.4, y + 2.7], a as u32, &cfg));
+            s.groups.push(walkers(
+                &format!("{name} {}", k + 1),
+                a,
+                2,
+                [x + 0.2, y + 0.3],
+                [x + 1.4, y + 2.7],
+                a as u32,
+                &cfg,
+            ));
             speeds.push((a, v));
         }
     }
@@ -297,7 +333,11 @@ pub fn turned_walk(cfg: &PlannerConfig, angle: f32) -> (Scene, Vec<Vec2>) {
     let mut s = world("validate-rotation", 40.0, 40.0);
     let pillar = [[19.0, 18.5], [21.0, 18.5], [21.0, 19.5], [19.0, 19.5]];
     s.obstacles.push(Obstacle::Polygon {
-        points: pillar.iter().map(|&[x, y]| turn(Vec2::new(x, y)) * PX_PER_METRE).map(|p| [p.x, p.y]).collect(),
+        points: pillar
+            .iter()
+            .map(|&[x, y]| turn(Vec2::new(x, y)) * PX_PER_METRE)
+            .map(|p| [p.x, p.y])
+            .collect(),
     });
     let g = turn(Vec2::new(28.0, 20.0));
     s.goals.push(goal([g.x, g.y], 1.0));

@@ -46,12 +46,27 @@ impl TestSpec {
     /// the world refuses) gives a failing row that says why.
     pub fn run(&self, kind: PlannerKind) -> Outcome {
         (self.run)(self, kind).unwrap_or_else(|f| Outcome {
-            rows: vec![self.row(kind, None, "", format!("not measured: {}", f.message), false, f.scene.as_ref())],
+            rows: vec![self.row(
+                kind,
+                None,
+                "",
+                format!("not measured: {}", f.message),
+                false,
+                f.scene.as_ref(),
+            )],
             curves: vec![],
         })
     }
 
-    fn row(&self, kind: PlannerKind, value: Option<f64>, unit: &str, measured: String, pass: bool, scene: Option<&Scene>) -> Row {
+    fn row(
+        &self,
+        kind: PlannerKind,
+        value: Option<f64>,
+        unit: &str,
+        measured: String,
+        pass: bool,
+        scene: Option<&Scene>,
+    ) -> Row {
         Row {
             test: self.id.into(),
             planner: kind.name().into(),
@@ -202,8 +217,19 @@ pub const PERIODIC_EVERY: u32 = 6;
 
 /// One run of the periodic corridor (`length × width` m, `count` walkers) with `kind`: the
 /// recorded trajectories from the start and the scene.
-pub fn periodic_run(kind: PlannerKind, count: u32, length: f32, width: f32) -> Result<(Recorded, Scene), String> {
-    let (scene, band) = periodic_corridor("validate-periodic-corridor", &config_at_speed(kind, FREE_SPEED)?, count, length, width);
+pub fn periodic_run(
+    kind: PlannerKind,
+    count: u32,
+    length: f32,
+    width: f32,
+) -> Result<(Recorded, Scene), String> {
+    let (scene, band) = periodic_corridor(
+        "validate-periodic-corridor",
+        &config_at_speed(kind, FREE_SPEED)?,
+        count,
+        length,
+        width,
+    );
     let mut w = World::new_beyond_cost_limit(scene.clone()).map_err(|e| e.to_string())?;
     w.set_periodic_x(Some(band));
     Ok((record(w, (WARM_UP_S + MEASURE_S) * HZ, PERIODIC_EVERY, |_| false), scene))
@@ -238,13 +264,15 @@ fn diagram(
             shown = Some(scene);
         }
         let scale = if per_metre { f64::from(width) } else { 1.0 };
-        let (d, v) = periodic_point(&rec.traj, width).map_or((f64::NAN, f64::NAN), |p| (p.density * scale, p.speed));
+        let (d, v) =
+            periodic_point(&rec.traj, width).map_or((f64::NAN, f64::NAN), |p| (p.density * scale, p.speed));
         let v_ref = reference(f64::from(rho));
         rows.push(vec![f64::from(rho), d, v, d * v, v_ref, f64::from(rho) * v_ref, v - v_ref]);
     }
     let devs: Vec<f64> = rows.iter().map(|r| r[6].abs()).collect();
     let mean = devs.iter().sum::<f64>() / devs.len() as f64;
-    let (worst, at) = rows.iter().map(|r| (r[6].abs(), r[0])).fold((0.0, 0.0), |a, b| if b.0 > a.0 { b } else { a });
+    let (worst, at) =
+        rows.iter().map(|r| (r[6].abs(), r[0])).fold((0.0, 0.0), |a, b| if b.0 > a.0 { b } else { a });
     let measured = format!("mean |Δv| {mean:.2} m/s (largest {worst:.2} at {at} {name})");
     let unit = if per_metre { "persons_per_m" } else { "persons_per_m2" };
     let columns = [
@@ -257,7 +285,14 @@ fn diagram(
         "speed_deviation_m_s",
     ];
     Ok(Outcome {
-        rows: vec![spec.row(kind, Some(mean), "m/s", measured, mean.is_finite() && mean <= 0.2, shown.as_ref())],
+        rows: vec![spec.row(
+            kind,
+            Some(mean),
+            "m/s",
+            measured,
+            mean.is_finite() && mean <= 0.2,
+            shown.as_ref(),
+        )],
         curves: vec![spec.curve(kind, "fd", &columns, rows)],
     })
 }
@@ -286,7 +321,10 @@ fn t6(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
     let arrived = rec.traj.arrival_times(|p| corner.arrived(p)).iter().flatten().count();
     let measured = format!("{arrived}/20 arrived, {crossings} crossed a wall");
     let pass = crossings == 0 && arrived == 20;
-    Ok(Outcome { rows: vec![spec.row(kind, Some(arrived as f64), "arrived", measured, pass, Some(&scene))], curves: vec![] })
+    Ok(Outcome {
+        rows: vec![spec.row(kind, Some(arrived as f64), "arrived", measured, pass, Some(&scene))],
+        curves: vec![],
+    })
 }
 
 fn rotation(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
@@ -311,7 +349,10 @@ fn rotation(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
             let rel = ((m1 - m0) / m0).abs().max(((l1 - l0) / l0).abs());
             (
                 Some(100.0 * rel),
-                format!("mean arrival {m0:.2} s vs {m1:.2} s turned, last {l0:.2} s vs {l1:.2} s: {:.2}%", 100.0 * rel),
+                format!(
+                    "mean arrival {m0:.2} s vs {m1:.2} s turned, last {l0:.2} s vs {l1:.2} s: {:.2}%",
+                    100.0 * rel
+                ),
                 rel <= 0.02,
             )
         }
@@ -328,7 +369,10 @@ fn head_on_test(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> 
     let gap = rec.traj.min_gap(0, 1, BODY_RADIUS_M, BODY_RADIUS_M).map(f64::from);
     let arrived = (0..2).all(|i| rec.traj.arrival_times(|p| p.distance(goals[i]) < 0.5)[i].is_some());
     let gap_text = gap.map_or("?".into(), |g| format!("{g:.3} m"));
-    let measured = format!("closest gap {gap_text}, {}", if arrived { "both arrived" } else { "not both arrived in 30 s" });
+    let measured = format!(
+        "closest gap {gap_text}, {}",
+        if arrived { "both arrived" } else { "not both arrived in 30 s" }
+    );
     let pass = arrived && gap.is_some_and(|g| g >= 0.0);
     Ok(Outcome { rows: vec![spec.row(kind, gap, "m", measured, pass, Some(&scene))], curves: vec![] })
 }
@@ -368,7 +412,8 @@ fn t9(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
     let mut cumulative = vec![];
     for four in [false, true] {
         let (scene, room) = large_room(&cfg, four, T9_AGENTS);
-        let rec = record(world(&scene, None)?, T9_SECONDS * HZ, 6, |f| f.pos.iter().all(|&p| !room.inside(p)));
+        let rec =
+            record(world(&scene, None)?, T9_SECONDS * HZ, 6, |f| f.pos.iter().all(|&p| !room.inside(p)));
         let exits = rec.traj.arrival_times(|p| !room.inside(p));
         cumulative.push(
             (0..rec.traj.frames.len())
@@ -426,7 +471,10 @@ fn t12(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
         pct(before)
     );
     let pass = before >= 0.9 && arrived >= 135;
-    Ok(Outcome { rows: vec![spec.row(kind, Some(100.0 * before), "%", measured, pass, Some(&scene))], curves: vec![] })
+    Ok(Outcome {
+        rows: vec![spec.row(kind, Some(100.0 * before), "%", measured, pass, Some(&scene))],
+        curves: vec![],
+    })
 }
 
 fn t7(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
@@ -449,7 +497,12 @@ fn t7(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
     let measured = format!("{inside}/{n} walkers inside their range");
     Ok(Outcome {
         rows: vec![spec.row(kind, Some(100.0 * share), "%", measured, inside == n, Some(&scene))],
-        curves: vec![spec.curve(kind, "speeds", &["agent", "age_group", "desired_m_s", "measured_m_s"], rows)],
+        curves: vec![spec.curve(
+            kind,
+            "speeds",
+            &["agent", "age_group", "desired_m_s", "measured_m_s"],
+            rows,
+        )],
     })
 }
 
@@ -471,13 +524,20 @@ fn t8(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
     }
     let all_out = rows.iter().all(|r| r[1].is_finite());
     let falling = rows.windows(2).all(|w| w[1][1] < w[0][1]);
-    let times: Vec<String> =
-        rows.iter().map(|r| if r[1].is_finite() { format!("{:.1}", r[1]) } else { format!("{} out", r[2]) }).collect();
+    let times: Vec<String> = rows
+        .iter()
+        .map(|r| if r[1].is_finite() { format!("{:.1}", r[1]) } else { format!("{} out", r[2]) })
+        .collect();
     let at_free = rows.iter().find(|r| r[0] as f32 == FREE_SPEED).map(|r| r[1]);
     let measured = format!("evacuation at {:?} m/s: {} s", T8_SPEEDS, times.join(", "));
     Ok(Outcome {
         rows: vec![spec.row(kind, at_free, "s", measured, all_out && falling, shown.as_ref())],
-        curves: vec![spec.curve(kind, "sweep", &["desired_speed_m_s", "evacuation_time_s", "out_of_40"], rows)],
+        curves: vec![spec.curve(
+            kind,
+            "sweep",
+            &["desired_speed_m_s", "evacuation_time_s", "out_of_40"],
+            rows,
+        )],
     })
 }
 
@@ -497,15 +557,14 @@ fn t15(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
         straights.push(evac(&scene, &move |p: Vec2| p.x > length - 2.0)?);
     }
     let fmt = |t: Option<f32>| t.map_or("not all out in 60 s".into(), |t| format!("{t:.1} s"));
-    let measured = format!(
-        "short {} ≤ corner {} ≤ long {}",
-        fmt(straights[0]),
-        fmt(t_corner),
-        fmt(straights[1])
-    );
+    let measured =
+        format!("short {} ≤ corner {} ≤ long {}", fmt(straights[0]), fmt(t_corner), fmt(straights[1]));
     let pass = match (straights[0], t_corner, straights[1]) {
         (Some(a), Some(b), Some(c)) => a <= b && b <= c,
         _ => false,
     };
-    Ok(Outcome { rows: vec![spec.row(kind, t_corner.map(f64::from), "s", measured, pass, Some(&corner_scene))], curves: vec![] })
+    Ok(Outcome {
+        rows: vec![spec.row(kind, t_corner.map(f64::from), "s", measured, pass, Some(&corner_scene))],
+        curves: vec![],
+    })
 }

@@ -2,10 +2,11 @@
 //! speed it gives its walkers, and setting a planner's desired speed in m/s.
 
 use crate::model::params::{PlannerConfig, PlannerKind};
-use crate::model::scene::DT;
+use crate::model::scene::{DEFAULT_PX_PER_METRE, DT};
 
-/// Pixels per metre of the suite's scenes (the playground's default scale, 20 px = 1 m).
-pub const PX_PER_METRE: f32 = 20.0;
+/// Pixels per metre of the suite's scenes: the scenes' default scale (20 px = 1 m), which
+/// every scene of the suite states as its `px_per_metre`.
+pub const PX_PER_METRE: f32 = DEFAULT_PX_PER_METRE;
 
 /// A walker's body radius (m): a 0.4 m wide body, as in the RiMEA tests.
 pub const BODY_RADIUS_M: f32 = 0.2;
@@ -78,7 +79,10 @@ mod tests {
             let config = config_at_speed(kind, 1.34).expect("a speed parameter");
             let planner = crate::planners::build(&config, 1, &[]);
             let limit = planner.max_speed();
-            assert!(limit >= px_per_step(1.34) - 1e-5 && limit <= px_per_step(1.34) * 1.31, "{kind:?} {limit}");
+            assert!(
+                limit >= px_per_step(1.34) - 1e-5 && limit <= px_per_step(1.34) * 1.31,
+                "{kind:?} {limit}"
+            );
         }
     }
 }
