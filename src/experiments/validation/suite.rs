@@ -32,7 +32,7 @@ pub struct TestSpec {
 /// A run that could not be measured: the message, and the scene when one was built.
 pub struct Failure {
     message: String,
-    scene: Option<Scene>,
+    scene: Option<Box<Scene>>,
 }
 
 impl From<String> for Failure {
@@ -52,7 +52,7 @@ impl TestSpec {
                 "",
                 format!("not measured: {}", f.message),
                 false,
-                f.scene.as_ref(),
+                f.scene.as_deref(),
             )],
             curves: vec![],
         })
@@ -178,7 +178,7 @@ fn world(scene: &Scene, starts: Option<Vec<Vec2>>) -> Result<World, Failure> {
         Some(p) => World::new_at(scene.clone(), p),
         None => World::new_beyond_cost_limit(scene.clone()),
     };
-    built.map_err(|e| Failure { message: e.to_string(), scene: Some(scene.clone()) })
+    built.map_err(|e| Failure { message: e.to_string(), scene: Some(Box::new(scene.clone())) })
 }
 
 /// Steps per second.
