@@ -1,5 +1,5 @@
 // The Validation page: a small subset of the suite runs in a Web Worker, the table fills with
-// pass/fail cells, the fundamental-diagram plot is drawn, a test's link opens its scene in the
+// pass/fail cells, the fundamental-diagram and sweep plots are drawn, a test's link opens its scene in the
 // playground, and a run can be cancelled. The playground's menu links to the page.
 
 import { test } from 'node:test';
@@ -28,7 +28,7 @@ test('a subset runs in a worker, the table shows pass/fail, a link opens the sce
     for (const name of ['boids', 'pso', 'firefly', 'forces', 'igsa']) assert.ok(planners.includes(name), name);
 
     await pick(page, 'val-planners', ['boids', 'forces']);
-    await pick(page, 'val-tests', ['t1-free-walking', 'juelich-head-on']);
+    await pick(page, 'val-tests', ['t1-free-walking', 'juelich-head-on', 't8-speed-sweep']);
     await page.click('#val-run');
     assert.equal(await page.isDisabled('#val-cancel'), false, 'Cancel is offered while running');
     await page.waitForFunction(() => document.querySelector('#val-summary').textContent !== '', null, { timeout: 120_000 });
@@ -43,7 +43,7 @@ test('a subset runs in a worker, the table shows pass/fail, a link opens the sce
         measured: tr.children[2].textContent,
       })),
     );
-    assert.equal(rows.length, 4, JSON.stringify(rows));
+    assert.equal(rows.length, 6, JSON.stringify(rows));
     for (const r of rows) {
       assert.ok(['pass', 'fail'].includes(r.result) && r.cls === r.result, JSON.stringify(r));
       assert.match(r.href, /^index\.html#s=/, 'each test links to its scene');
@@ -52,7 +52,11 @@ test('a subset runs in a worker, the table shows pass/fail, a link opens the sce
     // One walker alone in a corridor with Boids keeps its desired speed (the T1 row says m/s).
     const t1 = rows.find((r) => r.test === 't1-free-walking' && r.planner === 'boids');
     assert.match(t1.measured, /m\/s/);
-    assert.match(await page.textContent('#val-summary'), /of 4 passed/);
+    assert.match(await page.textContent('#val-summary'), /of 6 passed/);
+    // The T8 sweep is plotted per planner.
+    const sweepLegend = await page.textContent('#val-sweep-legend');
+    assert.match(sweepLegend, /boids/);
+    assert.match(sweepLegend, /forces/);
     assert.equal(await page.isDisabled('#val-cancel'), true);
     await screenshot(page, 'validation-table');
 

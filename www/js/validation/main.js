@@ -1,6 +1,6 @@
 // The Validation page: pick planners and tests, run the suite in a Web Worker (progress,
 // Cancel), fill the table (each test linked to its scene in the playground) and plot the
-// fundamental diagram of T4 per planner against Weidmann's curve. Every number comes from
+// fundamental diagram of T4 per planner against Weidmann's curve and the T8 sweep. Every number comes from
 // the wasm core; this module only lays them out.
 
 import { messageOf, setupBanner, showMessage } from '../core/errors.js';
@@ -74,6 +74,24 @@ async function boot() {
     drawPlot($('val-plot'), { steps: densities, lines, label: `speed (m/s) at ${densities.join(', ')} persons/m²`, unit: 'm/s' });
   };
 
+  const drawSweep = () => {
+    const sweeps = state.curves.filter((c) => c.test === 't8-speed-sweep');
+    if (sweeps.length === 0) {
+      drawPlot($('val-sweep'), { steps: [], lines: [], label: 'evacuation time (s) against desired speed (m/s)', unit: 's' });
+      return;
+    }
+    const speeds = sweeps[0].rows.map((r) => r[0]);
+    // Column 1 is the evacuation time (s), null when someone was still inside after 60 s.
+    const lines = sweeps.map((c) => ({ values: c.rows.map((r) => (r[1] === null ? NaN : r[1])), color: colorOf.get(c.planner) ?? '#888' }));
+    const legend = $('val-sweep-legend');
+    legend.replaceChildren(...sweeps.map((c) => {
+      const span = Object.assign(document.createElement('span'), { textContent: `━ ${c.planner}` });
+      span.style.color = colorOf.get(c.planner) ?? '#888';
+      return span;
+    }));
+    drawPlot($('val-sweep'), { steps: speeds, lines, label: `evacuation time (s) at ${speeds.join(', ')} m/s`, unit: 's' });
+  };
+
   const finish = (text) => {
     state.worker?.terminate();
     state.worker = null;
@@ -95,6 +113,7 @@ async function boot() {
     state.passed = 0;
     $('val-summary').textContent = '';
     drawDiagram();
+    drawSweep();
     $('val-run').disabled = true;
     $('val-cancel').disabled = false;
     const worker = new Worker(new URL('./worker.js', import.meta.url), { type: 'module' });
@@ -108,6 +127,7 @@ async function boot() {
         for (const row of data.outcome.rows) addRow(row);
         state.curves.push(...data.outcome.curves);
         drawDiagram();
+        drawSweep();
       } else if (data.type === 'done') {
         $('val-progress').value = 1;
         $('val-summary').textContent = `${state.passed} of ${state.rows} passed in ${data.seconds.toFixed(1)} s.`;
@@ -126,6 +146,7 @@ async function boot() {
 
   $('val-cancel').addEventListener('click', () => finish('cancelled'));
   drawDiagram();
+  drawSweep();
   window.flockpathValidation = { rows: () => state.rows, running: () => state.worker !== null };
 }
 
