@@ -103,6 +103,8 @@ async function launch() {
     headless: true,
     args: CHROMIUM_ARGS,
     viewport: VIEWPORT,
+    // The offline service worker would add its fetch handler to every request: not what is measured.
+    serviceWorkers: 'block',
   });
   page = context.pages()[0] ?? (await context.newPage());
 }

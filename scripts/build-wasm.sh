@@ -2,6 +2,8 @@
 # Builds the page's wasm module into www/pkg (release, wasm-opt -O, SIMD) and prints its size.
 # Idempotent: skips the build when nothing under src/, Cargo.toml, Cargo.lock or .cargo/ changed
 # since the last one (stamp file www/pkg/.build-stamp). Pass --force to rebuild anyway.
+# Either way it then rewrites www/pkg/precache.js (scripts/precache.mjs): the offline service
+# worker's file list and version, which follow every change to www/ too.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 export PATH="$HOME/.cargo/bin:$PATH"
@@ -22,6 +24,7 @@ hash=$(inputs_hash)
 if [ $force = 0 ] && [ -f "$wasm" ] && [ -f "$out/flockpath.js" ] && [ -f "$stamp" ] \
    && [ "$(cat "$stamp")" = "$hash" ]; then
   echo "[build-wasm] up to date ($(stat -c %s "$wasm") bytes): $wasm"
+  node scripts/precache.mjs
   exit 0
 fi
 
@@ -41,3 +44,4 @@ echo "$hash" > "$stamp"
 raw=$(stat -c %s "$wasm")
 gz=$(gzip -9 -c "$wasm" | wc -c)
 echo "[build-wasm] $wasm: $raw bytes ($gz gzipped)"
+node scripts/precache.mjs

@@ -139,6 +139,36 @@ pub fn run_once(
     RunOutcome { best: opt.best_value(), curve, evaluations: opt.evaluations(), seconds: clock() - start }
 }
 
+/// Best, worst, mean and median of a set of final values (one table cell's statistics), and how
+/// many there were: the numbers of Table 3, also reported by the lab page's 30-run table.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Summary {
+    /// Lowest value.
+    pub best: f64,
+    /// Highest value.
+    pub worst: f64,
+    /// Mean (summed in ascending order).
+    pub mean: f64,
+    /// Median (the mean of the middle two for an even count).
+    pub median: f64,
+    /// How many values.
+    pub runs: usize,
+}
+
+impl Summary {
+    /// The statistics of `values` (any order; NaN sorts last, as `f64::total_cmp` puts it). An
+    /// empty slice gives NaN statistics and `runs` 0.
+    pub fn of(values: &[f64]) -> Summary {
+        let mut sorted = values.to_vec();
+        sorted.sort_by(f64::total_cmp);
+        let (Some(&best), Some(&worst)) = (sorted.first(), sorted.last()) else {
+            return Summary { best: f64::NAN, worst: f64::NAN, mean: f64::NAN, median: f64::NAN, runs: 0 };
+        };
+        let mean = sorted.iter().sum::<f64>() / sorted.len() as f64;
+        Summary { best, worst, mean, median: median(&sorted), runs: sorted.len() }
+    }
+}
+
 fn median(sorted: &[f64]) -> f64 {
     let n = sorted.len();
     if n == 0 {
@@ -176,18 +206,18 @@ pub fn run_optimize(
     let mut cells = Vec::new();
     for (k, chunk) in outcomes.chunks(args.runs as usize).enumerate() {
         let (a, f, _) = jobs[k * args.runs as usize];
-        let mut finals: Vec<f64> = chunk.iter().map(|o| o.best).collect();
-        finals.sort_by(f64::total_cmp);
+        let finals: Vec<f64> = chunk.iter().map(|o| o.best).collect();
+        let summary = Summary::of(&finals);
         let n = finals.len() as f64;
         cells.push(Cell {
             algorithm: a.name(),
             function: f.name(),
             dim: args.dim,
             runs: args.runs,
-            best: finals[0],
-            worst: finals[finals.len() - 1],
-            mean: finals.iter().sum::<f64>() / n,
-            median: median(&finals),
+            best: summary.best,
+            worst: summary.worst,
+            mean: summary.mean,
+            median: summary.median,
             seconds: chunk.iter().map(|o| o.seconds).sum(),
             evaluations: chunk.iter().map(|o| o.evaluations as f64).sum::<f64>() / n,
             population: args.settings.population,

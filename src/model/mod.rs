@@ -8,6 +8,7 @@ pub mod codec;
 pub mod edit;
 pub mod forces_cases;
 pub mod geometry;
+pub mod palette;
 pub mod params;
 pub mod presets;
 pub mod scene;

@@ -2,6 +2,7 @@
 
 use crate::model::forces_cases::{Behaviour, Environment};
 use crate::model::geometry::Obstacle;
+use crate::model::palette::{BLUE, BLUISH_GREEN, ORANGE, REDDISH_PURPLE, VERMILLION};
 use crate::model::params::boids::{Arbitration, FlowGuide, Leader, Role};
 use crate::model::params::{BoidsParams, FireflyParams, IgsaParams, PlannerConfig, PsoParams};
 use crate::model::scene::{Goal, GoalMotion, Group, Hill, PathSpec, Region, Scene};
@@ -175,7 +176,7 @@ fn base(name: &str, width: f32, height: f32) -> Scene {
 pub fn open_field() -> Scene {
     let mut s = base("open-field", 800.0, 500.0);
     s.goals.push(Goal::fixed([700.0, 250.0], 60.0));
-    s.groups.push(group("flock", "#2f6fdf", 60, ([40.0, 150.0], [160.0, 350.0]), 0));
+    s.groups.push(group("flock", BLUE, 60, ([40.0, 150.0], [160.0, 350.0]), 0));
     s
 }
 
@@ -192,7 +193,7 @@ pub fn pillars() -> Scene {
     s.goals.push(Goal::fixed([820.0, 280.0], 70.0));
     // Priority arbitration: squeezing between pillars, the weighted sum lets 80 agents overlap
     // (about 25,000 overlapping pair-steps in 600 steps, against about 770 with priority).
-    s.groups.push(with_boids(group("flock", "#2f6fdf", 80, ([30.0, 170.0], [170.0, 390.0]), 0), |_| {}));
+    s.groups.push(with_boids(group("flock", BLUE, 80, ([30.0, 170.0], [170.0, 390.0]), 0), |_| {}));
     s
 }
 
@@ -201,8 +202,8 @@ pub fn two_groups_swap() -> Scene {
     let mut s = base("two-groups-swap", 900.0, 500.0);
     s.goals.push(Goal::fixed([820.0, 250.0], 60.0));
     s.goals.push(Goal::fixed([80.0, 250.0], 60.0));
-    s.groups.push(group("left", "#2f6fdf", 50, ([30.0, 150.0], [150.0, 350.0]), 0));
-    s.groups.push(group("right", "#df4f2f", 50, ([750.0, 150.0], [870.0, 350.0]), 1));
+    s.groups.push(group("left", BLUE, 50, ([30.0, 150.0], [150.0, 350.0]), 0));
+    s.groups.push(group("right", VERMILLION, 50, ([750.0, 150.0], [870.0, 350.0]), 1));
     s
 }
 
@@ -212,7 +213,7 @@ pub fn corridor() -> Scene {
     s.obstacles.push(Obstacle::Rect { min: [350.0, 0.0], max: [550.0, 205.0] });
     s.obstacles.push(Obstacle::Rect { min: [350.0, 295.0], max: [550.0, 500.0] });
     s.goals.push(Goal::fixed([820.0, 250.0], 60.0));
-    s.groups.push(group("flock", "#2f9f5f", 60, ([30.0, 100.0], [200.0, 400.0]), 0));
+    s.groups.push(group("flock", BLUISH_GREEN, 60, ([30.0, 100.0], [200.0, 400.0]), 0));
     s
 }
 
@@ -226,17 +227,16 @@ pub fn u_trap() -> Scene {
     s.obstacles.push(Obstacle::Rect { min: [360.0, 160.0], max: [550.0, 190.0] });
     s.obstacles.push(Obstacle::Rect { min: [360.0, 410.0], max: [550.0, 440.0] });
     s.goals.push(Goal::fixed([800.0, 300.0], 50.0));
-    s.groups.push(pso_group("pso", "#2f6fdf", 15, ([60.0, 230.0], [160.0, 290.0]), 0));
+    s.groups.push(pso_group("pso", BLUE, 15, ([60.0, 230.0], [160.0, 290.0]), 0));
     let firefly = PlannerConfig::Firefly(FireflyParams::default());
-    s.groups.push(Group {
-        planner: firefly,
-        ..group("firefly", "#df7f1f", 15, ([60.0, 310.0], [160.0, 370.0]), 0)
-    });
-    s.groups.push(group("boids", "#2f9f5f", 15, ([60.0, 390.0], [160.0, 450.0]), 0));
+    s.groups
+        .push(Group { planner: firefly, ..group("firefly", ORANGE, 15, ([60.0, 310.0], [160.0, 370.0]), 0) });
+    s.groups.push(group("boids", BLUISH_GREEN, 15, ([60.0, 390.0], [160.0, 450.0]), 0));
     // Path following goes round the cup: guidance from above the local rules.
     let around = vec![[110.0, 520.0], [400.0, 520.0], [620.0, 490.0], [720.0, 390.0], [790.0, 310.0]];
     s.paths.push(PathSpec { points: around, radius: 30.0 });
-    let walkers = boids_group("boids on a path", "#8f3fbf", 15, ([60.0, 490.0], [160.0, 550.0]), Some(0));
+    let walkers =
+        boids_group("boids on a path", REDDISH_PURPLE, 15, ([60.0, 490.0], [160.0, 550.0]), Some(0));
     s.groups.push(with_boids(walkers, |p| p.path = 1));
     s
 }
@@ -286,7 +286,7 @@ pub fn forces_scene(behaviour: Behaviour, environment: Environment) -> Scene {
             }
         }
     }
-    let mut flock = group("flock", "#8f3fbf", FORCES_AGENTS, ([40.0, 140.0], [160.0, 260.0]), 0);
+    let mut flock = group("flock", REDDISH_PURPLE, FORCES_AGENTS, ([40.0, 140.0], [160.0, 260.0]), 0);
     flock.planner = PlannerConfig::Forces(crate::model::params::ForcesParams::default());
     match behaviour {
         Behaviour::GroupMoving => s.goals.push(Goal::fixed([730.0, 200.0], 40.0)),
@@ -311,7 +311,7 @@ pub fn constant_density(n: u32, neighbours: f32) -> Scene {
     let density = neighbours / (std::f32::consts::PI * perception * perception);
     let side = (n as f32 / density).sqrt().max(100.0);
     let mut s = base(&format!("density-{n}"), side, side);
-    let mut g = group("crowd", "#2f6fdf", n, ([0.0, 0.0], [side, side]), 0);
+    let mut g = group("crowd", BLUE, n, ([0.0, 0.0], [side, side]), 0);
     g.goal = None;
     s.groups.push(g);
     s
@@ -336,7 +336,7 @@ fn pso_group(name: &str, color: &str, count: u32, spawn: ([f32; 2], [f32; 2]), g
 pub fn pso_influx() -> Scene {
     let mut s = base("pso-influx", 1000.0, 600.0);
     s.goals.push(Goal::fixed([500.0, 300.0], 40.0));
-    s.groups.push(pso_group("people", "#2f6fdf", 20, ([20.0, 20.0], [980.0, 580.0]), 0));
+    s.groups.push(pso_group("people", BLUE, 20, ([20.0, 20.0], [980.0, 580.0]), 0));
     s
 }
 
@@ -344,7 +344,7 @@ pub fn pso_influx() -> Scene {
 pub fn pso_stream() -> Scene {
     let mut s = base("pso-stream", 1000.0, 600.0);
     s.goals.push(Goal::fixed([920.0, 300.0], 40.0));
-    s.groups.push(pso_group("people", "#2f6fdf", 20, ([20.0, 100.0], [140.0, 500.0]), 0));
+    s.groups.push(pso_group("people", BLUE, 20, ([20.0, 100.0], [140.0, 500.0]), 0));
     s
 }
 
@@ -354,7 +354,7 @@ pub fn pso_static_obstacle() -> Scene {
     let mut s = base("pso-static-obstacle", 1000.0, 300.0);
     s.obstacles.push(Obstacle::Circle { center: [500.0, 15.0], radius: 30.0 });
     s.goals.push(Goal::fixed([950.0, 25.0], 30.0));
-    s.groups.push(pso_group("people", "#2f6fdf", 20, ([10.0, 5.0], [110.0, 60.0]), 0));
+    s.groups.push(pso_group("people", BLUE, 20, ([10.0, 5.0], [110.0, 60.0]), 0));
     s
 }
 
@@ -363,8 +363,8 @@ pub fn pso_dodge() -> Scene {
     let mut s = base("pso-dodge", 800.0, 300.0);
     s.goals.push(Goal::fixed([700.0, 150.0], 15.0));
     s.goals.push(Goal::fixed([100.0, 150.0], 15.0));
-    s.groups.push(pso_group("A", "#2f6fdf", 1, ([98.0, 149.0], [102.0, 151.0]), 0));
-    s.groups.push(pso_group("B", "#df4f2f", 1, ([698.0, 149.0], [702.0, 151.0]), 1));
+    s.groups.push(pso_group("A", BLUE, 1, ([98.0, 149.0], [102.0, 151.0]), 0));
+    s.groups.push(pso_group("B", VERMILLION, 1, ([698.0, 149.0], [702.0, 151.0]), 1));
     s
 }
 
@@ -373,8 +373,8 @@ pub fn pso_crowd() -> Scene {
     let mut s = base("pso-crowd", 1000.0, 600.0);
     s.goals.push(Goal::fixed([920.0, 300.0], 50.0));
     s.goals.push(Goal::fixed([80.0, 300.0], 50.0));
-    s.groups.push(pso_group("east", "#2f6fdf", 20, ([20.0, 180.0], [160.0, 420.0]), 0));
-    s.groups.push(pso_group("west", "#df4f2f", 20, ([840.0, 180.0], [980.0, 420.0]), 1));
+    s.groups.push(pso_group("east", BLUE, 20, ([20.0, 180.0], [160.0, 420.0]), 0));
+    s.groups.push(pso_group("west", VERMILLION, 20, ([840.0, 180.0], [980.0, 420.0]), 1));
     s
 }
 
@@ -384,7 +384,7 @@ pub fn pso_circle_target() -> Scene {
     let mut goal = Goal::fixed([750.0, 350.0], 30.0);
     goal.motion = Some(GoalMotion::Circle { center: [500.0, 350.0], radius: 250.0, period_steps: 3600.0 });
     s.goals.push(goal);
-    s.groups.push(pso_group("chasers", "#2f6fdf", 20, ([440.0, 290.0], [560.0, 410.0]), 0));
+    s.groups.push(pso_group("chasers", BLUE, 20, ([440.0, 290.0], [560.0, 410.0]), 0));
     s
 }
 
@@ -395,10 +395,10 @@ pub fn pso_four_corners() -> Scene {
     let corners = [([20.0, 20.0], [120.0, 120.0]), ([680.0, 20.0], [780.0, 120.0])];
     let corners = [corners[0], corners[1], ([680.0, 680.0], [780.0, 780.0]), ([20.0, 680.0], [120.0, 780.0])];
     let names = [
-        ("north-west", "#2f6fdf"),
-        ("north-east", "#df4f2f"),
-        ("south-east", "#2f9f5f"),
-        ("south-west", "#bf8f1f"),
+        ("north-west", BLUE),
+        ("north-east", VERMILLION),
+        ("south-east", BLUISH_GREEN),
+        ("south-west", ORANGE),
     ];
     for (k, &(lo, hi)) in corners.iter().enumerate() {
         let (opposite_lo, opposite_hi) = corners[(k + 2) % 4];
@@ -442,7 +442,7 @@ pub fn firefly_migration_with_seed(seed: u32) -> Scene {
     s.goals.push(Goal::fixed([target.x, target.y], 40.0));
     s.groups.push(Group {
         planner: PlannerConfig::Firefly(FireflyParams::default()),
-        ..group("fireflies", "#d8b000", 80, ([20.0, 20.0], [560.0, 580.0]), 0)
+        ..group("fireflies", ORANGE, 80, ([20.0, 20.0], [560.0, 580.0]), 0)
     });
     s
 }
@@ -460,7 +460,7 @@ pub fn igsa_path_1() -> Scene {
         s.obstacles.push(Obstacle::Circle { center: c, radius: r });
     }
     s.goals.push(Goal::fixed([745.0, 250.0], 50.0));
-    s.groups.push(igsa_group("group", "#2f6fdf", 40, ([20.0, 190.0], [110.0, 310.0]), 0));
+    s.groups.push(igsa_group("group", BLUE, 40, ([20.0, 190.0], [110.0, 310.0]), 0));
     s
 }
 
@@ -472,7 +472,7 @@ pub fn igsa_path_2() -> Scene {
     s.obstacles.push(Obstacle::Polygon { points: vec![[170.0, 250.0], [255.0, 160.0], [265.0, 330.0]] });
     s.obstacles.push(Obstacle::Circle { center: [590.0, 250.0], radius: 60.0 });
     s.goals.push(Goal::fixed([745.0, 330.0], 50.0));
-    s.groups.push(igsa_group("group", "#df4f2f", 40, ([20.0, 370.0], [120.0, 470.0]), 0));
+    s.groups.push(igsa_group("group", VERMILLION, 40, ([20.0, 370.0], [120.0, 470.0]), 0));
     s
 }
 
@@ -490,7 +490,7 @@ pub fn igsa_crowd(count: u32) -> Scene {
     let mut s = base(if count == 1000 { "igsa-crowd-1000" } else { "igsa-crowd" }, 1300.0, 700.0);
     s.obstacles.push(Obstacle::Circle { center: [640.0, 350.0], radius: 100.0 });
     s.goals.push(Goal::fixed([1060.0, 350.0], 230.0));
-    s.groups.push(igsa_group("crowd", "#2f6fdf", count, ([40.0, 100.0], [440.0, 600.0]), 0));
+    s.groups.push(igsa_group("crowd", BLUE, count, ([40.0, 100.0], [440.0, 600.0]), 0));
     s
 }
 
@@ -513,7 +513,7 @@ fn with_boids(mut g: Group, edit: impl FnOnce(&mut BoidsParams)) -> Group {
 pub fn boids_leader() -> Scene {
     let mut s = base("boids-leader", 900.0, 500.0);
     s.goals.push(Goal::fixed([800.0, 250.0], 60.0));
-    let flock = boids_group("flock", "#2f6fdf", 25, ([40.0, 170.0], [180.0, 330.0]), Some(0));
+    let flock = boids_group("flock", BLUE, 25, ([40.0, 170.0], [180.0, 330.0]), Some(0));
     s.groups.push(with_boids(flock, |p| p.leader = Leader::First));
     s
 }
@@ -533,7 +533,7 @@ pub fn boids_path() -> Scene {
     ];
     s.paths.push(PathSpec { points: points.to_vec(), radius: 30.0 });
     s.goals.push(Goal::fixed([790.0, 500.0], 50.0));
-    let flock = boids_group("walkers", "#2f9f5f", 30, ([40.0, 480.0], [140.0, 570.0]), Some(0));
+    let flock = boids_group("walkers", BLUISH_GREEN, 30, ([40.0, 480.0], [140.0, 570.0]), Some(0));
     s.groups.push(with_boids(flock, |p| p.path = 1));
     s
 }
@@ -543,7 +543,7 @@ pub fn boids_path() -> Scene {
 /// cup leaves only a gap at the bottom.
 pub fn boids_flow_field() -> Scene {
     let mut s = boids_flow_field_maze();
-    let flock = boids_group("flock", "#8f3fbf", 40, ([40.0, 230.0], [170.0, 370.0]), Some(0));
+    let flock = boids_group("flock", REDDISH_PURPLE, 40, ([40.0, 230.0], [170.0, 370.0]), Some(0));
     s.groups.push(with_boids(flock, |p| p.flow_field = FlowGuide::Goal));
     s
 }
@@ -564,9 +564,9 @@ pub fn boids_flow_field_maze() -> Scene {
 pub fn boids_predator() -> Scene {
     let mut s = base("boids-predator", 900.0, 600.0);
     s.goals.push(Goal::fixed([450.0, 300.0], 80.0));
-    let prey = boids_group("prey", "#2f9f5f", 40, ([380.0, 230.0], [520.0, 370.0]), Some(0));
+    let prey = boids_group("prey", BLUISH_GREEN, 40, ([380.0, 230.0], [520.0, 370.0]), Some(0));
     s.groups.push(with_boids(prey, |p| p.role = Role::Prey));
-    let predators = boids_group("predators", "#c0392b", 2, ([20.0, 20.0], [80.0, 80.0]), None);
+    let predators = boids_group("predators", VERMILLION, 2, ([20.0, 20.0], [80.0, 80.0]), None);
     s.groups.push(with_boids(predators, |p| {
         p.role = Role::Predator;
         p.max_speed = 2.4;
@@ -585,6 +585,6 @@ pub fn pso_hills() -> Scene {
     s.hills.push(Hill { center: [650.0, 220.0], radius: 80.0, height: 45.0 });
     s.hills.push(Hill { center: [650.0, 480.0], radius: 80.0, height: 20.0 });
     s.goals.push(Goal::fixed([920.0, 350.0], 150.0));
-    s.groups.push(pso_group("crowd", "#2f6fdf", 300, ([20.0, 60.0], [200.0, 640.0]), 0));
+    s.groups.push(pso_group("crowd", BLUE, 300, ([20.0, 60.0], [200.0, 640.0]), 0));
     s
 }

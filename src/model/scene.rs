@@ -457,7 +457,7 @@ pub struct Group {
 }
 
 fn default_color() -> String {
-    "#2f6fdf".to_string()
+    crate::model::palette::BLUE.to_string()
 }
 
 fn default_agent_radius() -> f32 {

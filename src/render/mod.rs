@@ -17,8 +17,8 @@ mod overlay;
 mod paint;
 
 pub use overlay::{Overlays, ARROW_COLORS};
-pub use paint::ViewTransform;
-use paint::{color, draw_segment, paint, stroke_scene_path};
+use paint::{color, draw_wide_segment, paint, stroke_scene_path};
+pub use paint::{Style, Theme, ViewTransform, PROJECTOR, STANDARD};
 
 use crate::model::edit::ItemRef;
 use crate::model::geometry::Obstacle;
@@ -29,16 +29,20 @@ use glam::Vec2;
 use std::f32::consts::TAU;
 use tiny_skia::{FillRule, Path, PathBuilder, Pixmap, PixmapMut, Rect, Stroke, Transform};
 
-/// Fill colour of obstacles (RGB). Tests and page checks look for it at an obstacle's centre.
-pub const OBSTACLE_COLOR: [u8; 3] = [0x5b, 0x63, 0x70];
-/// Outline colour of obstacles (RGB), darker than the fill.
-pub const OBSTACLE_OUTLINE_COLOR: [u8; 3] = [0x2c, 0x31, 0x38];
-/// Background of the scene rectangle (RGB).
-pub const BACKGROUND_COLOR: [u8; 3] = [0xf6, 0xf5, 0xf0];
-/// Canvas area outside the scene rectangle when the aspect ratios differ (RGB).
-pub const LETTERBOX_COLOR: [u8; 3] = [0xd8, 0xd8, 0xd3];
-/// Faint grid lines (RGB).
-pub const GRID_COLOR: [u8; 3] = [0xe4, 0xe2, 0xda];
+/// Fill colour of obstacles (RGB, standard theme). Tests and page checks look for it at an
+/// obstacle's centre.
+pub const OBSTACLE_COLOR: [u8; 3] = STANDARD.obstacle;
+/// Outline colour of obstacles (RGB, standard theme), darker than the fill.
+pub const OBSTACLE_OUTLINE_COLOR: [u8; 3] = STANDARD.obstacle_outline;
+/// Background of the scene rectangle (RGB, standard theme).
+pub const BACKGROUND_COLOR: [u8; 3] = STANDARD.background;
+/// Canvas area outside the scene rectangle when the aspect ratios differ (RGB, standard theme).
+pub const LETTERBOX_COLOR: [u8; 3] = STANDARD.letterbox;
+/// Faint grid lines (RGB, standard theme; the projector theme has none).
+pub const GRID_COLOR: [u8; 3] = match STANDARD.grid {
+    Some(rgb) => rgb,
+    None => STANDARD.background,
+};
 /// Goals no group heads for (RGB); goals in use take their first group's colour.
 pub const GOAL_COLOR: [u8; 3] = [0x3a, 0x8a, 0x4f];
 /// Path segments that cross an obstacle (RGB): an edited IGSA path the user should fix.
@@ -60,8 +64,6 @@ pub const MAX_CANVAS_SIDE: u32 = 8192;
 const GRID_SPACING: f32 = 50.0;
 /// The grid is left out when its lines would be closer than this (device px).
 const MIN_GRID_SPACING_PX: f32 = 6.0;
-/// Opacity of a trail segment (out of 255).
-const TRAIL_ALPHA: u8 = 90;
 /// A trail segment is drawn once an agent has moved its body radius (clamped to this range,
 /// device px) from its last drawn point: the open end stays hidden under the agent, stationary
 /// agents cost nothing, and fewer, longer segments are cheaper and do not darken at the joins.
@@ -161,6 +163,9 @@ pub struct Renderer {
     trails: Vec<u8>,
     base_key: Option<BaseKey>,
     view: ViewTransform,
+    /// What the current theme draws.
+    style: Style,
+    theme: Theme,
     trails_on: bool,
     trail_fade: f32,
     /// Set when the trail layer must restart from the base at the next frame.
@@ -198,6 +203,8 @@ impl Renderer {
             trails: Vec::new(),
             base_key: None,
             view: ViewTransform { scale: 1.0, offset_x: 0.0, offset_y: 0.0 },
+            style: STANDARD,
+            theme: Theme::Standard,
             trails_on: true,
             trail_fade: DEFAULT_TRAIL_FADE,
             trails_stale: true,
@@ -258,6 +265,24 @@ impl Renderer {
     /// The scene → canvas mapping used by the last frame.
     pub fn view(&self) -> ViewTransform {
         self.view
+    }
+
+    /// Draws in `theme` from the next frame on (the base layer, the sprites and the trails are
+    /// redrawn in it; trails restart).
+    pub fn set_theme(&mut self, theme: Theme) {
+        if theme == self.theme {
+            return;
+        }
+        self.theme = theme;
+        self.style = theme.style();
+        self.base_key = None;
+        self.trails_stale = true;
+        self.sprites.clear();
+    }
+
+    /// The current theme.
+    pub fn theme(&self) -> Theme {
+        self.theme
     }
 
     /// Turns trails on or off. Turning them on starts from a clean layer.
@@ -336,7 +361,8 @@ impl Renderer {
             self.restart_trails(world);
         } else {
             let positions = world.positions();
-            self.trace(world.scene(), positions, world.group_of(), TRACED_SEGMENT_MIN_PX, TRAIL_ALPHA);
+            let alpha = self.style.trail_alpha;
+            self.trace(world.scene(), positions, world.group_of(), TRACED_SEGMENT_MIN_PX, alpha);
             if self.pending.len() >= PENDING_SEGMENTS_MAX {
                 self.draw_pending();
             }
@@ -354,7 +380,7 @@ impl Renderer {
             usize::MAX
         } else {
             // Frames until the segment's opacity drops below half a level.
-            let frames = libm::logf(0.5 / f32::from(TRAIL_ALPHA)) / libm::logf(keep);
+            let frames = libm::logf(0.5 / f32::from(self.style.trail_alpha)) / libm::logf(keep);
             (frames * TRAIL_REBUILD_STEPS_PER_FRAME).max(0.0) as usize
         };
         let back = u32::try_from(by_cost.min(by_fade)).unwrap_or(u32::MAX);
@@ -388,7 +414,7 @@ impl Renderer {
                 continue;
             }
             let frames_ago = (now - step) as f32 / TRAIL_REBUILD_STEPS_PER_FRAME;
-            let alpha = (f32::from(TRAIL_ALPHA) * libm::powf(keep, frames_ago)).round() as u8;
+            let alpha = (f32::from(self.style.trail_alpha) * libm::powf(keep, frames_ago)).round() as u8;
             self.trace(world.scene(), &positions, world.group_of(), TRACED_SEGMENT_MIN_PX, alpha);
             if self.pending.len() >= PENDING_SEGMENTS_MAX {
                 self.draw_pending();
@@ -428,7 +454,7 @@ impl Renderer {
             self.fade_trails();
             // The segments traced by the steps since the last frame, then those from the last
             // traced points to where the agents are now (all of them when nothing was traced).
-            self.trace(scene, world.positions(), world.group_of(), 0.0, TRAIL_ALPHA);
+            self.trace(scene, world.positions(), world.group_of(), 0.0, self.style.trail_alpha);
             self.draw_pending();
             self.frame.copy_from_slice(&self.trails);
         } else {
@@ -464,12 +490,13 @@ impl Renderer {
         let Some(mut pixmap) = PixmapMut::from_bytes(&mut self.base, self.width, self.height) else {
             return;
         };
-        pixmap.fill(color(LETTERBOX_COLOR, 255));
+        let style = self.style;
+        pixmap.fill(color(style.letterbox, 255));
         let scene_rect = Rect::from_xywh(0.0, 0.0, scene.width, scene.height);
         if let Some(rect) = scene_rect.and_then(|r| r.transform(view.transform())) {
-            pixmap.fill_rect(rect, &paint(BACKGROUND_COLOR, 255), Transform::identity(), None);
+            pixmap.fill_rect(rect, &paint(style.background, 255), Transform::identity(), None);
         }
-        if GRID_SPACING * view.scale >= MIN_GRID_SPACING_PX {
+        if let Some(grid) = style.grid.filter(|_| GRID_SPACING * view.scale >= MIN_GRID_SPACING_PX) {
             let mut pb = PathBuilder::new();
             let mut x = GRID_SPACING;
             while x < scene.width {
@@ -483,10 +510,10 @@ impl Renderer {
                 pb.line_to(scene.width, y);
                 y += GRID_SPACING;
             }
-            stroke_scene_path(&mut pixmap, pb, view, GRID_COLOR, 255, 0.0, None);
+            stroke_scene_path(&mut pixmap, pb, view, grid, 255, 0.0, None);
         }
         draw_hills(&mut pixmap, scene, view);
-        let fill = paint(OBSTACLE_COLOR, 255);
+        let fill = paint(style.obstacle, 255);
         let outline_width = (1.5 * view.scale).clamp(1.0, 3.0);
         for obstacle in &scene.obstacles {
             let Some(path) = obstacle_path(obstacle).and_then(|p| p.transform(view.transform())) else {
@@ -496,7 +523,7 @@ impl Renderer {
             let stroke = Stroke { width: outline_width, ..Stroke::default() };
             pixmap.stroke_path(
                 &path,
-                &paint(OBSTACLE_OUTLINE_COLOR, 255),
+                &paint(style.obstacle_outline, 255),
                 &stroke,
                 Transform::identity(),
                 None,
@@ -543,13 +570,14 @@ impl Renderer {
     /// opacity `alpha`.
     fn trace(&mut self, scene: &Scene, positions: &[Vec2], group_of: &[u32], min_px: f32, alpha: u8) {
         let view = self.view;
+        let style = self.style;
         let (lo, hi) = TRAIL_SEGMENT_PX;
         let lo = lo.max(min_px);
         let hi = hi.max(lo);
         self.trail_groups.clear();
-        self.trail_groups.extend(
-            scene.groups.iter().map(|g| (parse_color(&g.color), (g.agent_radius * view.scale).clamp(lo, hi))),
-        );
+        self.trail_groups.extend(scene.groups.iter().map(|g| {
+            (style.trail_color(parse_color(&g.color)), (g.agent_radius * view.scale).clamp(lo, hi))
+        }));
         for ((&p, &g), last) in positions.iter().zip(group_of).zip(self.last_drawn.iter_mut()) {
             let Some(&(rgb, min_step)) = self.trail_groups.get(g as usize) else { continue };
             let now = view.to_canvas(p);
@@ -569,8 +597,9 @@ impl Renderer {
     /// whole frame budget; the direct loop costs a few blends per pixel column.
     fn draw_pending(&mut self) {
         let (w, h) = (self.width as usize, self.height as usize);
+        let width = self.style.trail_width_px;
         for s in self.pending.drain(..) {
-            draw_segment(&mut self.trails, w, h, s.from, s.to, s.rgb, s.alpha);
+            draw_wide_segment(&mut self.trails, w, h, s.from, s.to, s.rgb, s.alpha, width);
         }
     }
 
@@ -579,7 +608,8 @@ impl Renderer {
         self.sprites.truncate(scene.groups.len());
         for (i, group) in scene.groups.iter().enumerate() {
             let rgb = parse_color(&group.color);
-            let radius_px = group.agent_radius * self.view.scale;
+            let radius_px = (group.agent_radius * self.view.scale * self.style.agent_scale)
+                .max(self.style.min_agent_radius_px);
             let fresh = self.sprites.get(i).is_some_and(|s| s.color == rgb && s.radius_px == radius_px);
             if fresh {
                 continue;
@@ -959,6 +989,7 @@ fn draw_selection(pixmap: &mut PixmapMut, scene: &Scene, view: ViewTransform, it
 
 #[cfg(test)]
 mod tests {
+    use super::paint::draw_segment;
     use super::*;
     use crate::model::params::PlannerConfig;
     use crate::model::presets;
@@ -1331,5 +1362,85 @@ mod tests {
             fade_row(&mut trail, &base, 3);
         }
         assert_eq!(trail, base);
+    }
+
+    /// Rows of the trail layer that differ from the base in the column halfway along the lone
+    /// agent's track, and the agent's pixels that are not background, for a theme.
+    fn trail_rows_and_agent_pixels(theme: Theme) -> (usize, usize, Renderer, usize) {
+        let mut world = World::new(lone_agent()).expect("valid");
+        let mut r = Renderer::new(800, 400);
+        r.set_theme(theme);
+        r.set_trail_fade(0.0);
+        r.render(&world);
+        let start = r.view().to_canvas(world.positions()[0]);
+        world.step_n(60);
+        r.render(&world);
+        let end = r.view().to_canvas(world.positions()[0]);
+        let x = ((start.x + end.x) * 0.5) as usize;
+        let rows = (0..400usize)
+            .filter(|&y| {
+                let at = (y * 800 + x) * 4;
+                r.trails[at..at + 3] != r.base[at..at + 3]
+            })
+            .count();
+        r.set_trails(false);
+        r.render(&world);
+        let (cx, cy) = (end.x as i64, end.y as i64);
+        let agent = (cx - 30..cx + 30)
+            .flat_map(|px| (cy - 30..cy + 30).map(move |py| (px as usize, py as usize)))
+            .filter(|&(px, py)| {
+                let at = (py * 800 + px) * 4;
+                r.pixels()[at..at + 3] != r.base[at..at + 3]
+            })
+            .count();
+        (rows, agent, r, x)
+    }
+
+    #[test]
+    fn the_projector_theme_draws_a_white_field_dark_obstacles_thick_trails_and_larger_agents() {
+        assert_eq!(Theme::from_name("projector"), Some(Theme::Projector));
+        assert_eq!(Theme::from_name("standard"), Some(Theme::Standard));
+        assert_eq!(Theme::from_name("neon"), None);
+        let (thin, small, standard, _) = trail_rows_and_agent_pixels(Theme::Standard);
+        let (thick, large, projector, x) = trail_rows_and_agent_pixels(Theme::Projector);
+        assert!(thin <= 2 && thick >= 3, "trail rows: standard {thin}, projector {thick}");
+        assert!(large as f32 > 1.8 * small as f32, "agent pixels: standard {small}, projector {large}");
+        assert_eq!(pixel(&standard, 5, 5)[..3], BACKGROUND_COLOR);
+        assert_eq!(pixel(&projector, 5, 5)[..3], PROJECTOR.background);
+        // Projector trails are dark (red at half brightness, mostly opaque: white is 765, a
+        // standard red trail about 585).
+        let darkest = (0..400usize)
+            .map(|y| {
+                let at = (y * 800 + x) * 4;
+                projector.trails[at..at + 3].iter().map(|&c| u32::from(c)).sum::<u32>()
+            })
+            .min();
+        assert!(darkest.is_some_and(|sum| sum < 400), "no dark trail pixel: {darkest:?}");
+
+        let world = World::new(presets::pillars()).expect("valid");
+        let mut r = Renderer::new(900, 560);
+        r.set_theme(Theme::Projector);
+        r.render(&world);
+        let Obstacle::Circle { center, .. } = world.scene().obstacles[0] else {
+            panic!("pillars are circles")
+        };
+        let (x, y) = canvas_of(&r, Vec2::from(center));
+        assert_eq!(pixel(&r, x, y)[..3], PROJECTOR.obstacle);
+    }
+
+    #[test]
+    fn switching_back_to_the_standard_theme_draws_what_a_fresh_renderer_draws() {
+        let mut world = World::new(presets::pillars()).expect("valid");
+        let mut fresh = Renderer::new(450, 280);
+        let mut switched = Renderer::new(450, 280);
+        switched.set_theme(Theme::Projector);
+        switched.render(&world);
+        assert_ne!(switched.pixels(), fresh.pixels());
+        world.step_n(30);
+        switched.set_theme(Theme::Standard);
+        assert_eq!(switched.theme(), Theme::Standard);
+        fresh.render(&world);
+        switched.render(&world);
+        assert!(fresh.pixels() == switched.pixels(), "the standard theme is drawn as before");
     }
 }

@@ -1,5 +1,7 @@
-//! Drawing primitives shared by the layers and the overlays: the scene → canvas transform, a
-//! trail segment written straight into a pixel buffer, and a stroked scene path.
+//! Drawing primitives shared by the layers and the overlays: the scene → canvas transform, the
+//! render themes (what a theme changes: field colours, trail width and shade, agent size), a
+//! trail segment written straight into a pixel buffer, and a stroked scene path. The default
+//! group colours (Okabe–Ito) are scene data: `model::palette`.
 
 use glam::Vec2;
 use tiny_skia::{Color, Paint, PathBuilder, PixmapMut, Stroke, StrokeDash, Transform};
@@ -43,6 +45,131 @@ impl ViewTransform {
 
     pub(super) fn transform(&self) -> Transform {
         Transform::from_row(self.scale, 0.0, 0.0, self.scale, self.offset_x, self.offset_y)
+    }
+}
+
+/// A render theme: how the same scene is drawn. The page chooses it (URL option `theme=`, a
+/// toggle); it is not part of the scene, so links and runs are the same in every theme.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Theme {
+    /// The everyday look: a warm light field, thin translucent trails, agents at their size.
+    #[default]
+    Standard,
+    /// For a projector or a screen seen from the back of a room: a white field, darker
+    /// obstacles, thick dark trails, agents drawn larger, no grid.
+    Projector,
+}
+
+impl Theme {
+    /// Every theme, in the order the page offers them.
+    pub const ALL: [Theme; 2] = [Theme::Standard, Theme::Projector];
+
+    /// The name in URLs and the wasm API.
+    pub fn name(self) -> &'static str {
+        match self {
+            Theme::Standard => "standard",
+            Theme::Projector => "projector",
+        }
+    }
+
+    /// The theme called `name` (as [`Theme::name`] spells it), or `None`.
+    pub fn from_name(name: &str) -> Option<Theme> {
+        Theme::ALL.into_iter().find(|t| t.name() == name)
+    }
+
+    /// What this theme draws.
+    pub fn style(self) -> Style {
+        match self {
+            Theme::Standard => STANDARD,
+            Theme::Projector => PROJECTOR,
+        }
+    }
+}
+
+/// The colours and sizes a [`Theme`] sets (colours RGB).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Style {
+    /// The scene rectangle.
+    pub background: [u8; 3],
+    /// The canvas outside the scene rectangle.
+    pub letterbox: [u8; 3],
+    /// Grid lines; `None` leaves the grid out.
+    pub grid: Option<[u8; 3]>,
+    /// Obstacle fill.
+    pub obstacle: [u8; 3],
+    /// Obstacle outline.
+    pub obstacle_outline: [u8; 3],
+    /// Width of a trail (whole device px, ≥ 1).
+    pub trail_width_px: u32,
+    /// Opacity of a fresh trail segment (out of 255).
+    pub trail_alpha: u8,
+    /// How much of the group colour a trail keeps (out of 255); the rest is black.
+    pub trail_keep: u8,
+    /// Agents are drawn this many times their body radius.
+    pub agent_scale: f32,
+    /// ... and at least this radius (device px).
+    pub min_agent_radius_px: f32,
+}
+
+/// The [`Theme::Standard`] style.
+pub const STANDARD: Style = Style {
+    background: [0xf6, 0xf5, 0xf0],
+    letterbox: [0xd8, 0xd8, 0xd3],
+    grid: Some([0xe4, 0xe2, 0xda]),
+    obstacle: [0x5b, 0x63, 0x70],
+    obstacle_outline: [0x2c, 0x31, 0x38],
+    trail_width_px: 1,
+    trail_alpha: 90,
+    trail_keep: 255,
+    agent_scale: 1.0,
+    min_agent_radius_px: 0.0,
+};
+
+/// The [`Theme::Projector`] style: trails three px wide at 80 % opacity in the group colour at
+/// half brightness, agents 1.6 times as large and at least 4 px in radius.
+pub const PROJECTOR: Style = Style {
+    background: [0xff, 0xff, 0xff],
+    letterbox: [0xc8, 0xc8, 0xc8],
+    grid: None,
+    obstacle: [0x33, 0x33, 0x33],
+    obstacle_outline: [0x00, 0x00, 0x00],
+    trail_width_px: 3,
+    trail_alpha: 205,
+    trail_keep: 128,
+    agent_scale: 1.6,
+    min_agent_radius_px: 4.0,
+};
+
+impl Style {
+    /// The trail colour of a group drawn in `rgb`.
+    pub fn trail_color(&self, rgb: [u8; 3]) -> [u8; 3] {
+        rgb.map(|c| ((u16::from(c) * u16::from(self.trail_keep) + 127) / 255) as u8)
+    }
+}
+
+/// [`draw_segment`] `width` px wide: that many one-pixel lines side by side along the minor axis
+/// (Wu lines one pixel apart tile: their coverages add up to one between them).
+#[allow(clippy::too_many_arguments, reason = "a pixel loop's plain inputs")]
+pub(super) fn draw_wide_segment(
+    layer: &mut [u8],
+    w: usize,
+    h: usize,
+    a: Vec2,
+    b: Vec2,
+    rgb: [u8; 3],
+    alpha: u8,
+    width: u32,
+) {
+    if width <= 1 {
+        draw_segment(layer, w, h, a, b, rgb, alpha);
+        return;
+    }
+    let d = b - a;
+    let across = if d.y.abs() > d.x.abs() { Vec2::X } else { Vec2::Y };
+    let first = -0.5 * (width - 1) as f32;
+    for k in 0..width {
+        let offset = across * (first + k as f32);
+        draw_segment(layer, w, h, a + offset, b + offset, rgb, alpha);
     }
 }
 

@@ -1,8 +1,9 @@
-//! The optimizer lab page's bindings (`www/lab.html`, `www/js/lab*.js`): one optimizer run as an
+//! The optimizer lab page's bindings (`www/lab.html`, `www/js/lab/`): one optimizer run as an
 //! opaque handle, its 2-D picture as a pointer into wasm memory, and single seeded runs for the
 //! page's worker. Conversion only; the runs and the pixels are `crate::optim::lab`.
 
 use super::{js_error, to_json};
+use crate::experiments::tables::Summary;
 use crate::optim::lab::{self, LabRun};
 use crate::optim::{Algorithm, Function, Settings};
 use wasm_bindgen::prelude::*;
@@ -148,6 +149,13 @@ pub fn lab_best_of_run(
         seed,
         run,
     ))
+}
+
+/// Best, worst, mean, median and count of `values` (the lab's 30-run table row) as JSON
+/// `{best, worst, mean, median, runs}`: the same statistics as Table 3's cells (`Summary::of`).
+#[wasm_bindgen]
+pub fn lab_summary_json(values: Vec<f64>) -> Result<String, JsError> {
+    to_json(&Summary::of(&values))
 }
 
 /// The digest of the pinned reference run (IGSA, Ackley, d = 5, N = 20, T = 100, seed 3).

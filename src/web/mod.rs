@@ -15,7 +15,7 @@ use crate::model::edit::{self, Edit, ItemRef};
 use crate::model::params::PlannerKind;
 use crate::model::presets;
 use crate::model::scene::ViewOptions;
-use crate::render::Renderer;
+use crate::render::{Renderer, Theme};
 use crate::sim::history::MetricsHistory;
 use crate::sim::recording::Recording;
 use crate::sim::replay::Replay;
@@ -311,6 +311,22 @@ impl Sim {
     /// scene's view options. Throws outside 0…1.
     pub fn set_trail_fade(&mut self, fade: f32) -> Result<(), JsError> {
         self.set_view(ViewOptions { trail_fade: fade, ..self.world.scene().view })
+    }
+
+    /// Draws in the render theme `name` ("standard" or "projector") from the next frame on: a
+    /// page option, not part of the scene (links and runs do not change). Throws on another name.
+    pub fn set_theme(&mut self, name: &str) -> Result<(), JsError> {
+        let theme = Theme::from_name(name).ok_or_else(|| {
+            let known: Vec<&str> = Theme::ALL.iter().map(|t| t.name()).collect();
+            JsError::new(&format!("unknown theme {name:?}; known: {}", known.join(", ")))
+        })?;
+        self.renderer.set_theme(theme);
+        Ok(())
+    }
+
+    /// The render theme's name.
+    pub fn theme(&self) -> String {
+        self.renderer.theme().name().to_string()
     }
 
     /// The recording of the current run as JSON: `{frames, first_step, last_step, every,

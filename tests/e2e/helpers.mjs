@@ -39,6 +39,7 @@ const MIME = {
   '.png': 'image/png',
   '.svg': 'image/svg+xml',
   '.ts': 'text/plain; charset=utf-8',
+  '.webmanifest': 'application/manifest+json',
 };
 
 /**
@@ -81,7 +82,8 @@ export async function startServer({ cors = false } = {}) {
 
 /**
  * Launches Chromium with a fresh profile, opens the page and waits for `flockpath-ready`.
- * Options: viewport, deviceScaleFactor, hasTouch, hash (appended to the URL), expectBootError.
+ * Options: viewport, deviceScaleFactor, hasTouch, hash (appended to the URL), expectBootError,
+ * serviceWorkers ('block' by default: only tests of the offline worker allow it).
  * Returns { page, context, server, errors, close } where `errors` collects console errors and
  * page errors; `close()` tears everything down.
  */
@@ -96,6 +98,7 @@ export async function openPage(options = {}) {
     deviceScaleFactor: options.deviceScaleFactor ?? 1,
     hasTouch: options.hasTouch ?? false,
     isMobile: false,
+    serviceWorkers: options.serviceWorkers ?? 'block',
   });
   const page = context.pages()[0] ?? (await context.newPage());
   const errors = [];
@@ -237,10 +240,10 @@ export function assertNoUnexpectedErrors(errors, allowed = []) {
 
 /**
  * Like `openPage`, for any page of the folder: opens `SUB_PATH + pathAndHash` and waits until
- * `ready` (a function evaluated in the page) returns true; `hasTouch` as in `openPage`. Returns the
- * same handles.
+ * `ready` (a function evaluated in the page) returns true; `hasTouch` and `serviceWorkers` as in
+ * `openPage`. Returns the same handles.
  */
-export async function openPath(pathAndHash, { ready, viewport, hasTouch = false } = {}) {
+export async function openPath(pathAndHash, { ready, viewport, hasTouch = false, serviceWorkers = 'block' } = {}) {
   const server = await startServer();
   const profile = await mkdtemp(path.join(tmpdir(), 'flockpath-e2e-'));
   const context = await chromium.launchPersistentContext(profile, {
@@ -250,6 +253,7 @@ export async function openPath(pathAndHash, { ready, viewport, hasTouch = false 
     viewport: viewport ?? { width: 1280, height: 800 },
     hasTouch,
     acceptDownloads: true,
+    serviceWorkers,
   });
   const page = context.pages()[0] ?? (await context.newPage());
   const errors = [];

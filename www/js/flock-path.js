@@ -1,4 +1,5 @@
-// <flock-path>: a live flockpath scene for course notes, in one ES module.
+// <flock-path>: a live flockpath scene for course notes, one ES module to include (it loads its
+// imports, js/core/, from next to itself).
 //
 //   <script type="module" src="flockpath/js/flock-path.js"></script>
 //   <flock-path scene="2.ZZHd…" autoplay controls height="360px"></flock-path>
@@ -7,8 +8,10 @@
 // `autoplay`, `controls` (play/pause, step, reset, planner name), `width` / `height` (CSS lengths;
 // by default the element is as wide as its container and as tall as the scene's aspect ratio),
 // `fill` (fill the element's box instead, as embed.html does). Several elements on one page run
-// independently: each owns its own simulation; the wasm module is loaded once and shared. Every
-// URL is resolved against this module's own URL, so the folder works under any sub-path, offline.
+// independently: each owns its own simulation; the wasm module is loaded once and shared. It runs on
+// the shell's core (js/core/: the wasm loader, the guarded sim host, the frame loop with its
+// hidden-tab pause, the blit and the backing-store sizing); every URL, its imports' included, is
+// resolved against this module's own URL, so the folder works under any sub-path, offline.
 // From a page on another site the server must allow CORS (README, "Hosting"). Children other than
 // `slot="actions"` are fallback content: shown until the module upgrades the element, and all a
 // reader sees if it never loads (the Share dialog's snippet carries "Loading…" and a link there).
@@ -17,60 +20,24 @@
 // sceneString(), digest(); property `playing`, `steps`. Events: `flockpath-ready`,
 // `flockpath-error` (detail: message; also when the wasm cannot be loaded, shown in the box too).
 
-import { PlanningSlices } from './core/planning.js';
-
-const PKG_URL = new URL('../pkg/flockpath.js', import.meta.url).href;
-/** The wasm (where wasm-bindgen's glue looks by default), named here to say what went wrong. */
-const WASM_URL = new URL('../pkg/flockpath_bg.wasm', import.meta.url).href;
-/** Largest canvas backing store per element (px): many embeds on one page stay cheap. */
-const MAX_PIXELS = 1920 * 1200;
-const DEFAULT_STEPS_PER_FRAME = 2;
+import { loadWasm } from './core/boot.js';
+import { messageOf } from './core/errors.js';
+import { startLoop } from './core/loop.js';
+import { SimHost } from './core/sim-host.js';
+import { measure, observeSize } from './core/view.js';
+// Prints a still of each scene instead of a blank box.
+import './core/print.js';
 
 let shared = null;
 
-/** Why loading `url` failed, in words a course author can act on, with the browser's detail. */
-function loadError(what, url, error, hint = '') {
-  // The browser's detail often repeats the URL the message already names.
-  const detail = messageOf(error).replace(` fetching '${url}'`, '').replace(`: ${url}`, '');
-  return new Error(`The flockpath simulation could not be loaded: ${what} (${detail}).${hint}`);
-}
-
-/** The hint for a request the browser refused: on another site, CORS or the page's CSP. */
-function refusedHint() {
-  if (new URL(PKG_URL).origin === location.origin) return '';
-  return (
-    ' This page is on another site than flockpath: the flockpath server must send Access-Control-Allow-Origin, ' +
-    'and a Content-Security-Policy must allow its origin (see flockpath’s README, “Hosting”).'
-  );
-}
-
-/** Loads and initialises the wasm module once for every element on the page. */
+/** The wasm module and its menus, loaded once for every element on the page. */
 function loadModule() {
-  shared ??= (async () => {
-    let module;
-    try {
-      module = await import(PKG_URL);
-    } catch (error) {
-      throw loadError(`the browser refused or could not find ${PKG_URL}`, PKG_URL, error, refusedHint());
-    }
-    let wasm;
-    try {
-      wasm = await module.default({ module_or_path: WASM_URL });
-    } catch (error) {
-      // fetch() rejects with a TypeError when the browser refuses it (CORS, CSP) or is offline; a
-      // CompileError is the CSP refusing WebAssembly or a file that is not wasm; else an HTTP error.
-      if (error instanceof TypeError) {
-        throw loadError(`the browser refused or could not fetch ${WASM_URL}`, WASM_URL, error, refusedHint());
-      }
-      const wasmApi = typeof WebAssembly !== 'undefined' ? WebAssembly : null;
-      if (wasmApi && (error instanceof wasmApi.CompileError || error instanceof wasmApi.LinkError)) {
-        const hint = " A Content-Security-Policy must allow 'wasm-unsafe-eval' in script-src (see flockpath’s README, “Hosting”).";
-        throw loadError(`${WASM_URL} could not be started as WebAssembly`, WASM_URL, error, hint);
-      }
-      throw loadError(`${WASM_URL} could not be loaded`, WASM_URL, error);
-    }
-    return { module, wasm, presets: JSON.parse(module.presets_json()), planners: JSON.parse(module.planners_json()) };
-  })();
+  shared ??= loadWasm().then(({ module, wasm }) => ({
+    module,
+    wasm,
+    presets: JSON.parse(module.presets_json()),
+    planners: JSON.parse(module.planners_json()),
+  }));
   return shared;
 }
 
@@ -116,10 +83,6 @@ function adoptStyle(root) {
   return true;
 }
 
-/** A readable message from anything thrown. */
-const messageOf = (error) => (error instanceof Error ? error.message : String(error));
-const isPanic = (error) => typeof WebAssembly !== 'undefined' && error instanceof WebAssembly.RuntimeError;
-
 export class FlockPathElement extends HTMLElement {
   static get observedAttributes() {
     return ['scene', 'controls', 'width', 'height', 'autoplay'];
@@ -146,14 +109,13 @@ export class FlockPathElement extends HTMLElement {
         </div>
       </div>`;
     this.$ = (selector) => root.querySelector(selector);
-    this.sim = null;
-    this.wasm = null;
+    /** The simulation behind the core's guarded door (a SimHost), once booted. */
+    this.host = null;
     this.module = null;
-    this.playing = false;
-    this.stepsPerFrame = DEFAULT_STEPS_PER_FRAME;
-    this.frameRequest = 0;
-    this.dirty = true;
-    this.crashed = false;
+    /** Whether it should play once booted (play() or autoplay before the wasm arrived). */
+    this.wantPlaying = false;
+    this.stopLoop = null;
+    this.shownSteps = -1;
     this.failed = false;
     this.ready = new Promise((resolve) => (this.resolveReady = resolve));
     this.$('.play').addEventListener('click', () => (this.playing ? this.pause() : this.play()));
@@ -172,21 +134,34 @@ export class FlockPathElement extends HTMLElement {
     this.$('.message').addEventListener('click', () => this.hideMessage());
   }
 
+  /** The wasm `Sim` handle (null until booted, and after the element is gone). */
+  get sim() {
+    return this.host?.sim ?? null;
+  }
+
+  get playing() {
+    return this.host ? this.host.playing : this.wantPlaying;
+  }
+
+  get crashed() {
+    return this.host?.crashed ?? false;
+  }
+
   connectedCallback() {
     this.applyLayout();
     if (!this.booting) this.booting = this.boot();
-    else if (this.sim) this.startLoop();
+    else if (this.host) this.startLoop();
   }
 
   disconnectedCallback() {
-    cancelAnimationFrame(this.frameRequest);
-    this.frameRequest = 0;
+    this.stopLoop?.();
+    this.stopLoop = null;
     this.observer?.disconnect();
     // Free the simulation only if the element is really gone (not just moved in the DOM).
     queueMicrotask(() => {
-      if (!this.isConnected && this.sim) {
-        this.sim.free();
-        this.sim = null;
+      if (!this.isConnected && this.host) {
+        this.host.sim.free();
+        this.host = null;
         this.booting = null;
       }
     });
@@ -194,7 +169,7 @@ export class FlockPathElement extends HTMLElement {
 
   attributeChangedCallback(name, old, value) {
     if (old === value) return;
-    if (name === 'scene' && this.sim) this.tryLoad(value ?? '', { fallback: false });
+    if (name === 'scene' && this.host) this.tryLoad(value ?? '', { fallback: false });
     else this.applyLayout();
   }
 
@@ -209,38 +184,55 @@ export class FlockPathElement extends HTMLElement {
   }
 
   async boot() {
-    let shared;
+    let loaded;
     try {
-      shared = await loadModule();
+      loaded = await loadModule();
     } catch (error) {
       this.fail(messageOf(error));
       return;
     }
     if (!this.isConnected) return;
-    ({ module: this.module, wasm: this.wasm } = shared);
-    this.presets = shared.presets;
-    this.planners = shared.planners;
+    this.module = loaded.module;
+    this.presets = loaded.presets;
+    this.planners = loaded.planners;
     const canvas = this.$('canvas');
-    const { width, height } = this.backingSize();
+    const { width, height } = measure(canvas);
     canvas.width = width;
     canvas.height = height;
-    const first = this.module.preset_scene_json(this.presets[0].name);
+    let sim;
     try {
-      this.sim = new this.module.Sim(first, width, height);
+      sim = new this.module.Sim(this.module.preset_scene_json(this.presets[0].name), width, height);
     } catch (error) {
       this.fail(messageOf(error));
       return;
     }
+    // Errors and crashes speak in this element's box and events, not in the host page's banner.
+    const event = (message) =>
+      this.dispatchEvent(new CustomEvent('flockpath-error', { detail: message, bubbles: true, composed: true }));
+    this.host = new SimHost(loaded.wasm, this.module, sim, {
+      error: event,
+      panic: (message) => {
+        this.showMessage(`The simulation crashed (a bug in flockpath): ${message}`);
+        event(message);
+      },
+    });
+    this.host.playing = this.wantPlaying || this.hasAttribute('autoplay');
+    this.host.afterLoad = () => this.afterLoad();
+    this.host.addEventListener('playing', () => this.refreshBar());
+    this.host.addEventListener('stepped', () => this.refreshSteps());
     this.tryLoad(this.getAttribute('scene') ?? '', { fallback: true });
     this.$('.loading').hidden = true;
-    this.ctx = canvas.getContext('2d', { alpha: false });
-    this.observer = new ResizeObserver(() => this.fitCanvas());
-    this.observer.observe(canvas);
-    if (this.hasAttribute('autoplay')) this.playing = true;
+    this.observer = observeSize(canvas, (size) => this.fitCanvas(size));
     this.refreshBar();
     this.startLoop();
     this.resolveReady(this);
     this.dispatchEvent(new CustomEvent('flockpath-ready', { bubbles: true, composed: true }));
+  }
+
+  /** The core's frame loop on this element's canvas (no Speed readout: the element has no slider). */
+  startLoop() {
+    if (this.stopLoop || !this.host) return;
+    this.stopLoop = startLoop(this.host, this.$('canvas'), () => this.refreshSteps(), { readout: false });
   }
 
   /** Resolves a scene attribute: a preset name, else JSON / fragment / URL text. */
@@ -268,27 +260,20 @@ export class FlockPathElement extends HTMLElement {
   }
 
   afterLoad() {
-    if (!this.sim) return;
+    if (!this.host) return;
     this.cachedScene = JSON.parse(this.call((sim) => sim.scene_json()));
     this.applyLayout();
-    this.dirty = true;
+    this.host.dirty = true;
     this.refreshBar();
   }
 
-  /** Every wasm call goes through here: a panic stops this element and says so. */
+  /**
+   * Every wasm call goes through the core's guarded door: an error fires `flockpath-error` and is
+   * thrown again; a panic stops this element and says so in its box.
+   */
   call(fn) {
-    if (this.crashed || !this.sim) throw new Error(this.crashed ? 'the simulation crashed' : 'flock-path is still loading');
-    try {
-      return fn(this.sim);
-    } catch (error) {
-      if (isPanic(error)) {
-        this.crashed = true;
-        this.pause();
-        this.showMessage(`The simulation crashed (a bug in flockpath): ${messageOf(error)}`);
-      }
-      this.dispatchEvent(new CustomEvent('flockpath-error', { detail: messageOf(error), bubbles: true, composed: true }));
-      throw error;
-    }
+    if (!this.host) throw new Error('flock-path is still loading');
+    return this.host.guard(fn, { rethrow: true }).value;
   }
 
   /** The element cannot run: says why in its box and tells the host page. */
@@ -315,67 +300,15 @@ export class FlockPathElement extends HTMLElement {
     this.$('.message').hidden = true;
   }
 
-  backingSize() {
-    const rect = this.$('canvas').getBoundingClientRect();
-    const ratio = window.devicePixelRatio || 1;
-    let width = Math.max(1, Math.round(rect.width * ratio));
-    let height = Math.max(1, Math.round(rect.height * ratio));
-    if (width * height > MAX_PIXELS) {
-      const shrink = Math.sqrt(MAX_PIXELS / (width * height));
-      width = Math.max(1, Math.floor(width * shrink));
-      height = Math.max(1, Math.floor(height * shrink));
-    }
-    return { width, height };
-  }
-
-  fitCanvas() {
-    if (!this.sim || this.crashed) return;
+  /** The backing store follows the canvas's CSS box (the core's sizing, one pixel cap). */
+  fitCanvas({ width, height }) {
+    if (!this.host || this.crashed) return;
     const canvas = this.$('canvas');
-    const { width, height } = this.backingSize();
     if (canvas.width === width && canvas.height === height) return;
     canvas.width = width;
     canvas.height = height;
     this.call((sim) => sim.resize(width, height));
-    this.dirty = true;
-  }
-
-  startLoop() {
-    if (this.frameRequest || !this.sim) return;
-    const frame = () => {
-      this.frameRequest = 0;
-      if (!this.isConnected || this.crashed || !this.sim) return;
-      try {
-        this.planning ??= new PlanningSlices((fn) => this.call(fn), this.$('.stage'), () => this.afterLoad());
-        if (this.planning.advance()) {
-          this.dirty = true;
-        } else if (this.playing) {
-          this.call((sim) => sim.step(this.stepsPerFrame));
-          this.dirty = true;
-        }
-        if (this.dirty) {
-          this.dirty = false;
-          this.call((sim) => sim.render());
-          this.blit();
-          this.refreshSteps();
-        }
-      } catch {
-        this.playing = false;
-        this.refreshBar();
-      }
-      this.frameRequest = requestAnimationFrame(frame);
-    };
-    this.frameRequest = requestAnimationFrame(frame);
-  }
-
-  /** Copies the frame from wasm memory (a fresh view each time: memory may have grown). */
-  blit() {
-    const sim = this.sim;
-    const width = sim.width();
-    const height = sim.height();
-    const pixels = new Uint8ClampedArray(this.wasm.memory.buffer, sim.frame_ptr(), sim.frame_len());
-    const canvas = this.$('canvas');
-    if (pixels.length !== width * height * 4 || canvas.width !== width || canvas.height !== height) return;
-    this.ctx.putImageData(new ImageData(pixels, width, height), 0, 0);
+    this.host.dirty = true;
   }
 
   refreshBar() {
@@ -388,8 +321,11 @@ export class FlockPathElement extends HTMLElement {
   }
 
   refreshSteps() {
-    if (!this.sim || this.crashed) return;
-    this.$('.steps').textContent = `step ${this.sim.steps().toLocaleString('en-US')}`;
+    if (!this.host || this.crashed) return;
+    const steps = this.host.sim.steps();
+    if (steps === this.shownSteps) return;
+    this.shownSteps = steps;
+    this.$('.steps').textContent = `step ${steps.toLocaleString('en-US')}`;
   }
 
   // ---- the page API, per element ----
@@ -404,12 +340,16 @@ export class FlockPathElement extends HTMLElement {
   }
 
   play() {
-    this.playing = true;
-    this.refreshBar();
+    this.setPlaying(true);
   }
 
   pause() {
-    this.playing = false;
+    this.setPlaying(false);
+  }
+
+  setPlaying(playing) {
+    if (this.host) this.host.setPlaying(playing);
+    else this.wantPlaying = playing;
     this.refreshBar();
   }
 
@@ -419,16 +359,13 @@ export class FlockPathElement extends HTMLElement {
     if (!Number.isInteger(count) || count < 0 || count > 0xffffffff) {
       throw new RangeError(`step(n) takes a whole number of steps ≥ 0, not ${n}`);
     }
-    this.call((sim) => sim.step(count));
-    this.dirty = true;
-    this.refreshSteps();
-    return this.steps;
+    if (!this.host) throw new Error('flock-path is still loading');
+    return this.host.stepNow(count, { rethrow: true }).value;
   }
 
   reset() {
-    this.call((sim) => sim.reset());
-    this.dirty = true;
-    this.refreshSteps();
+    if (!this.host) throw new Error('flock-path is still loading');
+    this.host.reset({ rethrow: true });
   }
 
   get steps() {

@@ -3,7 +3,11 @@
 // (step + render + putImageData). Wall-clock time is fine here: this page measures, it does not
 // simulate. Results go to the page and to `window.benchResults` (read by the driver script).
 
-import init, { Sim } from '../../pkg/flockpath.js';
+import { blitSim } from '../core/blit.js';
+import { loadWasm } from '../core/boot.js';
+
+/** The wasm `Sim` class, once loaded. */
+let Sim = null;
 
 const SIZES = [1_000, 10_000, 100_000];
 const FRAME_AGENTS = 10_000;
@@ -62,9 +66,7 @@ function timeFrames(wasm, text, frames, reps) {
   const frame = () => {
     sim.step(1);
     sim.render();
-    // Rebuild the view every frame: it dies when wasm memory grows.
-    const pixels = new Uint8ClampedArray(wasm.memory.buffer, sim.frame_ptr(), sim.frame_len());
-    ctx.putImageData(new ImageData(pixels, sim.width(), sim.height()), 0, 0);
+    blitSim(ctx, wasm, sim);
   };
   for (let i = 0; i < 20; i++) frame();
   const samples = [];
@@ -79,7 +81,8 @@ function timeFrames(wasm, text, frames, reps) {
 
 async function main() {
   const quick = location.hash.includes('quick');
-  const wasm = await init();
+  const { module, wasm } = await loadWasm();
+  Sim = module.Sim;
   const plan = quick
     ? { warmupSteps: 2, steps: 5, agentsPerRep: 20_000, reps: 3 }
     : { warmupSteps: 3, steps: 10, agentsPerRep: 100_000, reps: 7 };

@@ -2,7 +2,10 @@
 // (`compare.html#s=<scene>&c=<comparison>`) and the page API `window.flockpathCompare`.
 // Rust owns the panes, their runs, metrics, series and summary; this shell only draws and wires.
 
-import { capturePanicReports, isPanic, messageOf, setupBanner, showMessage, showPanic } from '../core/errors.js';
+import { bootPage } from '../core/boot.js';
+import { isPanic, messageOf, showMessage } from '../core/errors.js';
+import { fragmentValue } from '../core/fragment.js';
+import { setupPlayback, typingInto } from '../core/playback.js';
 import { SimHost } from '../core/sim-host.js';
 import { buildPanes, blitPanes, measurePane } from './panes.js';
 import { drawPlots, drawTable } from './plots.js';
@@ -17,22 +20,7 @@ const WRITE_DELAY_MS = 300;
 
 /** `{ s, c }` from a fragment (`#s=…&c=…`), each null when absent. */
 export function parseHash(hash = location.hash) {
-  const out = { s: null, c: null };
-  const fragment = hash.startsWith('#') ? hash.slice(1) : hash;
-  for (const part of fragment.split('&')) {
-    const eq = part.indexOf('=');
-    if (eq < 0) continue;
-    const key = part.slice(0, eq);
-    if (key !== 's' && key !== 'c') continue;
-    let value = part.slice(eq + 1);
-    try {
-      value = decodeURIComponent(value);
-    } catch {
-      // Keep the raw text: the core names what is wrong with it.
-    }
-    out[key] = value;
-  }
-  return out;
+  return { s: fragmentValue('s', hash), c: fragmentValue('c', hash) };
 }
 
 /** The compare page's state: the wasm handle of the panes behind the shared guarded door. */
@@ -58,28 +46,7 @@ class CompareApp extends SimHost {
 }
 
 function setupControls(app) {
-  const play = $('play');
-  const refreshPlay = () => {
-    play.textContent = app.playing ? 'Pause' : 'Play';
-    play.setAttribute('aria-pressed', String(app.playing));
-  };
-  app.addEventListener('playing', refreshPlay);
-  refreshPlay();
-  const toggle = () => app.setPlaying(!app.playing);
-  const stepOnce = () => {
-    app.setPlaying(false);
-    app.stepNow(1);
-  };
-  play.addEventListener('click', toggle);
-  $('step').addEventListener('click', stepOnce);
-  $('reset').addEventListener('click', () => app.reset());
-  const spf = $('spf');
-  const applySpeed = () => {
-    app.stepsPerFrame = Math.min(20, Math.max(1, Math.round(Number(spf.value)) || 1));
-    $('spf-value').textContent = `${app.stepsPerFrame}×`;
-  };
-  spf.addEventListener('input', applySpeed);
-  applySpeed();
+  const playbackKey = setupPlayback(app);
 
   $('add-pane').addEventListener('click', () => {
     const used = new Set(JSON.parse(app.guard((sim) => sim.panes_json()).value ?? '[]').map((p) => p.planner));
@@ -125,15 +92,8 @@ function setupControls(app) {
   showPreset();
 
   document.addEventListener('keydown', (e) => {
-    const t = e.target;
-    const typing = t instanceof HTMLElement && (t.tagName === 'TEXTAREA' || t.tagName === 'SELECT' ||
-      (t.tagName === 'INPUT' && !['checkbox', 'range', 'button'].includes(t.type)));
-    if (app.crashed || typing || e.ctrlKey || e.metaKey || e.altKey) return;
-    if (e.key === ' ') toggle();
-    else if (e.key === 's' || e.key === 'S') stepOnce();
-    else if (e.key === 'r' || e.key === 'R') app.reset();
-    else return;
-    e.preventDefault();
+    if (app.crashed || typingInto(e.target) || e.ctrlKey || e.metaKey || e.altKey) return;
+    if (playbackKey(e)) e.preventDefault();
   });
 }
 
@@ -195,17 +155,7 @@ function refresh(app) {
   drawPlots($('plots'), series);
 }
 
-async function boot() {
-  setupBanner();
-  capturePanicReports();
-  let module;
-  try {
-    module = await import('../../pkg/flockpath.js');
-  } catch (error) {
-    throw new Error(`the simulation module (pkg/flockpath.js) could not be loaded: ${messageOf(error)}. ` +
-      'Build it with: bash scripts/build-wasm.sh');
-  }
-  const wasm = await module.default();
+bootPage('the comparison', ({ module, wasm }) => {
   const presets = JSON.parse(module.presets_json());
   const fallback = module.preset_scene_json(presets[0].name);
   const linked = parseHash();
@@ -230,9 +180,7 @@ async function boot() {
   }
 
   const app = new CompareApp(wasm, module, sim);
-  window.addEventListener('unhandledrejection', (e) => {
-    if (isPanic(e.reason)) showPanic(messageOf(e.reason));
-  });
+  app.watchPanics();
   const canvases = buildPanes(app);
   setupControls(app);
   keepLocationInSync(app);
@@ -266,11 +214,4 @@ async function boot() {
     link: () => app.link(),
   });
   window.dispatchEvent(new Event('flockpath-compare-ready'));
-}
-
-boot().catch((error) => {
-  document.getElementById('loading')?.setAttribute('hidden', '');
-  if (isPanic(error)) showPanic(messageOf(error));
-  else showMessage(`the comparison could not start: ${messageOf(error)}`);
-  console.error(error);
 });

@@ -2,7 +2,8 @@
 // and a parameter form generated from the planner table (`planners_json`), plus the pane's spec
 // text for per-group planners. Blitting copies each pane's wasm frame to its canvas.
 
-import { formatValue } from '../core/params-form.js';
+import { blit } from '../core/blit.js';
+import { paramControl, paramReadout } from '../core/params-form.js';
 import { backingSize } from '../core/view.js';
 
 const el = (tag, props = {}, ...children) => {
@@ -30,9 +31,7 @@ export function blitPanes(app, canvases) {
       canvas.width = width;
       canvas.height = height;
     }
-    const pixels = new Uint8ClampedArray(wasm.memory.buffer, sim.frame_ptr(i), sim.frame_len(i));
-    if (pixels.length !== width * height * 4) return;
-    canvas.getContext('2d', { alpha: false }).putImageData(new ImageData(pixels, width, height), 0, 0);
+    blit(canvas.getContext('2d', { alpha: false }), wasm, sim.frame_ptr(i), sim.frame_len(i), width, height);
   });
 }
 
@@ -42,20 +41,12 @@ function paramForm(app, index, pane) {
   for (const p of spec?.params ?? []) {
     const id = `pane-${index}-${p.key}`;
     const value = pane.params?.[p.key];
-    let input;
-    let readout = null;
-    if (p.choices && p.choices.length) {
-      input = el('select', { id });
-      for (const c of p.choices) input.append(el('option', { value: c, textContent: c, selected: c === value }));
-    } else {
-      input = el('input', { id, type: 'range', min: String(p.min), max: String(p.max), step: String(p.step), value: String(value) });
-      readout = el('output', { textContent: `${formatValue(value, p.step)} ${p.unit}` });
-      input.addEventListener('input', () => (readout.textContent = `${formatValue(Number(input.value), p.step)} ${p.unit}`));
-    }
-    input.title = p.help;
-    input.addEventListener('change', () => {
-      const v = input.tagName === 'SELECT' ? input.value : Number(input.value);
-      app.change((sim) => sim.set_pane_param(index, p.key, JSON.stringify(v)));
+    const readout = p.choices?.length ? null : el('output', { textContent: paramReadout(p, value) });
+    const input = paramControl(p, {
+      id,
+      value,
+      onInput: (v) => (readout.textContent = paramReadout(p, v)),
+      onChange: (v) => app.change((sim) => sim.set_pane_param(index, p.key, JSON.stringify(v))),
     });
     form.append(el('label', { className: 'param', htmlFor: id }, el('span', { textContent: p.label }), input, readout ?? el('span')));
   }

@@ -1,6 +1,8 @@
 // The compare page's metrics table (one column per pane) and overlaid time-series plots (one
 // colour per pane). The numbers come from the core (`metrics_json`, `series_json`); this module
-// only formats and draws them.
+// only formats them and says what to draw.
+
+import { drawPlot } from '../core/plot.js';
 
 /**
  * [metrics key, label, format]. Units sit in the label, not in every cell, so four panes' columns
@@ -65,19 +67,9 @@ function plotCanvas(container, key) {
   return figure.querySelector('canvas');
 }
 
-/** Draws one plot per series key with every pane's line overlaid. */
+/** Draws one plot per series key with every pane's line overlaid (core/plot.js draws). */
 export function drawPlots(container, series) {
-  const ratio = window.devicePixelRatio || 1;
   for (const key of series.keys) {
-    const canvas = plotCanvas(container, key);
-    const width = Math.max(1, Math.round(canvas.clientWidth * ratio));
-    const height = Math.max(1, Math.round(canvas.clientHeight * ratio));
-    if (canvas.width !== width || canvas.height !== height) {
-      canvas.width = width;
-      canvas.height = height;
-    }
-    const ctx = canvas.getContext('2d');
-    ctx.clearRect(0, 0, width, height);
     let maxStep = 1;
     let maxValue = key === 'arrived_share' ? 1 : 0;
     for (const p of series.panes) {
@@ -85,19 +77,12 @@ export function drawPlots(container, series) {
       for (const v of p[key]) maxValue = Math.max(maxValue, v);
     }
     if (maxValue <= 0) maxValue = 1;
-    const pad = 4 * ratio;
-    const x = (s) => pad + ((width - 2 * pad) * s) / maxStep;
-    const y = (v) => height - pad - ((height - 2 * pad) * v) / maxValue;
-    ctx.lineWidth = 2 * ratio;
-    for (const p of series.panes) {
-      ctx.strokeStyle = p.color;
-      ctx.beginPath();
-      p.steps.forEach((s, i) => (i === 0 ? ctx.moveTo(x(s), y(p[key][i])) : ctx.lineTo(x(s), y(p[key][i]))));
-      ctx.stroke();
-    }
-    ctx.fillStyle = '#5a6676';
-    ctx.font = `${11 * ratio}px system-ui, sans-serif`;
-    ctx.textBaseline = 'top';
-    ctx.fillText(maxValue.toLocaleString('en-US', { maximumFractionDigits: 2 }), pad, pad);
+    drawPlot(plotCanvas(container, key), {
+      lines: series.panes.map((p) => ({ xs: p.steps, ys: p[key], color: p.color, width: 2 })),
+      x: { min: 0, max: maxStep },
+      y: { min: 0, max: maxValue },
+      margin: { left: 4, right: 4, top: 4, bottom: 4 },
+      note: maxValue.toLocaleString('en-US', { maximumFractionDigits: 2 }),
+    });
   }
 }

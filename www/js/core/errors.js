@@ -102,11 +102,13 @@ export function capturePanicReports() {
 
 /**
  * Replaces the canvas area with a panel naming the crash and offering a reload: after a panic the
- * simulation cannot continue, and a frozen canvas would look like a hang.
+ * simulation cannot continue, and a frozen canvas would look like a hang. Returns false on a page
+ * without a `#stage` (nothing shown).
  */
 export function showPanic(message) {
   const stage = document.getElementById('stage');
-  if (!stage || stage.querySelector('.panic')) return;
+  if (!stage) return false;
+  if (stage.querySelector('.panic')) return true;
   for (const child of [...stage.children]) child.hidden = true;
   const panel = document.createElement('div');
   panel.className = 'panic';
@@ -124,4 +126,5 @@ export function showPanic(message) {
   reload.addEventListener('click', () => location.reload());
   panel.append(title, explain, pre, reload);
   stage.append(panel);
+  return true;
 }

@@ -29,18 +29,8 @@ const STYLE = `
 .spf-actual.idle { visibility: hidden; }
 `;
 
+import { blitSim } from './blit.js';
 import { PlanningSlices } from './planning.js';
-
-/** Copies the Sim's RGBA frame to the canvas (the view is rebuilt: wasm memory may have grown). */
-export function blit(app, ctx) {
-  const { sim, wasm } = app;
-  const width = sim.width();
-  const height = sim.height();
-  const pixels = new Uint8ClampedArray(wasm.memory.buffer, sim.frame_ptr(), sim.frame_len());
-  if (pixels.length !== width * height * 4) return;
-  if (ctx.canvas.width !== width || ctx.canvas.height !== height) return;
-  ctx.putImageData(new ImageData(pixels, width, height), 0, 0);
-}
 
 /** Whether the browser has input waiting (Chromium's `isInputPending`; false elsewhere). */
 function inputPending() {
@@ -131,10 +121,18 @@ const planningPending = (app) => !(app.guard((sim) => sim.planning_progress()).v
 
 const stepping = () => !document.hidden && document.visibilityState !== 'hidden';
 
-/** Starts the loop; `onFrame(now)` runs after every frame (metrics, FPS). */
-export function startLoop(app, canvas, onFrame) {
+/** The pace readout of a loop that shows none (a <flock-path> element has no Speed slider). */
+const NO_READOUT = { note() {}, idle() {} };
+
+/**
+ * Starts the loop of `app` (a SimHost with `afterLoad()`) drawing into `canvas`; `onFrame(now)`
+ * runs after every frame (metrics, FPS, a step counter). With `readout` (the pages with a Speed
+ * slider, `#spf-value`) the frame budget's readout shows under the slider. Returns `stop()`.
+ */
+export function startLoop(app, canvas, onFrame = () => {}, { readout = true } = {}) {
   const ctx = canvas.getContext('2d', { alpha: false });
-  const pace = setupPaceReadout(app);
+  const pace = readout ? setupPaceReadout(app) : NO_READOUT;
+  let stopped = false;
   // A scene still planning its path gets a time slice per frame instead of steps (a step would
   // finish the planning in one go).
   const planning = new PlanningSlices((fn) => app.guard(fn).value, canvas.parentElement, () => {
@@ -148,7 +146,7 @@ export function startLoop(app, canvas, onFrame) {
     queued = false;
     // A scene loaded since this task was queued may still be planning: a step would finish the
     // planning in one go, so the frame loop's slices take over.
-    if (app.crashed || !app.playing || !stepping() || planningLeft || planningPending(app)) return;
+    if (stopped || app.crashed || !app.playing || !stepping() || planningLeft || planningPending(app)) return;
     const wanted = app.stepsPerFrame;
     const { done, ok } = stepWithinBudget(app, wanted);
     // A refused step (not a panic) would repeat every frame: pause and let the banner explain.
@@ -157,14 +155,14 @@ export function startLoop(app, canvas, onFrame) {
     app.dirty = true;
   };
   const frame = (now) => {
-    if (app.crashed) return;
+    if (stopped || app.crashed) return;
     planningLeft = planning.advance();
     if (planningLeft) app.dirty = true;
     if (app.dirty) {
       app.dirty = false;
       app.guard((sim) => {
         sim.render();
-        blit(app, ctx);
+        blitSim(ctx, app.wasm, sim);
       });
     }
     onFrame(now);
@@ -176,7 +174,11 @@ export function startLoop(app, canvas, onFrame) {
     } else {
       pace.idle();
     }
-    requestAnimationFrame(frame);
+    request = requestAnimationFrame(frame);
   };
-  requestAnimationFrame(frame);
+  let request = requestAnimationFrame(frame);
+  return () => {
+    stopped = true;
+    cancelAnimationFrame(request);
+  };
 }

@@ -7,3 +7,29 @@ export function formatValue(value, step) {
   const decimals = step > 0 && step < 1 ? Math.min(4, Math.ceil(-Math.log10(step) - 1e-9)) : 0;
   return value.toFixed(decimals);
 }
+
+/** The readout beside a parameter's control: the value with its unit (none for a choice). */
+export function paramReadout(spec, value) {
+  return spec.choices?.length ? '' : `${formatValue(value, spec.step)} ${spec.unit}`.trim();
+}
+
+/**
+ * The control of one parameter of the table (`{ key, label, help, min, max, step, unit, choices }`):
+ * a select for a choice, else a range slider; `id`, `name` and the current `value` as given.
+ * `onInput(value)` runs while a slider moves, `onChange(value)` when a gesture or choice ends.
+ */
+export function paramControl(spec, { id, value, onInput = () => {}, onChange = () => {} }) {
+  let input;
+  if (spec.choices?.length) {
+    input = document.createElement('select');
+    for (const c of spec.choices) input.append(Object.assign(document.createElement('option'), { value: c, textContent: c }));
+  } else {
+    input = Object.assign(document.createElement('input'), { type: 'range', min: String(spec.min), max: String(spec.max), step: String(spec.step) });
+  }
+  Object.assign(input, { id, name: spec.key, title: spec.help });
+  if (value !== undefined) input.value = String(value);
+  const read = () => (input.tagName === 'SELECT' ? input.value : Number(input.value));
+  if (input.tagName !== 'SELECT') input.addEventListener('input', () => onInput(read()));
+  input.addEventListener('change', () => onChange(read()));
+  return input;
+}

@@ -1,6 +1,7 @@
-// What every page that drives a wasm handle shares (the playground's App, the compare page):
-// the one guarded door to the handle, so a thrown error reaches the banner and a panic the crash
-// panel, plus play/pause, stepping and reset.
+// What every page that drives a wasm handle shares (the playground's App, the compare page,
+// each <flock-path> element): the one guarded door to the handle, so a thrown error reaches the
+// banner and a panic the crash panel (or, for an element, its own box), plus play/pause, stepping
+// and reset.
 
 import { isPanic, messageOf, showMessage, showPanic } from './errors.js';
 
@@ -9,9 +10,12 @@ export class SimHost extends EventTarget {
    * @param {object} wasm   the instance exports returned by `init()` (for `memory`)
    * @param {object} module the JS bindings (`presets_json`, `planners_json`, …)
    * @param {object} sim    the wasm handle
+   * @param {object} [say]  where messages go: `error(message)` for a refused call (the banner by
+   *   default) and `panic(message)` for a crash (the crash panel by default)
    */
-  constructor(wasm, module, sim) {
+  constructor(wasm, module, sim, say = {}) {
     super();
+    this.say = { error: say.error ?? ((message) => showMessage(message)), panic: say.panic ?? showPanic };
     this.wasm = wasm;
     this.module = module;
     this.sim = sim;
@@ -42,7 +46,7 @@ export class SimHost extends EventTarget {
       if (isPanic(thrown)) {
         this.crash(message);
       } else {
-        showMessage(message);
+        this.say.error(message);
       }
       if (rethrow) throw thrown instanceof Error ? thrown : new Error(message);
       return { ok: false, error: thrown };
@@ -54,7 +58,7 @@ export class SimHost extends EventTarget {
     if (this.crashed) return;
     this.crashed = true;
     this.setPlaying(false);
-    showPanic(message);
+    this.say.panic(message);
     this.dispatchEvent(new Event('crash'));
   }
 
@@ -81,5 +85,18 @@ export class SimHost extends EventTarget {
     this.dirty = true;
     this.dispatchEvent(new Event('stepped'));
     return result;
+  }
+
+  /**
+   * Crashes on a panic that escapes every guard (an event handler, a promise): after a panic the
+   * wasm instance must not be called again. For pages; an element's calls all go through `guard`.
+   */
+  watchPanics() {
+    window.addEventListener('unhandledrejection', (e) => {
+      if (isPanic(e.reason)) this.crash(messageOf(e.reason));
+    });
+    window.addEventListener('error', (e) => {
+      if (isPanic(e.error)) this.crash(messageOf(e.error));
+    });
   }
 }

@@ -3,21 +3,11 @@
 // the address bar always holds a link to what is on screen and Back is not flooded).
 
 import { messageOf, showMessage } from './errors.js';
+import { fragmentValue } from './fragment.js';
 
 /** The `s=` value of the current location's fragment, or null when there is none. */
 export function sceneFromLocation(hash = location.hash) {
-  const fragment = hash.startsWith('#') ? hash.slice(1) : hash;
-  for (const part of fragment.split('&')) {
-    if (part.startsWith('s=')) {
-      const value = part.slice(2);
-      try {
-        return decodeURIComponent(value);
-      } catch {
-        return value;
-      }
-    }
-  }
-  return null;
+  return fragmentValue('s', hash);
 }
 
 /** How long edits settle before the address bar is rewritten (ms): a slider drag writes once. */

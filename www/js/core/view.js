@@ -1,8 +1,11 @@
 // Canvas sizing and coordinates: the backing store is the CSS size × devicePixelRatio (sharp on
 // HiDPI screens), kept in step with a ResizeObserver; the Sim renders at exactly that size.
 
-/** Largest backing store in pixels: beyond this a 4K projector would spend the frame on blits. */
-const MAX_PIXELS = 3840 * 2400;
+/**
+ * Largest backing store in pixels, for every scene canvas (pages and <flock-path> elements):
+ * beyond this a 4K projector would spend the frame on blits.
+ */
+export const MAX_PIXELS = 3840 * 2400;
 
 /** The backing-store size for a CSS box of `cssWidth`×`cssHeight` at the current pixel ratio. */
 export function backingSize(cssWidth, cssHeight, devicePixels) {
@@ -31,6 +34,28 @@ export function measure(canvas) {
 }
 
 /**
+ * Calls `onSize({ width, height })` with the backing-store size `canvas` should have whenever its
+ * CSS box (or the pixel ratio) changes, from the exact device-pixel box where the browser reports
+ * one. Returns the observer (disconnect it when the canvas goes).
+ */
+export function observeSize(canvas, onSize) {
+  const observer = new ResizeObserver((entries) => {
+    const entry = entries[entries.length - 1];
+    const device = entry.devicePixelContentBoxSize?.[0];
+    const box = entry.contentBoxSize?.[0];
+    const cssWidth = box ? box.inlineSize : entry.contentRect.width;
+    const cssHeight = box ? box.blockSize : entry.contentRect.height;
+    onSize(backingSize(cssWidth, cssHeight, device ? { width: device.inlineSize, height: device.blockSize } : null));
+  });
+  try {
+    observer.observe(canvas, { box: 'device-pixel-content-box' });
+  } catch {
+    observer.observe(canvas);
+  }
+  return observer;
+}
+
+/**
  * Keeps both canvases' backing stores at CSS size × devicePixelRatio and tells the Sim, which
  * re-fits the scene (its `view()` transform changes with the size).
  */
@@ -49,20 +74,7 @@ export function setupView(app, canvas, overlay) {
     app.dirty = true;
     app.dispatchEvent(new Event('resize'));
   };
-  const observer = new ResizeObserver((entries) => {
-    const entry = entries[entries.length - 1];
-    const device = entry.devicePixelContentBoxSize?.[0];
-    const box = entry.contentBoxSize?.[0];
-    const cssWidth = box ? box.inlineSize : entry.contentRect.width;
-    const cssHeight = box ? box.blockSize : entry.contentRect.height;
-    apply(backingSize(cssWidth, cssHeight,
-      device ? { width: device.inlineSize, height: device.blockSize } : null));
-  });
-  try {
-    observer.observe(canvas, { box: 'device-pixel-content-box' });
-  } catch {
-    observer.observe(canvas);
-  }
+  observeSize(canvas, apply);
   apply(measure(canvas));
 }
 

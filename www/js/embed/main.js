@@ -13,6 +13,7 @@
 // message.
 
 import '../flock-path.js';
+import { decodeValue, fragmentOptions } from '../core/fragment.js';
 
 /** The methods a host may call, each mirroring the page API of the same name. */
 const METHODS = {
@@ -28,28 +29,10 @@ const METHODS = {
   isPlaying: (el) => el.playing,
 };
 
-/** `key=value` options of the fragment (`s` kept verbatim: fragment values are URL-safe). */
-export function fragmentOptions(hash = location.hash) {
-  const options = {};
-  for (const part of hash.replace(/^#/, '').split('&')) {
-    const eq = part.indexOf('=');
-    if (eq > 0) options[part.slice(0, eq)] = part.slice(eq + 1);
-  }
-  return options;
-}
-
 const el = document.getElementById('embedded');
 const openLink = document.getElementById('open-full');
 const options = fragmentOptions();
-if (options.s) {
-  let scene = options.s;
-  try {
-    scene = decodeURIComponent(scene);
-  } catch {
-    // Not percent-encoded: use it as it is.
-  }
-  el.setAttribute('scene', scene);
-}
+if (options.s) el.setAttribute('scene', decodeValue(options.s));
 if (options.autoplay === '1' || options.autoplay === 'true') el.setAttribute('autoplay', '');
 if (options.controls === '0' || options.controls === 'false') el.removeAttribute('controls');
 

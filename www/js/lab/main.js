@@ -3,18 +3,55 @@
 // same seed, and fill a 30-run table in a Web Worker. The page owns the frame loop; every
 // number comes from the wasm core.
 
-import { messageOf, setupBanner, showMessage } from '../core/errors.js';
-import { ALGORITHM_COLORS, drawPlot } from './plot.js';
+import { blit } from '../core/blit.js';
+import { bootPage } from '../core/boot.js';
+import { messageOf, showMessage } from '../core/errors.js';
+import { drawPlot } from '../core/plot.js';
 
 const $ = (id) => document.getElementById(id);
+
+/** Line colour per algorithm name. */
+const ALGORITHM_COLORS = { gsa: '#d9480f', igsa: '#1c7ed6', pso: '#2b8a3e', firefly: '#ae3ec9', ga: '#5c5f66' };
+
+/**
+ * The convergence chart: best-so-far against iteration on a log scale, one line per run
+ * (`[{ name, curve, budget, primary }]`), drawn at the canvas's own size. Values ≤ 0 sit at the
+ * bottom (the log of 0 does not exist).
+ */
+function convergence(runs) {
+  const values = runs.flatMap((r) => Array.from(r.curve).filter((v) => v > 0 && Number.isFinite(v)));
+  let lo = values.length ? Math.floor(Math.log10(Math.min(...values))) : 0;
+  let hi = values.length ? Math.ceil(Math.log10(Math.max(...values))) : 1;
+  if (hi <= lo) hi = lo + 1;
+  lo = Math.max(lo, hi - 40);
+  const budget = Math.max(1, ...runs.map((r) => r.budget));
+  const yTicks = [];
+  const stride = Math.max(1, Math.ceil((hi - lo) / 8));
+  for (let e = lo; e <= hi; e += stride) yTicks.push({ value: 10 ** e, text: `1e${e}` });
+  return {
+    lines: runs.map((r) => ({
+      xs: Array.from(r.curve, (_, i) => i),
+      ys: Array.from(r.curve, (v) => (values.length ? v : NaN)),
+      color: ALGORITHM_COLORS[r.name] ?? '#000000',
+      width: r.primary ? 2.5 : 1.5,
+      name: r.name,
+    })),
+    x: { min: 0, max: budget },
+    y: { min: lo, max: hi, log: true },
+    margin: { left: 58, right: 10, top: 10, bottom: 26 },
+    yTicks,
+    xTicks: [{ value: 0, text: '0' }, { value: budget, text: String(budget) }],
+    xLabel: 'iteration',
+    legend: true,
+    background: '#ffffff',
+    fit: false,
+  };
+}
 
 /** Format a value the way Table 3 does. */
 const fmt = (v) => (Number.isFinite(v) ? (v === 0 ? '0' : v.toExponential(4)) : String(v));
 
-async function boot() {
-  setupBanner();
-  const module = await import('../../pkg/flockpath.js');
-  const wasm = await module.default();
+bootPage('the lab', ({ module, wasm }) => {
   const options = JSON.parse(module.lab_options_json());
   const fnSelect = $('lab-function');
   const algSelect = $('lab-algorithm');
@@ -93,12 +130,11 @@ async function boot() {
     if (!canvas.hidden) {
       const t0 = performance.now();
       lab.render(canvas.width, canvas.height);
-      const bytes = new Uint8ClampedArray(wasm.memory.buffer, lab.frame_ptr(), lab.frame_len());
-      canvas.getContext('2d').putImageData(new ImageData(bytes, canvas.width, canvas.height), 0, 0);
+      blit(canvas.getContext('2d'), wasm, lab.frame_ptr(), lab.frame_len());
       state.renderMs.push(performance.now() - t0);
       if (state.renderMs.length > 120) state.renderMs.shift();
     }
-    drawPlot(plot, state.runs.map((r) => ({ name: r.name, curve: r.lab.curve(), budget: r.lab.iterations(), primary: r.primary })));
+    drawPlot(plot, convergence(state.runs.map((r) => ({ name: r.name, curve: r.lab.curve(), budget: r.lab.iterations(), primary: r.primary }))));
     $('lab-status').textContent =
       `· ${primary.name} · iteration ${lab.iteration()}/${lab.iterations()} · best ${fmt(lab.best_value())} · ${lab.particles()} particles`;
   };
@@ -232,9 +268,4 @@ async function boot() {
     tableSeconds: () => state.lastTableSeconds ?? null,
   };
   window.dispatchEvent(new Event('flockpath-lab-ready'));
-}
-
-boot().catch((error) => {
-  showMessage(`the lab could not start: ${messageOf(error)}`);
-  console.error(error);
 });

@@ -204,6 +204,19 @@ export function metricsHistory() {
   }, { rethrow: true }).value;
 }
 
+/**
+ * The render theme: with a name ('standard' or 'projector') draws in it from the next frame on
+ * (a page option, not part of the scene); returns the theme's name. js/core/theme.js drives it.
+ */
+export function theme(name) {
+  const a = booted();
+  if (name !== undefined) {
+    a.guard((sim) => sim.set_theme(String(name)), { rethrow: true });
+    a.dirty = true;
+  }
+  return a.guard((sim) => sim.theme(), { rethrow: true }).value;
+}
+
 /** The API object: `window.flockpath` and this module's default export. */
 export const flockpath = Object.freeze({
   ready,
@@ -228,6 +241,7 @@ export const flockpath = Object.freeze({
   stuckAgents,
   overlays,
   metricsHistory,
+  theme,
 });
 
 export default flockpath;

@@ -4,8 +4,8 @@
 import { History } from './history.js';
 import { SimHost } from '../core/sim-host.js';
 
-/** Colours handed to new groups, in order. */
-export const PALETTE = ['#2f6fdf', '#df4f2f', '#2f9f5f', '#9f4fdf', '#df9f1f', '#1f9fbf', '#df3f8f', '#6f7f8f'];
+/** Colours handed to new groups, in order: Okabe–Ito, colour-blind safe (src/model/palette.rs). */
+export const PALETTE = ['#0072b2', '#d55e00', '#009e73', '#cc79a7', '#e69f00', '#56b4e9', '#000000', '#f0e442'];
 
 export class App extends SimHost {
   /**

@@ -1,15 +1,9 @@
 // Playback, run settings, presets and keyboard shortcuts.
 
 import { TOOLS } from './editor.js';
+import { setupPlayback, typingInto } from '../core/playback.js';
 
 const $ = (id) => document.getElementById(id);
-
-/** Whether a key event is typing into a field (shortcuts must not steal those keys). */
-function typingInto(target) {
-  if (!(target instanceof HTMLElement)) return false;
-  if (target.isContentEditable || target.tagName === 'TEXTAREA' || target.tagName === 'SELECT') return true;
-  return target.tagName === 'INPUT' && !['checkbox', 'radio', 'range', 'button', 'color'].includes(target.type);
-}
 
 /** A fresh seed from the browser's CSPRNG: user input, not simulation randomness. */
 export function randomSeed() {
@@ -17,31 +11,7 @@ export function randomSeed() {
 }
 
 export function setupControls(app, editor) {
-  const play = $('play');
-  const refreshPlay = () => {
-    play.textContent = app.playing ? 'Pause' : 'Play';
-    play.setAttribute('aria-pressed', String(app.playing));
-  };
-  app.addEventListener('playing', refreshPlay);
-  refreshPlay();
-  const toggle = () => app.setPlaying(!app.playing);
-  const stepOnce = () => {
-    app.setPlaying(false);
-    app.stepNow(1);
-  };
-  play.addEventListener('click', toggle);
-  $('step').addEventListener('click', stepOnce);
-  $('reset').addEventListener('click', () => app.reset());
-
-  const spf = $('spf');
-  const spfValue = $('spf-value');
-  const applySpeed = () => {
-    app.stepsPerFrame = Math.min(20, Math.max(1, Math.round(Number(spf.value)) || 1));
-    spfValue.textContent = `${app.stepsPerFrame}×`;
-  };
-  spf.value = String(app.stepsPerFrame);
-  spf.addEventListener('input', applySpeed);
-  applySpeed();
+  const playbackKey = setupPlayback(app);
 
   // Seed: changing it restarts the run (set_seed resets), and is an undoable scene change.
   const seed = $('seed');
@@ -116,10 +86,11 @@ export function setupControls(app, editor) {
       return;
     }
     if (e.altKey) return;
-    if (key === ' ') toggle();
-    else if (key === 's' || key === 'S') stepOnce();
-    else if (key === 'r' || key === 'R') app.reset();
-    else if (key >= '1' && key <= String(TOOLS.length)) editor.setTool(TOOLS[Number(key) - 1]);
+    if (playbackKey(e)) {
+      e.preventDefault();
+      return;
+    }
+    if (key >= '1' && key <= String(TOOLS.length)) editor.setTool(TOOLS[Number(key) - 1]);
     else if (key === 'Delete' || key === 'Backspace') editor.deleteSelection();
     else if (key === 'Escape') {
       editor.cancel();

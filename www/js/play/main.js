@@ -6,7 +6,8 @@ import { App } from './app.js';
 import { attach, flockpath } from './api.js';
 import { setupControls } from './controls.js';
 import { Editor } from './editor.js';
-import { capturePanicReports, isPanic, messageOf, setupBanner, showMessage, showPanic } from '../core/errors.js';
+import { bootPage } from '../core/boot.js';
+import { isPanic, messageOf, showMessage } from '../core/errors.js';
 import { setupHistoryButtons } from './history.js';
 import { startLoop } from '../core/loop.js';
 import { setupMetrics } from './metrics.js';
@@ -19,20 +20,7 @@ import { setupTimeline } from './timeline.js';
 import { keepLocationInSync, sceneFromLocation, watchLocation } from '../core/url.js';
 import { measure, setupView } from '../core/view.js';
 
-async function boot() {
-  setupBanner();
-  capturePanicReports();
-  let module;
-  try {
-    module = await import('../../pkg/flockpath.js');
-  } catch (error) {
-    throw new Error(
-      `the simulation module (pkg/flockpath.js) could not be loaded: ${messageOf(error)}. ` +
-        'Build it with: bash scripts/build-wasm.sh',
-    );
-  }
-  const wasm = await module.default();
-
+bootPage('flockpath', ({ module, wasm }) => {
   const canvas = document.getElementById('scene-canvas');
   const overlay = document.getElementById('overlay-canvas');
   const { width, height } = measure(canvas);
@@ -56,12 +44,7 @@ async function boot() {
   }
 
   const app = new App(wasm, module, sim);
-  window.addEventListener('unhandledrejection', (e) => {
-    if (isPanic(e.reason)) app.crash(messageOf(e.reason));
-  });
-  window.addEventListener('error', (e) => {
-    if (isPanic(e.error)) app.crash(messageOf(e.error));
-  });
+  app.watchPanics();
   app.afterLoad();
   setupView(app, canvas, overlay);
   const editor = new Editor(app, overlay, canvas);
@@ -85,13 +68,4 @@ async function boot() {
   attach(app);
   window.flockpath = flockpath;
   window.dispatchEvent(new Event('flockpath-ready'));
-}
-
-boot().catch((error) => {
-  const message = messageOf(error);
-  document.getElementById('loading')?.setAttribute('hidden', '');
-  if (isPanic(error)) showPanic(message);
-  else showMessage(`flockpath could not start: ${message}`);
-  // Leave a trace for whoever opens the console (and fail e2e tests loudly).
-  console.error(error);
 });

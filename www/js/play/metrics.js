@@ -8,7 +8,7 @@
 // a sample, and a cell is written only when its text changed (a write costs a style and layout
 // pass of the whole page).
 
-import { drawPlot } from '../core/plot.js';
+import { drawPlot, formatTick } from '../core/plot.js';
 
 /** [key, label, format, shown in red when above zero]; tooltips explain the counting rules. */
 const ROWS = [
@@ -116,7 +116,7 @@ export function setupMetrics(app) {
     });
     if (!result.ok) return;
     for (const { plot, steps, lines } of result.value) {
-      drawPlot(plot.canvas, { steps, lines, label: plot.label, unit: plot.unit });
+      drawPlot(plot.canvas, overTime(steps, lines, plot));
     }
   };
   const fillGroups = (m) => {
@@ -197,5 +197,34 @@ export function setupMetrics(app) {
       refresh();
       refreshEvery = Math.max(REFRESH_MS, (performance.now() - started) / READOUT_SHARE);
     }
+  };
+}
+
+/**
+ * One metric over time as a chart: a line per group (`values`: Float32Array over `steps`, NaN a
+ * gap), the axis from 0 (or below) to the largest value, which the second line states.
+ */
+function overTime(steps, lines, { label, unit }) {
+  let lo = 0;
+  let hi = -Infinity;
+  for (const line of lines) {
+    for (const v of line.values) {
+      if (Number.isFinite(v)) {
+        lo = Math.min(lo, v);
+        hi = Math.max(hi, v);
+      }
+    }
+  }
+  return {
+    lines: lines.map((line) => ({ xs: steps, ys: line.values, color: line.color, width: line.width })),
+    x: { min: steps[0] ?? 0, max: steps.at(-1) ?? 1 },
+    y: { min: lo, max: hi - lo < 1e-9 ? lo + 1 : hi },
+    margin: { left: 2, right: 2, top: 24, bottom: 3 },
+    yTicks: [{ value: 0 }],
+    font: 10,
+    title: label,
+    note: `max ${formatTick(hi)} ${unit}`.trim(),
+    empty: 'no data yet',
+    background: '#ffffff',
   };
 }

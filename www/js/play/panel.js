@@ -1,7 +1,7 @@
 // The side panel: the group list and editor, the planner picker and the parameter sliders, all
 // generated from `planners_json()` (the Rust params table), so a new planner needs no JS.
 
-import { formatValue } from '../core/params-form.js';
+import { paramControl, paramReadout } from '../core/params-form.js';
 
 const el = (tag, props = {}, children = []) => {
   const node = document.createElement(tag);
@@ -156,14 +156,12 @@ export class Panel {
           ...paths.map((_, i) => el('option', { value: String(i + 1), textContent: `path ${i + 1}` })),
         ]);
         input.addEventListener('change', () => this.setParam(spec, Number(input.value), true));
-      } else if (spec.choices && spec.choices.length) {
-        input = el('select', { id, name: spec.key, title: spec.help },
-          spec.choices.map((c) => el('option', { value: c, textContent: c })));
-        input.addEventListener('change', () => this.setParam(spec, input.value, true));
       } else {
-        input = el('input', { id, name: spec.key, type: 'range', min: spec.min, max: spec.max, step: spec.step, title: spec.help });
-        input.addEventListener('input', () => this.setParam(spec, Number(input.value), false));
-        input.addEventListener('change', () => this.setParam(spec, Number(input.value), true));
+        input = paramControl(spec, {
+          id,
+          onInput: (value) => this.setParam(spec, value, false),
+          onChange: (value) => this.setParam(spec, value, true),
+        });
       }
       const label = el('label', { className: 'label', htmlFor: id, textContent: spec.label, title: spec.help });
       this.params.append(el('div', { className: 'param', dataset: { key: spec.key } }, [label, output, input]));
@@ -211,7 +209,7 @@ export class Panel {
     if (!entry || value === undefined) return;
     const { spec, input, output } = entry;
     if (document.activeElement !== input || input.tagName === 'SELECT') input.value = String(value);
-    output.textContent = spec.choices?.length || input.tagName === 'SELECT' ? '' : `${formatValue(value, spec.step)} ${spec.unit}`.trim();
+    output.textContent = input.tagName === 'SELECT' ? '' : paramReadout(spec, value);
   }
 
   fillValues() {

@@ -7,7 +7,8 @@
 // Query parameters preset the fields: ?behaviour=b2&environment=e3&seed=4&population=20
 // &generations=5&frames=120&autostart=1. The state is readable as `window.flocktune.state()`.
 
-import { capturePanicReports, isPanic, messageOf, setupBanner, showMessage, showPanic } from '../core/errors.js';
+import { bootPage } from '../core/boot.js';
+import { isPanic, messageOf, showMessage, showPanic } from '../core/errors.js';
 import { FitnessPlot } from './plot.js';
 import { Preview } from './preview.js';
 import { sceneFromLocation, shareUrl } from '../core/url.js';
@@ -200,17 +201,7 @@ function readQuery(linkedScene) {
   return query.get('autostart') === '1';
 }
 
-async function boot() {
-  setupBanner();
-  capturePanicReports();
-  let module;
-  try {
-    module = await import('../../pkg/flockpath.js');
-  } catch (error) {
-    throw new Error(`the simulation module (pkg/flockpath.js) could not be loaded: ${messageOf(error)}. ` +
-      'Build it with: bash scripts/build-wasm.sh');
-  }
-  const wasm = await module.default();
+bootPage('the Tune page', ({ module, wasm }) => {
 
   const linkedScene = sceneFromLocation();
   if (linkedScene !== null) {
@@ -267,11 +258,4 @@ async function boot() {
   };
   window.dispatchEvent(new Event('flocktune-ready'));
   if (autostart) start(linkedScene);
-}
-
-boot().catch((error) => {
-  $('loading')?.setAttribute('hidden', '');
-  if (isPanic(error)) showPanic(messageOf(error));
-  else showMessage(`The Tune page could not start: ${messageOf(error)}`);
-  console.error(error);
 });

@@ -2,6 +2,7 @@
 // weights so far and replays it from the start after the evaluation's frame count. It counts
 // painted frames so tests can see the page keeps animating while the worker computes.
 
+import { blitSim } from '../core/blit.js';
 import { backingSize } from '../core/view.js';
 
 /** Simulation steps per animation frame: an evaluation (400 steps) replays in about 3 s. */
@@ -63,11 +64,7 @@ export class Preview {
     if (this.sim.steps() >= this.frames) this.sim.reset();
     this.sim.step(STEPS_PER_FRAME);
     this.sim.render();
-    const { sim } = this;
-    const pixels = new Uint8ClampedArray(this.wasm.memory.buffer, sim.frame_ptr(), sim.frame_len());
-    if (pixels.length === this.canvas.width * this.canvas.height * 4) {
-      this.ctx.putImageData(new ImageData(pixels, this.canvas.width, this.canvas.height), 0, 0);
-    }
+    blitSim(this.ctx, this.wasm, this.sim);
     this.painted += 1;
   }
 

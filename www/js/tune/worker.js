@@ -7,24 +7,19 @@
 //               {type: 'generation', stats, scene, ms}
 //               {type: 'error', message, panic}
 
-import init, { TuneRun } from '../../pkg/flockpath.js';
+import { loadWasm } from '../core/boot.js';
+import { isPanic, messageOf } from '../core/errors.js';
 
-let loaded = null;
 let run = null;
-
-function messageOf(error) {
-  return error instanceof Error ? error.message || String(error) : String(error);
-}
 
 self.addEventListener('message', async (event) => {
   const message = event.data;
   try {
-    loaded ??= init();
-    await loaded;
+    const { module } = await loadWasm();
     if (message.type === 'start') {
       run?.free();
       run = null;
-      run = new TuneRun(JSON.stringify(message.setup));
+      run = new module.TuneRun(JSON.stringify(message.setup));
       self.postMessage({
         type: 'started',
         population: run.population(),
@@ -40,7 +35,6 @@ self.addEventListener('message', async (event) => {
       self.postMessage({ type: 'generation', stats, scene: run.best_scene_string(), ms });
     }
   } catch (error) {
-    const panic = typeof WebAssembly !== 'undefined' && error instanceof WebAssembly.RuntimeError;
-    self.postMessage({ type: 'error', message: messageOf(error), panic });
+    self.postMessage({ type: 'error', message: messageOf(error), panic: isPanic(error) });
   }
 });
