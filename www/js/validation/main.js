@@ -14,6 +14,23 @@ const COLORS = ['#2f6fdf', '#d9482b', '#2b9d48', '#a23bc4', '#d49a1c', '#1c9aa8'
 /** Tests picked by default: the quick ones (the whole suite takes minutes in a browser). */
 const DEFAULT_TESTS = new Set(['t1-free-walking', 'juelich-head-on', 't6-corner', 't4-fundamental-diagram']);
 
+/** Lines over shared x values (`xs`) on a linear scale from 0, a tick at each x. */
+function plotOver(canvas, xs, lines, title, empty) {
+  const finite = lines.flatMap((l) => Array.from(l.ys).filter(Number.isFinite));
+  const top = finite.length ? Math.max(...finite) * 1.05 : 1;
+  drawPlot(canvas, {
+    lines: lines.map((l) => ({ xs, ys: l.ys, color: l.color, width: l.width ?? 1.5, dots: true, name: l.name })),
+    x: { min: Math.min(...xs), max: Math.max(...xs) },
+    y: { min: 0, max: top },
+    margin: { left: 38, right: 10, top: 18, bottom: 20 },
+    yTicks: [0, top / 2, top].map((v) => ({ value: v, text: v.toFixed(v < 10 ? 2 : 0) })),
+    xTicks: xs.map((v) => ({ value: v, text: String(v) })),
+    title,
+    empty,
+    background: '#ffffff',
+  });
+}
+
 async function boot() {
   setupBanner();
   const module = await import('../../pkg/flockpath.js');
@@ -61,35 +78,35 @@ async function boot() {
     const diagrams = state.curves.filter((c) => c.test === 't4-fundamental-diagram');
     const densities = diagrams[0]?.rows.map((r) => r[0]) ?? [0.5, 1, 2, 3, 4, 5, 6];
     const reference = module.validation_reference_speeds('weidmann', Float64Array.from(densities));
-    const lines = [{ values: reference, color: '#111111', width: 2.5 }];
+    const lines = [{ ys: reference, color: '#111111', width: 2.5, name: 'Weidmann' }];
     const legend = $('val-legend');
     legend.replaceChildren(Object.assign(document.createElement('span'), { textContent: '━ Weidmann (1993)', style: 'color:#111' }));
     for (const c of diagrams) {
       // Column 2 is the measured speed (m/s), null where the run gave none.
-      lines.push({ values: c.rows.map((r) => (r[2] === null ? NaN : r[2])), color: colorOf.get(c.planner) ?? '#888' });
+      lines.push({ ys: c.rows.map((r) => (r[2] === null ? NaN : r[2])), color: colorOf.get(c.planner) ?? '#888', name: c.planner });
       const span = Object.assign(document.createElement('span'), { textContent: `━ ${c.planner}` });
       span.style.color = colorOf.get(c.planner) ?? '#888';
       legend.append(span);
     }
-    drawPlot($('val-plot'), { steps: densities, lines, label: `speed (m/s) at ${densities.join(', ')} persons/m²`, unit: 'm/s' });
+    plotOver($('val-plot'), densities, lines, 'speed (m/s) against density (persons/m²)', 'no data yet');
   };
 
   const drawSweep = () => {
     const sweeps = state.curves.filter((c) => c.test === 't8-speed-sweep');
     if (sweeps.length === 0) {
-      drawPlot($('val-sweep'), { steps: [], lines: [], label: 'evacuation time (s) against desired speed (m/s)', unit: 's' });
+      plotOver($('val-sweep'), [0.8, 1.6], [], 'evacuation time (s) against desired speed (m/s)', 'no data yet');
       return;
     }
     const speeds = sweeps[0].rows.map((r) => r[0]);
     // Column 1 is the evacuation time (s), null when someone was still inside after 60 s.
-    const lines = sweeps.map((c) => ({ values: c.rows.map((r) => (r[1] === null ? NaN : r[1])), color: colorOf.get(c.planner) ?? '#888' }));
+    const lines = sweeps.map((c) => ({ ys: c.rows.map((r) => (r[1] === null ? NaN : r[1])), color: colorOf.get(c.planner) ?? '#888', name: c.planner }));
     const legend = $('val-sweep-legend');
     legend.replaceChildren(...sweeps.map((c) => {
       const span = Object.assign(document.createElement('span'), { textContent: `━ ${c.planner}` });
       span.style.color = colorOf.get(c.planner) ?? '#888';
       return span;
     }));
-    drawPlot($('val-sweep'), { steps: speeds, lines, label: `evacuation time (s) at ${speeds.join(', ')} m/s`, unit: 's' });
+    plotOver($('val-sweep'), speeds, lines, 'evacuation time (s) against desired speed (m/s)', 'no data yet');
   };
 
   const finish = (text) => {
