@@ -72,6 +72,9 @@ pub struct World {
     max_step: f32,
     /// Positions at the start of the step (reused buffer of the parking pass).
     previous: Vec<Vec2>,
+    /// A periodic band `[start, end)` of x (px): an agent whose centre leaves it at one end
+    /// re-enters at the other ([`World::set_periodic_x`]).
+    periodic_x: Option<(f32, f32)>,
 }
 
 impl World {
@@ -169,6 +172,7 @@ impl World {
             max_radius,
             max_step: 0.0,
             previous: Vec::new(),
+            periodic_x: None,
         };
         world.update_parking_rules();
         world.grid.rebuild(&world.pos, &world.vel);
@@ -370,6 +374,15 @@ impl World {
         &self.parked
     }
 
+    /// Makes x periodic over `[start, end)` px (`None`: off, the default): an agent whose centre
+    /// leaves the band at one end re-enters at the other, as in the periodic corridor of the
+    /// validation suite's fundamental diagram. Neighbours are not seen across the seam, and the
+    /// path-length metric counts the jump. Not part of the scene (a link cannot ask for it).
+    /// An empty or non-finite band is ignored.
+    pub fn set_periodic_x(&mut self, band: Option<(f32, f32)>) {
+        self.periodic_x = band.filter(|(a, b)| a.is_finite() && b.is_finite() && b > a);
+    }
+
     /// Takes the fitness measures of the metrics every `every` steps from now on (0 = never;
     /// default [`crate::sim::metrics::FITNESS_SAMPLE_EVERY`]): benchmarks compare their cost.
     #[doc(hidden)]
@@ -474,6 +487,14 @@ impl World {
             let previous = self.pos[i];
             let mut v = self.next_vel[i];
             let mut p = previous + v;
+            if let Some((start, end)) = self.periodic_x {
+                // Only a centre leaving the band wraps (one outside it stays outside).
+                if p.x >= end && previous.x < end {
+                    p.x -= end - start;
+                } else if p.x < start && previous.x >= start {
+                    p.x += end - start;
+                }
+            }
             let solid = solid[self.group_of[i] as usize];
             if solid {
                 resolve_obstacles(&self.obstacles, &mut p, &mut v, self.radius[i]);

@@ -27,6 +27,7 @@ mod paths;
 mod seed;
 mod timeline;
 pub mod tune;
+pub mod validation;
 
 /// Installs the panic hook so a Rust panic shows its message in the console (runs on load).
 #[wasm_bindgen(start)]

@@ -3,6 +3,7 @@
 
 use crate::scenes::load_scene;
 use crate::{failed, out, usage, whole_number, write_file, CliError};
+use flockpath::experiments::validation::pedpy;
 use flockpath::export::{self, ExportOptions};
 use flockpath::sim::limits::{CLI_MAX_STEPS as MAX_STEPS, CLI_RECORDING_BUDGET_BYTES};
 use flockpath::sim::recording::Recording;
@@ -54,6 +55,10 @@ pub struct RunArgs {
     /// Write the trails as SVG
     #[arg(long, value_name = "FILE")]
     svg: Option<String>,
+    /// Write the paths for PedPy (`pedpy.load_trajectory_from_txt`): `id frame x y z` in metres
+    /// (at the scene's px_per_metre, default 20), with the frame rate in the header
+    #[arg(long, value_name = "FILE")]
+    pedpy: Option<String>,
     /// Keyframes per second of the MEL/Python exports (1…240, default 24)
     #[arg(long, value_name = "F", value_parser = real, allow_negative_numbers = true)]
     fps: Option<f32>,
@@ -71,13 +76,17 @@ type Export = fn(&Scene, &Recording, ExportOptions) -> String;
 
 impl RunArgs {
     /// Every export: its flag, the file asked for, and what it writes.
-    fn exports(&self) -> [(&'static str, Option<&str>, Export); 5] {
+    fn exports(&self) -> [(&'static str, Option<&str>, Export); 6] {
         [
             ("--paths", self.paths.as_deref(), |scene, rec, _| export::paths_csv(scene, rec)),
             ("--paths-json", self.paths_json.as_deref(), |scene, rec, _| export::paths_json(scene, rec)),
             ("--maya", self.maya.as_deref(), export::maya_mel),
             ("--blender", self.blender.as_deref(), export::blender_py),
             ("--svg", self.svg.as_deref(), |scene, rec, _| export::trails_svg(scene, rec)),
+            ("--pedpy", self.pedpy.as_deref(), |scene, rec, _| {
+                let traj = pedpy::from_recording(scene, rec, scene.px_per_metre);
+                pedpy::trajectory_text(&traj, None, &scene.name)
+            }),
         ]
     }
 }
