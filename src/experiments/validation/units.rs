@@ -45,7 +45,7 @@ pub fn mps(px_per_step: f32) -> f32 {
 
 /// Keys a planner may use for the speed it wants to walk at (a model with a desired speed
 /// below its limit) and for its speed limit.
-const DESIRED_KEYS: &[&str] = &["desired_speed", "preferred_speed"];
+const DESIRED_KEYS: &[&str] = &["desired_speed", "preferred_speed", "pref_speed"];
 const LIMIT_KEYS: &[&str] = &["max_speed", "max_velocity"];
 
 /// How much faster than desired a planner with both a desired speed and a limit may go (the
@@ -54,22 +54,27 @@ const LIMIT_OVER_DESIRED: f32 = 1.3;
 
 /// `kind`'s default configuration walking at `speed` m/s: its desired-speed parameter set to
 /// `speed` (and its limit to 1.3 × that), or, for the swarm planners that only have a speed
-/// limit, the limit set to `speed`. Refuses a planner with neither, or a speed out of range.
+/// limit, the limit set to `speed`; each in its parameter's own unit (m/s for the baseline
+/// models, px/step for the swarm planners). Refuses a planner with neither, or a speed out of
+/// range.
 pub fn config_at_speed(kind: PlannerKind, speed: f32) -> Result<PlannerConfig, SetupError> {
     let mut config = kind.default_config();
-    let keys: Vec<&str> = kind.param_specs().iter().map(|s| s.key).collect();
-    let v = px_per_step(speed);
-    let desired = DESIRED_KEYS.iter().find(|k| keys.contains(k));
-    let limit = LIMIT_KEYS.iter().find(|k| keys.contains(k));
-    let round = |x: f32| serde_json::json!((f64::from(x) * 1e6).round() / 1e6);
-    match (desired, limit) {
-        (Some(d), l) => {
-            if let Some(l) = l {
-                config.set_param(l, round(v * LIMIT_OVER_DESIRED))?;
+    let specs = kind.param_specs();
+    let find = |keys: &[&'static str]| {
+        keys.iter().find_map(|k| specs.iter().find(|s| s.key == *k)).map(|s| (s.key, s.unit == "m/s"))
+    };
+    let value = |m_s: f32, in_m_s: bool| {
+        let v = if in_m_s { m_s } else { px_per_step(m_s) };
+        serde_json::json!((f64::from(v) * 1e6).round() / 1e6)
+    };
+    match (find(DESIRED_KEYS), find(LIMIT_KEYS)) {
+        (Some((d, d_m_s)), l) => {
+            if let Some((l, l_m_s)) = l {
+                config.set_param(l, value(speed * LIMIT_OVER_DESIRED, l_m_s))?;
             }
-            config.set_param(d, round(v))?;
+            config.set_param(d, value(speed, d_m_s))?;
         }
-        (None, Some(l)) => config.set_param(l, round(v))?,
+        (None, Some((l, l_m_s))) => config.set_param(l, value(speed, l_m_s))?,
         (None, None) => return Err(SetupError::NoSpeedParameter(kind.name())),
     }
     Ok(config)
