@@ -3,7 +3,8 @@
 //! Release build,
 //! pinned to one core: `taskset -c 0 cargo run --release --example replay_cost`.
 
-use flockpath::sim::recording::{Recording, DEFAULT_BUDGET_BYTES};
+use flockpath::sim::limits::PAGE_RECORDING_BUDGET_BYTES;
+use flockpath::sim::recording::Recording;
 use flockpath::sim::replay::{checkpoint_bytes_estimate, Replay};
 use flockpath::{presets, World};
 use std::time::Instant;
@@ -20,7 +21,7 @@ fn main() {
         world.step_n(20);
 
         let mut replay = Replay::new(&world);
-        let mut export = Recording::of_world(&world, DEFAULT_BUDGET_BYTES);
+        let mut export = Recording::of_world(&world, PAGE_RECORDING_BUDGET_BYTES);
         let block = if n > 5_000 { 10 } else { 50 };
         let (mut step_ms, mut record_ms, mut export_ms) = (Vec::new(), Vec::new(), Vec::new());
         for _ in 0..9 {

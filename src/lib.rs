@@ -2,8 +2,9 @@
 //!
 //! The core is plain Rust with no web types: a [`Scene`] is validated and turned into a [`World`]
 //! (agent state as struct-of-arrays, a fixed step, one seeded generator), planners steer groups,
-//! [`sim::metrics`] measures the run and [`render`] rasterises it. `web` (wasm32 only) wraps this
-//! for the page; `src/bin/flockpath/` is the command line.
+//! [`sim::metrics`] measures the run and [`render`] rasterises it. A [`sim::run::Run`] keeps a
+//! world with its recording, timeline and metric series in step: `web` (wasm32 only) wraps one
+//! with a renderer for the page, and `src/bin/flockpath/` (the command line) drives one too.
 //!
 //! Layers, bottom up; each uses only those before it (`tests/hygiene.rs` holds the table):
 //!
@@ -14,7 +15,7 @@
 //! | [`spatial`] | neighbour queries: the agents' grid, the obstacle index, the flow field |
 //! | [`optim`] | optimizers on R^d and benchmark functions (a leaf beside the crowd) |
 //! | [`planners`] | the Planner trait and one file per planner |
-//! | [`sim`] | a run: the world's step, spawn, cost limits, metrics, recording, replay, comparison |
+//! | [`sim`] | a run: the world's step, spawn, cost limits, metrics, one bounded series, recording, replay, comparison, and [`sim::run::Run`] (what the page and the CLI drive), budgets in [`sim::limits`] |
 //! | [`experiments`], [`tune`], [`render`], [`export`] | tables, GA tuning, pixels, files |
 //! | `web` | wasm32 only: conversion and errors for the pages |
 //!

@@ -202,7 +202,9 @@ fn every_preset_heads_for_its_goal_with_priority_arbitration() {
         let end = mean_goal_distance(&world);
         let m = world.metrics();
         assert!(m.overall.arrived_share >= 0.75, "{}: arrived {}", preset.name, m.overall.arrived_share);
-        assert!(end < 0.3 * start, "{}: mean goal distance {start:.0} → {end:.0} px", preset.name);
+        // Arrived agents park without overlapping (the crowd gathers around the goal instead of
+        // piling onto it): pillars 723 → 219 px with parking (0.30 of the start; below 0.3 before).
+        assert!(end < 0.35 * start, "{}: mean goal distance {start:.0} → {end:.0} px", preset.name);
         assert_eq!(m.overall.penetrations_agent_obstacle, 0, "{}", preset.name);
     }
 }

@@ -170,3 +170,32 @@ fn long_runs_thin_the_series_within_bounds() {
     assert!(series.every > 10);
     assert!(series.steps.windows(2).all(|w| w[1] - w[0] == series.every));
 }
+
+#[test]
+fn panes_are_added_changed_and_removed_natively_and_a_refusal_changes_nothing() {
+    let mut c = Comparison::new(scene("open-field"), spec("1.scene")).expect("valid");
+    c.add_pane(Some(PlannerKind::Pso)).expect("room for a second pane");
+    c.add_pane(None).expect("and a third");
+    assert_eq!(c.spec().to_spec_string(), spec("1.scene~pso~scene").to_spec_string());
+    c.set_pane_planner(2, Some(PlannerKind::Firefly)).expect("pane 3 exists");
+    c.set_pane_param(1, "max_speed", serde_json::json!(2.5)).expect("in range");
+    let PlannerConfig::Pso(p) = c.spec().panes[1].all.clone().expect("every-group planner") else {
+        panic!("pane 2 runs PSO")
+    };
+    assert_eq!(p.max_speed, 2.5);
+    c.step_n(30);
+    let before = c.spec();
+    let e = c.set_pane_param(0, "max_speed", serde_json::json!(2.0)).expect_err("a scene pane");
+    assert!(e.to_string().contains("pick a planner"), "{e}");
+    assert!(c.set_pane_param(1, "max_speed", serde_json::json!(1e9)).is_err(), "out of range");
+    assert!(c.set_pane_planner(7, None).expect_err("no pane 8").to_string().contains("no pane 8"));
+    c.add_pane(None).expect("a fourth");
+    assert!(c.add_pane(None).is_err(), "at most four panes");
+    c.remove_pane(3).expect("the fourth goes");
+    assert_eq!(c.spec(), before, "refusals changed nothing");
+    assert_eq!(c.step_count(), 0, "every accepted change restarts the panes");
+    c.remove_pane(0).expect("pane 1 goes");
+    c.remove_pane(0).expect("pane 2 goes");
+    assert!(c.remove_pane(0).is_err(), "the last pane stays");
+    assert_eq!(c.panes().len(), 1);
+}

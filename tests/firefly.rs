@@ -1,7 +1,10 @@
 //! Firefly crowd (Zhang, Wei & Chen 2017): invariants, aggregation, single-file queues, arrival.
 
 use flockpath::model::params::FireflyParams;
-use flockpath::{presets, World};
+use flockpath::sim::metrics::MetricsRecorder;
+use flockpath::spatial::{ObstacleIndex, SpatialGrid};
+use flockpath::{presets, Goal, World};
+use glam::Vec2;
 
 fn seeds() -> u32 {
     if cfg!(debug_assertions) {
@@ -10,9 +13,6 @@ fn seeds() -> u32 {
         10
     }
 }
-
-/// Expected queue order of random headings: a ±30° cone is 1/6 of the circle.
-const RANDOM_QUEUE_ORDER: f64 = 1.0 / 6.0;
 
 #[test]
 fn the_paper_setting_is_the_preset() {
@@ -53,23 +53,25 @@ fn fireflies_line_up_in_file_then_reach_the_target() {
         // Step 0's velocities are the random spawn velocities.
         world.step();
         let start = world.metrics().overall.queue_order.expect("queue order at the start");
-        world.step_n(299);
+        let mut later = Vec::new();
+        for step in [300, 400, 500] {
+            world.step_n(step - world.step_count());
+            later.push(world.metrics().overall.queue_order.expect("queue order"));
+        }
         let m = world.metrics();
-        let queued = m.overall.queue_order.expect("queue order at step 300");
-        world.step_n(1200);
+        let queued = later.iter().sum::<f64>() / later.len() as f64;
+        world.step_n(1500 - world.step_count());
         let end = world.metrics();
         println!(
-            "firefly seed {seed}: queue order step 1 {start:.2}, step 300 {queued:.2}; arrived at 1500 {:.2}; \
-             collisions to step 300 {}, to 1500 {}",
+            "firefly seed {seed}: queue order step 1 {start:.2}, steps 300/400/500 {later:.2?}; arrived at 1500 {:.2}; \
+             collisions to step 500 {}, to 1500 {}",
             end.overall.arrived_share, m.overall.collisions_agent_agent, end.overall.collisions_agent_agent
         );
-        // Falling in behind a brighter firefly in contact: 0.88–0.99 at step 300 on seeds 1–10
-        // (0.79–0.94 without it, so 0.85 fails on main's seeds 1, 2, 6, 7).
-        assert!(queued >= 0.85, "seed {seed}: queue order {queued}");
-        // The first step already turns most fireflies at their nearest brighter one: measured
-        // 0.89–0.95 after one step from the spawn lattice (0.72–0.81 from the former random,
-        // overlapping spawn, after which the files tightened to 0.88–0.99), 0.86–0.93 at step 300.
-        assert!(start > RANDOM_QUEUE_ORDER && queued > RANDOM_QUEUE_ORDER, "seed {seed}: {start} → {queued}");
+        // The spacing-based queue order (a brighter firefly of the group within 16 px ahead,
+        // ±30°): the spread-out spawn reads 0.00–0.01 at step 1 on seeds 1–10; the files read
+        // 0.59–0.86 at step 300, 0.68–0.95 at 400, 0.72–0.87 at 500 (means of the three 0.69–0.91).
+        assert!(start < 0.1, "seed {seed}: queue order {start} at step 1");
+        assert!(queued > 0.6, "seed {seed}: queue order {later:?} at steps 300/400/500");
         assert!(end.overall.arrived_share >= 0.9, "seed {seed}");
     }
 }
@@ -97,4 +99,35 @@ fn the_queue_order_measure_tells_a_file_from_a_random_crowd() {
     assert_eq!(world.metrics().overall.queue_order, Some(0.0));
     let json = serde_json::to_value(world.metrics()).expect("json");
     assert!(json.get("queue_order").is_some() && json["groups"][0].get("queue_order").is_some());
+
+    // Known answers: ten 4 px fireflies on a line towards a goal at the right.
+    let mut scene = presets::firefly_migration();
+    scene.obstacles.clear();
+    scene.goals[0] = Goal::fixed([780.0, 300.0], 10.0);
+    scene.groups.truncate(1);
+    scene.groups[0].count = 10;
+    scene.groups[0].agent_radius = 4.0;
+    let measure = |spacing: f32, heading: Vec2| {
+        let pos: Vec<Vec2> = (0..10).map(|k| Vec2::new(100.0 + spacing * k as f32, 300.0)).collect();
+        let vel = vec![heading; 10];
+        let mut grid = SpatialGrid::new(scene.width, scene.height, 50.0, 10);
+        grid.rebuild(&pos, &vel);
+        let obstacles = ObstacleIndex::new(vec![], scene.width, scene.height);
+        let mut recorder = MetricsRecorder::new(&scene, &pos);
+        let goals = [Some((Vec2::new(780.0, 300.0), 10.0))];
+        recorder.record(1, &pos, &vel, &[0; 10], &[4.0; 10], &goals, &grid, &obstacles);
+        recorder.summary(&scene, &["firefly"], 1).overall.queue_order.expect("measured")
+    };
+    let towards = Vec2::new(1.5, 0.0);
+    // In file 12 px apart, heading for the goal: all but the head are queued.
+    assert_eq!(measure(12.0, towards), 0.9);
+    // 16 px is the reach (4 radii); 17 px apart is spread out.
+    assert_eq!(measure(16.0, towards), 0.9);
+    assert_eq!(measure(17.0, towards), 0.0);
+    // Heading away from the brighter one, or 45° off it: not queued behind it.
+    assert_eq!(measure(12.0, -towards), 0.0);
+    assert_eq!(measure(12.0, Vec2::new(1.0, 1.0)), 0.0);
+    // 25° off: still within ±30°.
+    let (s, c) = 25f32.to_radians().sin_cos();
+    assert_eq!(measure(12.0, Vec2::new(c, s)), 0.9);
 }

@@ -96,7 +96,7 @@ fn assert_inside(world: &World, what: &str) {
 #[test]
 fn no_agent_leaves_a_random_small_world() {
     let mut rng = Rng::new(12, 3);
-    let mut ran = [0u32; 5];
+    let mut ran = [0u32; PlannerKind::ALL.len()];
     let mut refused = 0;
     for case in 0..CASES {
         let scene = random_scene(&mut rng, case);

@@ -4,3 +4,4 @@
 //! Layer: experiments. Uses `optim`, `model`, `spatial`, `planners`, `sim` and `rng`.
 
 pub mod tables;
+pub mod validation;

@@ -4,7 +4,9 @@ use crate::model::forces_cases::{Behaviour, Environment};
 use crate::model::geometry::Obstacle;
 use crate::model::palette::{BLUE, BLUISH_GREEN, ORANGE, REDDISH_PURPLE, VERMILLION};
 use crate::model::params::boids::{Arbitration, FlowGuide, Leader, Role};
-use crate::model::params::{BoidsParams, FireflyParams, IgsaParams, PlannerConfig, PsoParams};
+use crate::model::params::{
+    BoidsParams, FireflyParams, IgsaParams, OrcaParams, PlannerConfig, PsoParams, SocialForceParams,
+};
 use crate::model::scene::{Goal, GoalMotion, Group, Hill, PathSpec, Region, Scene};
 use crate::rng::Rng;
 
@@ -140,6 +142,16 @@ pub const ALL: &[Preset] = &[
         name: "igsa-crowd-1000",
         description: "IGSA group path (Table 4): 1000 agents follow one path past a large obstacle, avoiding each other.",
         build: igsa_crowd_1000,
+    },
+    Preset {
+        name: "orca-crossing",
+        description: "ORCA (van den Berg et al. 2011): four groups of 20 cross a 40 m × 30 m square to the opposite sides, each agent choosing the velocity nearest its preferred one that avoids the others reciprocally.",
+        build: orca_crossing,
+    },
+    Preset {
+        name: "social-force-bottleneck",
+        description: "Social force (Helbing & Molnár 1995, body forces of Helbing et al. 2000): 60 pedestrians leave a room through a 1.6 m door; an arch of pressure forms before it.",
+        build: social_force_bottleneck,
     },
 ];
 
@@ -586,5 +598,45 @@ pub fn pso_hills() -> Scene {
     s.hills.push(Hill { center: [650.0, 480.0], radius: 80.0, height: 20.0 });
     s.goals.push(Goal::fixed([920.0, 350.0], 150.0));
     s.groups.push(pso_group("crowd", BLUE, 300, ([20.0, 60.0], [200.0, 640.0]), 0));
+    s
+}
+
+/// Body radius of the baselines' presets: 5 px, 0.25 m at 20 px per metre (the 2000 paper's
+/// radii are 0.25–0.35 m).
+const PEDESTRIAN_RADIUS: f32 = 5.0;
+
+/// Four groups of 20 cross an 800 × 600 px square (40 m × 30 m at 20 px/m) to the opposite
+/// sides, steered by ORCA with its default parameters: they meet in the middle.
+pub fn orca_crossing() -> Scene {
+    let mut s = base("orca-crossing", 800.0, 600.0);
+    let sides = [
+        ("west", "#2f6fdf", ([20.0, 220.0], [120.0, 380.0]), [740.0, 300.0]),
+        ("east", "#df4f2f", ([680.0, 220.0], [780.0, 380.0]), [60.0, 300.0]),
+        ("north", "#2f9f5f", ([320.0, 20.0], [480.0, 120.0]), [400.0, 540.0]),
+        ("south", "#8f3fbf", ([320.0, 480.0], [480.0, 580.0]), [400.0, 60.0]),
+    ];
+    for (k, (name, color, spawn, goal)) in sides.into_iter().enumerate() {
+        s.goals.push(Goal::fixed(goal, 50.0));
+        s.groups.push(Group {
+            agent_radius: PEDESTRIAN_RADIUS,
+            planner: PlannerConfig::Orca(OrcaParams::default()),
+            ..group(name, color, 20, spawn, k as u32)
+        });
+    }
+    s
+}
+
+/// 60 pedestrians in a room (left) leave through a door 1.6 m (32 px) wide in a wall across the
+/// scene for a goal beyond it, steered by the social force model with its papers' parameters.
+pub fn social_force_bottleneck() -> Scene {
+    let mut s = base("social-force-bottleneck", 800.0, 400.0);
+    s.obstacles.push(Obstacle::Rect { min: [420.0, 0.0], max: [440.0, 184.0] });
+    s.obstacles.push(Obstacle::Rect { min: [420.0, 216.0], max: [440.0, 400.0] });
+    s.goals.push(Goal::fixed([700.0, 200.0], 60.0));
+    s.groups.push(Group {
+        agent_radius: PEDESTRIAN_RADIUS,
+        planner: PlannerConfig::SocialForce(SocialForceParams::default()),
+        ..group("room", "#2f6fdf", 60, ([40.0, 60.0], [300.0, 340.0]), 0)
+    });
     s
 }

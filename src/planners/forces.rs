@@ -205,6 +205,11 @@ impl Planner for Forces {
         self.params.max_speed
     }
 
+    /// Arrived agents would pile onto the goal (separation is soft): the world parks them.
+    fn parks_at_goal(&self) -> bool {
+        true
+    }
+
     fn explain(&self, ctx: &StepContext, group: &GroupView, agent: u32) -> Explanation {
         let prm = &self.params;
         let mut e = Explanation { scale: 150.0, ..Explanation::default() };

@@ -7,10 +7,13 @@ pub mod boids;
 pub mod explain;
 pub mod firefly;
 pub mod forces;
+pub mod goal_way;
 pub mod igsa;
 mod lanes;
+pub mod orca;
 pub mod planner;
 pub mod pso;
+pub mod social_force;
 
 use crate::model::geometry::Obstacle;
 use crate::model::params::PlannerConfig;
@@ -21,8 +24,10 @@ pub use explain::GroupPath;
 pub use firefly::Firefly;
 pub use forces::Forces;
 pub use igsa::IgsaPlanner;
+pub use orca::Orca;
 pub use planner::{GroupView, Planner, PlannerClone, StepContext};
 pub use pso::Pso;
+pub use social_force::SocialForce;
 
 /// A fresh planner for a group of `count` agents.
 pub fn build(config: &PlannerConfig, count: usize, obstacles: &[Obstacle]) -> Box<dyn Planner> {
@@ -34,6 +39,8 @@ pub fn build(config: &PlannerConfig, count: usize, obstacles: &[Obstacle]) -> Bo
         PlannerConfig::Forces(p) => Box::new(Forces::new(p.clone())),
         // Without its scene the IGSA planner has no path to plan: use `build_for_group`.
         PlannerConfig::Igsa(p) => Box::new(IgsaPlanner::new(p.clone(), &Scene::empty(10.0, 10.0), 0)),
+        PlannerConfig::Orca(p) => Box::new(Orca::new(p.clone())),
+        PlannerConfig::SocialForce(p) => Box::new(SocialForce::new(p.clone())),
     }
 }
 
@@ -43,6 +50,8 @@ pub fn build(config: &PlannerConfig, count: usize, obstacles: &[Obstacle]) -> Bo
 pub fn build_for_group(config: &PlannerConfig, scene: &Scene, group: usize) -> Box<dyn Planner> {
     match config {
         PlannerConfig::Igsa(p) => Box::new(IgsaPlanner::planning(p.clone(), scene, group)),
+        PlannerConfig::Orca(p) => Box::new(orca::for_scene(p.clone(), scene)),
+        PlannerConfig::SocialForce(p) => Box::new(social_force::for_scene(p.clone(), scene)),
         _ => {
             let count = scene.groups.get(group).map_or(0, |g| g.count as usize);
             build(config, count, &scene.obstacles)

@@ -73,6 +73,13 @@ pub trait Planner: PlannerClone {
     fn passes_through_obstacles(&self) -> bool {
         false
     }
+    /// Whether the world parks this group's agents at a fixed goal: an agent that reaches it
+    /// (or the crowd already parked there) stops for good without overlapping another parked
+    /// body ([`crate::sim::world`]). For planners that pile onto the goal otherwise; the default
+    /// leaves arrival to the planner.
+    fn parks_at_goal(&self) -> bool {
+        false
+    }
     /// The path the group follows, for planners that plan one (IGSA group path control).
     fn planned_path(&self) -> Option<&GroupPath> {
         None

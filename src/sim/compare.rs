@@ -18,7 +18,9 @@
 
 use crate::model::params::{PlannerConfig, PlannerKind};
 use crate::model::scene::{Scene, SceneError};
+use crate::sim::limits;
 use crate::sim::metrics::Metrics;
+use crate::sim::series::BoundedSeries;
 use crate::sim::world::World;
 use serde::Serialize;
 use std::fmt::Write as _;
@@ -28,9 +30,9 @@ pub const SPEC_VERSION: &str = "1";
 /// Most panes a comparison shows.
 pub const MAX_PANES: usize = 4;
 /// Steps between time-series samples at the start (doubles when the series thins).
-pub const SERIES_EVERY: u32 = 10;
+pub const SERIES_EVERY: u32 = limits::COMPARE_SERIES_EVERY;
 /// Most samples kept per series; beyond it every other sample goes and the interval doubles.
-pub const MAX_SERIES_SAMPLES: usize = 1000;
+pub const MAX_SERIES_SAMPLES: usize = limits::COMPARE_SERIES_CAP;
 /// Pane names and colours (plots and table headers), in pane order.
 pub const PANE_NAMES: [&str; MAX_PANES] = ["A", "B", "C", "D"];
 /// One colour per pane for the overlaid plots.
@@ -358,7 +360,8 @@ fn spec_value(input: &str) -> &str {
     after_hash
 }
 
-/// Sampled time series of one pane (every `every` steps).
+/// Sampled time series of one pane (every `every` steps), as the compare page reads it: one
+/// list per key. Held as a [`BoundedSeries`] of rows, halved when full.
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
 pub struct Series {
     /// Steps between samples now.
@@ -377,36 +380,44 @@ pub struct Series {
     pub stuck_agents: Vec<f64>,
 }
 
-impl Series {
-    fn new() -> Self {
-        Self { every: SERIES_EVERY, ..Self::default() }
-    }
+/// The values of one sample, in [`SERIES_KEYS`] order.
+type PaneSample = [f64; 5];
 
-    fn sample(&mut self, world: &World) {
-        let m = world.metrics();
-        let n = world.velocities().len().max(1) as f64;
-        let speed = world.velocities().iter().map(|v| f64::from(v.length())).sum::<f64>() / n;
-        self.steps.push(m.steps);
-        self.arrived_share.push(m.overall.arrived_share);
-        self.collisions_agent_agent.push(m.overall.collisions_agent_agent as f64);
-        self.penetrations_agent_obstacle.push(m.overall.penetrations_agent_obstacle as f64);
-        self.speed.push(speed);
-        self.stuck_agents.push(f64::from(m.overall.stuck_agents));
-        if self.steps.len() > MAX_SERIES_SAMPLES {
-            self.every = self.every.saturating_mul(2);
-            let every = self.every;
-            let keep: Vec<bool> = self.steps.iter().map(|s| s.is_multiple_of(every)).collect();
-            let thin = |v: &mut Vec<f64>| {
-                let mut k = keep.iter();
-                v.retain(|_| k.next().copied().unwrap_or(false));
-            };
-            thin(&mut self.arrived_share);
-            thin(&mut self.collisions_agent_agent);
-            thin(&mut self.penetrations_agent_obstacle);
-            thin(&mut self.speed);
-            thin(&mut self.stuck_agents);
-            let mut k = keep.iter();
-            self.steps.retain(|_| k.next().copied().unwrap_or(false));
+/// A pane's bounded series (see [`Series`] for what it holds).
+fn pane_series() -> BoundedSeries<PaneSample> {
+    BoundedSeries::new(1, MAX_SERIES_SAMPLES, SERIES_EVERY)
+}
+
+/// Samples `world` into `series` when its step falls on the interval.
+fn sample(series: &mut BoundedSeries<PaneSample>, world: &World) {
+    if !series.due(world.step_count()) {
+        return;
+    }
+    let m = world.metrics();
+    let n = world.velocities().len().max(1) as f64;
+    let speed = world.velocities().iter().map(|v| f64::from(v.length())).sum::<f64>() / n;
+    let o = &m.overall;
+    let row = [
+        o.arrived_share,
+        o.collisions_agent_agent as f64,
+        o.penetrations_agent_obstacle as f64,
+        speed,
+        f64::from(o.stuck_agents),
+    ];
+    series.push(m.steps, [row]);
+}
+
+impl Series {
+    fn of(series: &BoundedSeries<PaneSample>) -> Self {
+        let column = |k: usize| series.values().iter().map(|row| row[k]).collect();
+        Self {
+            every: series.every(),
+            steps: series.steps().to_vec(),
+            arrived_share: column(0),
+            collisions_agent_agent: column(1),
+            penetrations_agent_obstacle: column(2),
+            speed: column(3),
+            stuck_agents: column(4),
         }
     }
 }
@@ -416,7 +427,7 @@ pub struct Pane {
     spec: PaneSpec,
     label: String,
     world: World,
-    series: Series,
+    series: BoundedSeries<PaneSample>,
 }
 
 impl Pane {
@@ -424,8 +435,8 @@ impl Pane {
         let applied = spec.apply(scene)?;
         let world = World::new(applied)?;
         let label = spec.describe(scene);
-        let mut series = Series::new();
-        series.sample(&world);
+        let mut series = pane_series();
+        sample(&mut series, &world);
         Ok(Self { spec, label, world, series })
     }
 
@@ -445,8 +456,8 @@ impl Pane {
     }
 
     /// The pane's time series.
-    pub fn series(&self) -> &Series {
-        &self.series
+    pub fn series(&self) -> Series {
+        Series::of(&self.series)
     }
 }
 
@@ -521,9 +532,7 @@ impl Comparison {
         for pane in &mut self.panes {
             for _ in 0..n {
                 pane.world.step();
-                if pane.world.step_count().is_multiple_of(pane.series.every) {
-                    pane.series.sample(&pane.world);
-                }
+                sample(&mut pane.series, &pane.world);
             }
         }
     }
@@ -539,6 +548,46 @@ impl Comparison {
     pub fn set_spec(&mut self, spec: ComparisonSpec) -> Result<(), SpecError> {
         *self = Self::new(self.scene.clone(), spec)?;
         Ok(())
+    }
+
+    /// Gives pane `pane` `kind` for every group with its defaults, or the scene's own planners
+    /// for `None`; restarts every pane. On error nothing changes.
+    pub fn set_pane_planner(&mut self, pane: usize, kind: Option<PlannerKind>) -> Result<(), SpecError> {
+        let mut spec = self.spec();
+        *pane_slot(&mut spec, pane)? = kind.map_or_else(PaneSpec::scene, PaneSpec::every_group);
+        self.set_spec(spec)
+    }
+
+    /// Sets one parameter of pane `pane`'s every-group planner; restarts every pane. On error
+    /// (no such pane, a pane running the scene's planners, a value out of range) nothing changes.
+    pub fn set_pane_param(
+        &mut self,
+        pane: usize,
+        key: &str,
+        value: serde_json::Value,
+    ) -> Result<(), SpecError> {
+        let mut spec = self.spec();
+        let config = pane_slot(&mut spec, pane)?.all.as_mut().ok_or_else(|| {
+            SpecError("this pane runs the scene's own planners: pick a planner for it first".into())
+        })?;
+        config.set_param(key, value).map_err(|e| SpecError(e.to_string()))?;
+        self.set_spec(spec)
+    }
+
+    /// Adds a pane running `kind` for every group (`None`: the scene's planners); restarts.
+    /// Errors past [`MAX_PANES`].
+    pub fn add_pane(&mut self, kind: Option<PlannerKind>) -> Result<(), SpecError> {
+        let mut spec = self.spec();
+        spec.panes.push(kind.map_or_else(PaneSpec::scene, PaneSpec::every_group));
+        self.set_spec(spec)
+    }
+
+    /// Removes pane `pane`; restarts. Errors for a missing pane or the last one.
+    pub fn remove_pane(&mut self, pane: usize) -> Result<(), SpecError> {
+        let mut spec = self.spec();
+        pane_slot(&mut spec, pane)?;
+        spec.panes.remove(pane);
+        self.set_spec(spec)
     }
 
     /// Replaces the scene, keeping the spec (restarts); on error nothing changes.
@@ -609,6 +658,11 @@ impl Comparison {
     pub fn digests(&self) -> Vec<u64> {
         self.panes.iter().map(|p| p.world.digest()).collect()
     }
+}
+
+/// Pane `pane` of `spec`, or an error naming it (counted from 1).
+fn pane_slot(spec: &mut ComparisonSpec, pane: usize) -> Result<&mut PaneSpec, SpecError> {
+    spec.panes.get_mut(pane).ok_or_else(|| SpecError(format!("there is no pane {}", pane as u64 + 1)))
 }
 
 /// Quotes a CSV field when it holds a comma, quote or line break.

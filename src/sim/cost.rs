@@ -35,6 +35,9 @@ pub fn wasm_factor(kind: PlannerKind) -> f64 {
         PlannerKind::Firefly => 1.25,
         PlannerKind::Forces => 1.25,
         PlannerKind::Igsa => 1.3,
+        // Not yet measured in the browser: the largest factor of the others.
+        PlannerKind::Orca => 1.5,
+        PlannerKind::SocialForce => 1.5,
     }
 }
 
@@ -44,7 +47,10 @@ pub fn wasm_factor(kind: PlannerKind) -> f64 {
 /// Measured with `examples/step_cost.rs` (`taskset -c 0`, the worst 10-step window of steps
 /// 0–100 and 300–400, at 2,000 and at 10,000 agents), rounded up: pso 4,146 (spread 580–840),
 /// firefly 11,965 (spread 1,110–1,220), forces 13,750 (spread 820–1,250), igsa 1,132 (spread
-/// 210–280) on a quiet machine. A jam costs 4–12× a spread crowd: every agent has many more
+/// 210–280) on a quiet machine; orca 11,287 (spread 5,250–6,410) and social_force 88,465
+/// (spread 5,910–9,060), 2026-11-25 on the shared machine under load 6–14 (the social force sums
+/// every neighbour within 5 m, up to its cap of 512, so a packed crowd costs it 10× a spread
+/// one). A jam costs 4–12× a spread crowd: every agent has many more
 /// neighbours within its planner's reach (the per-agent caps of [`crate::spatial::NEIGHBOUR_CAP`]
 /// bound piles beyond that).
 ///
@@ -66,6 +72,8 @@ pub fn native_ns_per_agent_step(kind: PlannerKind) -> f64 {
         PlannerKind::Firefly => 12_000.0,
         PlannerKind::Forces => 14_000.0,
         PlannerKind::Igsa => 1_200.0,
+        PlannerKind::Orca => 11_500.0,
+        PlannerKind::SocialForce => 90_000.0,
     }
 }
 

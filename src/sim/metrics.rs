@@ -11,7 +11,7 @@
 //! is crowded (`collisions_capped_steps` counts the steps where that cut a count short), and the
 //! queue order, a firefly measure, is taken for firefly groups only, on step 1 and every
 //! [`QUEUE_SAMPLE_EVERY`] steps, each agent looking at no more than [`QUEUE_NEIGHBOUR_CAP`]
-//! neighbours.
+//! neighbours within [`QUEUE_AHEAD_RADII`] body radii.
 //!
 //! `fitness` holds the five measures of the GA-tuned virtual-force paper (DESIGN §3.5,
 //! [`crate::sim::fitness`]) for any planner, with behaviour B1's parameters and weights (a group moving
@@ -35,21 +35,24 @@ pub const NEAR_OBSTACLE: f32 = 30.0;
 /// Below this speed (px/step) no turn is measured: a parked agent's heading jitters without
 /// meaning (a twentieth of the Boids default max speed).
 const MIN_TURN_SPEED: f32 = 0.1;
-/// Queue order: brighter neighbours (nearer the goal) farther than this (px) are not looked for;
-/// about a firefly's feeler reach (h + r_safe = 110 px).
-pub const QUEUE_RADIUS: f32 = 120.0;
-/// Queue order: largest angle (degrees) between an agent's heading and its nearest brighter
-/// neighbour for the agent to count as queued behind it.
+/// Queue order: an agent is queued when a brighter neighbour of its group (nearer the goal) is
+/// this many of its body radii ahead or closer, centre to centre: 16 px for the default 4 px
+/// body, a gap of one body between the two discs. Fireflies in file on `firefly-migration`
+/// follow 8–16 px behind the one ahead (seed 1, step 300: 59 of the 73 not arrived; 36 within
+/// 12 px); the spawn lattice leaves 0–1 of 80 that close (seeds 1–4).
+pub const QUEUE_AHEAD_RADII: f32 = 4.0;
+/// Queue order: largest angle (degrees) between an agent's heading and the brighter neighbour
+/// for the agent to count as queued behind it.
 pub const QUEUE_HALF_ANGLE_DEG: f32 = 30.0;
 
 /// The queue order is measured at the end of step 1 and of every step that is a multiple of this
 /// (the plots sample every 5th step, and then every 10th, 20th …, so each plotted value is exact).
 pub const QUEUE_SAMPLE_EVERY: u32 = 5;
-/// Queue order: at most this many neighbours within [`QUEUE_RADIUS`] (and 8 times as many
-/// candidates of the scanned cells) are looked at per agent, the first in the grid's scan order,
-/// so a pile costs a bounded amount per agent. A crowd of non-overlapping 4 px discs holds about
-/// 650 within 120 px: only a pile reaches it.
-pub const QUEUE_NEIGHBOUR_CAP: usize = 1024;
+/// Queue order: at most this many neighbours within [`QUEUE_AHEAD_RADII`] radii (and 128 times
+/// as many candidates of the scanned cells) are looked at per agent, the first in the grid's
+/// scan order, so a pile costs a bounded amount per agent. Non-overlapping discs hold at most
+/// about 20 others within 4 radii: only a pile reaches it.
+pub const QUEUE_NEIGHBOUR_CAP: usize = 64;
 /// Most agents in one cell of the world's grid for which overlaps are counted on that grid;
 /// beyond it (a pile) they are counted on a grid of body-sized cells instead.
 const CROWDED_CELL: usize = 64;
@@ -117,6 +120,9 @@ pub struct GroupMetrics {
     /// Overlapping agent pairs, summed over steps (a pair across two groups counts in both groups
     /// and once overall).
     pub collisions_agent_agent: u64,
+    /// The overlapping pairs of `collisions_agent_agent` in which at least one agent had not
+    /// arrived (it was moving): without the pile-up of agents at their goal.
+    pub collisions_moving: u64,
     /// Agents whose centre is inside an obstacle, summed over steps.
     pub penetrations_agent_obstacle: u64,
     /// Mean speed over agents and steps (px/step).
@@ -138,10 +144,11 @@ pub struct GroupMetrics {
     /// Agents with a goal that have not arrived and made no progress in the last 300 steps.
     pub stuck_agents: u32,
     /// Queue order (firefly groups only, DESIGN §3.3) at step `queue_order_step`: among agents
-    /// that have a goal, have not arrived, and have a same-group neighbour nearer the goal within
-    /// 120 px, the share whose nearest such neighbour lies within ±30° of their heading (0…1;
-    /// null if no agent qualifies or the group is not a firefly group). Random headings give
-    /// about 1/6; single-file queues approach 1.
+    /// that have a goal and have not arrived, the share with a neighbour of their group nearer
+    /// the goal (brighter) close ahead: within 4 body radii (16 px for 4 px bodies), centre to
+    /// centre, and within ±30° of their heading (0…1; null if no agent qualifies or the group is
+    /// not a firefly group). A crowd spread out at the spawn reads near 0; single files, where
+    /// everyone but each file's head follows close behind a brighter one, approach 1.
     pub queue_order: Option<f64>,
     /// The step `queue_order` was measured at: step 1, then every [`QUEUE_SAMPLE_EVERY`]th step
     /// (the current step before the first sample); null with `queue_order`.
@@ -187,6 +194,7 @@ pub struct MetricsRecorder {
     groups: Vec<GroupAcc>,
     collisions_last_step: u32,
     collisions_total: u64,
+    collisions_moving_total: u64,
     collisions_capped_steps: u32,
     /// Body-sized grid for counting overlaps in a pile (built the first time one is met).
     contact_grid: Option<SpatialGrid>,
@@ -196,6 +204,8 @@ pub struct MetricsRecorder {
     group_agents: Vec<Range<u32>>,
     /// Groups whose queue order `record` samples (the firefly groups at the start).
     queue_groups: Vec<bool>,
+    /// Each group's body radius (px): the queue order's reach is a multiple of it.
+    group_radius: Vec<f32>,
     /// Per group `(queued, candidates)` at the last sample, and the step of that sample.
     queue: Vec<(u32, u32)>,
     queue_step: Option<u32>,
@@ -209,6 +219,7 @@ pub struct MetricsRecorder {
 #[derive(Clone, Debug, Default)]
 struct GroupAcc {
     collisions: u64,
+    collisions_moving: u64,
     penetrations: u64,
     speed_sum: f64,
     speed_samples: u64,
@@ -236,6 +247,7 @@ impl MetricsRecorder {
             groups: vec![GroupAcc::default(); scene.groups.len()],
             collisions_last_step: 0,
             collisions_total: 0,
+            collisions_moving_total: 0,
             collisions_capped_steps: 0,
             contact_grid: None,
             world_size: (scene.width, scene.height),
@@ -251,6 +263,7 @@ impl MetricsRecorder {
                     .collect()
             },
             queue_groups: scene.groups.iter().map(|g| g.planner.kind() == PlannerKind::Firefly).collect(),
+            group_radius: scene.groups.iter().map(|g| g.agent_radius).collect(),
             queue: vec![(0, 0); scene.groups.len()],
             queue_step: None,
             fitness: FitnessRecorder::new(
@@ -261,6 +274,17 @@ impl MetricsRecorder {
             ),
             fitness_every: FITNESS_SAMPLE_EVERY,
             fitness_goals: vec![None; n],
+        }
+    }
+
+    /// Records that agent `i` arrived at step `step` (the world parked it at its goal, perhaps
+    /// at the edge of the crowd parked there rather than inside the goal's radius); an agent
+    /// that arrived earlier keeps its first step. No effect for an id out of range.
+    pub fn arrive(&mut self, i: usize, step: u32) {
+        if let Some(s) = self.arrived_step.get_mut(i) {
+            if *s == NOT_ARRIVED {
+                *s = step;
+            }
         }
     }
 
@@ -282,38 +306,6 @@ impl MetricsRecorder {
         grid: &SpatialGrid,
         obstacles: &ObstacleIndex,
     ) {
-        let max_radius = radius.iter().copied().fold(0.0f32, f32::max);
-        // Collisions: pairs closer than the sum of radii, each once, counted as they are found.
-        let pair_radius = 2.0 * max_radius;
-        let (pair_grid, cap) = if grid.max_cell_occupancy() <= CROWDED_CELL || pos.is_empty() {
-            (grid, usize::MAX)
-        } else {
-            // A pile: the world's cells hold too many agents to test every pair of a cell.
-            let contact = self.contact_grid.get_or_insert_with(|| {
-                let (w, h) = self.world_size;
-                SpatialGrid::new(w, h, pair_radius.max(1.0), pos.len())
-            });
-            contact.rebuild(pos, &[]);
-            (&*contact, MAX_PAIR_CANDIDATES)
-        };
-        let groups = &mut self.groups;
-        let mut count = 0u32;
-        let capped = pair_grid.for_each_pair_within_capped(pair_radius, cap, |a, b| {
-            let d2 = pos[a as usize].distance_squared(pos[b as usize]);
-            let r = radius[a as usize] + radius[b as usize];
-            if d2 < r * r {
-                count += 1;
-                let (ga, gb) = (group_of[a as usize] as usize, group_of[b as usize] as usize);
-                groups[ga].collisions += 1;
-                if gb != ga {
-                    groups[gb].collisions += 1;
-                }
-            }
-        });
-        self.collisions_last_step = count;
-        self.collisions_total += u64::from(count);
-        self.collisions_capped_steps += u32::from(capped);
-
         for i in 0..pos.len() {
             let g = group_of[i] as usize;
             let acc = &mut self.groups[g];
@@ -366,6 +358,45 @@ impl MetricsRecorder {
             self.prev_speed[i] = speed;
         }
 
+        // Collisions after arrivals (a pair with an agent not yet arrived is a moving one).
+        let max_radius = radius.iter().copied().fold(0.0f32, f32::max);
+        // Collisions: pairs closer than the sum of radii, each once, counted as they are found.
+        let pair_radius = 2.0 * max_radius;
+        let (pair_grid, cap) = if grid.max_cell_occupancy() <= CROWDED_CELL || pos.is_empty() {
+            (grid, usize::MAX)
+        } else {
+            // A pile: the world's cells hold too many agents to test every pair of a cell.
+            let contact = self.contact_grid.get_or_insert_with(|| {
+                let (w, h) = self.world_size;
+                SpatialGrid::new(w, h, pair_radius.max(1.0), pos.len())
+            });
+            contact.rebuild(pos, &[]);
+            (&*contact, MAX_PAIR_CANDIDATES)
+        };
+        let groups = &mut self.groups;
+        let arrived = &self.arrived_step;
+        let (mut count, mut moving_count) = (0u32, 0u32);
+        let capped = pair_grid.for_each_pair_within_capped(pair_radius, cap, |a, b| {
+            let d2 = pos[a as usize].distance_squared(pos[b as usize]);
+            let r = radius[a as usize] + radius[b as usize];
+            if d2 < r * r {
+                count += 1;
+                let moving = arrived[a as usize] == NOT_ARRIVED || arrived[b as usize] == NOT_ARRIVED;
+                moving_count += u32::from(moving);
+                let (ga, gb) = (group_of[a as usize] as usize, group_of[b as usize] as usize);
+                groups[ga].collisions += 1;
+                groups[ga].collisions_moving += u64::from(moving);
+                if gb != ga {
+                    groups[gb].collisions += 1;
+                    groups[gb].collisions_moving += u64::from(moving);
+                }
+            }
+        });
+        self.collisions_last_step = count;
+        self.collisions_total += u64::from(count);
+        self.collisions_moving_total += u64::from(moving_count);
+        self.collisions_capped_steps += u32::from(capped);
+
         if self.fitness_every > 0 && step % self.fitness_every == 1 % self.fitness_every {
             self.fitness_goals.clear();
             self.fitness_goals
@@ -393,7 +424,7 @@ impl MetricsRecorder {
     /// [`Self::summary`] with the queue order reported only for the groups `queue_for(g)` picks
     /// (the others get null). A group sampled by `record` (a firefly group from the start) costs
     /// nothing here; any other picked group is measured now, before the first sample too: a
-    /// bounded 120 px neighbour query per agent on a grid built for it.
+    /// bounded neighbour query of 4 body radii per agent on a grid built for it.
     pub fn summary_with_queue(
         &self,
         scene: &Scene,
@@ -424,7 +455,7 @@ impl MetricsRecorder {
             overall.turn_sum += acc.turn_sum;
             overall.turn_samples += acc.turn_samples;
             overall.max_turn = overall.max_turn.max(acc.max_turn);
-            let mut m = to_metrics(acc, &stats, acc.collisions, dt, scale);
+            let mut m = to_metrics(acc, &stats, (acc.collisions, acc.collisions_moving), dt, scale);
             m.name = Some(g.name.clone());
             m.planner = planners.get(gi).map(|s| s.to_string());
             let (q, c, at) = queue.get(gi).copied().unwrap_or_default();
@@ -438,7 +469,8 @@ impl MetricsRecorder {
             (queued, queue_candidates) = (queued + q, queue_candidates + c);
             groups.push(m);
         }
-        let mut overall = to_metrics(&overall, &all, self.collisions_total, dt, scale);
+        let mut overall =
+            to_metrics(&overall, &all, (self.collisions_total, self.collisions_moving_total), dt, scale);
         overall.queue_order = (queue_candidates > 0).then(|| f64::from(queued) / f64::from(queue_candidates));
         overall.queue_order_step = overall.queue_order.and(queue_step);
         let sampled = self.fitness.frames();
@@ -465,6 +497,7 @@ impl MetricsRecorder {
         let sampled =
             |g: usize| self.queue_step.is_some() && self.queue_groups.get(g).copied().unwrap_or(false);
         let mut out = vec![(0, 0, steps); scene.groups.len()];
+        let reach = scene.groups.iter().map(|g| g.agent_radius).fold(0.0f32, f32::max) * QUEUE_AHEAD_RADII;
         for (g, slot) in out.iter_mut().enumerate() {
             if let (true, true, Some(step)) = (queue_for(g), sampled(g), self.queue_step) {
                 let (q, c) = self.queue.get(g).copied().unwrap_or_default();
@@ -473,7 +506,7 @@ impl MetricsRecorder {
         }
         let measure = |g: usize| queue_for(g) && !sampled(g);
         if (0..scene.groups.len()).any(measure) {
-            let mut grid = SpatialGrid::new(scene.width, scene.height, QUEUE_RADIUS, self.prev_pos.len());
+            let mut grid = SpatialGrid::new(scene.width, scene.height, reach.max(1.0), self.prev_pos.len());
             grid.rebuild(&self.prev_pos, &self.prev_vel);
             let target = |g: usize| {
                 let goal = scene.groups.get(g)?.goal?;
@@ -493,7 +526,8 @@ impl MetricsRecorder {
     /// Per group `(queued, candidates)` for [`GroupMetrics::queue_order`] into `counts`, for the
     /// groups `pick` selects, from the last recorded state; `grid` holds the agents at their
     /// last positions, `target(g)` is group `g`'s goal then. Each agent looks at no more than
-    /// [`QUEUE_NEIGHBOUR_CAP`] neighbours: O(N), never O(N²).
+    /// [`QUEUE_NEIGHBOUR_CAP`] neighbours within [`QUEUE_AHEAD_RADII`] of its radii: O(N), never
+    /// O(N²).
     fn queue_order_into(
         &self,
         grid: &SpatialGrid,
@@ -505,36 +539,36 @@ impl MetricsRecorder {
         counts.resize(self.group_agents.len(), (0, 0));
         let pos = &self.prev_pos;
         let cos_limit = libm::cosf(QUEUE_HALF_ANGLE_DEG.to_radians());
+        let cap = QueryCap { neighbours: QUEUE_NEIGHBOUR_CAP, candidates: 128 * QUEUE_NEIGHBOUR_CAP };
         for (gi, agents) in self.group_agents.iter().enumerate() {
             if !pick(gi) {
                 continue;
             }
             let Some(target) = target(gi) else { continue };
+            let reach = self.group_radius.get(gi).copied().unwrap_or(0.0) * QUEUE_AHEAD_RADII;
             for id in agents.clone() {
                 let i = id as usize;
                 if self.arrived_step.get(i).is_none_or(|&s| s != NOT_ARRIVED) {
                     continue;
                 }
-                let p = pos[i];
-                let mine = p.distance_squared(target);
-                let mut nearest: Option<(f32, u32, Vec2)> = None;
-                let cap = QueryCap { neighbours: QUEUE_NEIGHBOUR_CAP, candidates: 8 * QUEUE_NEIGHBOUR_CAP };
-                grid.for_each_within_capped(p, QUEUE_RADIUS, cap, |n| {
-                    if n.id != id
-                        && agents.contains(&n.id)
-                        && n.pos.distance_squared(target) < mine
-                        && nearest.is_none_or(|(d2, j, _)| (n.d2, n.id) < (d2, j))
-                    {
-                        nearest = Some((n.d2, n.id, n.pos));
-                    }
-                });
-                let Some((d2, _, q)) = nearest else { continue };
                 counts[gi].1 += 1;
                 let v = self.prev_vel[i];
                 let speed = v.length();
-                if speed > MIN_TURN_SPEED && d2 > 0.0 && v.dot(q - p) >= cos_limit * speed * d2.sqrt() {
-                    counts[gi].0 += 1;
+                if speed <= MIN_TURN_SPEED {
+                    continue;
                 }
+                let p = pos[i];
+                let mine = p.distance_squared(target);
+                let mut queued = false;
+                grid.for_each_within_capped(p, reach, cap, |n| {
+                    queued = queued
+                        || (n.id != id
+                            && agents.contains(&n.id)
+                            && n.d2 > 0.0
+                            && n.pos.distance_squared(target) < mine
+                            && v.dot(n.pos - p) >= cos_limit * speed * n.d2.sqrt());
+                });
+                counts[gi].0 += u32::from(queued);
             }
         }
     }
@@ -596,7 +630,8 @@ fn ratio(num: f64, den: u64) -> f64 {
     }
 }
 
-fn to_metrics(acc: &GroupAcc, s: &Stats, collisions: u64, dt: f64, scale: Scale) -> GroupMetrics {
+fn to_metrics(acc: &GroupAcc, s: &Stats, collisions: (u64, u64), dt: f64, scale: Scale) -> GroupMetrics {
+    let (collisions, collisions_moving) = collisions;
     let mean_time = (s.arrived > 0).then(|| s.arrival_steps_sum / f64::from(s.arrived));
     let mean_speed = ratio(acc.speed_sum, acc.speed_samples);
     let near_speed = (acc.near_samples > 0).then(|| acc.near_speed_sum / acc.near_samples as f64);
@@ -609,6 +644,7 @@ fn to_metrics(acc: &GroupAcc, s: &Stats, collisions: u64, dt: f64, scale: Scale)
         mean_time_to_goal: mean_time,
         mean_time_to_goal_s: mean_time.map(|t| t * dt),
         collisions_agent_agent: collisions,
+        collisions_moving,
         penetrations_agent_obstacle: acc.penetrations,
         mean_speed,
         mean_speed_m_s: scale.m_s(mean_speed),

@@ -1,7 +1,9 @@
 //! A deterministic run of a scene: the world (struct-of-arrays agent state, spawn, the
 //! two-phase fixed step that calls the planners), its cost limits, metrics and the fitness
-//! measures, diagnosis of one agent, and the run's timeline (recording, metric history, replay,
-//! lockstep comparison).
+//! measures, diagnosis of one agent, and the run's timeline (one bounded series that halves
+//! when full, the recording, the metric series, the replay, lockstep comparison), a `Run` that keeps
+//! a world and its recording, replay and metric series in step for the page and the command
+//! line, and the budgets and limits of the front-ends in `limits`.
 //!
 //! Layer: sim. Uses `model`, `spatial`, `planners` and `rng`.
 
@@ -9,9 +11,12 @@ pub mod compare;
 pub mod cost;
 pub mod diagnose;
 pub mod fitness;
-pub mod history;
+pub mod limits;
+pub mod metric_series;
 pub mod metrics;
 pub mod recording;
 pub mod replay;
+pub mod run;
+pub mod series;
 pub mod spawn;
 pub mod world;

@@ -1,33 +1,31 @@
 //! A bounded recording of agent positions and velocities per step, for exports and replay.
 //!
 //! When the recording would exceed its memory budget it keeps every other recorded step and
-//! records half as often from then on (thinning), and says so in [`Recording::thinned`], so
-//! nothing is dropped silently.
+//! records half as often from then on (thinning, [`crate::sim::series`]), and says so in
+//! [`Recording::thinned`], so nothing is dropped silently. The budgets per front-end are in
+//! [`crate::sim::limits`].
 
+use crate::sim::series::BoundedSeries;
 use crate::sim::world::World;
 use glam::Vec2;
 
 /// Bytes one agent takes in one recorded step (x, y, vx, vy as `f32`).
 const BYTES_PER_SAMPLE: usize = 16;
-/// Default memory budget: 64 MiB (for example 2,000 agents × 2,000 steps).
-pub const DEFAULT_BUDGET_BYTES: usize = 64 << 20;
 
 /// Recorded frames of a run.
 #[derive(Clone, Debug)]
 pub struct Recording {
     agents: usize,
-    every: u32,
     budget_bytes: usize,
-    steps: Vec<u32>,
-    /// `samples[f * agents + i] = [x, y, vx, vy]` of agent `i` at recorded step `steps[f]`.
-    samples: Vec<[f32; 4]>,
-    thinned: u32,
+    /// Row `f` holds `[x, y, vx, vy]` of every agent at recorded step `f`.
+    frames: BoundedSeries<[f32; 4]>,
 }
 
 impl Recording {
     /// An empty recording of `agents` agents, capturing every step, within `budget_bytes`.
     pub fn new(agents: usize, budget_bytes: usize) -> Self {
-        Self { agents, every: 1, budget_bytes, steps: Vec::new(), samples: Vec::new(), thinned: 0 }
+        let cap = BoundedSeries::<[f32; 4]>::cap_for_bytes(budget_bytes, agents, BYTES_PER_SAMPLE);
+        Self { agents, budget_bytes, frames: BoundedSeries::new(agents, cap, 1) }
     }
 
     /// An empty recording sized for `world`'s agents, holding its current state as the first frame.
@@ -44,40 +42,16 @@ impl Recording {
 
     /// Records the state after `step` if it falls on the current sampling interval.
     pub fn capture(&mut self, step: u32, positions: &[Vec2], velocities: &[Vec2]) {
-        if positions.len() != self.agents || !step.is_multiple_of(self.every) {
+        if positions.len() != self.agents || velocities.len() != self.agents {
             return;
         }
-        if self.agents > 0 && (self.steps.len() + 1) * self.agents * BYTES_PER_SAMPLE > self.budget_bytes {
-            self.thin();
-            if !step.is_multiple_of(self.every) {
-                return;
-            }
-        }
-        self.steps.push(step);
-        self.samples.extend(positions.iter().zip(velocities).map(|(p, v)| [p.x, p.y, v.x, v.y]));
-    }
-
-    fn thin(&mut self) {
-        self.every = self.every.saturating_mul(2);
-        self.thinned += 1;
-        let agents = self.agents;
-        let mut kept_steps = Vec::with_capacity(self.steps.len() / 2 + 1);
-        let mut kept = Vec::with_capacity(self.samples.len() / 2 + agents);
-        for (f, &s) in self.steps.iter().enumerate() {
-            if s.is_multiple_of(self.every) {
-                kept_steps.push(s);
-                kept.extend_from_slice(&self.samples[f * agents..(f + 1) * agents]);
-            }
-        }
-        self.steps = kept_steps;
-        self.samples = kept;
+        let row = positions.iter().zip(velocities).map(|(p, v)| [p.x, p.y, v.x, v.y]);
+        self.frames.push(step, row);
     }
 
     /// Drops the frames after `step` (the run went back in time and took another course).
     pub fn truncate_after(&mut self, step: u32) {
-        let keep = self.steps.partition_point(|&s| s <= step);
-        self.steps.truncate(keep);
-        self.samples.truncate(keep * self.agents);
+        self.frames.truncate_after(step);
     }
 
     /// Number of agents per frame.
@@ -87,45 +61,44 @@ impl Recording {
 
     /// The recorded step numbers, increasing.
     pub fn steps(&self) -> &[u32] {
-        &self.steps
+        self.frames.steps()
     }
 
     /// Steps between recorded frames now.
     pub fn every(&self) -> u32 {
-        self.every
+        self.frames.every()
     }
 
     /// How many times the recording was thinned to stay within its budget.
     pub fn thinned(&self) -> u32 {
-        self.thinned
+        self.frames.thinned()
     }
 
     /// `[x, y, vx, vy]` of every agent at recorded frame `f`.
     pub fn frame(&self, f: usize) -> &[[f32; 4]] {
-        let start = (f * self.agents).min(self.samples.len());
-        let end = ((f + 1) * self.agents).min(self.samples.len());
-        &self.samples[start..end]
+        self.frames.row(f)
     }
 
     /// Index of the recorded frame nearest to `step`.
     pub fn nearest_frame(&self, step: u32) -> Option<usize> {
-        if self.steps.is_empty() {
+        let steps = self.frames.steps();
+        if steps.is_empty() {
             return None;
         }
-        let i = self.steps.partition_point(|&s| s < step);
+        let i = steps.partition_point(|&s| s < step);
         if i == 0 {
             return Some(0);
         }
-        if i >= self.steps.len() {
-            return Some(self.steps.len() - 1);
+        if i >= steps.len() {
+            return Some(steps.len() - 1);
         }
-        let (before, after) = (self.steps[i - 1], self.steps[i]);
+        let (before, after) = (steps[i - 1], steps[i]);
         Some(if step - before <= after - step { i - 1 } else { i })
     }
 
     /// Bytes held.
     pub fn bytes(&self) -> usize {
-        self.samples.len() * BYTES_PER_SAMPLE
+        self.frames.values().len() * BYTES_PER_SAMPLE
     }
 
     /// The memory budget in bytes.
@@ -135,7 +108,7 @@ impl Recording {
 
     /// Most steps this recording could hold at one frame per step (for stating the budget).
     pub fn capacity_steps(&self) -> usize {
-        self.budget_bytes / (self.agents.max(1) * BYTES_PER_SAMPLE)
+        self.frames.cap()
     }
 }
 

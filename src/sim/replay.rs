@@ -4,16 +4,17 @@
 //! Memory and time are bounded and the bounds are stated:
 //! - positions are quantised to `u16` per axis relative to the scene bounds (4 bytes per agent
 //!   per step; 0.31 px resolution on a 20,000 px scene). The default budget,
-//!   [`DEFAULT_FRAME_BUDGET_BYTES`], holds 10,000 agents × 2,000 steps at every step. Over budget,
+//!   [`REPLAY_FRAME_BUDGET_BYTES`] (all budgets are in [`crate::sim::limits`]), holds 10,000 agents × 2,000 steps at every step. Over budget,
 //!   every other recorded step is dropped and recording goes on at half the rate (thinning);
 //!   [`ReplayInfo::frames_thinned`] says so, so the page can put a note on screen.
 //! - every `checkpoint_every` steps the whole [`World`] is cloned (positions, velocities,
 //!   planner state, generator state, metric accumulators). A jump to step k restores the nearest
 //!   checkpoint at or before k and re-simulates at most `checkpoint_every − 1` steps: the result
 //!   is bit-identical to the original run at k. The interval is chosen so a jump re-simulates
-//!   about [`JUMP_AGENT_STEPS`] agent-steps (20 steps of 1,000 agents or more, 200 of 100 or
-//!   fewer), and over [`DEFAULT_CHECKPOINT_BUDGET_BYTES`] every other checkpoint is dropped and
-//!   the interval doubles (stated in the info).
+//!   about [`REPLAY_JUMP_AGENT_STEPS`] agent-steps (20 steps of 1,000 agents or more, 200 of 100
+//!   or fewer), and over [`REPLAY_CHECKPOINT_BUDGET_BYTES`] every other checkpoint is dropped and
+//!   the interval doubles (stated in the info). Both halvings are a
+//!   [`crate::sim::series::BoundedSeries`].
 //! - the digest of each checkpoint is the check that a re-simulated run is the recorded one: a
 //!   replayed step that reaches a checkpoint with another digest counts as a divergence.
 //!
@@ -21,19 +22,15 @@
 //! after the edit is checkpointed at s, so jumping to any step replays the edit where it happened.
 //! Stepping on from a step before an edit starts a new future: the recorded steps after it go.
 
+use crate::sim::limits::{
+    REPLAY_CHECKPOINT_BUDGET_BYTES, REPLAY_CHECKPOINT_EVERY_RANGE, REPLAY_FRAME_BUDGET_BYTES,
+    REPLAY_JUMP_AGENT_STEPS,
+};
+use crate::sim::series::BoundedSeries;
 use crate::sim::world::World;
 use glam::Vec2;
 use serde::Serialize;
 
-/// Position budget: 80 MB = 10,000 agents × 2,000 steps × 4 bytes, at every step.
-pub const DEFAULT_FRAME_BUDGET_BYTES: usize = 80_000_000;
-/// Checkpoint budget (estimated world sizes, see [`checkpoint_bytes_estimate`]): 48 MiB, enough
-/// for 10,000 agents × 2,000 steps at the default interval.
-pub const DEFAULT_CHECKPOINT_BUDGET_BYTES: usize = 48 << 20;
-/// Agent-steps a jump may re-simulate: sets the checkpoint interval from the agent count.
-pub const JUMP_AGENT_STEPS: u32 = 20_000;
-/// Shortest and longest automatic checkpoint interval (steps).
-pub const CHECKPOINT_EVERY_RANGE: (u32, u32) = (20, 200);
 /// Bytes one agent takes in one recorded step (x and y as `u16`).
 const BYTES_PER_AGENT_STEP: usize = 4;
 /// Estimated bytes per agent of a cloned world: state arrays (pos, vel, next_vel, group, radius:
@@ -58,8 +55,8 @@ pub struct ReplayBudget {
 impl Default for ReplayBudget {
     fn default() -> Self {
         Self {
-            frame_bytes: DEFAULT_FRAME_BUDGET_BYTES,
-            checkpoint_bytes: DEFAULT_CHECKPOINT_BUDGET_BYTES,
+            frame_bytes: REPLAY_FRAME_BUDGET_BYTES,
+            checkpoint_bytes: REPLAY_CHECKPOINT_BUDGET_BYTES,
             checkpoint_every: 0,
         }
     }
@@ -112,23 +109,21 @@ pub struct Replay {
     budget: ReplayBudget,
     first_step: u32,
     end_step: u32,
-    frame_every: u32,
-    frame_steps: Vec<u32>,
-    /// `frames[f * agents + i]` = quantised (x, y) of agent `i` at step `frame_steps[f]`.
-    frames: Vec<[u16; 2]>,
-    frames_thinned: u32,
-    checkpoint_every: u32,
-    /// Snapshots in increasing step order; always holds the first step's.
-    checkpoints: Vec<World>,
-    checkpoints_thinned: u32,
+    /// Row `f` holds the quantised (x, y) of every agent at recorded step `f`; the first step
+    /// is kept through thinning.
+    frames: BoundedSeries<[u16; 2]>,
+    /// Snapshots in increasing step order (rows of one world); always holds the first step's
+    /// and every edit's.
+    checkpoints: BoundedSeries<World>,
     edits: Vec<u32>,
     diverged: u32,
 }
 
-/// The automatic checkpoint interval for `agents` agents: about [`JUMP_AGENT_STEPS`] agent-steps.
+/// The automatic checkpoint interval for `agents` agents: about [`REPLAY_JUMP_AGENT_STEPS`]
+/// agent-steps.
 pub fn auto_checkpoint_every(agents: usize) -> u32 {
     let agents = u32::try_from(agents.max(1)).unwrap_or(u32::MAX);
-    (JUMP_AGENT_STEPS / agents).clamp(CHECKPOINT_EVERY_RANGE.0, CHECKPOINT_EVERY_RANGE.1)
+    (REPLAY_JUMP_AGENT_STEPS / agents).clamp(REPLAY_CHECKPOINT_EVERY_RANGE.0, REPLAY_CHECKPOINT_EVERY_RANGE.1)
 }
 
 /// Estimated bytes of one checkpoint of `world`.
@@ -150,23 +145,23 @@ impl Replay {
             0 => auto_checkpoint_every(world.agent_count()),
             n => n,
         };
+        let agents = world.agent_count();
+        let frame_cap =
+            BoundedSeries::<[u16; 2]>::cap_for_bytes(budget.frame_bytes, agents, BYTES_PER_AGENT_STEP);
+        let checkpoint_cap = budget.checkpoint_bytes / checkpoint_bytes_estimate(world);
         let mut replay = Self {
             width: scene.width.max(f32::MIN_POSITIVE),
             height: scene.height.max(f32::MIN_POSITIVE),
-            agents: world.agent_count(),
+            agents,
             budget: ReplayBudget { checkpoint_every, ..budget },
             first_step: step,
             end_step: step,
-            frame_every: 1,
-            frame_steps: Vec::new(),
-            frames: Vec::new(),
-            frames_thinned: 0,
-            checkpoint_every,
-            checkpoints: vec![world.clone()],
-            checkpoints_thinned: 0,
+            frames: BoundedSeries::new(agents, frame_cap, 1).with_anchor(step),
+            checkpoints: BoundedSeries::new(1, checkpoint_cap, checkpoint_every).with_anchor(step),
             edits: Vec::new(),
             diverged: 0,
         };
+        replay.checkpoints.push_always(step, [world.clone()]);
         replay.push_frame(world);
         replay
     }
@@ -199,8 +194,7 @@ impl Replay {
             if self.edits.iter().any(|&e| e >= step) {
                 self.truncate_after(step - 1);
             } else {
-                let checkpoint = self.checkpoints.iter().find(|c| c.step_count() == step);
-                match checkpoint.map(World::digest) {
+                match self.digest_at(step) {
                     Some(recorded) if recorded != world.digest() => {
                         self.diverged += 1;
                         self.truncate_after(step - 1);
@@ -210,11 +204,12 @@ impl Replay {
             }
         }
         self.end_step = step;
-        if step.is_multiple_of(self.frame_every) {
+        if self.frames.due(step) {
             self.push_frame(world);
         }
-        if step.is_multiple_of(self.checkpoint_every) {
-            self.push_checkpoint(world);
+        if self.checkpoints.due(step) {
+            self.checkpoints.push_always(step, [world.clone()]);
+            self.thin_checkpoints_if_over_budget();
         }
         true
     }
@@ -227,8 +222,8 @@ impl Replay {
             return;
         }
         self.truncate_after(step);
-        self.checkpoints.retain(|c| c.step_count() != step);
-        self.checkpoints.push(world.clone());
+        self.checkpoints.truncate_before(step);
+        self.checkpoints.push_always(step, [world.clone()]);
         if step > self.first_step && !self.edits.contains(&step) {
             self.edits.push(step);
         }
@@ -241,10 +236,8 @@ impl Replay {
 
     /// Drops every recorded step after `step`.
     pub fn truncate_after(&mut self, step: u32) {
-        let keep = self.frame_steps.partition_point(|&s| s <= step);
-        self.frame_steps.truncate(keep);
-        self.frames.truncate(keep * self.agents);
-        self.checkpoints.retain(|c| c.step_count() <= step);
+        self.frames.truncate_after(step);
+        self.checkpoints.truncate_after(step);
         self.edits.retain(|&e| e <= step);
         self.end_step = self.end_step.min(step).max(self.first_step);
     }
@@ -254,8 +247,8 @@ impl Replay {
     /// steps re-simulated (less than the checkpoint interval, except after a failed edit).
     pub fn seek(&self, step: u32, world: &mut World) -> u32 {
         let target = step.clamp(self.first_step, self.end_step);
-        let at = self.checkpoints.partition_point(|c| c.step_count() <= target);
-        let Some(checkpoint) = at.checked_sub(1).and_then(|i| self.checkpoints.get(i)) else {
+        let at = self.checkpoints.steps().partition_point(|&s| s <= target);
+        let Some(checkpoint) = at.checked_sub(1).and_then(|i| self.checkpoints.row(i).first()) else {
             return 0;
         };
         let current = world.step_count();
@@ -269,25 +262,26 @@ impl Replay {
 
     /// The recorded digest at `step`, if that step has a checkpoint.
     pub fn digest_at(&self, step: u32) -> Option<u64> {
-        self.checkpoints.iter().find(|c| c.step_count() == step).map(World::digest)
+        let i = self.checkpoints.steps().binary_search(&step).ok()?;
+        self.checkpoints.row(i).first().map(World::digest)
     }
 
     /// The recorded positions at `step` (within the quantisation step), if that step has a frame.
     pub fn positions_at(&self, step: u32) -> Option<Vec<Vec2>> {
-        let f = self.frame_steps.binary_search(&step).ok()?;
-        let frame = self.frames.get(f * self.agents..(f + 1) * self.agents)?;
+        let f = self.frames.steps().binary_search(&step).ok()?;
+        let frame = self.frames.row(f);
         let (sx, sy) = (self.width / QUANT_MAX, self.height / QUANT_MAX);
         Some(frame.iter().map(|q| Vec2::new(f32::from(q[0]) * sx, f32::from(q[1]) * sy)).collect())
     }
 
     /// The recorded steps that have a position frame, increasing.
     pub fn frame_steps(&self) -> &[u32] {
-        &self.frame_steps
+        self.frames.steps()
     }
 
     /// The steps that have a checkpoint, increasing.
     pub fn checkpoint_steps(&self) -> Vec<u32> {
-        self.checkpoints.iter().map(World::step_count).collect()
+        self.checkpoints.steps().to_vec()
     }
 
     /// Largest position error of the quantisation (px): half a quantisation step.
@@ -297,32 +291,32 @@ impl Replay {
 
     /// Bytes the position frames take.
     pub fn frame_bytes(&self) -> usize {
-        self.frames.len() * BYTES_PER_AGENT_STEP
+        self.frames.values().len() * BYTES_PER_AGENT_STEP
     }
 
     /// Estimated bytes the checkpoints take.
     pub fn checkpoint_bytes(&self) -> usize {
-        self.checkpoints.iter().map(checkpoint_bytes_estimate).sum()
+        self.checkpoints.values().iter().map(checkpoint_bytes_estimate).sum()
     }
 
     /// The state of the recording for the timeline.
     pub fn info(&self) -> ReplayInfo {
-        let capacity_steps = self.budget.frame_bytes / (self.agents.max(1) * BYTES_PER_AGENT_STEP);
+        let capacity_steps = self.frames.cap();
         let mut notes = Vec::new();
-        if self.frames_thinned > 0 {
+        if self.frames.thinned() > 0 {
             notes.push(format!(
                 "positions are kept every {} steps (the {} MB budget holds {} steps of {} agents)",
-                self.frame_every,
+                self.frames.every(),
                 self.budget.frame_bytes / 1_000_000,
                 capacity_steps,
                 self.agents
             ));
         }
-        if self.checkpoints_thinned > 0 {
+        if self.checkpoints.thinned() > 0 {
             notes.push(format!(
                 "checkpoints are kept every {} steps, so a jump re-simulates up to {} steps",
-                self.checkpoint_every,
-                self.checkpoint_every - 1
+                self.checkpoints.every(),
+                self.checkpoints.every() - 1
             ));
         }
         if self.diverged > 0 {
@@ -334,17 +328,17 @@ impl Replay {
         ReplayInfo {
             first_step: self.first_step,
             end_step: self.end_step,
-            frame_every: self.frame_every,
-            frames: self.frame_steps.len(),
+            frame_every: self.frames.every(),
+            frames: self.frames.len(),
             frame_bytes: self.frame_bytes(),
             frame_budget_bytes: self.budget.frame_bytes,
             capacity_steps,
-            frames_thinned: self.frames_thinned,
-            checkpoint_every: self.checkpoint_every,
+            frames_thinned: self.frames.thinned(),
+            checkpoint_every: self.checkpoints.every(),
             checkpoints: self.checkpoints.len(),
             checkpoint_bytes: self.checkpoint_bytes(),
             checkpoint_budget_bytes: self.budget.checkpoint_bytes,
-            checkpoints_thinned: self.checkpoints_thinned,
+            checkpoints_thinned: self.checkpoints.thinned(),
             diverged: self.diverged,
             edits: self.edits.clone(),
             note: (!notes.is_empty()).then(|| {
@@ -358,80 +352,23 @@ impl Replay {
     }
 
     fn push_frame(&mut self, world: &World) {
-        if self.agents > 0 {
-            while (self.frame_steps.len() + 1) * self.agents * BYTES_PER_AGENT_STEP > self.budget.frame_bytes
-            {
-                if !self.thin_frames() {
-                    return;
-                }
-            }
-        }
-        let step = world.step_count();
-        if !step.is_multiple_of(self.frame_every) {
-            return;
-        }
         let (sx, sy) = (QUANT_MAX / self.width, QUANT_MAX / self.height);
-        let (len, agents) = (self.frames.len(), self.agents);
-        if self.frames.capacity() < len + agents {
-            // Grow by doubling but never past the budget: plain `Vec` growth could reserve
-            // twice the budget.
-            let most = (self.budget.frame_bytes / BYTES_PER_AGENT_STEP).max(len + agents);
-            let want = (2 * len).max(64 * agents).min(most).max(len + agents);
-            self.frames.reserve_exact(want - len);
-        }
-        self.frame_steps.push(step);
-        self.frames.extend(world.positions().iter().map(|p| {
-            // Agents are kept inside the bounds; the clamp only guards the conversion.
-            let qx = (p.x * sx + 0.5).clamp(0.0, QUANT_MAX) as u16;
-            let qy = (p.y * sy + 0.5).clamp(0.0, QUANT_MAX) as u16;
-            [qx, qy]
-        }));
+        self.frames.push(
+            world.step_count(),
+            world.positions().iter().map(|p| {
+                // Agents are kept inside the bounds; the clamp only guards the conversion.
+                let qx = (p.x * sx + 0.5).clamp(0.0, QUANT_MAX) as u16;
+                let qy = (p.y * sy + 0.5).clamp(0.0, QUANT_MAX) as u16;
+                [qx, qy]
+            }),
+        );
     }
 
-    /// Keeps every other frame (multiples of twice the interval); `false` when there is nothing
-    /// left to thin (a budget too small for a single frame).
-    fn thin_frames(&mut self) -> bool {
-        if self.frame_steps.len() <= 1 {
-            return false;
-        }
-        self.frame_every = self.frame_every.saturating_mul(2);
-        self.frames_thinned += 1;
-        let agents = self.agents;
-        let mut w = 0;
-        for f in 0..self.frame_steps.len() {
-            let s = self.frame_steps[f];
-            if s.is_multiple_of(self.frame_every) || s == self.first_step {
-                self.frame_steps[w] = s;
-                self.frames.copy_within(f * agents..(f + 1) * agents, w * agents);
-                w += 1;
-            }
-        }
-        self.frame_steps.truncate(w);
-        self.frames.truncate(w * agents);
-        true
-    }
-
-    fn push_checkpoint(&mut self, world: &World) {
-        self.checkpoints.push(world.clone());
-        self.thin_checkpoints_if_over_budget();
-    }
-
+    /// Thins the checkpoints while they are over budget. The first step and every edit keep
+    /// theirs: without them a jump could not reproduce the run.
     fn thin_checkpoints_if_over_budget(&mut self) {
-        while self.checkpoints.len() > 1 && self.checkpoint_bytes() > self.budget.checkpoint_bytes {
-            let before = self.checkpoints.len();
-            self.checkpoint_every = self.checkpoint_every.saturating_mul(2);
-            self.checkpoints_thinned += 1;
-            let (every, first, edits) = (self.checkpoint_every, self.first_step, &self.edits);
-            // The first step and every edit keep their checkpoints: without them a jump could
-            // not reproduce the run.
-            self.checkpoints.retain(|c| {
-                let s = c.step_count();
-                s == first || s.is_multiple_of(every) || edits.contains(&s)
-            });
-            if self.checkpoints.len() == before {
-                break;
-            }
-        }
+        let edits = &self.edits;
+        self.checkpoints.shrink_to_cap(|s| edits.contains(&s));
     }
 }
 

@@ -7,7 +7,7 @@ use crate::planners::{GroupView, Planner, StepContext};
 use crate::rng::Rng;
 use crate::sim::metrics::{Metrics, MetricsRecorder};
 use crate::sim::spawn::{centre_bounds, spawn, Spawn};
-use crate::spatial::{ObstacleIndex, SpatialGrid};
+use crate::spatial::{ObstacleIndex, QueryCap, SpatialGrid};
 use glam::Vec2;
 use std::ops::Range;
 
@@ -15,6 +15,20 @@ use std::ops::Range;
 const STREAM_PLAN: u32 = 1;
 /// How far outside a surface a pushed-out agent is placed (px).
 const PUSH_EPSILON: f32 = 0.01;
+/// A moving agent whose disc comes within this many of its body diameters of a body parked at
+/// its goal parks too (it has reached the crowd gathered there): see [`World::settle_parking`].
+/// Boids' separation keeps a stationary neighbour 14 px off centre to centre, a 6 px gap for
+/// 4 px bodies, so a gap of touching discs only would leave its flock hovering around the crowd.
+pub const PARK_CONTACT_DIAMETERS: f32 = 1.0;
+/// Most parked neighbours examined per moving agent and round of the parking pass (the first in
+/// the grid's scan order): non-overlapping bodies hold few within reach; a pile of moving
+/// agents (which do not park on each other) is bounded by it.
+const PARK_NEIGHBOUR_CAP: QueryCap = QueryCap { neighbours: 64, candidates: 4096 };
+/// Rounds of pushing a moving agent out of parked bodies before it goes back to where its step
+/// started.
+const PARK_PUSH_ROUNDS: usize = 6;
+/// Rings (½ body diameter apart) searched for a free place around a boxed-in body.
+const PARK_SEARCH_RINGS: u32 = 20;
 
 /// One group at run time.
 #[derive(Clone)]
@@ -46,6 +60,21 @@ pub struct World {
     /// Whether planning ahead (IGSA paths) is left to [`World::advance_planning`] instead of
     /// being done at once when planners are built (the page plans in slices).
     sliced_planning: bool,
+    /// Whether each agent is parked at its goal: stopped for good, never overlapping another
+    /// parked agent ([`World::settle_parking`]).
+    parked: Vec<bool>,
+    /// Per group, the fixed goal (index, centre, radius) its agents park at, if its planner
+    /// parks ([`Planner::parks_at_goal`]) and its goal does not move.
+    park_goal: Vec<Option<(u32, Vec2, f32)>>,
+    /// Largest body radius and largest planner speed limit (px, px/step): the reach of the
+    /// parking pass's neighbour queries.
+    max_radius: f32,
+    max_step: f32,
+    /// Positions at the start of the step (reused buffer of the parking pass).
+    previous: Vec<Vec2>,
+    /// A periodic band `[start, end)` of x (px): an agent whose centre leaves it at one end
+    /// re-enters at the other ([`World::set_periodic_x`]).
+    periodic_x: Option<(f32, f32)>,
 }
 
 impl World {
@@ -138,7 +167,14 @@ impl World {
             rng,
             recorder,
             sliced_planning,
+            parked: vec![false; total],
+            park_goal: Vec::new(),
+            max_radius,
+            max_step: 0.0,
+            previous: Vec::new(),
+            periodic_x: None,
         };
+        world.update_parking_rules();
         world.grid.rebuild(&world.pos, &world.vel);
         world.plan_now_unless_sliced();
         Ok(world)
@@ -303,8 +339,48 @@ impl World {
             self.grid.rebuild(&self.pos, &self.vel);
         }
         self.groups[g].planner = planner;
+        self.update_parking_rules();
         self.plan_now_unless_sliced();
         Ok(())
+    }
+
+    /// Recomputes which groups park where after a change of planners or goals; agents parked
+    /// under a rule that no longer holds (another planner, a moved goal) walk on.
+    fn update_parking_rules(&mut self) {
+        let before = std::mem::take(&mut self.park_goal);
+        self.park_goal = self
+            .groups
+            .iter()
+            .zip(&self.scene.groups)
+            .map(|(runtime, g)| {
+                let k = g.goal?;
+                let goal = self.scene.goals.get(k as usize)?;
+                (runtime.planner.parks_at_goal() && goal.motion.is_none())
+                    .then(|| (k, crate::model::geometry::v(goal.position), goal.radius))
+            })
+            .collect();
+        for (gi, group) in self.groups.iter().enumerate() {
+            if before.get(gi).is_some_and(|b| *b != self.park_goal[gi]) {
+                for i in group.agents.clone() {
+                    self.parked[i as usize] = false;
+                }
+            }
+        }
+        self.max_step = self.groups.iter().map(|g| g.planner.max_speed()).fold(0.0, f32::max);
+    }
+
+    /// Whether each agent is parked at its goal (see [`World::settle_parking`]).
+    pub fn parked(&self) -> &[bool] {
+        &self.parked
+    }
+
+    /// Makes x periodic over `[start, end)` px (`None`: off, the default): an agent whose centre
+    /// leaves the band at one end re-enters at the other, as in the periodic corridor of the
+    /// validation suite's fundamental diagram. Neighbours are not seen across the seam, and the
+    /// path-length metric counts the jump. Not part of the scene (a link cannot ask for it).
+    /// An empty or non-finite band is ignored.
+    pub fn set_periodic_x(&mut self, band: Option<(f32, f32)>) {
+        self.periodic_x = band.filter(|(a, b)| a.is_finite() && b.is_finite() && b > a);
     }
 
     /// Takes the fitness measures of the metrics every `every` steps from now on (0 = never;
@@ -350,6 +426,7 @@ impl World {
                     crate::planners::build_for_group(&self.scene.groups[gi].planner, &self.scene, gi);
             }
         }
+        self.update_parking_rules();
         self.plan_now_unless_sliced();
         Ok(())
     }
@@ -398,10 +475,26 @@ impl World {
         }
 
         let solid: Vec<bool> = self.groups.iter().map(|g| !g.planner.passes_through_obstacles()).collect();
+        if self.parked.contains(&true) {
+            self.previous.clear();
+            self.previous.extend_from_slice(&self.pos);
+        }
         for i in 0..self.pos.len() {
+            if self.parked[i] {
+                self.vel[i] = Vec2::ZERO;
+                continue;
+            }
             let previous = self.pos[i];
             let mut v = self.next_vel[i];
             let mut p = previous + v;
+            if let Some((start, end)) = self.periodic_x {
+                // Only a centre leaving the band wraps (one outside it stays outside).
+                if p.x >= end && previous.x < end {
+                    p.x -= end - start;
+                } else if p.x < start && previous.x >= start {
+                    p.x += end - start;
+                }
+            }
             let solid = solid[self.group_of[i] as usize];
             if solid {
                 resolve_obstacles(&self.obstacles, &mut p, &mut v, self.radius[i]);
@@ -427,6 +520,7 @@ impl World {
             self.vel[i] = v;
         }
         self.step += 1;
+        self.settle_parking(bounds);
         self.grid.rebuild(&self.pos, &self.vel);
         let goals: Vec<Option<(Vec2, f32)>> = (0..self.groups.len()).map(|g| self.goal_of_group(g)).collect();
         self.recorder.record(
@@ -439,6 +533,176 @@ impl World {
             &self.grid,
             &self.obstacles,
         );
+    }
+
+    /// Parking, after every agent moved (the grid still holds the positions before the move):
+    /// a moving agent is pushed out of any body parked anywhere (parked bodies are solid), then
+    /// an agent of a group that parks ([`Planner::parks_at_goal`]) parks — stops for good and
+    /// counts as arrived — when its centre is inside its fixed goal or its disc comes within
+    /// [`PARK_CONTACT_DIAMETERS`] of a body already parked at the same goal (the goal is full: it has
+    /// reached the crowd gathered there), provided it overlaps no parked body. So parked bodies
+    /// never overlap each other, and a crowd larger than its goal gathers around it instead of
+    /// piling onto it. O(N): one bounded neighbour query per moving agent, and none at all
+    /// before the first agent parks or arrives.
+    fn settle_parking(&mut self, bounds: Vec2) {
+        let parking = self.park_goal.iter().any(Option::is_some);
+        let any_parked = self.parked.contains(&true);
+        if !parking && !any_parked {
+            return;
+        }
+        let slack = self.max_radius + self.max_step + 2.0 * PARK_CONTACT_DIAMETERS * self.max_radius;
+        let solid: Vec<bool> = self.groups.iter().map(|g| !g.planner.passes_through_obstacles()).collect();
+        // Agents placed far from where the grid holds them in this pass (few, usually none).
+        let mut jumped: Vec<usize> = Vec::new();
+        for i in 0..self.pos.len() {
+            if self.parked[i] {
+                continue;
+            }
+            let g = self.group_of[i] as usize;
+            let r = self.radius[i];
+            let mut p = self.pos[i];
+            let mut v = self.vel[i];
+            if any_parked {
+                let before = p;
+                let mut free = false;
+                for round in 0..=PARK_PUSH_ROUNDS {
+                    // Out of every overlapping parked body at once (current positions: a body
+                    // parked earlier in this pass moved this step, so the query reaches a step
+                    // farther): in a notch between two bodies the pushes add up to a way out.
+                    let mut push = Vec2::ZERO;
+                    let mut overlapping = false;
+                    let (pos, radius) = (&self.pos, &self.radius);
+                    self.for_each_parked_near(p, r + slack, &jumped, |j| {
+                        let reach = r + radius[j];
+                        let d = p.distance(pos[j]);
+                        if d < reach {
+                            overlapping = true;
+                            let normal =
+                                crate::model::geometry::unit_or(p - pos[j], -v.normalize_or(Vec2::X));
+                            push += normal * (reach - d + PUSH_EPSILON);
+                        }
+                    });
+                    if !overlapping {
+                        free = true;
+                        break;
+                    }
+                    if round == PARK_PUSH_ROUNDS {
+                        break;
+                    }
+                    p += push;
+                    if let Some(normal) = push.try_normalize() {
+                        let into = v.dot(normal);
+                        if into < 0.0 {
+                            v -= normal * into;
+                        }
+                    }
+                }
+                let (lo, hi) = centre_bounds(r, bounds);
+                let placeable = |q: Vec2| q.clamp(lo, hi) == q && !(solid[g] && self.obstacles.contains(q));
+                if !free || (p != before && !placeable(p)) {
+                    // Boxed in between parked bodies (bodies parked onto it), or pushed out of
+                    // the world or into an obstacle: the nearest free place within ten body
+                    // diameters (a jump out of the crowd), else back to where the step started.
+                    let towards = self.park_goal.get(g).copied().flatten().map(|(_, c, _)| c);
+                    p = match self.free_place_near(before, r, slack, towards, &jumped, &placeable) {
+                        Some(q) => {
+                            // The grid still holds it where the step started.
+                            jumped.push(i);
+                            q
+                        }
+                        None => self.previous[i],
+                    };
+                    v = Vec2::ZERO;
+                }
+                self.pos[i] = p;
+                self.vel[i] = v;
+            }
+            let Some((goal, centre, goal_radius)) = self.park_goal.get(g).copied().flatten() else {
+                continue;
+            };
+            let mut touches = p.distance(centre) <= goal_radius;
+            let gap = 2.0 * PARK_CONTACT_DIAMETERS * r;
+            let mut overlaps = false;
+            if any_parked || touches {
+                let (pos, radius, group_of) = (&self.pos, &self.radius, &self.group_of);
+                let park_goal = &self.park_goal;
+                self.for_each_parked_near(p, r + slack, &jumped, |j| {
+                    let d = p.distance(pos[j]);
+                    overlaps |= d < r + radius[j];
+                    let same_goal = park_goal
+                        .get(group_of[j] as usize)
+                        .copied()
+                        .flatten()
+                        .is_some_and(|(k, _, _)| k == goal);
+                    touches |= same_goal && d <= r + radius[j] + gap;
+                });
+            }
+            if touches && !overlaps {
+                self.parked[i] = true;
+                self.vel[i] = Vec2::ZERO;
+                self.recorder.arrive(i, self.step);
+            }
+        }
+    }
+
+    /// Visits each parked agent the grid holds within `reach` of `p` (plus the step's slack the
+    /// caller adds), bounded by [`PARK_NEIGHBOUR_CAP`], and each parked one of `jumped` (agents
+    /// the grid holds at an old place).
+    fn for_each_parked_near(&self, p: Vec2, reach: f32, jumped: &[usize], mut visit: impl FnMut(usize)) {
+        self.grid.for_each_within_capped(p, reach, PARK_NEIGHBOUR_CAP, |n| {
+            let j = n.id as usize;
+            if self.parked[j] && !jumped.contains(&j) {
+                visit(j);
+            }
+        });
+        for &j in jumped {
+            if self.parked[j] {
+                visit(j);
+            }
+        }
+    }
+
+    /// The free place (overlapping no parked body, `placeable`) nearest to `p` for a body of
+    /// radius `r`: on rings ½, 1, 1½ … [`PARK_SEARCH_RINGS`]/2 diameters around `p` (8 × ring
+    /// directions, at least 16); on the nearest ring with one, the one nearest `towards` (the
+    /// goal). Only for a body boxed in by parked ones, which is rare: its cost does not matter.
+    fn free_place_near(
+        &self,
+        p: Vec2,
+        r: f32,
+        slack: f32,
+        towards: Option<Vec2>,
+        jumped: &[usize],
+        placeable: &impl Fn(Vec2) -> bool,
+    ) -> Option<Vec2> {
+        for ring in 1..=PARK_SEARCH_RINGS {
+            let distance = ring as f32 * r;
+            let mut best: Option<(f32, Vec2)> = None;
+            let directions = 8 * ring.max(2);
+            for k in 0..directions {
+                let angle = k as f32 * (std::f32::consts::TAU / directions as f32);
+                let q = p + Vec2::new(libm::cosf(angle), libm::sinf(angle)) * distance;
+                if !placeable(q) {
+                    continue;
+                }
+                let mut blocked = false;
+                let (pos, radius) = (&self.pos, &self.radius);
+                self.for_each_parked_near(q, r + slack, jumped, |j| {
+                    blocked |= q.distance(pos[j]) < r + radius[j];
+                });
+                if blocked {
+                    continue;
+                }
+                let score = towards.map_or(0.0, |t| q.distance_squared(t));
+                if best.is_none_or(|(b, _)| score < b) {
+                    best = Some((score, q));
+                }
+            }
+            if let Some((_, q)) = best {
+                return Some(q);
+            }
+        }
+        None
     }
 
     /// The metrics of the run so far (DESIGN §4 keys).

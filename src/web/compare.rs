@@ -5,9 +5,7 @@ use super::{js_error, to_json};
 use crate::model::codec;
 use crate::model::params::PlannerKind;
 use crate::render::Renderer;
-use crate::sim::compare::{
-    Comparison, ComparisonSpec, PaneSpec, MAX_PANES, PANE_COLORS, PANE_NAMES, SERIES_KEYS,
-};
+use crate::sim::compare::{Comparison, ComparisonSpec, MAX_PANES, PANE_COLORS, PANE_NAMES, SERIES_KEYS};
 use wasm_bindgen::prelude::*;
 
 /// A comparison with its pane renderers: the handle the compare page keeps.
@@ -19,8 +17,12 @@ pub struct CompareSim {
     height: u32,
 }
 
-fn planner_kind(name: &str) -> Result<PlannerKind, JsError> {
-    PlannerKind::parse(name).map_err(|e| js_error(e.also_accepting(&["scene"])))
+/// A pane's planner by name: `None` for `"scene"` (the scene's own planners).
+fn pane_planner(name: &str) -> Result<Option<PlannerKind>, JsError> {
+    if name == "scene" {
+        return Ok(None);
+    }
+    PlannerKind::parse(name).map(Some).map_err(|e| js_error(e.also_accepting(&["scene"])))
 }
 
 #[wasm_bindgen]
@@ -115,17 +117,8 @@ impl CompareSim {
     /// Sets pane `pane`'s planner for every group (`"scene"` for the scene's own planners), with
     /// that planner's defaults; restarts every pane.
     pub fn set_pane_planner(&mut self, pane: u32, planner_name: &str) -> Result<(), JsError> {
-        let mut spec = self.comparison.spec();
-        let slot = spec
-            .panes
-            .get_mut(pane as usize)
-            .ok_or_else(|| js_error(format!("there is no pane {}", u64::from(pane) + 1)))?;
-        *slot = if planner_name == "scene" {
-            PaneSpec::scene()
-        } else {
-            PaneSpec::every_group(planner_kind(planner_name)?)
-        };
-        self.comparison.set_spec(spec).map_err(js_error)?;
+        let kind = pane_planner(planner_name)?;
+        self.comparison.set_pane_planner(pane as usize, kind).map_err(js_error)?;
         self.fit_renderers();
         Ok(())
     }
@@ -134,41 +127,22 @@ impl CompareSim {
     pub fn set_pane_param(&mut self, pane: u32, key: &str, value_json: &str) -> Result<(), JsError> {
         let value: serde_json::Value = serde_json::from_str(value_json)
             .map_err(|e| js_error(format!("the value for {key:?} is not JSON: {e}")))?;
-        let mut spec = self.comparison.spec();
-        let slot = spec
-            .panes
-            .get_mut(pane as usize)
-            .ok_or_else(|| js_error(format!("there is no pane {}", u64::from(pane) + 1)))?;
-        let config = slot.all.as_mut().ok_or_else(|| {
-            js_error("this pane runs the scene's own planners: pick a planner for it first")
-        })?;
-        config.set_param(key, value).map_err(js_error)?;
-        self.comparison.set_spec(spec).map_err(js_error)?;
+        self.comparison.set_pane_param(pane as usize, key, value).map_err(js_error)?;
         self.fit_renderers();
         Ok(())
     }
 
     /// Adds a pane running `planner_name` (or `"scene"`); restarts. Throws past the limit.
     pub fn add_pane(&mut self, planner_name: &str) -> Result<(), JsError> {
-        let mut spec = self.comparison.spec();
-        spec.panes.push(if planner_name == "scene" {
-            PaneSpec::scene()
-        } else {
-            PaneSpec::every_group(planner_kind(planner_name)?)
-        });
-        self.comparison.set_spec(spec).map_err(js_error)?;
+        let kind = pane_planner(planner_name)?;
+        self.comparison.add_pane(kind).map_err(js_error)?;
         self.fit_renderers();
         Ok(())
     }
 
     /// Removes pane `pane`; restarts. Throws for the last pane.
     pub fn remove_pane(&mut self, pane: u32) -> Result<(), JsError> {
-        let mut spec = self.comparison.spec();
-        if (pane as usize) >= spec.panes.len() {
-            return Err(js_error(format!("there is no pane {}", u64::from(pane) + 1)));
-        }
-        spec.panes.remove(pane as usize);
-        self.comparison.set_spec(spec).map_err(js_error)?;
+        self.comparison.remove_pane(pane as usize).map_err(js_error)?;
         self.fit_renderers();
         Ok(())
     }

@@ -1,11 +1,11 @@
 //! The page's diagnosis and metrics-plot bindings on [`Sim`]: agent picking, the inspector's
 //! explanation, overlay switches, stuck flags and the metrics time series. Conversion only; the
-//! work is done by [`crate::sim::diagnose`], [`crate::sim::history`] and the renderer.
+//! work is done by [`crate::sim::diagnose`], [`crate::sim::run`] (the metric series) and the renderer.
 
 use super::{js_error, to_json, Sim};
 use crate::render::{Overlays, ARROW_COLORS};
 use crate::sim::diagnose;
-use crate::sim::history::SERIES;
+use crate::sim::metric_series::SERIES;
 use glam::Vec2;
 use wasm_bindgen::prelude::*;
 
@@ -17,7 +17,7 @@ fn hex([r, g, b]: [u8; 3]) -> String {
 impl Sim {
     /// The agent under scene point `(x, y)` within `tolerance` px of its body (the nearest), or -1.
     pub fn agent_at(&self, x: f32, y: f32, tolerance: f32) -> i32 {
-        diagnose::agent_at(&self.world, Vec2::new(x, y), tolerance).map_or(-1, |id| id as i32)
+        diagnose::agent_at(self.run.world(), Vec2::new(x, y), tolerance).map_or(-1, |id| id as i32)
     }
 
     /// Inspects agent `agent` (its explanation is drawn and returned by
@@ -35,7 +35,7 @@ impl Sim {
     /// gone): position, velocity, speed, state, stuck, neighbours, vectors (with the colour of
     /// their arrow), points, applied, values.
     pub fn explanation_json(&self) -> Result<String, JsError> {
-        let Some(e) = self.renderer.inspected().and_then(|id| diagnose::explain(&self.world, id)) else {
+        let Some(e) = self.renderer.inspected().and_then(|id| diagnose::explain(self.run.world(), id)) else {
             return Ok("null".into());
         };
         let mut json = e.to_json();
@@ -63,29 +63,20 @@ impl Sim {
 
     /// Ids of the agents stuck now.
     pub fn stuck_agents(&self) -> Vec<u32> {
-        diagnose::stuck_agents(&self.world)
-    }
-
-    /// Forgets the history if it belongs to another scene (its groups differ). After a jump back
-    /// on the timeline the samples ahead stay: the replay reproduces them until something changes,
-    /// and the next new step drops them then.
-    fn current_history(&mut self) {
-        if self.history.groups() != self.world.scene().groups.len() {
-            self.history.clear(crate::sim::history::DEFAULT_EVERY);
-        }
+        diagnose::stuck_agents(self.run.world())
     }
 
     /// What the metrics history holds, as JSON: `{every, thinned, samples, series: [{key, label,
     /// unit}], groups: [{name, color}]}`.
     pub fn history_json(&mut self) -> Result<String, JsError> {
-        self.current_history();
-        let h = &self.history;
+        let h = self.run.metric_series();
         let series: Vec<_> = SERIES
             .iter()
             .map(|s| serde_json::json!({"key": s.key, "label": s.label, "unit": s.unit}))
             .collect();
         let groups: Vec<_> = self
-            .world
+            .run
+            .world()
             .scene()
             .groups
             .iter()
@@ -99,27 +90,25 @@ impl Sim {
 
     /// The sampled step numbers of the metrics history.
     pub fn history_steps(&mut self) -> Vec<u32> {
-        self.current_history();
-        self.history.steps().to_vec()
+        self.run.metric_series().steps().to_vec()
     }
 
     /// One series of the metrics history (`key` from `history_json`), for `group` (-1: the
     /// whole run); NaN marks a missing value. Throws for an unknown key or group.
     pub fn history_series(&mut self, key: &str, group: i32) -> Result<Vec<f32>, JsError> {
-        self.current_history();
         let group = usize::try_from(group).ok();
-        if self.history.steps().is_empty() {
+        if self.run.metric_series().steps().is_empty() {
             return Ok(Vec::new());
         }
-        self.history
+        self.run
+            .metric_series()
             .series(key, group)
             .ok_or_else(|| js_error(format!("no metrics series {key:?} for group {group:?}")))
     }
 
     /// The metrics history as CSV (`step,time_s,group,<series…>`).
     pub fn history_csv(&mut self) -> String {
-        self.current_history();
-        let names: Vec<String> = self.world.scene().groups.iter().map(|g| g.name.clone()).collect();
-        self.history.to_csv(&names)
+        let names: Vec<String> = self.run.world().scene().groups.iter().map(|g| g.name.clone()).collect();
+        self.run.metric_series().to_csv(&names)
     }
 }

@@ -17,10 +17,12 @@ fn function(name: &str) -> Result<Function, JsError> {
 }
 
 fn settings(dim: u32, population: u32, iterations: u32) -> Result<Settings, JsError> {
-    if !(1..=1000).contains(&dim) || !(2..=2000).contains(&population) || !(1..=100_000).contains(&iterations)
-    {
+    use crate::sim::limits::{
+        PAGE_LAB_DIMENSION as DIM, PAGE_LAB_ITERATIONS as ITERS, PAGE_LAB_POPULATION as POP,
+    };
+    if !(1..=DIM).contains(&dim) || !(2..=POP).contains(&population) || !(1..=ITERS).contains(&iterations) {
         return Err(js_error(format!(
-            "dimension {dim}, population {population}, iterations {iterations}: allowed 1…1000, 2…2000, 1…100000"
+            "dimension {dim}, population {population}, iterations {iterations}: allowed 1…{DIM}, 2…{POP}, 1…{ITERS}"
         )));
     }
     Ok(Settings { population: population as usize, iterations, ..Settings::default() })

@@ -16,10 +16,7 @@ use crate::model::params::PlannerKind;
 use crate::model::presets;
 use crate::model::scene::ViewOptions;
 use crate::render::{Renderer, Theme};
-use crate::sim::history::MetricsHistory;
-use crate::sim::recording::Recording;
-use crate::sim::replay::Replay;
-use crate::sim::world::World;
+use crate::sim::run::{Run, RunOptions};
 use glam::Vec2;
 use std::fmt::Display;
 use wasm_bindgen::prelude::*;
@@ -30,6 +27,7 @@ mod paths;
 mod seed;
 mod timeline;
 pub mod tune;
+pub mod validation;
 
 /// Installs the panic hook so a Rust panic shows its message in the console (runs on load).
 #[wasm_bindgen(start)]
@@ -57,22 +55,12 @@ fn to_json<T: serde::Serialize>(value: &T) -> Result<String, JsError> {
     serde_json::to_string(value).map_err(js_error)
 }
 
-/// Memory the page's recording of a run may use before it thins (stated on screen).
-const RECORDING_BUDGET_BYTES: usize = 32 << 20;
-
-/// A running scene with its renderer and the recording of its run: the handle the page keeps.
+/// A run with its renderer: the handle the page keeps. The session logic (recording, timeline,
+/// metric series, live edits, planning ahead) is [`Run`]'s; this converts and draws.
 #[wasm_bindgen]
 pub struct Sim {
-    world: World,
+    run: Run,
     renderer: Renderer,
-    recording: Recording,
-    /// The run's history for the timeline (see `timeline.rs`).
-    replay: Replay,
-    /// The metrics over time for the plots (a run that restarts starts a new one).
-    history: MetricsHistory,
-    /// The world shown before the current one started planning ahead (IGSA paths), which
-    /// [`Sim::cancel_planning`] goes back to; `None` when nothing is being planned.
-    before_planning: Option<World>,
 }
 
 #[wasm_bindgen]
@@ -82,43 +70,22 @@ impl Sim {
     pub fn new(scene_text: &str, width: u32, height: u32) -> Result<Sim, JsValue> {
         console_error_panic_hook::set_once();
         let scene = codec::scene_from_any(scene_text).map_err(scene_error)?;
-        let world = World::new_sliced(scene).map_err(scene_error)?;
-        let recording = Recording::of_world(&world, RECORDING_BUDGET_BYTES);
-        let replay = Replay::new(&world);
-        let mut sim = Sim {
-            world,
-            renderer: Renderer::new(width, height),
-            recording,
-            replay,
-            history: MetricsHistory::default(),
-            before_planning: None,
-        };
+        let run = Run::new(scene, RunOptions::page()).map_err(scene_error)?;
+        let mut sim = Sim { run, renderer: Renderer::new(width, height) };
         sim.show_scene_view();
         Ok(sim)
     }
 
     /// Gives the renderer the scene's view options.
     fn show_scene_view(&mut self) {
-        let view = self.world.scene().view;
+        let view = self.run.world().scene().view;
         self.renderer.set_trails(view.trails);
         self.renderer.set_trail_fade(view.trail_fade);
     }
 
-    /// Starts a new recording when the run restarted (step 0) or its agents changed.
-    fn restart_recording_if_new_run(&mut self) {
-        if self.world.step_count() == 0 || self.recording.agents() != self.world.agent_count() {
-            self.recording = Recording::of_world(&self.world, RECORDING_BUDGET_BYTES);
-            self.replay = Replay::new(&self.world);
-        } else {
-            self.note_live_edit();
-        }
-    }
-
     /// Stores new view options in the scene (no restart) and shows them.
     fn set_view(&mut self, view: ViewOptions) -> Result<(), JsError> {
-        let mut scene = self.world.scene().clone();
-        scene.view = view;
-        self.world.edit_scene(scene).map_err(js_error)?;
+        self.run.set_view(view).map_err(js_error)?;
         self.show_scene_view();
         Ok(())
     }
@@ -126,44 +93,30 @@ impl Sim {
     /// Replaces the scene; on error the current scene keeps running unchanged.
     pub fn load(&mut self, scene_text: &str) -> Result<(), JsValue> {
         let scene = codec::scene_from_any(scene_text).map_err(scene_error)?;
-        let before = std::mem::replace(&mut self.world, World::new_sliced(scene).map_err(scene_error)?);
-        self.keep_for_cancel(Some(before));
+        self.run.load(scene).map_err(scene_error)?;
         self.renderer.set_selection(None);
         self.renderer.clear_trails();
         self.show_scene_view();
-        self.restart_recording_if_new_run();
         Ok(())
     }
 
     /// Restarts the current scene from step 0 with the same seed.
     pub fn reset(&mut self) -> Result<(), JsError> {
-        let next = World::new_sliced(self.world.scene().clone()).map_err(js_error)?;
-        let before = std::mem::replace(&mut self.world, next);
-        self.keep_for_cancel(Some(before));
+        self.run.reset().map_err(js_error)?;
         self.renderer.clear_trails();
-        self.restart_recording_if_new_run();
         Ok(())
     }
 
     /// Advances `n` fixed steps, recording each and tracing its trail.
     pub fn step(&mut self, n: u32) {
-        for _ in 0..n {
-            self.world.step();
-            // Every step leaves its trail, however many run before the next frame.
-            self.renderer.trace_step(&self.world);
-            if self.replay.record(&self.world) {
-                // A new step (not one replayed after a jump back): the export recording and the
-                // metrics history keep the same history as the timeline.
-                self.recording.truncate_after(self.world.step_count().saturating_sub(1));
-                self.recording.capture_world(&self.world);
-                self.history.sample(&self.world);
-            }
-        }
+        // Every step leaves its trail, however many run before the next frame.
+        let renderer = &mut self.renderer;
+        self.run.step_each(n, |world| renderer.trace_step(world));
     }
 
     /// Steps simulated since the start.
     pub fn steps(&self) -> u32 {
-        self.world.step_count()
+        self.run.world().step_count()
     }
 
     /// Sets the canvas backing-store size in device px.
@@ -173,7 +126,7 @@ impl Sim {
 
     /// Draws the current state into the frame.
     pub fn render(&mut self) {
-        self.renderer.render(&self.world);
+        self.renderer.render(self.run.world());
     }
 
     /// Address of the RGBA frame in wasm memory.
@@ -204,38 +157,34 @@ impl Sim {
 
     /// The metrics of the run so far as JSON (DESIGN §4 keys).
     pub fn metrics_json(&self) -> Result<String, JsError> {
-        to_json(&self.world.metrics())
+        to_json(&self.run.world().metrics())
     }
 
     /// Agent positions as a flat JSON array `[x0, y0, x1, y1, …]` in scene px.
     pub fn positions_json(&self) -> Result<String, JsError> {
-        let flat: Vec<f32> = self.world.positions().iter().flat_map(|p| [p.x, p.y]).collect();
+        let flat: Vec<f32> = self.run.world().positions().iter().flat_map(|p| [p.x, p.y]).collect();
         to_json(&flat)
     }
 
     /// The current scene as pretty JSON.
     pub fn scene_json(&self) -> String {
-        codec::scene_to_json(self.world.scene())
+        codec::scene_to_json(self.run.world().scene())
     }
 
     /// The current scene as a URL fragment value (`2.…`).
     pub fn scene_string(&self) -> String {
-        codec::scene_to_fragment(self.world.scene())
+        codec::scene_to_fragment(self.run.world().scene())
     }
 
     /// The scene's seed.
     pub fn seed(&self) -> u32 {
-        self.world.scene().seed
+        self.run.world().scene().seed
     }
 
     /// Changes the seed and restarts the run; on error the current run continues.
     pub fn set_seed(&mut self, seed: u32) -> Result<(), JsError> {
-        let mut scene = self.world.scene().clone();
-        scene.seed = seed;
-        let before = std::mem::replace(&mut self.world, World::new_sliced(scene).map_err(js_error)?);
-        self.keep_for_cancel(Some(before));
+        self.run.set_seed(seed).map_err(js_error)?;
         self.renderer.clear_trails();
-        self.restart_recording_if_new_run();
         Ok(())
     }
 
@@ -244,7 +193,8 @@ impl Sim {
         let value: serde_json::Value = serde_json::from_str(value_json)
             .map_err(|e| js_error(format!("the value for {key:?} is not JSON: {e}")))?;
         let mut config = self
-            .world
+            .run
+            .world()
             .scene()
             .groups
             .get(group as usize)
@@ -252,43 +202,32 @@ impl Sim {
             .planner
             .clone();
         config.set_param(key, value).map_err(js_error)?;
-        let before = self.snapshot_if_planning_ahead();
-        self.world.set_group_planner(group as usize, config).map_err(js_error)?;
-        self.keep_for_cancel(before);
-        self.note_live_edit();
-        Ok(())
+        self.run.set_group_planner(group as usize, config).map_err(js_error)
     }
 
     /// Switches a group (0-based) to another planner with that planner's default parameters.
     pub fn set_group_planner(&mut self, group: u32, planner_name: &str) -> Result<(), JsError> {
         let kind = PlannerKind::parse(planner_name).map_err(js_error)?;
-        let before = (kind == PlannerKind::Igsa).then(|| self.world.clone());
-        self.world.set_group_planner(group as usize, kind.default_config()).map_err(js_error)?;
-        self.keep_for_cancel(before);
-        self.note_live_edit();
-        Ok(())
+        self.run.set_group_planner(group as usize, kind.default_config()).map_err(js_error)
     }
 
     /// Applies an editor operation (JSON of `crate::model::edit::Edit`); on error nothing changes.
     pub fn edit(&mut self, edit_json: &str) -> Result<(), JsError> {
         let edit: Edit =
             serde_json::from_str(edit_json).map_err(|e| js_error(format!("cannot read the edit: {e}")))?;
-        let scene = edit::apply(self.world.scene(), &edit).map_err(js_error)?;
-        let before = self.snapshot_if_planning_ahead();
-        self.world.edit_scene(scene).map_err(js_error)?;
-        self.keep_for_cancel(before);
-        if self.world.step_count() == 0 {
+        let scene = edit::apply(self.run.world().scene(), &edit).map_err(js_error)?;
+        self.run.edit_scene(scene).map_err(js_error)?;
+        if self.run.world().step_count() == 0 {
             // The agents may have been respawned elsewhere: do not draw the jump as a trail.
             self.renderer.clear_trails();
         }
-        self.restart_recording_if_new_run();
         Ok(())
     }
 
     /// The topmost item at scene point `(x, y)` within `tolerance` px: JSON of an item
     /// reference, or `"null"`.
     pub fn pick(&self, x: f32, y: f32, tolerance: f32) -> Result<String, JsError> {
-        to_json(&edit::pick(self.world.scene(), Vec2::new(x, y), tolerance))
+        to_json(&edit::pick(self.run.world().scene(), Vec2::new(x, y), tolerance))
     }
 
     /// Outlines an item (JSON item reference) or nothing (`"null"`).
@@ -301,13 +240,13 @@ impl Sim {
 
     /// Turns trails on or off (saved in the scene's view options, so shared links keep it).
     pub fn set_trails(&mut self, on: bool) -> Result<(), JsError> {
-        self.set_view(ViewOptions { trails: on, ..self.world.scene().view })
+        self.set_view(ViewOptions { trails: on, ..self.run.world().scene().view })
     }
 
     /// Share of a trail's visibility lost per frame (0 = permanent, 1 = one frame); saved in the
     /// scene's view options. Throws outside 0…1.
     pub fn set_trail_fade(&mut self, fade: f32) -> Result<(), JsError> {
-        self.set_view(ViewOptions { trail_fade: fade, ..self.world.scene().view })
+        self.set_view(ViewOptions { trail_fade: fade, ..self.run.world().scene().view })
     }
 
     /// Draws in the render theme `name` ("standard" or "projector") from the next frame on: a
@@ -329,7 +268,7 @@ impl Sim {
     /// The recording of the current run as JSON: `{frames, first_step, last_step, every,
     /// thinned, bytes, budget_bytes, capacity_steps, agents}`.
     pub fn recording_json(&self) -> Result<String, JsError> {
-        let r = &self.recording;
+        let r = self.run.recording();
         to_json(&serde_json::json!({
             "frames": r.steps().len(),
             "first_step": r.steps().first(),
@@ -345,29 +284,29 @@ impl Sim {
 
     /// The recorded paths as CSV `agent,group,step,time,x,y,vx,vy`.
     pub fn export_paths_csv(&self) -> String {
-        export::paths_csv(self.world.scene(), &self.recording)
+        export::paths_csv(self.run.world().scene(), self.run.recording())
     }
 
     /// The recorded paths as JSON.
     pub fn export_paths_json(&self) -> String {
-        export::paths_json(self.world.scene(), &self.recording)
+        export::paths_json(self.run.world().scene(), self.run.recording())
     }
 
     /// A Maya MEL script keyframing one locator per agent at `fps`, scene px × `scale`.
     pub fn export_maya_mel(&self, fps: f32, scale: f32) -> Result<String, JsError> {
         let options = ExportOptions::checked(fps, scale).map_err(js_error)?;
-        Ok(export::maya_mel(self.world.scene(), &self.recording, options))
+        Ok(export::maya_mel(self.run.world().scene(), self.run.recording(), options))
     }
 
     /// A Blender Python script keyframing one empty per agent at `fps`, scene px × `scale`.
     pub fn export_blender_py(&self, fps: f32, scale: f32) -> Result<String, JsError> {
         let options = ExportOptions::checked(fps, scale).map_err(js_error)?;
-        Ok(export::blender_py(self.world.scene(), &self.recording, options))
+        Ok(export::blender_py(self.run.world().scene(), self.run.recording(), options))
     }
 
     /// The recorded trails as SVG.
     pub fn export_trails_svg(&self) -> String {
-        export::trails_svg(self.world.scene(), &self.recording)
+        export::trails_svg(self.run.world().scene(), self.run.recording())
     }
 
     /// Erases the trails.
@@ -379,64 +318,35 @@ impl Sim {
     /// [`Sim::advance_planning`] within its frame budget instead of stepping (a step would
     /// finish the planning at once: what a script calling `step` wants).
     pub fn planning_progress(&self) -> f64 {
-        self.world.planning_progress()
+        self.run.world().planning_progress()
     }
 
     /// Runs up to `iterations` planning iterations; returns the share done. The path is the
     /// same whatever the slices.
     pub fn advance_planning(&mut self, iterations: u32) -> f64 {
-        let progress = self.world.advance_planning(iterations);
-        if progress >= 1.0 {
-            self.before_planning = None;
-            if self.world.step_count() == 0 {
-                // The timeline's first checkpoint should hold the planned path.
-                self.restart_recording_if_new_run();
-            }
-        }
-        progress
+        self.run.advance_planning(iterations)
     }
 
     /// Whether [`Sim::cancel_planning`] has a scene to go back to.
     pub fn can_cancel_planning(&self) -> bool {
-        self.before_planning.is_some() && self.world.planning_progress() < 1.0
+        self.run.can_cancel_planning()
     }
 
     /// Abandons the planning and goes back to the scene shown before it began; returns false
     /// (and changes nothing) when there is none.
     pub fn cancel_planning(&mut self) -> bool {
-        if !self.can_cancel_planning() {
+        if !self.run.cancel_planning() {
             return false;
         }
-        let Some(before) = self.before_planning.take() else { return false };
-        self.world = before;
         self.renderer.set_selection(None);
         self.renderer.clear_trails();
         self.show_scene_view();
-        self.recording = Recording::of_world(&self.world, RECORDING_BUDGET_BYTES);
-        self.replay = Replay::new(&self.world);
-        self.history = MetricsHistory::default();
         true
-    }
-
-    /// A copy of the world for [`Sim::cancel_planning`] when a change may start planning ahead.
-    fn snapshot_if_planning_ahead(&self) -> Option<World> {
-        let igsa = |g: &crate::model::scene::Group| g.planner.kind() == PlannerKind::Igsa;
-        self.world.scene().groups.iter().any(igsa).then(|| self.world.clone())
-    }
-
-    /// Keeps `before` to go back to if the world now plans ahead (the oldest such world wins:
-    /// edits during planning start it again, Cancel goes back to before the first).
-    fn keep_for_cancel(&mut self, before: Option<World>) {
-        if self.world.planning_progress() >= 1.0 {
-            self.before_planning = None;
-        } else if self.before_planning.is_none() {
-            self.before_planning = before.filter(|w| w.planning_progress() >= 1.0);
-        }
     }
 
     /// The run's digest as 16 hex digits: equal digests mean bit-identical runs.
     pub fn digest(&self) -> String {
-        format!("{:016x}", self.world.digest())
+        format!("{:016x}", self.run.world().digest())
     }
 }
 

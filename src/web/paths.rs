@@ -12,13 +12,13 @@ impl Sim {
     /// max_turn_deg, mean_turn_deg, fitness, evaluations}`, or `"null"` for a group whose
     /// planner plans no path or whose path is still being planned ([`Sim::planning_progress`]).
     pub fn group_path_json(&self, group: u32) -> Result<String, JsError> {
-        to_json(&self.world.planned_path(group as usize))
+        to_json(&self.run.world().planned_path(group as usize))
     }
 
     /// The draggable waypoint within `tolerance` scene px of `(x, y)`: JSON `{group, index}` or
     /// `"null"`.
     pub fn pick_waypoint(&self, x: f32, y: f32, tolerance: f32) -> Result<String, JsError> {
-        let hit = crate::sim::diagnose::pick_waypoint(&self.world, Vec2::new(x, y), tolerance)
+        let hit = crate::sim::diagnose::pick_waypoint(self.run.world(), Vec2::new(x, y), tolerance)
             .map(|(group, index)| serde_json::json!({ "group": group, "index": index }));
         to_json(&hit)
     }
@@ -32,7 +32,8 @@ impl Sim {
             .map_err(|e| js_error(format!("the waypoints are not a list of [x, y] points: {e}")))?;
         let g = group as usize;
         let mut config = self
-            .world
+            .run
+            .world()
             .scene()
             .groups
             .get(g)
@@ -46,7 +47,7 @@ impl Sim {
             )));
         };
         params.waypoints = points;
-        self.world.set_group_planner(g, config).map_err(js_error)?;
+        self.run.set_group_planner(g, config).map_err(js_error)?;
         self.group_path_json(group)
     }
 }

@@ -62,8 +62,7 @@ function visibleMessage() {
   return { where, text, inside, defined: customElements.get('flock-path') !== undefined };
 }
 
-/** Pixel statistics of the element's canvas: distinct colours and pixels near the group colour
- * (the presets' first group: Okabe–Ito blue #0072b2). */
+/** Pixel statistics of the element's canvas: distinct colours and pixels near the group colour. */
 function canvasStats() {
   const canvas = document.querySelector('flock-path').shadowRoot.querySelector('canvas');
   const data = canvas.getContext('2d').getImageData(0, 0, canvas.width, canvas.height).data;
@@ -71,7 +70,7 @@ function canvasStats() {
   let group = 0;
   for (let i = 0; i < data.length; i += 4) {
     colours.add((data[i] << 16) | (data[i + 1] << 8) | data[i + 2]);
-    if (Math.abs(data[i] - 0x00) < 40 && Math.abs(data[i + 1] - 0x72) < 40 && Math.abs(data[i + 2] - 0xb2) < 40) group++;
+    if (Math.abs(data[i] - 0x2f) < 40 && Math.abs(data[i + 1] - 0x6f) < 40 && Math.abs(data[i + 2] - 0xdf) < 40) group++;
   }
   return { width: canvas.width, height: canvas.height, colours: colours.size, group };
 }

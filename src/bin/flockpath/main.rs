@@ -1,5 +1,5 @@
 //! The flockpath command line: presets, batch runs with metrics, scene ↔ URL strings,
-//! optimizer experiments, force-weight tuning, benchmarks.
+//! optimizer experiments, force-weight tuning, benchmarks, the validation suite.
 //!
 //! A stable contract (DESIGN §5): output formats and flag names are scripted against. The
 //! library computes; this binary parses the command line (clap), prints, writes files and draws
@@ -22,6 +22,8 @@ mod run;
 mod scenes;
 #[cfg(not(target_arch = "wasm32"))]
 mod tune;
+#[cfg(not(target_arch = "wasm32"))]
+mod validate;
 
 #[cfg(not(target_arch = "wasm32"))]
 pub use cli::{failed, in_range, out, usage, whole_number, write_file, CliError};

@@ -7,6 +7,7 @@ use flockpath::experiments::tables::{self, Table};
 use flockpath::optim::functions::Function;
 use flockpath::optim::{Algorithm, UnknownName};
 use flockpath::planners::igsa::path::{compare_paths, path_table_text, PathParams};
+use flockpath::sim::limits::{CLI_LAB_DIMENSION, CLI_LAB_ITERATIONS, CLI_LAB_POPULATION};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -26,13 +27,13 @@ pub struct OptimizeArgs {
     #[arg(long, value_name = "LIST")]
     functions: Option<String>,
     /// Dimension (default 30)
-    #[arg(long, value_name = "D", value_parser = in_range(1usize, 10_000))]
+    #[arg(long, value_name = "D", value_parser = in_range(1usize, CLI_LAB_DIMENSION))]
     dim: Option<usize>,
     /// Population size (default 50)
-    #[arg(long, value_name = "N", value_parser = in_range(2usize, 100_000))]
+    #[arg(long, value_name = "N", value_parser = in_range(2usize, CLI_LAB_POPULATION))]
     pop: Option<usize>,
     /// Iterations per run (default 1000)
-    #[arg(long, value_name = "T", value_parser = in_range(1u32, 10_000_000))]
+    #[arg(long, value_name = "T", value_parser = in_range(1u32, CLI_LAB_ITERATIONS))]
     iters: Option<u32>,
     /// Independent runs per algorithm and function (default 30)
     #[arg(long, value_name = "R", value_parser = in_range(1u32, 100_000))]

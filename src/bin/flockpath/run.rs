@@ -1,18 +1,14 @@
-//! `flockpath run`: simulate a scene, report its metrics, write the exports asked for.
+//! `flockpath run`: simulate a scene (a `Run` without a timeline), report its metrics, write the
+//! exports asked for.
 
 use crate::scenes::load_scene;
 use crate::{failed, out, usage, whole_number, write_file, CliError};
+use flockpath::experiments::validation::pedpy;
 use flockpath::export::{self, ExportOptions};
-use flockpath::sim::history::{self, MetricsHistory};
+use flockpath::sim::limits::{CLI_MAX_STEPS as MAX_STEPS, CLI_RECORDING_BUDGET_BYTES};
 use flockpath::sim::recording::Recording;
+use flockpath::sim::run::{Run, RunOptions};
 use flockpath::{PlannerKind, Scene, World};
-
-/// Most samples `run --metrics-history` keeps before halving its sampling rate.
-const HISTORY_CAP: usize = 4096;
-/// Most steps one `run` may ask for (about 4.6 hours of simulated time at 60 steps/s).
-const MAX_STEPS: u32 = 1_000_000;
-/// Memory the CLI's recording of a run may use before it thins (a note goes to stderr).
-const RECORDING_BUDGET_BYTES: usize = 1 << 30;
 
 /// `flockpath run`.
 #[derive(clap::Args, Debug)]
@@ -59,6 +55,10 @@ pub struct RunArgs {
     /// Write the trails as SVG
     #[arg(long, value_name = "FILE")]
     svg: Option<String>,
+    /// Write the paths for PedPy (`pedpy.load_trajectory_from_txt`): `id frame x y z` in metres
+    /// (at the scene's px_per_metre, default 20), with the frame rate in the header
+    #[arg(long, value_name = "FILE")]
+    pedpy: Option<String>,
     /// Keyframes per second of the MEL/Python exports (1…240, default 24)
     #[arg(long, value_name = "F", value_parser = real, allow_negative_numbers = true)]
     fps: Option<f32>,
@@ -76,13 +76,17 @@ type Export = fn(&Scene, &Recording, ExportOptions) -> String;
 
 impl RunArgs {
     /// Every export: its flag, the file asked for, and what it writes.
-    fn exports(&self) -> [(&'static str, Option<&str>, Export); 5] {
+    fn exports(&self) -> [(&'static str, Option<&str>, Export); 6] {
         [
             ("--paths", self.paths.as_deref(), |scene, rec, _| export::paths_csv(scene, rec)),
             ("--paths-json", self.paths_json.as_deref(), |scene, rec, _| export::paths_json(scene, rec)),
             ("--maya", self.maya.as_deref(), export::maya_mel),
             ("--blender", self.blender.as_deref(), export::blender_py),
             ("--svg", self.svg.as_deref(), |scene, rec, _| export::trails_svg(scene, rec)),
+            ("--pedpy", self.pedpy.as_deref(), |scene, rec, _| {
+                let traj = pedpy::from_recording(scene, rec, scene.px_per_metre);
+                pedpy::trajectory_text(&traj, None, &scene.name)
+            }),
         ]
     }
 }
@@ -108,29 +112,17 @@ pub fn run(args: &RunArgs) -> Result<(), CliError> {
     if let Some(seed) = args.seed {
         scene.seed = seed;
     }
-    let mut world = World::new(scene).map_err(|e| failed(format!("cannot run the scene: {e}")))?;
-    let mut recording = recording_wanted.then(|| Recording::of_world(&world, RECORDING_BUDGET_BYTES));
     let history_file = args.metrics_history.as_deref();
-    let mut history = history_file.map(|_| MetricsHistory::new(history::DEFAULT_EVERY, HISTORY_CAP));
-    if recording.is_none() && history.is_none() {
-        world.step_n(steps);
-    } else {
-        for _ in 0..steps {
-            world.step();
-            if let Some(r) = recording.as_mut() {
-                r.capture_world(&world);
-            }
-            if let Some(h) = history.as_mut() {
-                h.sample(&world);
-            }
-        }
+    let options = RunOptions::command_line(recording_wanted, history_file.is_some());
+    let mut run = Run::new(scene, options).map_err(|e| failed(format!("cannot run the scene: {e}")))?;
+    run.step(steps);
+    let world = run.world();
+    if recording_wanted {
+        write_exports(args, world, run.recording(), export_options)?;
     }
-    if let Some(recording) = &recording {
-        write_exports(args, &world, recording, export_options)?;
-    }
-    if let (Some(h), Some(file)) = (&history, history_file) {
+    if let Some(file) = history_file {
         let names: Vec<String> = world.scene().groups.iter().map(|g| g.name.clone()).collect();
-        write_file("metrics history file", file, &h.to_csv(&names))?;
+        write_file("metrics history file", file, &run.metric_series().to_csv(&names))?;
     }
     let metrics = world.metrics();
     let json = serde_json::to_string_pretty(&metrics)
@@ -139,9 +131,9 @@ pub fn run(args: &RunArgs) -> Result<(), CliError> {
         Some("-") => out(&format!("{json}\n")),
         Some(file) => {
             write_file("metrics file", file, &format!("{json}\n"))?;
-            out(&summary(&world))
+            out(&summary(world))
         }
-        None => out(&summary(&world)),
+        None => out(&summary(world)),
     }
 }
 
@@ -155,7 +147,8 @@ fn write_exports(
     let scene = world.scene();
     if recording.thinned() > 0 {
         eprintln!(
-            "flockpath: note: the recording outgrew its 1 GiB budget and keeps every {}th step",
+            "flockpath: note: the recording outgrew its {} GiB budget and keeps every {}th step",
+            CLI_RECORDING_BUDGET_BYTES >> 30,
             recording.every()
         );
     }

@@ -6,16 +6,22 @@
 pub mod boids;
 pub mod firefly;
 pub mod forces;
+pub mod guidance;
 pub mod igsa;
+pub mod orca;
 pub mod pso;
+pub mod social_force;
 pub mod spec;
 
 pub use boids::{Arbitration, BoidsParams, FlowGuide, Leader, Role};
 pub use firefly::FireflyParams;
 pub use forces::ForcesParams;
+pub use guidance::Guidance;
 pub use igsa::{IgsaParams, PathOptimizer, WaypointError};
+pub use orca::OrcaParams;
 pub use pso::PsoParams;
 use serde::{Deserialize, Serialize};
+pub use social_force::SocialForceParams;
 use spec::check_params;
 pub use spec::{ParamError, ParamSpec};
 
@@ -33,12 +39,23 @@ pub enum PlannerKind {
     Forces,
     /// IGSA group path control (Liu & Liu 2022, DESIGN §3.4).
     Igsa,
+    /// ORCA, optimal reciprocal collision avoidance (van den Berg et al. 2011): a baseline.
+    Orca,
+    /// Social force model (Helbing & Molnár 1995; Helbing, Farkas & Vicsek 2000): a baseline.
+    SocialForce,
 }
 
 impl PlannerKind {
     /// Every planner, in menu order.
-    pub const ALL: &'static [PlannerKind] =
-        &[PlannerKind::Boids, PlannerKind::Pso, PlannerKind::Firefly, PlannerKind::Forces, PlannerKind::Igsa];
+    pub const ALL: &'static [PlannerKind] = &[
+        PlannerKind::Boids,
+        PlannerKind::Pso,
+        PlannerKind::Firefly,
+        PlannerKind::Forces,
+        PlannerKind::Igsa,
+        PlannerKind::Orca,
+        PlannerKind::SocialForce,
+    ];
 
     /// The CLI / URL name.
     pub fn name(self) -> &'static str {
@@ -48,6 +65,8 @@ impl PlannerKind {
             PlannerKind::Firefly => "firefly",
             PlannerKind::Forces => "forces",
             PlannerKind::Igsa => "igsa",
+            PlannerKind::Orca => "orca",
+            PlannerKind::SocialForce => "social_force",
         }
     }
 
@@ -69,6 +88,8 @@ impl PlannerKind {
             PlannerKind::Firefly => "Firefly crowd (Zhang et al. 2017)",
             PlannerKind::Forces => "Virtual forces (GA-tuned)",
             PlannerKind::Igsa => "IGSA group path (Liu & Liu 2022)",
+            PlannerKind::Orca => "ORCA (van den Berg et al. 2011)",
+            PlannerKind::SocialForce => "Social force (Helbing & Molnár 1995)",
         }
     }
 
@@ -80,6 +101,8 @@ impl PlannerKind {
             PlannerKind::Firefly => PlannerConfig::Firefly(FireflyParams::default()),
             PlannerKind::Forces => PlannerConfig::Forces(ForcesParams::default()),
             PlannerKind::Igsa => PlannerConfig::Igsa(IgsaParams::default()),
+            PlannerKind::Orca => PlannerConfig::Orca(OrcaParams::default()),
+            PlannerKind::SocialForce => PlannerConfig::SocialForce(SocialForceParams::default()),
         }
     }
 
@@ -91,6 +114,8 @@ impl PlannerKind {
             PlannerKind::Firefly => FireflyParams::SPECS,
             PlannerKind::Forces => ForcesParams::SPECS,
             PlannerKind::Igsa => IgsaParams::SPECS,
+            PlannerKind::Orca => OrcaParams::SPECS,
+            PlannerKind::SocialForce => SocialForceParams::SPECS,
         }
     }
 }
@@ -162,6 +187,10 @@ pub enum PlannerConfig {
     Forces(ForcesParams),
     /// IGSA group path control.
     Igsa(IgsaParams),
+    /// ORCA.
+    Orca(OrcaParams),
+    /// Social force model.
+    SocialForce(SocialForceParams),
 }
 
 impl Default for PlannerConfig {
@@ -179,6 +208,8 @@ impl PlannerConfig {
             PlannerConfig::Firefly(_) => PlannerKind::Firefly,
             PlannerConfig::Forces(_) => PlannerKind::Forces,
             PlannerConfig::Igsa(_) => PlannerKind::Igsa,
+            PlannerConfig::Orca(_) => PlannerKind::Orca,
+            PlannerConfig::SocialForce(_) => PlannerKind::SocialForce,
         }
     }
 

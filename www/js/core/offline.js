@@ -9,7 +9,10 @@
 //
 // `window.flockpathOffline` is a promise of the registration (null when there is none).
 
-const SW_URL = new URL('../../sw.js', import.meta.url);
+/** The folder of the pages (two up from js/core/); the worker sits at its top, so its scope is
+ * the whole folder. (Registered by URL, not imported: the worker is no module of the page.) */
+const FOLDER = new URL('../../', import.meta.url);
+const SW_URL = new URL('sw.js', FOLDER);
 
 /** Registers the worker once the page has loaded; resolves to the registration or null. */
 export function registerOffline() {
@@ -18,7 +21,7 @@ export function registerOffline() {
   const loaded =
     document.readyState === 'complete' ? Promise.resolve() : new Promise((resolve) => addEventListener('load', resolve, { once: true }));
   return loaded
-    .then(() => container.register(SW_URL.href, { scope: new URL('./', SW_URL).href, updateViaCache: 'none' }))
+    .then(() => container.register(SW_URL.href, { scope: FOLDER.href, updateViaCache: 'none' }))
     .catch(() => null);
 }
 

@@ -12,6 +12,8 @@
 // are set through the CSSOM, so a host page's Content-Security-Policy without 'unsafe-inline'
 // does not refuse them.
 
+import { blitSim } from './blit.js';
+
 const STILL_CLASS = 'flockpath-print-still';
 const MARK = 'data-flockpath-print';
 
@@ -36,11 +38,12 @@ function adopt(root) {
 }
 
 /** Brings a <flock-path> element's canvas up to its current step (it may be a frame behind). */
-function renderNow(el) {
+function renderNow(el, canvas) {
+  const host = el.host;
   try {
-    if (el.sim && !el.crashed && typeof el.blit === 'function') {
-      el.sim.render();
-      el.blit();
+    if (host?.sim && !host.crashed && host.wasm) {
+      host.sim.render();
+      blitSim(canvas.getContext('2d'), host.wasm, host.sim);
     }
   } catch {
     // A crashed or freed simulation keeps the picture it has.
@@ -82,7 +85,7 @@ function targets() {
   for (const el of document.querySelectorAll('flock-path')) {
     const canvas = el.shadowRoot?.querySelector('canvas');
     if (!canvas) continue;
-    renderNow(el);
+    renderNow(el, canvas);
     adopt(el.shadowRoot);
     list.push(canvas);
   }

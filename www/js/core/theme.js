@@ -31,9 +31,9 @@ function paintCanvases() {
   }
   for (const el of document.querySelectorAll('flock-path')) {
     try {
-      if (el.sim && !el.crashed) {
-        el.sim.set_theme(current);
-        el.dirty = true;
+      if (el.host?.sim && !el.host.crashed) {
+        el.host.sim.set_theme(current);
+        el.host.dirty = true;
       }
     } catch {
       // A freed or crashed element keeps its look.
@@ -79,7 +79,8 @@ function addToggle() {
   button.addEventListener('click', () => {
     writeToLocation(setTheme(current === 'projector' ? 'standard' : 'projector'));
   });
-  menu.prepend(button);
+  // Last in the menu: opening it still focuses the first view link.
+  menu.append(button);
 }
 
 setTheme(themeFromLocation());

@@ -1,14 +1,18 @@
 //! A bounded time series of a run's metrics, overall and per group, for the page's plots and
-//! `flockpath run --metrics-history`.
+//! `flockpath run --metrics-history` ("metric series": in the page's JS, "history" is the undo
+//! stack).
 //!
-//! A sample is taken every `every` steps. When the history holds its cap of samples it keeps
-//! every other one and samples half as often from then on (thinning, as in
-//! [`crate::sim::recording`]), so a long run always fits and always spans its whole length. Counts
+//! A sample is taken every `every` steps. When the series holds its cap of samples it keeps
+//! every other one and samples half as often from then on (thinning, a
+//! [`crate::sim::series::BoundedSeries`]), so a long run always fits and always spans its whole
+//! length. Counts
 //! that accumulate (collisions, penetrations) are stored as totals and turned into per-step rates
 //! between neighbouring kept samples when read, so thinning loses no events.
 
 use crate::model::params::PlannerKind;
+use crate::sim::limits;
 use crate::sim::metrics::{GroupMetrics, Metrics};
+use crate::sim::series::BoundedSeries;
 use crate::sim::world::World;
 
 /// One plotted series: key, label, unit.
@@ -48,47 +52,34 @@ const RAW: usize = 11;
 const COLLISIONS: usize = 2;
 const PENETRATIONS: usize = 3;
 
-/// Default steps between samples at the start of a run.
-pub const DEFAULT_EVERY: u32 = 5;
-/// Default most samples kept (then thinned to half).
-pub const DEFAULT_CAP: usize = 512;
-
 /// The sampled metrics of one run.
 #[derive(Clone, Debug)]
-pub struct MetricsHistory {
-    every: u32,
-    cap: usize,
-    thinned: u32,
-    /// Rows per sample: overall, then one per group.
+pub struct MetricSeries {
+    /// Steps between samples at the start (and after going back to the start).
+    start_every: u32,
+    /// Rows per sample: overall, then one per group; a sample is `rows × RAW` values,
+    /// `values[r * RAW + k]` of its row.
     rows: usize,
-    steps: Vec<u32>,
-    /// `values[(s * rows + r) * RAW + k]`.
-    values: Vec<f32>,
+    samples: BoundedSeries<f32>,
 }
 
-impl Default for MetricsHistory {
+impl Default for MetricSeries {
     fn default() -> Self {
-        Self::new(DEFAULT_EVERY, DEFAULT_CAP)
+        Self::new(limits::METRIC_SERIES_EVERY, limits::PAGE_METRIC_SERIES_CAP)
     }
 }
 
-impl MetricsHistory {
-    /// An empty history sampling every `every` steps (at least 1), keeping at most `cap` samples
+impl MetricSeries {
+    /// An empty series sampling every `every` steps (at least 1), keeping at most `cap` samples
     /// (at least 2).
     pub fn new(every: u32, cap: usize) -> Self {
-        Self {
-            every: every.max(1),
-            cap: cap.max(2),
-            thinned: 0,
-            rows: 0,
-            steps: Vec::new(),
-            values: Vec::new(),
-        }
+        let every = every.max(1);
+        Self { start_every: every, rows: 0, samples: BoundedSeries::new(0, cap.max(2), every) }
     }
 
-    /// Forgets every sample (a new run); the sampling interval returns to `every`.
-    pub fn clear(&mut self, every: u32) {
-        *self = Self::new(every, self.cap);
+    /// Forgets every sample (a new run); the sampling interval returns to the start's.
+    pub fn clear(&mut self) {
+        *self = Self::new(self.start_every, self.samples.cap());
     }
 
     /// Samples `world` if its step count falls on the sampling interval (call after every new
@@ -96,75 +87,52 @@ impl MetricsHistory {
     /// drops the samples from its step on, since they belonged to the old future.
     pub fn sample(&mut self, world: &World) {
         let step = world.step_count();
-        if self.steps.last().is_some_and(|&last| step <= last) {
+        if self.samples.steps().last().is_some_and(|&last| step <= last) {
             self.truncate_before(step);
         }
-        if !step.is_multiple_of(self.every) {
+        if !self.samples.due(step) {
             return;
         }
         self.push(&plot_metrics(world));
     }
 
-    /// Drops the samples at `step` and later; an emptied history samples at the start rate again.
+    /// Drops the samples at `step` and later; an emptied series samples at the start rate again.
     pub fn truncate_before(&mut self, step: u32) {
-        let keep = self.steps.partition_point(|&s| s < step);
-        self.steps.truncate(keep);
-        self.values.truncate(keep * self.rows * RAW);
-        if keep == 0 {
-            self.clear(DEFAULT_EVERY);
+        self.samples.truncate_before(step);
+        if self.samples.is_empty() {
+            self.clear();
         }
     }
 
-    /// Appends the metrics of one step (thinning first when full).
+    /// Appends the metrics of one step (thinning first when full). Metrics with another number
+    /// of groups than the samples held start the series again.
     pub fn push(&mut self, m: &Metrics) {
         let rows = 1 + m.groups.len();
         if rows != self.rows {
-            self.steps.clear();
-            self.values.clear();
             self.rows = rows;
+            self.samples.clear_samples(rows * RAW);
         }
-        if self.steps.len() >= self.cap {
-            self.thin();
-            if !m.steps.is_multiple_of(self.every) {
-                return;
-            }
-        }
-        self.steps.push(m.steps);
-        push_row(&mut self.values, &m.overall);
+        let mut values = Vec::with_capacity(rows * RAW);
+        push_row(&mut values, &m.overall);
         for g in &m.groups {
-            push_row(&mut self.values, g);
+            push_row(&mut values, g);
         }
-    }
-
-    fn thin(&mut self) {
-        self.every = self.every.saturating_mul(2);
-        self.thinned += 1;
-        let width = self.rows * RAW;
-        let mut steps = Vec::with_capacity(self.cap / 2 + 1);
-        let mut values = Vec::with_capacity(self.values.len() / 2 + width);
-        for (s, &step) in self.steps.iter().enumerate() {
-            if step.is_multiple_of(self.every) {
-                steps.push(step);
-                values.extend_from_slice(&self.values[s * width..(s + 1) * width]);
-            }
-        }
-        self.steps = steps;
-        self.values = values;
+        self.samples.push(m.steps, values);
     }
 
     /// The sampled step numbers, increasing.
     pub fn steps(&self) -> &[u32] {
-        &self.steps
+        self.samples.steps()
     }
 
     /// Steps between samples now.
     pub fn every(&self) -> u32 {
-        self.every
+        self.samples.every()
     }
 
-    /// How many times the history was thinned.
+    /// How many times the series was thinned.
     pub fn thinned(&self) -> u32 {
-        self.thinned
+        self.samples.thinned()
     }
 
     /// Number of groups the samples have rows for.
@@ -182,12 +150,13 @@ impl MetricsHistory {
             Some(g) if g + 1 < self.rows => g + 1,
             Some(_) => return None,
         };
-        let at = |s: usize| self.values[(s * self.rows + row) * RAW + k];
-        let mut out = Vec::with_capacity(self.steps.len());
-        for s in 0..self.steps.len() {
+        let steps = self.samples.steps();
+        let at = |s: usize| self.samples.row(s).get(row * RAW + k).copied().unwrap_or(f32::NAN);
+        let mut out = Vec::with_capacity(steps.len());
+        for s in 0..steps.len() {
             if k == COLLISIONS || k == PENETRATIONS {
-                let (before, since) = if s == 0 { (0.0, 0) } else { (at(s - 1), self.steps[s - 1]) };
-                let span = self.steps[s].saturating_sub(since).max(1) as f32;
+                let (before, since) = if s == 0 { (0.0, 0) } else { (at(s - 1), steps[s - 1]) };
+                let span = steps[s].saturating_sub(since).max(1) as f32;
                 out.push((at(s) - before) / span);
             } else {
                 out.push(at(s));
@@ -196,7 +165,7 @@ impl MetricsHistory {
         Some(out)
     }
 
-    /// The history as CSV: `step,time_s,group,<series…>`, one row per sample for the whole run
+    /// The series as CSV: `step,time_s,group,<series…>`, one row per sample for the whole run
     /// (group `all`) and one per group (its index from 1), empty cells for missing values.
     pub fn to_csv(&self, group_names: &[String]) -> String {
         let mut out = String::from("step,time_s,group");
@@ -212,7 +181,7 @@ impl MetricsHistory {
             })
             .collect();
         let dt = f64::from(crate::model::scene::DT);
-        for (i, &step) in self.steps.iter().enumerate() {
+        for (i, &step) in self.samples.steps().iter().enumerate() {
             for (row, series) in columns.iter().enumerate() {
                 let name = match row {
                     0 => "all".to_string(),
@@ -276,7 +245,7 @@ mod tests {
     #[test]
     fn thinning_keeps_the_cap_spans_the_run_and_keeps_rates_exact() {
         let mut world = World::new(presets::two_groups_swap()).expect("valid");
-        let mut h = MetricsHistory::new(1, 20);
+        let mut h = MetricSeries::new(1, 20);
         for _ in 0..200 {
             world.step();
             h.sample(&world);
@@ -307,13 +276,13 @@ mod tests {
     #[test]
     fn a_run_that_goes_back_drops_the_old_future_and_csv_has_a_row_per_group() {
         let mut world = World::new(presets::open_field()).expect("valid");
-        let mut h = MetricsHistory::default();
+        let mut h = MetricSeries::new(limits::METRIC_SERIES_EVERY, limits::PAGE_METRIC_SERIES_CAP);
         world.step_n(20);
         h.sample(&world);
         world = World::new(presets::open_field()).expect("valid");
-        world.step_n(DEFAULT_EVERY);
+        world.step_n(limits::METRIC_SERIES_EVERY);
         h.sample(&world);
-        assert_eq!(h.steps(), &[DEFAULT_EVERY]);
+        assert_eq!(h.steps(), &[limits::METRIC_SERIES_EVERY]);
         let csv = h.to_csv(&["flock".to_string()]);
         let lines: Vec<&str> = csv.lines().collect();
         assert_eq!(lines.len(), 3, "{csv}");

@@ -1,0 +1,576 @@
+//! The tests: each builds its scene ([`super::scenes`]), runs it ([`super::record`]), measures
+//! ([`super::measure`]) and states its criterion, giving table rows and curves.
+
+use super::measure::{
+    evacuation_time, exit_flow, seyfried_speed, weidmann_speed, Area, FdPoint, Trajectories,
+};
+use super::record::{record, Recorded};
+use super::report::{Curve, Outcome, Row};
+use super::scenes::{
+    bottleneck, counter_flow, demographics, free_walking, head_on, large_room, periodic_corridor, small_room,
+    straight, turned_walk, Corner, AGE_GROUPS, BOTTLENECK,
+};
+use super::units::{config_at_speed, SetupError, BODY_RADIUS_M, FREE_SPEED, PX_PER_METRE};
+use crate::model::codec::scene_to_fragment;
+use crate::model::params::PlannerKind;
+use crate::model::scene::Scene;
+use crate::sim::world::World;
+use glam::Vec2;
+
+/// One test of the suite.
+#[derive(Clone, Copy, Debug)]
+pub struct TestSpec {
+    /// Stable id (CLI `--tests`, the page, the CSV names).
+    pub id: &'static str,
+    /// Title.
+    pub title: &'static str,
+    /// The criterion in words.
+    pub criterion: &'static str,
+    run: fn(&TestSpec, PlannerKind) -> Result<Outcome, Failure>,
+}
+
+/// A run that could not be measured: the message, and the scene when one was built.
+pub struct Failure {
+    message: String,
+    scene: Option<Box<Scene>>,
+}
+
+impl From<String> for Failure {
+    fn from(message: String) -> Self {
+        Self { message, scene: None }
+    }
+}
+
+impl From<SetupError> for Failure {
+    fn from(e: SetupError) -> Self {
+        Self { message: e.to_string(), scene: None }
+    }
+}
+
+impl TestSpec {
+    /// Runs the test with `kind` driving every group. A run that cannot be measured (a scene
+    /// the world refuses) gives a failing row that says why.
+    pub fn run(&self, kind: PlannerKind) -> Outcome {
+        (self.run)(self, kind).unwrap_or_else(|f| Outcome {
+            rows: vec![self.row(
+                kind,
+                None,
+                "",
+                format!("not measured: {}", f.message),
+                false,
+                f.scene.as_deref(),
+            )],
+            curves: vec![],
+        })
+    }
+
+    fn row(
+        &self,
+        kind: PlannerKind,
+        value: Option<f64>,
+        unit: &str,
+        measured: String,
+        pass: bool,
+        scene: Option<&Scene>,
+    ) -> Row {
+        Row {
+            test: self.id.into(),
+            planner: kind.name().into(),
+            value: value.filter(|v| v.is_finite()),
+            unit: unit.into(),
+            measured,
+            criterion: self.criterion.into(),
+            pass,
+            scene: scene.map(scene_to_fragment).unwrap_or_default(),
+        }
+    }
+
+    fn curve(&self, kind: PlannerKind, what: &str, columns: &[&str], rows: Vec<Vec<f64>>) -> Curve {
+        Curve {
+            name: format!("{}-{what}-{}", self.id, kind.name()),
+            test: self.id.into(),
+            planner: kind.name().into(),
+            columns: columns.iter().map(|c| c.to_string()).collect(),
+            rows,
+        }
+    }
+}
+
+/// Every test, in the order the table shows them.
+pub const TESTS: &[TestSpec] = &[
+    TestSpec {
+        id: "t1-free-walking",
+        title: "T1 free walking: one walker, 40 m × 2 m corridor",
+        criterion: "speed over 5…35 m within 5% of the desired 1.34 m/s",
+        run: t1,
+    },
+    TestSpec {
+        id: "t4-fundamental-diagram",
+        title: "T4 fundamental diagram: periodic 20 m × 2 m corridor at 0.5…6 persons/m²",
+        criterion: "mean |v − v_Weidmann| over the 7 densities ≤ 0.2 m/s",
+        run: t4,
+    },
+    TestSpec {
+        id: "t6-corner",
+        title: "T6 corner: 20 walkers round a left-hand corner",
+        criterion: "no wall crossed and all 20 arrive within 40 s",
+        run: t6,
+    },
+    TestSpec {
+        id: "juelich-rotation",
+        title: "Jülich: the same scene turned by 45°",
+        criterion: "mean and last arrival times within 2% of the unturned scene's",
+        run: rotation,
+    },
+    TestSpec {
+        id: "juelich-head-on",
+        title: "Jülich: two walkers head-on",
+        criterion: "both arrive and their bodies never overlap (gap ≥ 0)",
+        run: head_on_test,
+    },
+    TestSpec {
+        id: "counter-flow-lanes",
+        title: "Counter-flow: 2 × 40 walkers in a periodic 20 m × 4 m corridor",
+        criterion: "lane order (Rex & Löwen) over the last 10 s ≥ 0.75",
+        run: lanes,
+    },
+    TestSpec {
+        id: "t9-four-vs-two-exits",
+        title: "T9 large room: 1,000 walkers, 4 exits vs 2 exits",
+        criterion: "exit flow with 4 exits / with 2 exits within 1.5…2.5",
+        run: t9,
+    },
+    TestSpec {
+        id: "t12-bottleneck",
+        title: "T12 bottleneck: 150 walkers, room → 2 m corridor → room",
+        criterion: "≥ 90% of jammed samples (< 0.2 m/s) before the corridor, ≥ 90% arrive in 90 s",
+        run: t12,
+    },
+    TestSpec {
+        id: "t7-demographics",
+        title: "T7 demographics: four age groups with desired-speed ranges",
+        criterion: "every walker's speed over 5…35 m inside its age group's range",
+        run: t7,
+    },
+    TestSpec {
+        id: "t8-speed-sweep",
+        title: "T8 parameter study: evacuation time of a 10 m room vs desired speed",
+        criterion: "all 40 out at every speed, evacuation time falling as speed rises",
+        run: t8,
+    },
+    TestSpec {
+        id: "t15-corner-crowd",
+        title: "T15 large crowd round a corner vs straight corridors",
+        criterion: "evacuation time between the short (24 m) and long (30 m) straight corridors'",
+        run: t15,
+    },
+    TestSpec {
+        id: "t16-single-file",
+        title: "T16 single file: periodic 20 m ring corridor 0.5 m wide",
+        criterion: "mean |v − v_Seyfried| over the 5 line densities ≤ 0.2 m/s",
+        run: t16,
+    },
+];
+
+/// The test with id `id`.
+pub fn find_test(id: &str) -> Option<&'static TestSpec> {
+    TESTS.iter().find(|t| t.id == id)
+}
+
+/// A world for `scene` (no cost limit: the suite runs natively and in a worker), at `starts`
+/// when given.
+fn world(scene: &Scene, starts: Option<Vec<Vec2>>) -> Result<World, Failure> {
+    let built = match starts {
+        Some(p) => World::new_at(scene.clone(), p),
+        None => World::new_beyond_cost_limit(scene.clone()),
+    };
+    built.map_err(|e| Failure { message: e.to_string(), scene: Some(Box::new(scene.clone())) })
+}
+
+/// Steps per second.
+const HZ: u32 = 60;
+
+fn pct(x: f64) -> String {
+    format!("{:.1}%", 100.0 * x)
+}
+
+fn t1(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
+    let scene = free_walking(&config_at_speed(kind, FREE_SPEED)?);
+    let rec = record(world(&scene, None)?, 50 * HZ, 3, |f| f.pos[0].x > 36.0);
+    let v = rec.traj.section_speed(0, 5.0, 35.0).map(f64::from);
+    let (measured, pass) = match v {
+        Some(v) => {
+            let dev = v / f64::from(FREE_SPEED) - 1.0;
+            (format!("{v:.3} m/s ({:+.1}%)", 100.0 * dev), dev.abs() <= 0.05)
+        }
+        None => ("did not walk from 5 m to 35 m within 50 s".into(), false),
+    };
+    Ok(Outcome { rows: vec![spec.row(kind, v, "m/s", measured, pass, Some(&scene))], curves: vec![] })
+}
+
+/// T4's densities (persons/m²).
+pub const T4_DENSITIES: &[f32] = &[0.5, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0];
+/// T4's corridor (m): periodic length, width.
+pub const T4_CORRIDOR: (f32, f32) = (20.0, 2.0);
+/// The measurement area of T4 and T16 (x range, m): the middle of the periodic corridor.
+pub const MEASUREMENT_X: (f32, f32) = (5.0, 15.0);
+/// Warm-up and measured time of the periodic runs (s).
+pub const WARM_UP_S: u32 = 10;
+/// Measured time after the warm-up (s).
+pub const MEASURE_S: u32 = 20;
+/// Steps between the samples of the periodic runs (0.1 s).
+pub const PERIODIC_EVERY: u32 = 6;
+
+/// One run of the periodic corridor (`length × width` m, `count` walkers) with `kind`: the
+/// recorded trajectories from the start and the scene.
+pub fn periodic_run(
+    kind: PlannerKind,
+    count: u32,
+    length: f32,
+    width: f32,
+) -> Result<(Recorded, Scene), SetupError> {
+    let (scene, band) = periodic_corridor(
+        "validate-periodic-corridor",
+        &config_at_speed(kind, FREE_SPEED)?,
+        count,
+        length,
+        width,
+    );
+    let mut w = World::new_beyond_cost_limit(scene.clone())?;
+    w.set_periodic_x(Some(band));
+    Ok((record(w, (WARM_UP_S + MEASURE_S) * HZ, PERIODIC_EVERY, |_| false), scene))
+}
+
+/// The fundamental-diagram point of a periodic run, measured after the warm-up in the
+/// measurement area across the whole width.
+pub fn periodic_point(traj: &Trajectories, width: f32) -> Option<FdPoint> {
+    let area = Area { min: Vec2::new(MEASUREMENT_X.0, 0.0), max: Vec2::new(MEASUREMENT_X.1, width) };
+    traj.area_fundamental(area, (WARM_UP_S * HZ / PERIODIC_EVERY) as usize)
+}
+
+/// T4 and T16: a fundamental diagram over `densities` against `reference`; `per_metre`
+/// turns the area density into persons per metre of line (single file).
+#[allow(clippy::too_many_arguments, reason = "the two diagrams differ in these settings only")]
+fn diagram(
+    spec: &TestSpec,
+    kind: PlannerKind,
+    densities: &[f32],
+    width: f32,
+    per_metre: bool,
+    reference: fn(f64) -> f64,
+    name: &str,
+) -> Result<Outcome, Failure> {
+    let length = T4_CORRIDOR.0;
+    let mut rows = vec![];
+    let mut shown = None;
+    for &rho in densities {
+        let count = (rho * length * if per_metre { 1.0 } else { width }).round() as u32;
+        let (rec, scene) = periodic_run(kind, count, length, width)?;
+        if shown.is_none() || rho == 2.0 {
+            shown = Some(scene);
+        }
+        let scale = if per_metre { f64::from(width) } else { 1.0 };
+        let (d, v) =
+            periodic_point(&rec.traj, width).map_or((f64::NAN, f64::NAN), |p| (p.density * scale, p.speed));
+        let v_ref = reference(f64::from(rho));
+        rows.push(vec![f64::from(rho), d, v, d * v, v_ref, f64::from(rho) * v_ref, v - v_ref]);
+    }
+    let devs: Vec<f64> = rows.iter().map(|r| r[6].abs()).collect();
+    let mean = devs.iter().sum::<f64>() / devs.len() as f64;
+    let (worst, at) =
+        rows.iter().map(|r| (r[6].abs(), r[0])).fold((0.0, 0.0), |a, b| if b.0 > a.0 { b } else { a });
+    let measured = format!("mean |Δv| {mean:.2} m/s (largest {worst:.2} at {at} {name})");
+    let unit = if per_metre { "persons_per_m" } else { "persons_per_m2" };
+    let columns = [
+        &format!("density_nominal_{unit}") as &str,
+        &format!("density_measured_{unit}"),
+        "speed_m_s",
+        if per_metre { "flow_persons_s" } else { "specific_flow_persons_m_s" },
+        "reference_speed_m_s",
+        if per_metre { "reference_flow_persons_s" } else { "reference_specific_flow_persons_m_s" },
+        "speed_deviation_m_s",
+    ];
+    Ok(Outcome {
+        rows: vec![spec.row(
+            kind,
+            Some(mean),
+            "m/s",
+            measured,
+            mean.is_finite() && mean <= 0.2,
+            shown.as_ref(),
+        )],
+        curves: vec![spec.curve(kind, "fd", &columns, rows)],
+    })
+}
+
+fn t4(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
+    diagram(spec, kind, T4_DENSITIES, T4_CORRIDOR.1, false, weidmann_speed, "persons/m²")
+}
+
+/// T16's line densities (persons/m).
+pub const T16_DENSITIES: &[f32] = &[0.5, 1.0, 1.5, 2.0, 2.5];
+
+fn t16(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
+    diagram(spec, kind, T16_DENSITIES, 0.5, true, seyfried_speed, "persons/m")
+}
+
+/// Whether `p` (m) is inside an obstacle of `scene`.
+fn in_wall(scene: &Scene, p: Vec2) -> bool {
+    scene.obstacles.iter().any(|o| o.contains(p * PX_PER_METRE))
+}
+
+fn t6(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
+    let corner = Corner { leg: 12.0, width: 2.0 };
+    let scene = corner.scene("validate-t6-corner", &config_at_speed(kind, FREE_SPEED)?, 20, 6.0);
+    let rec = record(world(&scene, None)?, 40 * HZ, 3, |f| f.pos.iter().all(|&p| corner.arrived(p)));
+    let crossings = rec.traj.agents_ever_inside(|p| in_wall(&scene, p));
+    let arrived = rec.traj.arrival_times(|p| corner.arrived(p)).iter().flatten().count();
+    let measured = format!("{arrived}/20 arrived, {crossings} crossed a wall");
+    let pass = crossings == 0 && arrived == 20;
+    Ok(Outcome {
+        rows: vec![spec.row(kind, Some(arrived as f64), "arrived", measured, pass, Some(&scene))],
+        curves: vec![],
+    })
+}
+
+fn rotation(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
+    let cfg = config_at_speed(kind, FREE_SPEED)?;
+    let mut stats = vec![];
+    let mut first = None;
+    for angle in [0.0, std::f32::consts::FRAC_PI_4] {
+        let (scene, starts) = turned_walk(&cfg, angle);
+        let g = scene.goals[0].position;
+        let goal = Vec2::new(g[0], g[1]) / PX_PER_METRE;
+        let reached = move |p: Vec2| p.distance(goal) < 1.0;
+        let rec = record(world(&scene, Some(starts))?, 40 * HZ, 1, |f| f.pos.iter().all(|&p| reached(p)));
+        let times: Vec<Option<f32>> = rec.traj.arrival_times(reached);
+        let arrived: Vec<f64> = times.iter().flatten().map(|&t| f64::from(t)).collect();
+        let mean = arrived.iter().sum::<f64>() / arrived.len().max(1) as f64;
+        stats.push((arrived.len(), mean, evacuation_time(&times).map(f64::from)));
+        first.get_or_insert(scene);
+    }
+    let ((n0, m0, l0), (n1, m1, l1)) = (stats[0], stats[1]);
+    let (value, measured, pass) = match (l0, l1) {
+        (Some(l0), Some(l1)) => {
+            let rel = ((m1 - m0) / m0).abs().max(((l1 - l0) / l0).abs());
+            (
+                Some(100.0 * rel),
+                format!(
+                    "mean arrival {m0:.2} s vs {m1:.2} s turned, last {l0:.2} s vs {l1:.2} s: {:.2}%",
+                    100.0 * rel
+                ),
+                rel <= 0.02,
+            )
+        }
+        _ => (None, format!("arrived {n0}/10, turned {n1}/10 within 40 s"), false),
+    };
+    Ok(Outcome { rows: vec![spec.row(kind, value, "%", measured, pass, first.as_ref())], curves: vec![] })
+}
+
+fn head_on_test(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
+    let (scene, starts) = head_on(&config_at_speed(kind, FREE_SPEED)?);
+    let goals = [Vec2::new(18.0, 3.0), Vec2::new(2.0, 3.0)];
+    let at_goal = |f: &super::measure::Frame| (0..2).all(|i| f.pos[i].distance(goals[i]) < 0.5);
+    let rec = record(world(&scene, Some(starts))?, 30 * HZ, 1, at_goal);
+    let gap = rec.traj.min_gap(0, 1, BODY_RADIUS_M, BODY_RADIUS_M).map(f64::from);
+    let arrived = (0..2).all(|i| rec.traj.arrival_times(|p| p.distance(goals[i]) < 0.5)[i].is_some());
+    let gap_text = gap.map_or("?".into(), |g| format!("{g:.3} m"));
+    let measured = format!(
+        "closest gap {gap_text}, {}",
+        if arrived { "both arrived" } else { "not both arrived in 30 s" }
+    );
+    let pass = arrived && gap.is_some_and(|g| g >= 0.0);
+    Ok(Outcome { rows: vec![spec.row(kind, gap, "m", measured, pass, Some(&scene))], curves: vec![] })
+}
+
+fn lanes(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
+    let (scene, band) = counter_flow(&config_at_speed(kind, FREE_SPEED)?, 40);
+    let mut w = world(&scene, None)?;
+    w.set_periodic_x(Some(band));
+    let rec = record(w, 60 * HZ, 6, |_| false);
+    let per_second = (HZ / 6) as usize;
+    let series: Vec<Vec<f64>> = (0..rec.traj.frames.len())
+        .step_by(per_second)
+        .map(|k| {
+            let order = rec.traj.lane_order(k, 0.5, 4.0, Some(20.0)).map_or(f64::NAN, f64::from);
+            vec![k as f64 * f64::from(rec.traj.frame_s), order]
+        })
+        .collect();
+    let last: Vec<f64> = series.iter().rev().take(10).map(|r| r[1]).filter(|x| x.is_finite()).collect();
+    let end = last.iter().sum::<f64>() / last.len().max(1) as f64;
+    let start = series.first().map_or(f64::NAN, |r| r[1]);
+    let measured = format!("lane order {end:.2} over the last 10 s (start {start:.2})");
+    Ok(Outcome {
+        rows: vec![spec.row(kind, Some(end), "order", measured, end >= 0.75, Some(&scene))],
+        curves: vec![spec.curve(kind, "lane-order", &["time_s", "lane_order"], series)],
+    })
+}
+
+/// T9's walkers and simulated time (s).
+pub const T9_AGENTS: u32 = 1000;
+/// T9's simulated time (s): the flows are measured while the room empties.
+pub const T9_SECONDS: u32 = 30;
+
+fn t9(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
+    let cfg = config_at_speed(kind, FREE_SPEED)?;
+    let mut flows = vec![];
+    let mut shown = None;
+    let mut cumulative = vec![];
+    for four in [false, true] {
+        let (scene, room) = large_room(&cfg, four, T9_AGENTS);
+        let rec =
+            record(world(&scene, None)?, T9_SECONDS * HZ, 6, |f| f.pos.iter().all(|&p| !room.inside(p)));
+        let exits = rec.traj.arrival_times(|p| !room.inside(p));
+        cumulative.push(
+            (0..rec.traj.frames.len())
+                .map(|k| {
+                    let t = k as f32 * rec.traj.frame_s;
+                    exits.iter().flatten().filter(|&&e| e <= t).count() as f64
+                })
+                .collect::<Vec<f64>>(),
+        );
+        flows.push((exit_flow(&exits), exits.iter().flatten().count()));
+        if four {
+            shown = Some(scene);
+        }
+    }
+    let ((f2, n2), (f4, n4)) = (flows[0], flows[1]);
+    let ratio = match (f2, f4) {
+        (Some(a), Some(b)) if a > 0.0 => Some(b / a),
+        _ => None,
+    };
+    let fmt = |f: Option<f64>| f.map_or("none".into(), |f| format!("{f:.2}/s"));
+    let measured = format!(
+        "flow {} with 4 exits ({n4} out), {} with 2 ({n2} out) in {T9_SECONDS} s: ratio {}",
+        fmt(f4),
+        fmt(f2),
+        ratio.map_or("?".into(), |r| format!("{r:.2}"))
+    );
+    let pass = ratio.is_some_and(|r| (1.5..=2.5).contains(&r));
+    let frames = cumulative.iter().map(Vec::len).max().unwrap_or(0);
+    let rows = (0..frames)
+        .map(|k| {
+            let at = |c: &Vec<f64>| c.get(k).or(c.last()).copied().unwrap_or(0.0);
+            vec![k as f64 * 0.1, at(&cumulative[0]), at(&cumulative[1])]
+        })
+        .collect();
+    Ok(Outcome {
+        rows: vec![spec.row(kind, ratio, "ratio", measured, pass, shown.as_ref())],
+        curves: vec![spec.curve(kind, "exits", &["time_s", "out_two_exits", "out_four_exits"], rows)],
+    })
+}
+
+fn t12(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
+    let scene = bottleneck(&config_at_speed(kind, FREE_SPEED)?, 150);
+    let goal = Vec2::new(23.0, 5.0);
+    let rec = record(world(&scene, None)?, 90 * HZ, 6, |f| f.pos.iter().all(|&p| p.distance(goal) < 2.0));
+    let (x_in, x_out, _) = BOTTLENECK;
+    let zones = rec.traj.jam_samples(0.2, x_in, x_out, |p| p.distance(goal) < 3.0);
+    let jammed: u32 = zones.iter().sum();
+    let before = if jammed == 0 { 1.0 } else { f64::from(zones[0]) / f64::from(jammed) };
+    let arrived = rec.traj.arrival_times(|p| p.distance(goal) < 2.0).iter().flatten().count();
+    let measured = format!(
+        "jammed samples before/in/after the corridor {}/{}/{} ({} before), {arrived}/150 arrived",
+        zones[0],
+        zones[1],
+        zones[2],
+        pct(before)
+    );
+    let pass = before >= 0.9 && arrived >= 135;
+    Ok(Outcome {
+        rows: vec![spec.row(kind, Some(100.0 * before), "%", measured, pass, Some(&scene))],
+        curves: vec![],
+    })
+}
+
+fn t7(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
+    let (scene, speeds) = demographics(kind)?;
+    let rec = record(world(&scene, None)?, 70 * HZ, 3, |f| f.pos.iter().all(|p| p.x > 36.0));
+    let mut rows = vec![];
+    let mut inside = 0;
+    for a in 0..rec.traj.agents() {
+        let g = rec.traj.group[a] as usize;
+        let (age, desired) = speeds[g];
+        let (_, lo, hi) = AGE_GROUPS[age];
+        let v = rec.traj.section_speed(a, 5.0, 35.0);
+        if v.is_some_and(|v| v >= lo && v <= hi) {
+            inside += 1;
+        }
+        rows.push(vec![a as f64, age as f64, f64::from(desired), v.map_or(f64::NAN, f64::from)]);
+    }
+    let n = rec.traj.agents();
+    let share = inside as f64 / n as f64;
+    let measured = format!("{inside}/{n} walkers inside their range");
+    Ok(Outcome {
+        rows: vec![spec.row(kind, Some(100.0 * share), "%", measured, inside == n, Some(&scene))],
+        curves: vec![spec.curve(
+            kind,
+            "speeds",
+            &["agent", "age_group", "desired_m_s", "measured_m_s"],
+            rows,
+        )],
+    })
+}
+
+/// T8's desired speeds (m/s).
+pub const T8_SPEEDS: &[f32] = &[0.8, 1.0, 1.2, 1.34, 1.6];
+
+fn t8(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
+    let mut rows = vec![];
+    let mut shown = None;
+    for &v in T8_SPEEDS {
+        let (scene, room) = small_room(&config_at_speed(kind, v)?, 40);
+        let rec = record(world(&scene, None)?, 60 * HZ, 6, |f| f.pos.iter().all(|&p| !room.inside(p)));
+        let exits = rec.traj.arrival_times(|p| !room.inside(p));
+        let out = exits.iter().flatten().count();
+        rows.push(vec![f64::from(v), evacuation_time(&exits).map_or(f64::NAN, f64::from), out as f64]);
+        if v == FREE_SPEED {
+            shown = Some(scene);
+        }
+    }
+    let all_out = rows.iter().all(|r| r[1].is_finite());
+    let falling = rows.windows(2).all(|w| w[1][1] < w[0][1]);
+    let times: Vec<String> = rows
+        .iter()
+        .map(|r| if r[1].is_finite() { format!("{:.1}", r[1]) } else { format!("{} out", r[2]) })
+        .collect();
+    let at_free = rows.iter().find(|r| r[0] as f32 == FREE_SPEED).map(|r| r[1]);
+    let measured = format!("evacuation at {:?} m/s: {} s", T8_SPEEDS, times.join(", "));
+    Ok(Outcome {
+        rows: vec![spec.row(kind, at_free, "s", measured, all_out && falling, shown.as_ref())],
+        curves: vec![spec.curve(
+            kind,
+            "sweep",
+            &["desired_speed_m_s", "evacuation_time_s", "out_of_40"],
+            rows,
+        )],
+    })
+}
+
+fn t15(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
+    let cfg = config_at_speed(kind, FREE_SPEED)?;
+    let corner = Corner { leg: 15.0, width: 3.0 };
+    let (n, start) = (100, 8.0);
+    let corner_scene = corner.scene("validate-t15-corner", &cfg, n, start);
+    let evac = |scene: &Scene, arrived: &dyn Fn(Vec2) -> bool| -> Result<Option<f32>, Failure> {
+        let rec = record(world(scene, None)?, 60 * HZ, 6, |f| f.pos.iter().all(|&p| arrived(p)));
+        Ok(evacuation_time(&rec.traj.arrival_times(arrived)))
+    };
+    let t_corner = evac(&corner_scene, &|p| corner.arrived(p))?;
+    let mut straights = vec![];
+    for length in [24.0, 30.0] {
+        let scene = straight("validate-t15-straight", &cfg, n, length, 3.0, start);
+        straights.push(evac(&scene, &move |p: Vec2| p.x > length - 2.0)?);
+    }
+    let fmt = |t: Option<f32>| t.map_or("not all out in 60 s".into(), |t| format!("{t:.1} s"));
+    let measured =
+        format!("short {} ≤ corner {} ≤ long {}", fmt(straights[0]), fmt(t_corner), fmt(straights[1]));
+    let pass = match (straights[0], t_corner, straights[1]) {
+        (Some(a), Some(b), Some(c)) => a <= b && b <= c,
+        _ => false,
+    };
+    Ok(Outcome {
+        rows: vec![spec.row(kind, t_corner.map(f64::from), "s", measured, pass, Some(&corner_scene))],
+        curves: vec![],
+    })
+}

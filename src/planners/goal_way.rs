@@ -1,0 +1,84 @@
+//! The way to the goal shared by the baseline planners (ORCA, social force): the preferred
+//! direction at a point, straight at the goal or down the goal's flow field round the obstacles
+//! ([`Guidance`]), and whether the agent has arrived (inside the goal it parks: preferred
+//! speed zero, so an arrived crowd stops instead of piling onto the goal's centre).
+
+use crate::model::geometry::{distance, unit_or};
+use crate::model::params::guidance::Guidance;
+use crate::model::scene::Scene;
+use crate::planners::planner::{GroupView, StepContext};
+use crate::spatial::flow_field::{self, FlowField};
+use glam::Vec2;
+
+/// Pixels per metre of `scene`: the baselines' SI parameters are converted with it.
+pub fn px_per_metre(scene: &Scene) -> f32 {
+    scene.px_per_metre
+}
+
+/// What a cached flow field was built from: a field is rebuilt when one of these changes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct FieldKey {
+    goal_cell: (i32, i32),
+    obstacles: u64,
+    bounds: Vec2,
+    clearance: f32,
+}
+
+/// Where one agent wants to go at this step.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Way {
+    /// Unit preferred direction; zero without a goal, inside it, or where no way is known.
+    pub direction: Vec2,
+    /// Whether the agent's centre is inside its goal (it parks).
+    pub arrived: bool,
+}
+
+/// The preferred directions of one group's agents: a cached flow field when guided by one.
+#[derive(Clone, Debug, Default)]
+pub struct GoalWay {
+    field: Option<(FieldKey, FlowField)>,
+}
+
+impl GoalWay {
+    /// Builds (or keeps) the flow field this step needs, from the state at its start: rebuilt
+    /// when the goal moved to another cell or the obstacles changed; none without obstacles
+    /// (the way is then straight) or with straight guidance.
+    pub fn prepare(&mut self, ctx: &StepContext, group: &GroupView, guidance: Guidance) {
+        let Some((goal, _)) = group.goal else { return };
+        if guidance != Guidance::FlowField || ctx.obstacles.is_empty() {
+            self.field = None;
+            return;
+        }
+        let clearance = group.agents.clone().next().map_or(0.0, |i| ctx.radii[i as usize]);
+        let key = FieldKey {
+            goal_cell: ((goal.x / flow_field::CELL) as i32, (goal.y / flow_field::CELL) as i32),
+            obstacles: flow_field::obstacles_fingerprint(ctx.obstacles.obstacles()),
+            bounds: ctx.bounds,
+            clearance,
+        };
+        if self.field.as_ref().is_none_or(|(k, _)| *k != key) {
+            self.field = Some((key, FlowField::new(ctx.bounds, ctx.obstacles, goal, clearance)));
+        }
+    }
+
+    /// The way from `p` for a group heading for `goal` (position, radius).
+    pub fn at(&self, p: Vec2, goal: Option<(Vec2, f32)>) -> Way {
+        let Some((goal, radius)) = goal else { return Way { direction: Vec2::ZERO, arrived: false } };
+        if distance(p, goal) <= radius {
+            return Way { direction: Vec2::ZERO, arrived: true };
+        }
+        let straight = unit_or(goal - p, Vec2::ZERO);
+        let direction = match &self.field {
+            Some((_, field)) => {
+                let d = field.direction_at(p);
+                if d == Vec2::ZERO {
+                    straight
+                } else {
+                    d
+                }
+            }
+            None => straight,
+        };
+        Way { direction, arrived: false }
+    }
+}

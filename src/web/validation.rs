@@ -1,0 +1,62 @@
+//! The Validation page's bindings (`www/validation.html`, `www/js/validation/*.js`): the list of
+//! tests and planners, one (test, planner) run of the suite as JSON for the page's worker, and
+//! the reference curves for the fundamental-diagram plot. Conversion only; the suite is
+//! `crate::experiments::validation`.
+
+use super::{js_error, to_json};
+use crate::experiments::validation::measure::{seyfried_speed, weidmann_speed};
+use crate::experiments::validation::{find_test, TESTS};
+use crate::model::params::PlannerKind;
+use serde::Serialize;
+use wasm_bindgen::prelude::*;
+
+#[derive(Serialize)]
+struct TestInfo {
+    id: &'static str,
+    title: &'static str,
+    criterion: &'static str,
+}
+
+#[derive(Serialize)]
+struct PlannerInfo {
+    name: &'static str,
+    label: &'static str,
+}
+
+#[derive(Serialize)]
+struct Options {
+    tests: Vec<TestInfo>,
+    planners: Vec<PlannerInfo>,
+}
+
+/// `{tests: [{id, title, criterion}], planners: [{name, label}]}`, in table order.
+#[wasm_bindgen]
+pub fn validation_options_json() -> Result<String, JsError> {
+    to_json(&Options {
+        tests: TESTS.iter().map(|t| TestInfo { id: t.id, title: t.title, criterion: t.criterion }).collect(),
+        planners: PlannerKind::ALL.iter().map(|k| PlannerInfo { name: k.name(), label: k.label() }).collect(),
+    })
+}
+
+/// Runs test `test_id` with planner `planner` (by name): `{rows: [...], curves: [...]}` as
+/// `flockpath validate --json` writes them.
+#[wasm_bindgen]
+pub fn validation_run_json(test_id: &str, planner: &str) -> Result<String, JsError> {
+    console_error_panic_hook::set_once();
+    let test = find_test(test_id).ok_or_else(|| js_error(format!("unknown test {test_id:?}")))?;
+    let kind =
+        PlannerKind::from_name(planner).ok_or_else(|| js_error(format!("unknown planner {planner:?}")))?;
+    to_json(&test.run(kind))
+}
+
+/// The reference speed (m/s) at each density of `densities`: Weidmann (1993) for `"weidmann"`
+/// (persons/m²), Seyfried et al. (2005) for `"seyfried"` (persons/m, single file).
+#[wasm_bindgen]
+pub fn validation_reference_speeds(curve: &str, densities: &[f64]) -> Result<Vec<f64>, JsError> {
+    let f: fn(f64) -> f64 = match curve {
+        "weidmann" => weidmann_speed,
+        "seyfried" => seyfried_speed,
+        _ => return Err(js_error(format!("unknown reference curve {curve:?}; known: weidmann, seyfried"))),
+    };
+    Ok(densities.iter().map(|&d| f(d)).collect())
+}
