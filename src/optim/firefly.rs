@@ -12,7 +12,7 @@
 //! attraction is βmin everywhere. Yang recommends γ ~ 1/L² for a domain of size L, which is the
 //! same thing.
 
-use super::problem::{clamp_coordinate, Algorithm, Objective, Optimizer, Population};
+use super::problem::{clamp_coordinate, Algorithm, Objective, Optimizer, Swarm};
 use crate::rng::Rng;
 
 /// Parameters of the firefly algorithm.
@@ -39,12 +39,9 @@ impl Default for FireflyParams {
 /// A firefly run.
 pub struct Firefly {
     params: FireflyParams,
-    pop: Population,
+    swarm: Swarm,
     old_x: Vec<f64>,
     old_f: Vec<f64>,
-    iterations: u32,
-    t: u32,
-    rng: Rng,
 }
 
 impl Firefly {
@@ -54,10 +51,10 @@ impl Firefly {
         objective: &dyn Objective,
         n: usize,
         iterations: u32,
-        mut rng: Rng,
+        rng: Rng,
     ) -> Self {
-        let pop = Population::uniform(objective, n.max(2), &mut rng);
-        Self { params, pop, old_x: Vec::new(), old_f: Vec::new(), iterations: iterations.max(1), t: 0, rng }
+        let swarm = Swarm::uniform(objective, n, iterations, rng);
+        Self { params, swarm, old_x: Vec::new(), old_f: Vec::new() }
     }
 }
 
@@ -66,18 +63,14 @@ impl Optimizer for Firefly {
         Algorithm::Firefly
     }
 
-    fn iteration(&self) -> u32 {
-        self.t
-    }
-
     fn step(&mut self, objective: &dyn Objective) {
         let p = &self.params;
-        let progress = f64::from(self.t) / f64::from(self.iterations);
+        let progress = self.swarm.progress();
         let alpha = p.alpha * libm::pow(p.alpha_final_factor, progress);
         let bounds = objective.bounds();
-        let (n, dim) = (self.pop.size(), self.pop.dim);
-        self.old_x.clone_from(&self.pop.x);
-        self.old_f.clone_from(&self.pop.fitness);
+        let (n, dim) = (self.swarm.pop.size(), self.swarm.pop.dim);
+        self.old_x.clone_from(&self.swarm.pop.x);
+        self.old_f.clone_from(&self.swarm.pop.fitness);
         for i in 0..n {
             for j in 0..n {
                 if self.old_f[j] >= self.old_f[i] {
@@ -85,25 +78,26 @@ impl Optimizer for Firefly {
                 }
                 let mut r2 = 0.0;
                 for d in 0..dim {
-                    let e = (self.pop.x[i * dim + d] - self.old_x[j * dim + d]) / bounds.range(d);
+                    let e = (self.swarm.pop.x[i * dim + d] - self.old_x[j * dim + d]) / bounds.range(d);
                     r2 += e * e;
                 }
                 let beta = (p.beta0 - p.beta_min) * libm::exp(-p.gamma * r2) + p.beta_min;
                 for d in 0..dim {
                     let k = i * dim + d;
-                    let step = alpha * (self.rng.unit_f64() - 0.5) * bounds.range(d);
-                    self.pop.x[k] = (1.0 - beta) * self.pop.x[k] + beta * self.old_x[j * dim + d] + step;
+                    let step = alpha * (self.swarm.rng.unit_f64() - 0.5) * bounds.range(d);
+                    self.swarm.pop.x[k] =
+                        (1.0 - beta) * self.swarm.pop.x[k] + beta * self.old_x[j * dim + d] + step;
                 }
             }
             for d in 0..dim {
-                clamp_coordinate(bounds, d, &mut self.pop.x[i * dim + d]);
+                clamp_coordinate(bounds, d, &mut self.swarm.pop.x[i * dim + d]);
             }
         }
-        self.pop.evaluate_all(objective);
-        self.t += 1;
+        self.swarm.pop.evaluate_all(objective);
+        self.swarm.t += 1;
     }
 
-    fn population(&self) -> &Population {
-        &self.pop
+    fn swarm(&self) -> &Swarm {
+        &self.swarm
     }
 }

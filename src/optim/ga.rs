@@ -9,7 +9,7 @@
 //! can refine late. Children are clamped to the box. One generation = one iteration; only the
 //! children are evaluated.
 
-use super::problem::{clamp_coordinate, gaussian, Algorithm, Objective, Optimizer, Population};
+use super::problem::{clamp_coordinate, gaussian, Algorithm, Objective, Optimizer, Swarm};
 use crate::rng::Rng;
 
 /// Parameters of the GA.
@@ -36,25 +36,21 @@ impl Default for GaParams {
 /// A GA run.
 pub struct Ga {
     params: GaParams,
-    pop: Population,
+    swarm: Swarm,
     next: Vec<f64>,
-    iterations: u32,
-    t: u32,
-    rng: Rng,
 }
 
 impl Ga {
     /// `n` individuals uniform in the bounds.
-    pub fn new(params: GaParams, objective: &dyn Objective, n: usize, iterations: u32, mut rng: Rng) -> Self {
-        let pop = Population::uniform(objective, n.max(2), &mut rng);
-        Self { params, pop, next: Vec::new(), iterations: iterations.max(1), t: 0, rng }
+    pub fn new(params: GaParams, objective: &dyn Objective, n: usize, iterations: u32, rng: Rng) -> Self {
+        Self { params, swarm: Swarm::uniform(objective, n, iterations, rng), next: Vec::new() }
     }
 
     fn tournament(&mut self) -> usize {
-        let n = self.pop.size() as u32;
-        let a = self.rng.below(n) as usize;
-        let b = self.rng.below(n) as usize;
-        let (fa, fb) = (self.pop.fitness[a], self.pop.fitness[b]);
+        let n = self.swarm.pop.size() as u32;
+        let a = self.swarm.rng.below(n) as usize;
+        let b = self.swarm.rng.below(n) as usize;
+        let (fa, fb) = (self.swarm.pop.fitness[a], self.swarm.pop.fitness[b]);
         if fa < fb || (fa == fb && a < b) {
             a
         } else {
@@ -78,36 +74,34 @@ impl Optimizer for Ga {
         Algorithm::Ga
     }
 
-    fn iteration(&self) -> u32 {
-        self.t
-    }
-
     fn step(&mut self, objective: &dyn Objective) {
-        let (n, dim) = (self.pop.size(), self.pop.dim);
+        let (n, dim) = (self.swarm.pop.size(), self.swarm.pop.dim);
         let bounds = objective.bounds();
-        let progress = f64::from(self.t) / f64::from(self.iterations);
+        let progress = self.swarm.progress();
         let sigma = self.params.sigma_start
             * libm::pow(self.params.sigma_end / self.params.sigma_start.max(f64::MIN_POSITIVE), progress);
         let elites = self.params.elites.min(n - 1);
         // Elites: the best by value, lower index on ties.
         let mut order: Vec<usize> = (0..n).collect();
-        order.sort_by(|&a, &b| self.pop.fitness[a].total_cmp(&self.pop.fitness[b]).then(a.cmp(&b)));
+        order.sort_by(|&a, &b| {
+            self.swarm.pop.fitness[a].total_cmp(&self.swarm.pop.fitness[b]).then(a.cmp(&b))
+        });
         self.next.clear();
         let mut next_f = Vec::with_capacity(n);
         for &e in &order[..elites] {
-            self.next.extend_from_slice(self.pop.row(e));
-            next_f.push(self.pop.fitness[e]);
+            self.next.extend_from_slice(self.swarm.pop.row(e));
+            next_f.push(self.swarm.pop.fitness[e]);
         }
         let mut child_a = vec![0.0; dim];
         let mut child_b = vec![0.0; dim];
         while self.next.len() < n * dim {
             let (pa, pb) = (self.tournament(), self.tournament());
-            child_a.copy_from_slice(self.pop.row(pa));
-            child_b.copy_from_slice(self.pop.row(pb));
-            if self.rng.unit_f64() < self.params.crossover_rate {
+            child_a.copy_from_slice(self.swarm.pop.row(pa));
+            child_b.copy_from_slice(self.swarm.pop.row(pb));
+            if self.swarm.rng.unit_f64() < self.params.crossover_rate {
                 for d in 0..dim {
-                    if self.rng.unit_f64() < 0.5 {
-                        let u = self.rng.unit_f64();
+                    if self.swarm.rng.unit_f64() < 0.5 {
+                        let u = self.swarm.rng.unit_f64();
                         let beta = self.sbx_beta(u);
                         let (a, b) = (child_a[d], child_b[d]);
                         child_a[d] = 0.5 * ((1.0 + beta) * a + (1.0 - beta) * b);
@@ -117,8 +111,8 @@ impl Optimizer for Ga {
             }
             for child in [&mut child_a, &mut child_b] {
                 for (d, gene) in child.iter_mut().enumerate() {
-                    if self.rng.below(dim as u32) == 0 {
-                        *gene += sigma * bounds.range(d) * gaussian(&mut self.rng);
+                    if self.swarm.rng.below(dim as u32) == 0 {
+                        *gene += sigma * bounds.range(d) * gaussian(&mut self.swarm.rng);
                     }
                     clamp_coordinate(bounds, d, gene);
                 }
@@ -128,21 +122,21 @@ impl Optimizer for Ga {
                 self.next.extend_from_slice(&child_b);
             }
         }
-        std::mem::swap(&mut self.pop.x, &mut self.next);
+        std::mem::swap(&mut self.swarm.pop.x, &mut self.next);
         for i in 0..n {
             let f = if let Some(&kept) = next_f.get(i) {
                 kept
             } else {
-                let row = self.pop.x[i * dim..(i + 1) * dim].to_vec();
-                self.pop.evaluate_point(objective, &row)
+                let row = self.swarm.pop.x[i * dim..(i + 1) * dim].to_vec();
+                self.swarm.pop.evaluate_point(objective, &row)
             };
-            self.pop.fitness[i] = f;
-            self.pop.offer(i, f);
+            self.swarm.pop.fitness[i] = f;
+            self.swarm.pop.offer(i, f);
         }
-        self.t += 1;
+        self.swarm.t += 1;
     }
 
-    fn population(&self) -> &Population {
-        &self.pop
+    fn swarm(&self) -> &Swarm {
+        &self.swarm
     }
 }

@@ -10,7 +10,7 @@
 //! `rand_i` for every coordinate of every particle's velocity (as Rashedi's reference code
 //! draws it).
 
-use super::problem::{Algorithm, Bounds, Objective, Optimizer, Population};
+use super::problem::{Algorithm, Bounds, Objective, Optimizer, Swarm};
 use crate::rng::Rng;
 
 /// ε in the force denominator (keeps coincident particles finite).
@@ -124,6 +124,41 @@ pub fn gravity_accelerations(
     }
 }
 
+/// What GSA and IGSA carry besides the swarm: each particle's velocity, the accelerations of
+/// the last force step and that step's scratch buffers (all row-major like the positions).
+#[derive(Clone, Debug)]
+pub struct Gravity {
+    /// Velocities, starting at rest.
+    pub velocity: Vec<f64>,
+    /// Accelerations written by [`Gravity::pull`].
+    pub acc: Vec<f64>,
+    scratch: GravityScratch,
+}
+
+impl Gravity {
+    /// `len` coordinates at rest.
+    pub fn at_rest(len: usize) -> Self {
+        Self { velocity: vec![0.0; len], acc: vec![0.0; len], scratch: GravityScratch::default() }
+    }
+
+    /// One force step at iteration t of the swarm: G(t) from `g0` and `alpha`, the `attractors`
+    /// heaviest particles pulling every particle; the accelerations land in [`Gravity::acc`].
+    pub fn pull(&mut self, swarm: &mut Swarm, g0: f64, alpha: f64, attractors: usize) {
+        let g = gravity_constant(g0, alpha, swarm.t, swarm.iterations);
+        let pop = &swarm.pop;
+        gravity_accelerations(
+            &pop.x,
+            &pop.fitness,
+            pop.dim,
+            g,
+            attractors,
+            &mut swarm.rng,
+            &mut self.scratch,
+            &mut self.acc,
+        );
+    }
+}
+
 /// GSA's boundary rule (Rashedi's reference code): a coordinate that leaves the box is drawn
 /// again uniformly inside it, which keeps diversity where clamping would pile particles on
 /// the walls.
@@ -140,36 +175,16 @@ pub fn redraw_outside(bounds: &Bounds, x: &mut [f64], rng: &mut Rng) {
 /// A plain GSA run.
 pub struct Gsa {
     params: GsaParams,
-    pop: Population,
-    velocity: Vec<f64>,
-    acc: Vec<f64>,
-    scratch: GravityScratch,
-    iterations: u32,
-    t: u32,
-    rng: Rng,
+    swarm: Swarm,
+    gravity: Gravity,
 }
 
 impl Gsa {
     /// `n` particles drawn uniformly in the bounds; `iterations` is T of the G(t) schedule.
-    pub fn new(
-        params: GsaParams,
-        objective: &dyn Objective,
-        n: usize,
-        iterations: u32,
-        mut rng: Rng,
-    ) -> Self {
-        let pop = Population::uniform(objective, n.max(2), &mut rng);
-        let len = pop.x.len();
-        Self {
-            params,
-            pop,
-            velocity: vec![0.0; len],
-            acc: vec![0.0; len],
-            scratch: GravityScratch::default(),
-            iterations: iterations.max(1),
-            t: 0,
-            rng,
-        }
+    pub fn new(params: GsaParams, objective: &dyn Objective, n: usize, iterations: u32, rng: Rng) -> Self {
+        let swarm = Swarm::uniform(objective, n, iterations, rng);
+        let gravity = Gravity::at_rest(swarm.pop.x.len());
+        Self { params, swarm, gravity }
     }
 }
 
@@ -178,41 +193,28 @@ impl Optimizer for Gsa {
         Algorithm::Gsa
     }
 
-    fn iteration(&self) -> u32 {
-        self.t
-    }
-
     fn step(&mut self, objective: &dyn Objective) {
-        let n = self.pop.size();
-        let g = gravity_constant(self.params.g0, self.params.alpha, self.t, self.iterations);
+        let n = self.swarm.pop.size();
         let k = if self.params.kbest {
-            kbest_count(n, self.t, self.iterations, self.params.final_kbest_share)
+            kbest_count(n, self.swarm.t, self.swarm.iterations, self.params.final_kbest_share)
         } else {
             n
         };
-        let dim = self.pop.dim;
-        gravity_accelerations(
-            &self.pop.x,
-            &self.pop.fitness,
-            dim,
-            g,
-            k,
-            &mut self.rng,
-            &mut self.scratch,
-            &mut self.acc,
-        );
+        let dim = self.swarm.pop.dim;
+        self.gravity.pull(&mut self.swarm, self.params.g0, self.params.alpha, k);
+        let Gravity { velocity, acc, .. } = &mut self.gravity;
         for k in 0..n * dim {
-            let r = self.rng.unit_f64();
-            self.velocity[k] = r * self.velocity[k] + self.acc[k];
-            self.pop.x[k] += self.velocity[k];
+            let r = self.swarm.rng.unit_f64();
+            velocity[k] = r * velocity[k] + acc[k];
+            self.swarm.pop.x[k] += velocity[k];
         }
-        redraw_outside(objective.bounds(), &mut self.pop.x, &mut self.rng);
-        self.pop.evaluate_all(objective);
-        self.t += 1;
+        redraw_outside(objective.bounds(), &mut self.swarm.pop.x, &mut self.swarm.rng);
+        self.swarm.pop.evaluate_all(objective);
+        self.swarm.t += 1;
     }
 
-    fn population(&self) -> &Population {
-        &self.pop
+    fn swarm(&self) -> &Swarm {
+        &self.swarm
     }
 }
 

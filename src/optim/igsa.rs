@@ -25,8 +25,8 @@
 //!
 //! Out-of-range coordinates are redrawn uniformly, as in GSA.
 
-use super::gsa::{gravity_accelerations, gravity_constant, redraw_outside, GravityScratch};
-use super::problem::{Algorithm, Bounds, Objective, Optimizer, Population};
+use super::gsa::{redraw_outside, Gravity};
+use super::problem::{Algorithm, Bounds, Objective, Optimizer, Population, Swarm};
 use crate::rng::Rng;
 
 /// Nearest neighbours averaged by the neighbourhood move (eq. 14: six).
@@ -90,17 +90,12 @@ pub fn chaotic_positions(bounds: &Bounds, count: usize, lambda: f64, rng: &mut R
 /// An IGSA run.
 pub struct Igsa {
     params: IgsaParams,
-    pop: Population,
-    velocity: Vec<f64>,
-    acc: Vec<f64>,
-    scratch: GravityScratch,
+    swarm: Swarm,
+    gravity: Gravity,
     neighbours: Vec<(f64, usize)>,
     trial: Vec<f64>,
-    iterations: u32,
-    t: u32,
     stall: u32,
     restarts: u32,
-    rng: Rng,
 }
 
 impl Igsa {
@@ -115,22 +110,9 @@ impl Igsa {
         let bounds = objective.bounds();
         let dim = bounds.dim();
         let x = chaotic_positions(bounds, n.max(2), params.lambda, &mut rng);
-        let pop = Population::from_positions(objective, dim, x);
-        let len = pop.x.len();
-        Self {
-            params,
-            pop,
-            velocity: vec![0.0; len],
-            acc: vec![0.0; len],
-            scratch: GravityScratch::default(),
-            neighbours: Vec::new(),
-            trial: vec![0.0; dim],
-            iterations: iterations.max(1),
-            t: 0,
-            stall: 0,
-            restarts: 0,
-            rng,
-        }
+        let swarm = Swarm::new(Population::from_positions(objective, dim, x), iterations, rng);
+        let gravity = Gravity::at_rest(swarm.pop.x.len());
+        Self { params, swarm, gravity, neighbours: Vec::new(), trial: vec![0.0; dim], stall: 0, restarts: 0 }
     }
 
     /// Restarts so far.
@@ -140,7 +122,7 @@ impl Igsa {
 
     /// Eq. 14 as a greedy trial move for every particle; returns whether the best improved.
     fn neighbourhood_move(&mut self, objective: &dyn Objective) -> bool {
-        let (n, dim) = (self.pop.size(), self.pop.dim);
+        let (n, dim) = (self.swarm.pop.size(), self.swarm.pop.dim);
         let k = NEIGHBOURS.min(n - 1);
         if k == 0 {
             return false;
@@ -148,7 +130,7 @@ impl Igsa {
         let mut improved = false;
         // Neighbours from the positions at the start of the move, so the result does not
         // depend on the order particles are visited in.
-        let snapshot = self.pop.x.clone();
+        let snapshot = self.swarm.pop.x.clone();
         for i in 0..n {
             let xi = &snapshot[i * dim..(i + 1) * dim];
             self.neighbours.clear();
@@ -161,41 +143,42 @@ impl Igsa {
                 self.neighbours.push((r2, j));
             }
             self.neighbours.select_nth_unstable_by(k - 1, |a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-            let r = self.rng.unit_f64();
+            let r = self.swarm.rng.unit_f64();
             for d in 0..dim {
                 let mean: f64 =
                     self.neighbours[..k].iter().map(|&(_, j)| snapshot[j * dim + d]).sum::<f64>() / k as f64;
                 self.trial[d] = xi[d] + r * (mean - xi[d]);
             }
-            let f = self.pop.evaluate_point(objective, &self.trial);
-            if f < self.pop.fitness[i] {
-                self.pop.fitness[i] = f;
-                self.pop.x[i * dim..(i + 1) * dim].copy_from_slice(&self.trial);
-                improved |= self.pop.offer(i, f);
+            let f = self.swarm.pop.evaluate_point(objective, &self.trial);
+            if f < self.swarm.pop.fitness[i] {
+                self.swarm.pop.fitness[i] = f;
+                self.swarm.pop.x[i * dim..(i + 1) * dim].copy_from_slice(&self.trial);
+                improved |= self.swarm.pop.offer(i, f);
             }
         }
         improved
     }
 
     fn restart(&mut self, objective: &dyn Objective) {
-        let keep = self.pop.argmin();
-        let dim = self.pop.dim;
-        let kept: Vec<f64> = self.pop.row(keep).to_vec();
-        let kept_f = self.pop.fitness[keep];
-        let n = self.pop.size();
-        self.pop.x = chaotic_positions(objective.bounds(), n, self.params.lambda, &mut self.rng);
-        self.pop.x[keep * dim..(keep + 1) * dim].copy_from_slice(&kept);
+        let keep = self.swarm.pop.argmin();
+        let dim = self.swarm.pop.dim;
+        let kept: Vec<f64> = self.swarm.pop.row(keep).to_vec();
+        let kept_f = self.swarm.pop.fitness[keep];
+        let n = self.swarm.pop.size();
+        self.swarm.pop.x = chaotic_positions(objective.bounds(), n, self.params.lambda, &mut self.swarm.rng);
+        self.swarm.pop.x[keep * dim..(keep + 1) * dim].copy_from_slice(&kept);
         for i in 0..n {
             if i == keep {
-                self.pop.fitness[i] = kept_f;
+                self.swarm.pop.fitness[i] = kept_f;
             } else {
-                let f = super::problem::sanitize(objective.evaluate(&self.pop.x[i * dim..(i + 1) * dim]));
-                self.pop.evaluations += 1;
-                self.pop.fitness[i] = f;
-                self.pop.offer(i, f);
+                let f =
+                    super::problem::sanitize(objective.evaluate(&self.swarm.pop.x[i * dim..(i + 1) * dim]));
+                self.swarm.pop.evaluations += 1;
+                self.swarm.pop.fitness[i] = f;
+                self.swarm.pop.offer(i, f);
             }
         }
-        self.velocity.iter_mut().for_each(|v| *v = 0.0);
+        self.gravity.velocity.iter_mut().for_each(|v| *v = 0.0);
         self.restarts += 1;
     }
 }
@@ -205,42 +188,29 @@ impl Optimizer for Igsa {
         Algorithm::Igsa
     }
 
-    fn iteration(&self) -> u32 {
-        self.t
-    }
-
     fn step(&mut self, objective: &dyn Objective) {
-        let (n, dim) = (self.pop.size(), self.pop.dim);
-        let g = gravity_constant(self.params.g0, self.params.alpha, self.t, self.iterations);
-        let s = f64::from(self.t) / f64::from(self.iterations);
+        let (n, dim) = (self.swarm.pop.size(), self.swarm.pop.dim);
+        let s = self.swarm.progress();
         let c2 = s * s * s;
         let c1 = 1.0 - c2;
-        gravity_accelerations(
-            &self.pop.x,
-            &self.pop.fitness,
-            dim,
-            g,
-            n,
-            &mut self.rng,
-            &mut self.scratch,
-            &mut self.acc,
-        );
+        self.gravity.pull(&mut self.swarm, self.params.g0, self.params.alpha, n);
+        let Gravity { velocity, acc, .. } = &mut self.gravity;
         for i in 0..n {
             for d in 0..dim {
                 let k = i * dim + d;
-                let r = self.rng.unit_f64();
-                self.velocity[k] =
-                    r * self.velocity[k] + c1 * self.acc[k] + c2 * (self.pop.best_x[d] - self.pop.x[k]);
-                self.pop.x[k] += self.velocity[k];
+                let r = self.swarm.rng.unit_f64();
+                velocity[k] =
+                    r * velocity[k] + c1 * acc[k] + c2 * (self.swarm.pop.best_x[d] - self.swarm.pop.x[k]);
+                self.swarm.pop.x[k] += velocity[k];
             }
         }
-        redraw_outside(objective.bounds(), &mut self.pop.x, &mut self.rng);
-        let mut improved = self.pop.evaluate_all(objective);
+        redraw_outside(objective.bounds(), &mut self.swarm.pop.x, &mut self.swarm.rng);
+        let mut improved = self.swarm.pop.evaluate_all(objective);
         if self.params.neighbourhood_move {
             improved |= self.neighbourhood_move(objective);
         }
-        self.t += 1;
-        let window = libm::ceil(self.params.stall_share * f64::from(self.iterations)) as u32;
+        self.swarm.t += 1;
+        let window = libm::ceil(self.params.stall_share * f64::from(self.swarm.iterations)) as u32;
         if improved {
             self.stall = 0;
         } else {
@@ -252,8 +222,8 @@ impl Optimizer for Igsa {
         }
     }
 
-    fn population(&self) -> &Population {
-        &self.pop
+    fn swarm(&self) -> &Swarm {
+        &self.swarm
     }
 }
 

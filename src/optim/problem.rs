@@ -1,6 +1,7 @@
 //! What every optimizer shares: the search box ([`Bounds`]), the function to minimise
 //! ([`Objective`]), the [`Optimizer`] trait, the closed set of algorithms ([`Algorithm`]), run
-//! [`Settings`], the particles ([`Population`]) and small numeric helpers. The bottom of `optim`:
+//! [`Settings`], the particles ([`Population`]), the state every run carries ([`Swarm`]: the
+//! particles, the iteration clock and the random stream) and small numeric helpers. The bottom of `optim`:
 //! each optimizer imports this, never the folder's `mod.rs` that builds them.
 
 use crate::rng::Rng;
@@ -43,12 +44,18 @@ pub trait Objective {
 pub trait Optimizer {
     /// Which algorithm this is.
     fn algorithm(&self) -> Algorithm;
-    /// Iterations done so far (0 right after initialisation).
-    fn iteration(&self) -> u32;
     /// One iteration: move the population and evaluate it.
     fn step(&mut self, objective: &dyn Objective);
+    /// The particles, the iteration clock and the random stream.
+    fn swarm(&self) -> &Swarm;
+    /// Iterations done so far (0 right after initialisation).
+    fn iteration(&self) -> u32 {
+        self.swarm().t
+    }
     /// The particles, their best point and the evaluation count.
-    fn population(&self) -> &Population;
+    fn population(&self) -> &Population {
+        &self.swarm().pop
+    }
     /// Best point found so far.
     fn best_position(&self) -> &[f64] {
         &self.population().best_x
@@ -239,6 +246,39 @@ impl Population {
             }
         }
         best
+    }
+}
+
+/// What every optimizer run carries besides its own parameters and buffers: the particles, the
+/// iteration clock t of the budget T (which the schedules G(t), inertia, σ and α read) and the
+/// run's random stream.
+#[derive(Clone, Debug)]
+pub struct Swarm {
+    /// The particles.
+    pub pop: Population,
+    /// Iterations done so far.
+    pub t: u32,
+    /// The budget T (at least 1).
+    pub iterations: u32,
+    /// The run's random stream.
+    pub rng: Rng,
+}
+
+impl Swarm {
+    /// A run at iteration 0 of `iterations` over the given particles.
+    pub fn new(pop: Population, iterations: u32, rng: Rng) -> Self {
+        Self { pop, t: 0, iterations: iterations.max(1), rng }
+    }
+
+    /// `n` (at least 2) particles drawn uniformly in the bounds from `rng`, evaluated.
+    pub fn uniform(objective: &dyn Objective, n: usize, iterations: u32, mut rng: Rng) -> Self {
+        let pop = Population::uniform(objective, n.max(2), &mut rng);
+        Self::new(pop, iterations, rng)
+    }
+
+    /// t / T: 0 at the start, 1 when the budget is spent.
+    pub fn progress(&self) -> f64 {
+        f64::from(self.t) / f64::from(self.iterations)
     }
 }
 

@@ -6,7 +6,7 @@
 //! and a coordinate leaving the box is clamped with its velocity zeroed (absorbing walls).
 //! The paper gives no velocity limit; 20 % of the range is the customary choice.
 
-use super::problem::{clamp_coordinate, Algorithm, Objective, Optimizer, Population};
+use super::problem::{clamp_coordinate, Algorithm, Objective, Optimizer, Swarm};
 use crate::rng::Rng;
 
 /// Parameters of PSO.
@@ -33,40 +33,29 @@ impl Default for PsoParams {
 /// A PSO run.
 pub struct Pso {
     params: PsoParams,
-    pop: Population,
+    swarm: Swarm,
     velocity: Vec<f64>,
     pbest_x: Vec<f64>,
     pbest_f: Vec<f64>,
     vmax: Vec<f64>,
-    iterations: u32,
-    t: u32,
-    rng: Rng,
 }
 
 impl Pso {
     /// `n` particles uniform in the bounds with velocities uniform in ±vmax.
-    pub fn new(
-        params: PsoParams,
-        objective: &dyn Objective,
-        n: usize,
-        iterations: u32,
-        mut rng: Rng,
-    ) -> Self {
-        let pop = Population::uniform(objective, n.max(2), &mut rng);
+    pub fn new(params: PsoParams, objective: &dyn Objective, n: usize, iterations: u32, rng: Rng) -> Self {
+        let mut swarm = Swarm::uniform(objective, n, iterations, rng);
         let b = objective.bounds();
         let vmax: Vec<f64> = (0..b.dim()).map(|d| params.vmax_share * b.range(d)).collect();
         let dim = b.dim();
-        let velocity = (0..pop.x.len()).map(|k| vmax[k % dim] * (2.0 * rng.unit_f64() - 1.0)).collect();
+        let velocity =
+            (0..swarm.pop.x.len()).map(|k| vmax[k % dim] * (2.0 * swarm.rng.unit_f64() - 1.0)).collect();
         Self {
-            pbest_x: pop.x.clone(),
-            pbest_f: pop.fitness.clone(),
+            pbest_x: swarm.pop.x.clone(),
+            pbest_f: swarm.pop.fitness.clone(),
             params,
-            pop,
+            swarm,
             velocity,
             vmax,
-            iterations: iterations.max(1),
-            t: 0,
-            rng,
         }
     }
 }
@@ -76,40 +65,37 @@ impl Optimizer for Pso {
         Algorithm::Pso
     }
 
-    fn iteration(&self) -> u32 {
-        self.t
-    }
-
     fn step(&mut self, objective: &dyn Objective) {
         let p = &self.params;
-        let w = p.w_start - (p.w_start - p.w_end) * f64::from(self.t) / f64::from(self.iterations);
-        let (n, dim) = (self.pop.size(), self.pop.dim);
+        let w =
+            p.w_start - (p.w_start - p.w_end) * f64::from(self.swarm.t) / f64::from(self.swarm.iterations);
+        let (n, dim) = (self.swarm.pop.size(), self.swarm.pop.dim);
         let bounds = objective.bounds();
         for i in 0..n {
             for d in 0..dim {
                 let k = i * dim + d;
-                let (r1, r2) = (self.rng.unit_f64(), self.rng.unit_f64());
-                let x = self.pop.x[k];
+                let (r1, r2) = (self.swarm.rng.unit_f64(), self.swarm.rng.unit_f64());
+                let x = self.swarm.pop.x[k];
                 let v = w * self.velocity[k]
                     + p.c1 * r1 * (self.pbest_x[k] - x)
-                    + p.c2 * r2 * (self.pop.best_x[d] - x);
+                    + p.c2 * r2 * (self.swarm.pop.best_x[d] - x);
                 let v = v.clamp(-self.vmax[d], self.vmax[d]);
                 let mut nx = x + v;
                 self.velocity[k] = if clamp_coordinate(bounds, d, &mut nx) { 0.0 } else { v };
-                self.pop.x[k] = nx;
+                self.swarm.pop.x[k] = nx;
             }
         }
-        self.pop.evaluate_all(objective);
+        self.swarm.pop.evaluate_all(objective);
         for i in 0..n {
-            if self.pop.fitness[i] < self.pbest_f[i] {
-                self.pbest_f[i] = self.pop.fitness[i];
-                self.pbest_x[i * dim..(i + 1) * dim].copy_from_slice(self.pop.row(i));
+            if self.swarm.pop.fitness[i] < self.pbest_f[i] {
+                self.pbest_f[i] = self.swarm.pop.fitness[i];
+                self.pbest_x[i * dim..(i + 1) * dim].copy_from_slice(self.swarm.pop.row(i));
             }
         }
-        self.t += 1;
+        self.swarm.t += 1;
     }
 
-    fn population(&self) -> &Population {
-        &self.pop
+    fn swarm(&self) -> &Swarm {
+        &self.swarm
     }
 }

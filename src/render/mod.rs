@@ -1103,16 +1103,25 @@ mod tests {
         assert_eq!(pixel(&r, c.x.round() as u32, c.y.round() as u32), [255, 0, 0, 255]);
     }
 
-    #[test]
-    fn trails_mark_the_path_between_frames_and_fade_away() {
+    /// The lone agent drawn at 800 × 400 in `theme` with unfading trails, before and after 60
+    /// steps: the world and renderer after the second frame and the agent's canvas positions at
+    /// both frames.
+    fn lone_agent_track(theme: Theme) -> (World, Renderer, Vec2, Vec2) {
         let mut world = World::new(lone_agent()).expect("valid");
         let mut r = Renderer::new(800, 400);
+        r.set_theme(theme);
         r.set_trail_fade(0.0);
         r.render(&world);
         let start = r.view().to_canvas(world.positions()[0]);
         world.step_n(60);
         r.render(&world);
         let end = r.view().to_canvas(world.positions()[0]);
+        (world, r, start, end)
+    }
+
+    #[test]
+    fn trails_mark_the_path_between_frames_and_fade_away() {
+        let (world, mut r, start, end) = lone_agent_track(Theme::Standard);
         assert!(start.distance(end) > 20.0, "the agent should have moved: {start} → {end}");
         let mid = (start + end) * 0.5;
         let at = (mid.y as usize * 800 + mid.x as usize) * 4;
@@ -1367,15 +1376,7 @@ mod tests {
     /// Rows of the trail layer that differ from the base in the column halfway along the lone
     /// agent's track, and the agent's pixels that are not background, for a theme.
     fn trail_rows_and_agent_pixels(theme: Theme) -> (usize, usize, Renderer, usize) {
-        let mut world = World::new(lone_agent()).expect("valid");
-        let mut r = Renderer::new(800, 400);
-        r.set_theme(theme);
-        r.set_trail_fade(0.0);
-        r.render(&world);
-        let start = r.view().to_canvas(world.positions()[0]);
-        world.step_n(60);
-        r.render(&world);
-        let end = r.view().to_canvas(world.positions()[0]);
+        let (world, mut r, start, end) = lone_agent_track(theme);
         let x = ((start.x + end.x) * 0.5) as usize;
         let rows = (0..400usize)
             .filter(|&y| {

@@ -33,6 +33,15 @@ pub struct SpatialGrid {
     max_occupancy: u32,
 }
 
+/// How a capped scan ended: the visitor asked to stop, a cap cut it short, or every agent within
+/// the radius was visited.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum CappedScan {
+    Hit,
+    Capped,
+    Finished,
+}
+
 /// Limits of one capped neighbour query ([`SpatialGrid::for_each_within_capped`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct QueryCap {
@@ -341,27 +350,11 @@ impl SpatialGrid {
         cap: QueryCap,
         mut visit: impl FnMut(Neighbour),
     ) -> bool {
-        let r2 = radius * radius;
-        let (mut neighbours, mut candidates) = (cap.neighbours, cap.candidates);
-        for Range { start, end } in self.query_rows(p, radius) {
-            let scanned = end.min(start.saturating_add(candidates));
-            candidates -= scanned - start;
-            for k in start..scanned {
-                let (q, v) = self.slot(k);
-                let d2 = p.distance_squared(q);
-                if d2 <= r2 {
-                    if neighbours == 0 {
-                        return true;
-                    }
-                    neighbours -= 1;
-                    visit(Neighbour { id: self.ids[k], pos: q, vel: v, d2 });
-                }
-            }
-            if scanned < end {
-                return true;
-            }
-        }
-        false
+        let end = self.scan_capped(p, radius, cap, |n| {
+            visit(n);
+            false
+        });
+        end != CappedScan::Finished
     }
 
     /// Whether `hit` holds for some agent within `radius` of `p` among the first
@@ -375,8 +368,21 @@ impl SpatialGrid {
         p: Vec2,
         radius: f32,
         cap: QueryCap,
-        mut hit: impl FnMut(Neighbour) -> bool,
+        hit: impl FnMut(Neighbour) -> bool,
     ) -> bool {
+        self.scan_capped(p, radius, cap, hit) == CappedScan::Hit
+    }
+
+    /// The scan both capped queries share: visits the agents within `radius` of `p` in scan
+    /// order until `stop` returns true for one of them or a cap is reached.
+    #[inline(always)]
+    fn scan_capped(
+        &self,
+        p: Vec2,
+        radius: f32,
+        cap: QueryCap,
+        mut stop: impl FnMut(Neighbour) -> bool,
+    ) -> CappedScan {
         let r2 = radius * radius;
         let (mut neighbours, mut candidates) = (cap.neighbours, cap.candidates);
         for Range { start, end } in self.query_rows(p, radius) {
@@ -387,19 +393,19 @@ impl SpatialGrid {
                 let d2 = p.distance_squared(q);
                 if d2 <= r2 {
                     if neighbours == 0 {
-                        return false;
+                        return CappedScan::Capped;
                     }
                     neighbours -= 1;
-                    if hit(Neighbour { id: self.ids[k], pos: q, vel: v, d2 }) {
-                        return true;
+                    if stop(Neighbour { id: self.ids[k], pos: q, vel: v, d2 }) {
+                        return CappedScan::Hit;
                     }
                 }
             }
             if scanned < end {
-                return false;
+                return CappedScan::Capped;
             }
         }
-        false
+        CappedScan::Finished
     }
 
     /// Sets `slots` to the storage slots (indexes into [`Self::columns`]) of the agents within
