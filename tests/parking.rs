@@ -93,3 +93,23 @@ fn the_converging_presets_arrive_as_fully_as_before() {
     let share = arrival(presets::constant_density_to_centre(2000, 8.0, 40.0), 800);
     assert_eq!(share, 1.0);
 }
+
+#[test]
+fn parking_can_be_turned_off_and_parked_agents_walk_on() {
+    let scene = presets::constant_density_to_centre(400, 8.0, 20.0);
+    let mut off = World::new(scene.clone()).expect("valid");
+    off.set_parking(false);
+    off.step_n(600);
+    assert!(off.parked().iter().all(|&p| !p), "nobody parks with parking off");
+    assert!(off.metrics().overall.arrived_share > 0.9, "they still arrive");
+
+    // Turned off mid-run: those parked so far are released and move again.
+    let mut on = World::new(scene).expect("valid");
+    on.step_n(600);
+    assert!(on.parked().iter().filter(|&&p| p).count() > 300);
+    on.set_parking(false);
+    assert!(on.parked().iter().all(|&p| !p));
+    let before = on.positions().to_vec();
+    on.step_n(20);
+    assert_ne!(on.positions(), &before[..], "released agents move");
+}

@@ -75,6 +75,8 @@ pub struct World {
     /// A periodic band `[start, end)` of x (px): an agent whose centre leaves it at one end
     /// re-enters at the other ([`World::set_periodic_x`]).
     periodic_x: Option<(f32, f32)>,
+    /// Whether groups whose planner parks do park at their fixed goal ([`World::set_parking`]).
+    parking: bool,
 }
 
 impl World {
@@ -173,6 +175,7 @@ impl World {
             max_step: 0.0,
             previous: Vec::new(),
             periodic_x: None,
+            parking: true,
         };
         world.update_parking_rules();
         world.grid.rebuild(&world.pos, &world.vel);
@@ -348,6 +351,7 @@ impl World {
     /// under a rule that no longer holds (another planner, a moved goal) walk on.
     fn update_parking_rules(&mut self) {
         let before = std::mem::take(&mut self.park_goal);
+        let parking = self.parking;
         self.park_goal = self
             .groups
             .iter()
@@ -355,7 +359,7 @@ impl World {
             .map(|(runtime, g)| {
                 let k = g.goal?;
                 let goal = self.scene.goals.get(k as usize)?;
-                (runtime.planner.parks_at_goal() && goal.motion.is_none())
+                (parking && runtime.planner.parks_at_goal() && goal.motion.is_none())
                     .then(|| (k, crate::model::geometry::v(goal.position), goal.radius))
             })
             .collect();
@@ -372,6 +376,15 @@ impl World {
     /// Whether each agent is parked at its goal (see [`World::settle_parking`]).
     pub fn parked(&self) -> &[bool] {
         &self.parked
+    }
+
+    /// Turns parking at goals on (the default) or off. Off, arrived agents walk on as their
+    /// planner steers them: the validation suite's walkers, whose goals are exits, so a crowd
+    /// parked in the doorway would block the walkers behind it (in the RiMEA tests a walker at
+    /// the exit has left the building). Agents parked so far walk on.
+    pub fn set_parking(&mut self, on: bool) {
+        self.parking = on;
+        self.update_parking_rules();
     }
 
     /// Makes x periodic over `[start, end)` px (`None`: off, the default): an agent whose centre
