@@ -630,7 +630,7 @@ pub fn field_limits() -> Vec<FieldLimit> {
         row("groups[].spawn.max[]", format!("{inside}, at least min"), "agents start inside the world"),
         row("groups[].goal", "null (wander) or the index of one of the scene's goals, counting from 0".into(), "a group heads for a goal that exists"),
         row("groups[].agent_radius", "a number in 0.5…100 px".into(), "bodies from a dot to a large disc"),
-        row("groups[].planner.kind", "\"boids\", \"pso\", \"firefly\", \"forces\" or \"igsa\"".into(), "the planners flockpath has"),
+        row("groups[].planner.kind", planner_names(), "the planners flockpath has"),
         row("groups[].planner.params.path", "0 (none) or the number of one of the scene's paths, counting from 1".into(), "a Boids group follows a path that exists"),
         row("paths", format!("a list of at most {MAX_PATHS} paths"), "paths are drawn and followed every step"),
         row("paths[].points", format!("2…{MAX_PATH_POINTS} points, each inside the world"), "a path runs inside the world"),
@@ -1178,5 +1178,16 @@ mod tests {
     fn colours_parse() {
         assert_eq!(parse_color("#ff8000"), [255, 128, 0]);
         assert_eq!(parse_color("red"), [128, 128, 128]);
+    }
+}
+
+/// The planner names as the limits table words them: `"a", "b" or "c"`.
+fn planner_names() -> String {
+    let quoted: Vec<String> =
+        crate::model::params::PlannerKind::ALL.iter().map(|k| format!("\"{}\"", k.name())).collect();
+    match quoted.split_last() {
+        Some((last, [])) => last.clone(),
+        Some((last, rest)) => format!("{} or {last}", rest.join(", ")),
+        None => String::new(),
     }
 }
