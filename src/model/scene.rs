@@ -1068,6 +1068,17 @@ pub fn parse_color(s: &str) -> [u8; 3] {
     }
 }
 
+/// The planner names as the limits table words them: `"a", "b" or "c"`.
+fn planner_names() -> String {
+    let quoted: Vec<String> =
+        crate::model::params::PlannerKind::ALL.iter().map(|k| format!("\"{}\"", k.name())).collect();
+    match quoted.split_last() {
+        Some((last, [])) => last.clone(),
+        Some((last, rest)) => format!("{} or {last}", rest.join(", ")),
+        None => String::new(),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -1178,16 +1189,5 @@ mod tests {
     fn colours_parse() {
         assert_eq!(parse_color("#ff8000"), [255, 128, 0]);
         assert_eq!(parse_color("red"), [128, 128, 128]);
-    }
-}
-
-/// The planner names as the limits table words them: `"a", "b" or "c"`.
-fn planner_names() -> String {
-    let quoted: Vec<String> =
-        crate::model::params::PlannerKind::ALL.iter().map(|k| format!("\"{}\"", k.name())).collect();
-    match quoted.split_last() {
-        Some((last, [])) => last.clone(),
-        Some((last, rest)) => format!("{} or {last}", rest.join(", ")),
-        None => String::new(),
     }
 }
