@@ -44,6 +44,9 @@ function renderNow(el, canvas) {
     if (host?.sim && !host.crashed && host.wasm) {
       host.sim.render();
       blitSim(canvas.getContext('2d'), host.wasm, host.sim);
+      // Drawn up to date: the frame loop need not render the same step again (a second render
+      // of one step fades the trails once more, and the still would no longer match the canvas).
+      host.dirty = false;
     }
   } catch {
     // A crashed or freed simulation keeps the picture it has.
