@@ -12,7 +12,7 @@ use crate::model::params::boids::{Arbitration, BoidsParams, FlowGuide, Leader, R
 use crate::model::scene::PathSpec;
 use crate::planners::explain::{Explanation, NamedVector};
 use crate::rng::Rng;
-use crate::spatial::flow_field::{self, FlowField};
+use crate::spatial::flow_field::CachedFlowField;
 use crate::spatial::{CandidateRuns, CandidateSample, Columns, Neighbour, NEIGHBOUR_CAP};
 use glam::{BVec4A, Vec2, Vec4};
 use std::ops::Range;
@@ -32,20 +32,11 @@ pub struct Boids {
     /// Scratch: each agent's neighbour sums in this step.
     sums: Vec<FlockSums>,
     /// The flow field towards the goal and what it was built from (flow field guidance).
-    flow: Option<(FlowKey, FlowField)>,
+    flow: CachedFlowField,
     /// Per agent of the group: the path segment it has reached (path following only moves on).
     path_segment: Vec<u32>,
     /// The leader's last heading while it moved (leader following).
     leader_heading: Vec2,
-}
-
-/// What a cached flow field depends on.
-#[derive(Clone, Copy, Debug, PartialEq)]
-struct FlowKey {
-    goal_cell: (i32, i32),
-    obstacles: u64,
-    bounds: Vec2,
-    clearance: f32,
 }
 
 /// Segment index meaning "not placed on the path yet".
@@ -95,7 +86,7 @@ impl Boids {
             sample: CandidateSample::default(),
             visits: Visits::default(),
             sums: Vec::new(),
-            flow: None,
+            flow: CachedFlowField::default(),
             path_segment: Vec::new(),
             leader_heading: Vec2::ZERO,
         }
@@ -120,16 +111,7 @@ impl Boids {
         if prm.flow_field == FlowGuide::Goal {
             if let Some((goal, _)) = group.goal {
                 let clearance = group.agents.clone().next().map_or(0.0, |i| ctx.radii[i as usize]);
-                let key = FlowKey {
-                    goal_cell: ((goal.x / flow_field::CELL) as i32, (goal.y / flow_field::CELL) as i32),
-                    obstacles: flow_field::obstacles_fingerprint(ctx.obstacles.obstacles()),
-                    bounds: ctx.bounds,
-                    clearance,
-                };
-                if self.flow.as_ref().is_none_or(|(k, _)| *k != key) {
-                    let field = FlowField::new(ctx.bounds, ctx.obstacles, goal, clearance);
-                    self.flow = Some((key, field));
-                }
+                self.flow.update(ctx.bounds, ctx.obstacles, goal, clearance);
             }
         }
         if prm.leader == Leader::First {
@@ -234,7 +216,7 @@ impl Boids {
             }
         }
         if prm.flow_field == FlowGuide::Goal {
-            if let (Some((goal, goal_radius)), Some((_, field))) = (group.goal, &self.flow) {
+            if let (Some((goal, goal_radius)), Some(field)) = (group.goal, self.flow.get()) {
                 let direction = field.direction_at(p);
                 if direction != Vec2::ZERO {
                     let parked = p.distance(goal) <= goal_radius;

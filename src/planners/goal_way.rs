@@ -7,21 +7,12 @@ use crate::model::geometry::{distance, unit_or};
 use crate::model::params::guidance::Guidance;
 use crate::model::scene::Scene;
 use crate::planners::planner::{GroupView, StepContext};
-use crate::spatial::flow_field::{self, FlowField};
+use crate::spatial::flow_field::CachedFlowField;
 use glam::Vec2;
 
 /// Pixels per metre of `scene`: the baselines' SI parameters are converted with it.
 pub fn px_per_metre(scene: &Scene) -> f32 {
     scene.px_per_metre
-}
-
-/// What a cached flow field was built from: a field is rebuilt when one of these changes.
-#[derive(Clone, Copy, Debug, PartialEq)]
-struct FieldKey {
-    goal_cell: (i32, i32),
-    obstacles: u64,
-    bounds: Vec2,
-    clearance: f32,
 }
 
 /// Where one agent wants to go at this step.
@@ -36,7 +27,7 @@ pub struct Way {
 /// The preferred directions of one group's agents: a cached flow field when guided by one.
 #[derive(Clone, Debug, Default)]
 pub struct GoalWay {
-    field: Option<(FieldKey, FlowField)>,
+    field: CachedFlowField,
 }
 
 impl GoalWay {
@@ -46,19 +37,11 @@ impl GoalWay {
     pub fn prepare(&mut self, ctx: &StepContext, group: &GroupView, guidance: Guidance) {
         let Some((goal, _)) = group.goal else { return };
         if guidance != Guidance::FlowField || ctx.obstacles.is_empty() {
-            self.field = None;
+            self.field.clear();
             return;
         }
         let clearance = group.agents.clone().next().map_or(0.0, |i| ctx.radii[i as usize]);
-        let key = FieldKey {
-            goal_cell: ((goal.x / flow_field::CELL) as i32, (goal.y / flow_field::CELL) as i32),
-            obstacles: flow_field::obstacles_fingerprint(ctx.obstacles.obstacles()),
-            bounds: ctx.bounds,
-            clearance,
-        };
-        if self.field.as_ref().is_none_or(|(k, _)| *k != key) {
-            self.field = Some((key, FlowField::new(ctx.bounds, ctx.obstacles, goal, clearance)));
-        }
+        self.field.update(ctx.bounds, ctx.obstacles, goal, clearance);
     }
 
     /// The way from `p` for a group heading for `goal` (position, radius).
@@ -68,8 +51,8 @@ impl GoalWay {
             return Way { direction: Vec2::ZERO, arrived: true };
         }
         let straight = unit_or(goal - p, Vec2::ZERO);
-        let direction = match &self.field {
-            Some((_, field)) => {
+        let direction = match self.field.get() {
+            Some(field) => {
                 let d = field.direction_at(p);
                 if d == Vec2::ZERO {
                     straight

@@ -169,6 +169,24 @@ pub fn k_nearest_from(
     out.sort_unstable_by(order);
 }
 
+/// One frame of the crowd as the fitness measures read it (struct-of-arrays, agent `i` at index
+/// `i` of each slice).
+#[derive(Clone, Copy)]
+pub struct Frame<'a> {
+    /// Centres (px).
+    pub pos: &'a [Vec2],
+    /// Velocities (px/step).
+    pub vel: &'a [Vec2],
+    /// Body radii (px).
+    pub radius: &'a [f32],
+    /// Each agent's goal position; agents without one are left out of Gg.
+    pub goals: &'a [Option<Vec2>],
+    /// The scene's obstacles.
+    pub obstacles: &'a ObstacleIndex,
+    /// Each agent's group; empty for no per-group measures.
+    pub group_of: &'a [u32],
+}
+
 /// Accumulates the measures frame by frame.
 #[derive(Clone, Debug)]
 pub struct FitnessRecorder {
@@ -180,7 +198,7 @@ pub struct FitnessRecorder {
     goal_frames: u64,
     frames: u64,
     near: Vec<(f32, u32)>,
-    /// Per-group sums over frames, filled by [`FitnessRecorder::record_grouped`].
+    /// Per-group sums over frames, filled by [`FitnessRecorder::record`].
     groups: Vec<GroupSums>,
     /// This frame's per-group sums over agents (reused buffer).
     frame_groups: Vec<GroupFrame>,
@@ -240,32 +258,12 @@ impl FitnessRecorder {
         self.frames
     }
 
-    /// Records one frame. `goals[i]` is agent `i`'s goal position (agents without one are left
-    /// out of Gg). Degenerate frames (no agents) are skipped.
-    pub fn record(
-        &mut self,
-        pos: &[Vec2],
-        vel: &[Vec2],
-        radius: &[f32],
-        goals: &[Option<Vec2>],
-        obstacles: &ObstacleIndex,
-    ) {
-        self.record_grouped(pos, vel, radius, goals, obstacles, &[]);
-    }
-
-    /// Records one frame like [`FitnessRecorder::record`] and also per group: `group_of[i]` is
-    /// agent `i`'s group (empty: no per-group measures). A group's measures average its own
-    /// agents; their k nearest neighbours come from any group (the crowd an agent is in), so the
-    /// overall measures are unchanged by grouping.
-    pub fn record_grouped(
-        &mut self,
-        pos: &[Vec2],
-        vel: &[Vec2],
-        radius: &[f32],
-        goals: &[Option<Vec2>],
-        obstacles: &ObstacleIndex,
-        group_of: &[u32],
-    ) {
+    /// Records one frame, overall and per group (see [`Frame`]). Degenerate frames (no agents)
+    /// are skipped. A group's measures average its own agents; their k nearest neighbours come
+    /// from any group (the crowd an agent is in), so the overall measures are unchanged by
+    /// grouping.
+    pub fn record(&mut self, frame: Frame) {
+        let Frame { pos, vel, radius, goals, obstacles, group_of } = frame;
         let n = pos.len();
         let groups = group_of.iter().map(|&g| g as usize + 1).max().unwrap_or(0);
         if self.groups.len() < groups {
@@ -384,7 +382,7 @@ impl FitnessRecorder {
     }
 
     /// Group `g`'s measures averaged over the frames recorded with
-    /// [`FitnessRecorder::record_grouped`] in which it had agents; `None` before the first.
+    /// [`FitnessRecorder::record`] in which it had agents; `None` before the first.
     pub fn group_measures(&self, g: usize) -> Option<FitnessMeasures> {
         let group = self.groups.get(g).filter(|group| group.frames > 0)?;
         Some(measures_of(&group.sums, group.frames, group.goal_frames))
@@ -493,7 +491,14 @@ mod tests {
         let vel = [Vec2::X, Vec2::X, Vec2::Y];
         let mut rec = FitnessRecorder::new(params(2), 1000.0, 1000.0, 3);
         let goal = Some(Vec2::new(100.0, 100.0));
-        rec.record(&pos, &vel, &[1.0; 3], &[goal; 3], &no_obstacles());
+        rec.record(Frame {
+            pos: &pos,
+            vel: &vel,
+            radius: &[1.0; 3],
+            goals: &[goal; 3],
+            obstacles: &no_obstacles(),
+            group_of: &[],
+        });
         let m = rec.measures();
         let close = |a: f64, b: f64| (a - b).abs() < 1e-6;
         assert!(close(m.gm, (0.2 + 0.4 + 2.0 / 15.0) / 3.0), "{m:?}");
@@ -518,7 +523,14 @@ mod tests {
             1000.0,
         );
         let mut rec = FitnessRecorder::new(params(2), 1000.0, 1000.0, 4);
-        rec.record(&pos, &[Vec2::X; 4], &[2.0; 4], &[None; 4], &obstacles);
+        rec.record(Frame {
+            pos: &pos,
+            vel: &[Vec2::X; 4],
+            radius: &[2.0; 4],
+            goals: &[None; 4],
+            obstacles: &obstacles,
+            group_of: &[],
+        });
         assert!((rec.measures().gc - 0.25).abs() < 1e-9);
         // No agent has a goal: Gg stays 0 rather than averaging nothing.
         assert_eq!(rec.measures().gg, 0.0);
@@ -528,20 +540,22 @@ mod tests {
     fn frames_average_and_gsum_weighs() {
         let mut rec = FitnessRecorder::new(params(1), 1000.0, 1000.0, 2);
         // Frame 1: spacing 10 (exact) → Gm 1; frame 2: spacing 30 → error 20 → 0.1.
-        rec.record(
-            &[Vec2::new(0.0, 0.0), Vec2::new(10.0, 0.0)],
-            &[Vec2::X; 2],
-            &[1.0; 2],
-            &[None; 2],
-            &no_obstacles(),
-        );
-        rec.record(
-            &[Vec2::new(0.0, 0.0), Vec2::new(30.0, 0.0)],
-            &[Vec2::X; 2],
-            &[1.0; 2],
-            &[None; 2],
-            &no_obstacles(),
-        );
+        rec.record(Frame {
+            pos: &[Vec2::new(0.0, 0.0), Vec2::new(10.0, 0.0)],
+            vel: &[Vec2::X; 2],
+            radius: &[1.0; 2],
+            goals: &[None; 2],
+            obstacles: &no_obstacles(),
+            group_of: &[],
+        });
+        rec.record(Frame {
+            pos: &[Vec2::new(0.0, 0.0), Vec2::new(30.0, 0.0)],
+            vel: &[Vec2::X; 2],
+            radius: &[1.0; 2],
+            goals: &[None; 2],
+            obstacles: &no_obstacles(),
+            group_of: &[],
+        });
         let m = rec.measures();
         assert_eq!(rec.frames(), 2);
         assert!((m.gm - 0.55).abs() < 1e-6, "{m:?}");
@@ -560,9 +574,23 @@ mod tests {
         let vel = [Vec2::X, Vec2::X, Vec2::Y];
         let goals = [Some(Vec2::new(100.0, 100.0)); 3];
         let mut grouped = FitnessRecorder::new(params(2), 1000.0, 1000.0, 3);
-        grouped.record_grouped(&pos, &vel, &[1.0; 3], &goals, &no_obstacles(), &[0, 0, 1]);
+        grouped.record(Frame {
+            pos: &pos,
+            vel: &vel,
+            radius: &[1.0; 3],
+            goals: &goals,
+            obstacles: &no_obstacles(),
+            group_of: &[0, 0, 1],
+        });
         let mut plain = FitnessRecorder::new(params(2), 1000.0, 1000.0, 3);
-        plain.record(&pos, &vel, &[1.0; 3], &goals, &no_obstacles());
+        plain.record(Frame {
+            pos: &pos,
+            vel: &vel,
+            radius: &[1.0; 3],
+            goals: &goals,
+            obstacles: &no_obstacles(),
+            group_of: &[],
+        });
         assert_eq!(grouped.measures(), plain.measures());
         assert_eq!(plain.group_measures(0), None, "record alone keeps no groups");
 
@@ -576,14 +604,14 @@ mod tests {
         assert_eq!(grouped.group_measures(2), None);
 
         // A second frame where group 1 has no goal: its Gg averages the first frame only.
-        grouped.record_grouped(
-            &pos,
-            &vel,
-            &[1.0; 3],
-            &[goals[0], goals[1], None],
-            &no_obstacles(),
-            &[0, 0, 1],
-        );
+        grouped.record(Frame {
+            pos: &pos,
+            vel: &vel,
+            radius: &[1.0; 3],
+            goals: &[goals[0], goals[1], None],
+            obstacles: &no_obstacles(),
+            group_of: &[0, 0, 1],
+        });
         let second = grouped.group_measures(1).expect("group 1 sampled");
         assert!(close(second.gg, 1.0 / 6.0) && close(second.gm, 2.0 / 15.0), "{second:?}");
     }
@@ -600,9 +628,23 @@ mod tests {
     #[test]
     fn a_lone_agent_and_an_empty_frame() {
         let mut rec = FitnessRecorder::new(params(7), 1000.0, 1000.0, 1);
-        rec.record(&[], &[], &[], &[], &no_obstacles());
+        rec.record(Frame {
+            pos: &[],
+            vel: &[],
+            radius: &[],
+            goals: &[],
+            obstacles: &no_obstacles(),
+            group_of: &[],
+        });
         assert_eq!(rec.frames(), 0);
-        rec.record(&[Vec2::new(5.0, 5.0)], &[Vec2::ZERO], &[1.0], &[None], &no_obstacles());
+        rec.record(Frame {
+            pos: &[Vec2::new(5.0, 5.0)],
+            vel: &[Vec2::ZERO],
+            radius: &[1.0],
+            goals: &[None],
+            obstacles: &no_obstacles(),
+            group_of: &[],
+        });
         let m = rec.measures();
         assert_eq!((m.gm, m.ga, m.gd, m.gc), (0.0, 0.0, 0.0, 1.0));
     }

@@ -22,7 +22,7 @@ use crate::model::forces_cases::Behaviour;
 use crate::model::geometry::{distance, length, Aabb};
 use crate::model::params::PlannerKind;
 use crate::model::scene::{Scale, Scene};
-use crate::sim::fitness::{FitnessMeasures, FitnessRecorder};
+use crate::sim::fitness::{FitnessMeasures, FitnessRecorder, Frame};
 use crate::spatial::{ObstacleIndex, QueryCap, SpatialGrid};
 use glam::Vec2;
 use serde::Serialize;
@@ -401,7 +401,7 @@ impl MetricsRecorder {
             self.fitness_goals.clear();
             self.fitness_goals
                 .extend(group_of.iter().map(|&g| goals.get(g as usize).copied().flatten().map(|(p, _)| p)));
-            self.fitness.record_grouped(pos, vel, radius, &self.fitness_goals, obstacles, group_of);
+            self.fitness.record(Frame { pos, vel, radius, goals: &self.fitness_goals, obstacles, group_of });
         }
 
         if self.queue_groups.contains(&true) && (step == 1 || step.is_multiple_of(QUEUE_SAMPLE_EVERY)) {

@@ -219,6 +219,46 @@ fn unit(v: Vec2) -> Vec2 {
     }
 }
 
+/// What a cached flow field was built from: the field is rebuilt when one of these changes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct FieldKey {
+    goal_cell: (i32, i32),
+    obstacles: u64,
+    bounds: Vec2,
+    clearance: f32,
+}
+
+/// A flow field kept between steps (a planner holds one per group): rebuilt only when the goal
+/// moves to another cell, the obstacles or the world's size change, or the clearance does.
+#[derive(Clone, Debug, Default)]
+pub struct CachedFlowField(Option<(FieldKey, FlowField)>);
+
+impl CachedFlowField {
+    /// Brings the field up to date for `goal`, cells blocked within `clearance` px of an
+    /// obstacle ([`FlowField::new`]).
+    pub fn update(&mut self, bounds: Vec2, obstacles: &ObstacleIndex, goal: Vec2, clearance: f32) {
+        let key = FieldKey {
+            goal_cell: ((goal.x / CELL) as i32, (goal.y / CELL) as i32),
+            obstacles: obstacles_fingerprint(obstacles.obstacles()),
+            bounds,
+            clearance,
+        };
+        if self.0.as_ref().is_none_or(|(k, _)| *k != key) {
+            self.0 = Some((key, FlowField::new(bounds, obstacles, goal, clearance)));
+        }
+    }
+
+    /// The field, once built.
+    pub fn get(&self) -> Option<&FlowField> {
+        self.0.as_ref().map(|(_, field)| field)
+    }
+
+    /// Forgets the field (straight guidance needs none).
+    pub fn clear(&mut self) {
+        self.0 = None;
+    }
+}
+
 /// A fingerprint of an obstacle list (FNV-1a over every coordinate's bits): a cached field is
 /// rebuilt when the obstacles it was built around change.
 pub fn obstacles_fingerprint(obstacles: &[Obstacle]) -> u64 {
