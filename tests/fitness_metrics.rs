@@ -3,7 +3,7 @@
 //! range, Gsum weighted with B1's weights, and equal to a `FitnessRecorder` fed the same steps.
 
 use flockpath::model::forces_cases::Behaviour;
-use flockpath::sim::fitness::{FitnessRecorder, Frame};
+use flockpath::sim::fitness::FitnessRecorder;
 use flockpath::sim::metrics::FITNESS_SAMPLE_EVERY;
 use flockpath::{presets, World};
 use glam::Vec2;
@@ -59,14 +59,7 @@ fn the_metrics_equal_a_recorder_fed_the_sampled_steps() {
         if step % FITNESS_SAMPLE_EVERY == 1 % FITNESS_SAMPLE_EVERY {
             let goals: Vec<Option<Vec2>> =
                 world.group_of().iter().map(|&g| world.goal_of_group(g as usize).map(|(p, _)| p)).collect();
-            recorder.record(Frame {
-                pos: world.positions(),
-                vel: world.velocities(),
-                radius: world.radii(),
-                goals: &goals,
-                obstacles: world.obstacles(),
-                group_of: &[],
-            });
+            recorder.record(world.fitness_frame(&goals));
         }
     }
     let f = world.metrics().overall.fitness.expect("sampled");

@@ -5,6 +5,7 @@ use crate::model::params::PlannerConfig;
 use crate::model::scene::{Scene, SceneError};
 use crate::planners::{GroupView, Planner, StepContext};
 use crate::rng::Rng;
+use crate::sim::fitness::Frame;
 use crate::sim::metrics::{Metrics, MetricsRecorder};
 use crate::sim::spawn::{centre_bounds, spawn, Spawn};
 use crate::spatial::{ObstacleIndex, QueryCap, SpatialGrid};
@@ -268,6 +269,19 @@ impl World {
     /// The obstacle index (for renderers and tools that query obstacles).
     pub fn obstacles(&self) -> &ObstacleIndex {
         &self.obstacles
+    }
+
+    /// The current state as a frame for a [`crate::sim::fitness::FitnessRecorder`], with each
+    /// agent's goal position from `goals` and no per-group measures.
+    pub fn fitness_frame<'a>(&'a self, goals: &'a [Option<Vec2>]) -> Frame<'a> {
+        Frame {
+            pos: &self.pos,
+            vel: &self.vel,
+            radius: &self.radius,
+            goals,
+            obstacles: &self.obstacles,
+            group_of: &[],
+        }
     }
 
     /// The neighbour grid as of the end of the last step (for picking and diagnosis).

@@ -17,7 +17,7 @@ use crate::model::forces_cases::{Behaviour, Environment, UnknownCase};
 use crate::model::params::{ForcesParams, PlannerConfig};
 use crate::model::scene::{Scene, SceneError};
 use crate::rng::Rng;
-use crate::sim::fitness::{FitnessMeasures, FitnessParams, FitnessRecorder, FitnessWeights, Frame};
+use crate::sim::fitness::{FitnessMeasures, FitnessParams, FitnessRecorder, FitnessWeights};
 use crate::sim::world::World;
 use glam::Vec2;
 use serde::{Deserialize, Serialize};
@@ -274,14 +274,7 @@ impl TuneTask {
             for (goal, &g) in goals.iter_mut().zip(world.group_of()) {
                 *goal = group_goals.get(g as usize).copied().flatten();
             }
-            recorder.record(Frame {
-                pos: world.positions(),
-                vel: world.velocities(),
-                radius: world.radii(),
-                goals: &goals,
-                obstacles: world.obstacles(),
-                group_of: &[],
-            });
+            recorder.record(world.fitness_frame(&goals));
         }
         Ok(recorder.measures())
     }
