@@ -78,8 +78,18 @@ test('a host page scripts the embed through postMessage', async () => {
 });
 
 test('when the embed cannot load (its wasm missing), waiting and later requests answer ok: false with the reason', { timeout: 90_000 }, async () => {
+  // Ready once the notes' own scenes have their wasm: a fetch still in flight when they are
+  // removed below would be aborted (a "request failed" that is not the one this test makes).
   const { page, context, errors, close } = await openPath('examples/course-notes.html', {
-    ready: () => document.getElementById('corridor') !== null,
+    ready: () => {
+      const loaded = (win) => win.performance.getEntriesByType('resource').some((e) => e.name.endsWith('.wasm') && e.responseEnd > 0);
+      const frames = [...document.querySelectorAll('iframe')];
+      return (
+        document.getElementById('corridor') !== null &&
+        [...document.querySelectorAll('flock-path')].every((el) => el.sim) &&
+        frames.every((f) => f.contentWindow && loaded(f.contentWindow))
+      );
+    },
   });
   try {
     // A host page with one fresh iframe, whose wasm request is held until requests are waiting.
