@@ -15,11 +15,18 @@
 //!
 //! Every released version keeps decoding: fixtures of each live in `tests/data/fragments/`.
 //!
+//! Beside `s=`, a link may carry the classroom options `controls=`, `lock=` and `hide=`
+//! (`model::classroom`): page options like `autoplay`, not part of the scene string, so the
+//! scene's version and digest are untouched by them. A link without them (every link written
+//! before they existed) allows everything; their names are only ever added, and the released
+//! ones are pinned by `tests/data/fragments/classroom/`.
+//!
 //! A refusal names the field by its path in the keyed scene JSON (`groups[2].planner.params.
 //! max_speed`), in both forms (the compact form's positions are translated), with the value as
 //! written and what is allowed; the parser's own words and position ride along as details.
 //! Scene text and fragments may start with a UTF-8 byte-order mark; a bare name is a preset.
 
+use crate::model::classroom::{Classroom, ClassroomError, Field, Options};
 use crate::model::geometry::Obstacle;
 use crate::model::params::{PlannerConfig, PlannerKind};
 use crate::model::scene::{
@@ -199,6 +206,76 @@ fn fragment_value(input: &str) -> &str {
         }
     }
     after_hash
+}
+
+/// The raw value of option `key` in a URL or fragment (`…#s=…&lock=goals`), the first when
+/// repeated (as the page's `fragmentOptions` reads it), or `None`.
+fn link_option<'a>(input: &'a str, key: &str) -> Option<&'a str> {
+    let after_hash = input.rsplit_once('#').map_or(input, |(_, f)| f);
+    after_hash.split('&').find_map(|part| part.split_once('=').filter(|(k, _)| *k == key).map(|(_, v)| v))
+}
+
+/// `%XX` escapes decoded where they spell ASCII (a pasted link may carry `%2C` for a comma);
+/// anything else stays as written, and the option's parser names it.
+fn percent_decoded(value: &str) -> std::borrow::Cow<'_, str> {
+    if !value.contains('%') {
+        return value.into();
+    }
+    let bytes = value.as_bytes();
+    let mut out = String::with_capacity(value.len());
+    let mut i = 0;
+    while i < bytes.len() {
+        let hex = value.get(i + 1..i + 3).and_then(|h| u8::from_str_radix(h, 16).ok()).filter(u8::is_ascii);
+        match hex {
+            Some(byte) if bytes[i] == b'%' => {
+                out.push(char::from(byte));
+                i += 3;
+            }
+            _ => {
+                let c = value[i..].chars().next().unwrap_or('\u{fffd}');
+                out.push(c);
+                i += c.len_utf8();
+            }
+        }
+    }
+    out.into()
+}
+
+/// The classroom options of a link (`controls=`, `lock=`, `hide=` beside `s=`, in a URL, a
+/// `#…` fragment or the fragment's text), read leniently: each refused option is reported and
+/// left allowing everything. A link without them, every link written before they existed
+/// included, allows everything.
+pub fn classroom_from_link_lenient(input: &str) -> (Classroom, Vec<ClassroomError>) {
+    let input = input.strip_prefix(BYTE_ORDER_MARK).unwrap_or(input).trim();
+    let controls = link_option(input, Field::Controls.key()).map(percent_decoded);
+    let lock = link_option(input, Field::Lock.key()).map(percent_decoded);
+    let hide = link_option(input, Field::Hide.key()).map(percent_decoded);
+    Classroom::from_options_lenient(Options {
+        controls: controls.as_deref(),
+        lock: lock.as_deref(),
+        hide: hide.as_deref(),
+    })
+}
+
+/// The classroom options of a link; the first refused option is the error.
+pub fn classroom_from_link(input: &str) -> Result<Classroom, ClassroomError> {
+    let (classroom, errors) = classroom_from_link_lenient(input);
+    match errors.into_iter().next() {
+        Some(e) => Err(e),
+        None => Ok(classroom),
+    }
+}
+
+/// A link's fragment (after `#`): `s=<scene>` then the classroom options that differ from
+/// "everything allowed", so a link without options is exactly what it was before they existed.
+pub fn link_fragment(scene: &Scene, classroom: &Classroom) -> String {
+    let options = classroom.fragment();
+    let scene = scene_to_fragment(scene);
+    if options.is_empty() {
+        format!("s={scene}")
+    } else {
+        format!("s={scene}&{options}")
+    }
 }
 
 /// Version 2's compact scene: `[name, width, height, seed, obstacles, goals, groups, view]`, a
