@@ -21,6 +21,7 @@ use glam::Vec2;
 use std::fmt::Display;
 use wasm_bindgen::prelude::*;
 
+mod classroom;
 mod compare;
 pub mod lab;
 mod paths;
