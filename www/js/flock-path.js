@@ -7,7 +7,10 @@
 // Attributes: `scene` (a link's fragment value, a whole link, scene JSON, or a preset name),
 // `autoplay`, `controls` (play/pause, step, reset, planner name), `width` / `height` (CSS lengths;
 // by default the element is as wide as its container and as tall as the scene's aspect ratio),
-// `fill` (fill the element's box instead, as embed.html does). Several elements on one page run
+// `fill` (fill the element's box instead, as embed.html does); `controls="play,step,reset,planner"`
+// shows only those controls (bare `controls`: all), `lock="obstacles,goals"` and `hide="…"` are
+// the teacher's options of a link (checked in Rust; this element has no editor or panels, so they
+// only travel on: `classroom().fragment`). Several elements on one page run
 // independently: each owns its own simulation; the wasm module is loaded once and shared. It runs on
 // the shell's core (js/core/: the wasm loader, the guarded sim host, the frame loop with its
 // hidden-tab pause, the blit and the backing-store sizing); every URL, its imports' included, is
@@ -21,6 +24,7 @@
 // `flockpath-error` (detail: message; also when the wasm cannot be loaded, shown in the box too).
 
 import { loadWasm } from './core/boot.js';
+import { readClassroom } from './core/classroom.js';
 import { messageOf } from './core/errors.js';
 import { startLoop } from './core/loop.js';
 import { SimHost } from './core/sim-host.js';
@@ -85,7 +89,7 @@ function adoptStyle(root) {
 
 export class FlockPathElement extends HTMLElement {
   static get observedAttributes() {
-    return ['scene', 'controls', 'width', 'height', 'autoplay'];
+    return ['scene', 'controls', 'width', 'height', 'autoplay', 'lock', 'hide'];
   }
 
   constructor() {
@@ -170,11 +174,12 @@ export class FlockPathElement extends HTMLElement {
   attributeChangedCallback(name, old, value) {
     if (old === value) return;
     if (name === 'scene' && this.host) this.tryLoad(value ?? '', { fallback: false });
+    else if (['controls', 'lock', 'hide'].includes(name)) this.applyClassroom();
     else this.applyLayout();
   }
 
   applyLayout() {
-    this.$('.bar').hidden = !this.hasAttribute('controls');
+    this.$('.bar').hidden = !this.hasAttribute('controls') || this.classroomView?.controls.length === 0;
     this.style.width = this.getAttribute('width') ?? '';
     this.style.height = this.getAttribute('height') ?? '';
     const stage = this.$('.stage');
@@ -195,6 +200,7 @@ export class FlockPathElement extends HTMLElement {
     this.module = loaded.module;
     this.presets = loaded.presets;
     this.planners = loaded.planners;
+    this.applyClassroom();
     const canvas = this.$('canvas');
     const { width, height } = measure(canvas);
     canvas.width = width;
@@ -233,6 +239,34 @@ export class FlockPathElement extends HTMLElement {
   startLoop() {
     if (this.stopLoop || !this.host) return;
     this.stopLoop = startLoop(this.host, this.$('canvas'), () => this.refreshSteps(), { readout: false });
+  }
+
+  /**
+   * Applies the `controls`, `lock` and `hide` attributes (parsed in Rust): only the controls
+   * named are shown; a refused attribute is said in the box and by `flockpath-error`, and left
+   * allowing everything.
+   */
+  applyClassroom() {
+    if (!this.module) return;
+    const value = (name) => (this.hasAttribute(name) ? this.getAttribute(name) : undefined);
+    // Without `controls` the element shows no control bar.
+    const classroom = readClassroom(new this.module.Classroom(value('controls') ?? 'none', value('lock'), value('hide')));
+    classroom.handle.free();
+    this.classroomView = classroom.view;
+    const shown = classroom.view.controls;
+    for (const name of ['play', 'step', 'reset', 'planner']) this.$(`.${name}`).hidden = !shown.includes(name);
+    this.$('.fullscreen').hidden = !document.fullscreenEnabled || !shown.includes('fullscreen');
+    this.applyLayout();
+    if (classroom.errors.length) {
+      const text = classroom.errors.join(' ');
+      this.showMessage(text);
+      this.dispatchEvent(new CustomEvent('flockpath-error', { detail: text, bubbles: true, composed: true }));
+    }
+  }
+
+  /** The classroom options applied: `{controls, lock, hide, …, fragment, attributes}` (a copy). */
+  classroom() {
+    return structuredClone(this.classroomView ?? null);
   }
 
   /** Resolves a scene attribute: a preset name, else JSON / fragment / URL text. */

@@ -20,10 +20,17 @@ export function shareUrl(sceneString, page = location.href) {
   return url.href;
 }
 
-/** Puts a scene string in the address bar; returns the full URL to share. */
+/** `s=<scene>` followed by the other options of `hash` (classroom options, theme, …): rewriting
+ * the scene keeps them, so the address bar still holds the link the page was opened with. */
+function withScene(hash, sceneString) {
+  const others = hash.replace(/^#/, '').split('&').filter((part) => part && !part.startsWith('s='));
+  return [`s=${sceneString}`, ...others].join('&');
+}
+
+/** Puts a scene string in the address bar (other fragment options kept); returns the URL. */
 export function writeSceneToLocation(sceneString) {
   const url = new URL(location.href);
-  url.hash = `s=${sceneString}`;
+  url.hash = withScene(url.hash, sceneString);
   history.replaceState(null, '', url);
   return url.href;
 }

@@ -1,5 +1,7 @@
 // embed.html: one <flock-path> filling the iframe, its scene from the fragment (`#s=…`,
-// `&autoplay=1`, `&controls=0`), an "open in flockpath" link carrying the current scene, and a
+// `&autoplay=1`, `&controls=0`; the teacher's `&controls=play,step`, `&lock=…`, `&hide=…` become
+// the element's attributes), an "open in flockpath" link carrying the current scene and those
+// options (so the playground it opens is locked the same way), and a
 // postMessage API so the host page can script the iframe like the page API:
 //
 //   iframe.contentWindow.postMessage({ flockpath: 1, id: 7, method: 'step', args: [60] }, '*');
@@ -35,12 +37,17 @@ const options = fragmentOptions();
 if (options.s) el.setAttribute('scene', decodeValue(options.s));
 if (options.autoplay === '1' || options.autoplay === 'true') el.setAttribute('autoplay', '');
 if (options.controls === '0' || options.controls === 'false') el.removeAttribute('controls');
+else if (options.controls !== undefined) el.setAttribute('controls', decodeValue(options.controls));
+for (const name of ['lock', 'hide']) {
+  if (options[name] !== undefined) el.setAttribute(name, decodeValue(options[name]));
+}
 
 /** Points the link at the full page with the scene as it is now (edits via the API included). */
 function refreshOpenLink() {
   try {
     const url = new URL('index.html', location.href);
-    url.hash = `s=${el.sceneString()}`;
+    const classroom = el.classroom()?.fragment;
+    url.hash = `s=${el.sceneString()}${classroom ? `&${classroom}` : ''}`;
     openLink.href = url.href;
   } catch {
     // Not ready or crashed: the link keeps its last target.

@@ -217,6 +217,15 @@ export function theme(name) {
   return a.guard((sim) => sim.theme(), { rethrow: true }).value;
 }
 
+/**
+ * The link's classroom options as the page applies them: `{controls, lock, hide, locked_tools,
+ * can_load, open, fragment, attributes}` (a copy). They restrict the page's controls only;
+ * every call of this API stays open.
+ */
+export function classroom() {
+  return structuredClone(booted().classroom ?? null);
+}
+
 /** The API object: `window.flockpath` and this module's default export. */
 export const flockpath = Object.freeze({
   ready,
@@ -242,6 +251,7 @@ export const flockpath = Object.freeze({
   overlays,
   metricsHistory,
   theme,
+  classroom,
 });
 
 export default flockpath;

@@ -39,6 +39,8 @@ export class Editor {
     this.polygon = [];
     this.hover = null;
     this.paths = new PathEditor(app, this, overlay, canvas);
+    /** What the teacher's link allows (lock.js replaces it): every tool, move and edit. */
+    this.lock = { toolAllowed: () => true, movable: () => true, permit: (op) => op };
     overlay.addEventListener('pointerdown', (e) => this.pointerDown(e));
     overlay.addEventListener('pointermove', (e) => this.pointerMove(e));
     overlay.addEventListener('pointerup', (e) => this.pointerUp(e));
@@ -60,7 +62,7 @@ export class Editor {
 
   /** Switches tool, dropping any unfinished shape. */
   setTool(tool) {
-    if (!TOOLS.includes(tool)) return;
+    if (!TOOLS.includes(tool) || !this.lock.toolAllowed(tool)) return;
     this.cancel();
     this.tool = tool;
     this.overlay.dataset.tool = tool;
@@ -105,7 +107,8 @@ export class Editor {
     if (this.tool === 'select') {
       const picked = this.app.guard((sim) => JSON.parse(sim.pick(p[0], p[1], this.units(PICK_TOLERANCE_CSS))));
       const item = picked.ok ? picked.value : null;
-      this.drag.item = item;
+      // A locked item can be selected (and its agents inspected), not dragged.
+      this.drag.item = item && this.lock.movable(item) ? item : null;
       this.app.select(item);
       if (item && item.kind === 'group') this.app.setActiveGroup(item.index);
     }
@@ -229,7 +232,9 @@ export class Editor {
 
   /** One undoable `edit`; errors show in the banner and leave the scene unchanged. */
   edit(op, options = {}) {
-    return this.app.change((sim) => sim.edit(JSON.stringify(op)), options).ok;
+    const allowed = this.lock.permit(op);
+    if (!allowed) return false;
+    return this.app.change((sim) => sim.edit(JSON.stringify(allowed)), options).ok;
   }
 
   /** Redraws the rubber-band previews. */

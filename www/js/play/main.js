@@ -12,6 +12,7 @@ import { setupHistoryButtons } from './history.js';
 import { startLoop } from '../core/loop.js';
 import { setupMetrics } from './metrics.js';
 import { setupInspector } from './inspector.js';
+import { setupLock } from './lock.js';
 import { Panel } from './panel.js';
 import { setupExport } from './export.js';
 import { setupShare } from './share.js';
@@ -59,6 +60,8 @@ bootPage('flockpath', ({ module, wasm }) => {
   setupSceneLinks(app);
   const onFrame = setupMetrics(app);
   setupInspector(app);
+  // Last: the teacher's link hides and locks what the modules above built.
+  setupLock(app, editor);
   startLoop(app, canvas, onFrame);
   document.getElementById('loading').hidden = true;
   if (linkError !== null) {

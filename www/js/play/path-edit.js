@@ -32,7 +32,7 @@ export class PathEditor {
 
   /** The handle under the pointer: `{ group, index }` or null. */
   pick(e) {
-    if (this.editor.tool !== 'select' || this.app.crashed) return null;
+    if (this.editor.tool !== 'select' || this.app.crashed || !this.editor.lock.movable({ kind: 'waypoint' })) return null;
     const [x, y] = this.point(e);
     const tolerance = HANDLE_TOLERANCE_CSS * sceneUnitsPerCssPixel(this.app, this.canvas);
     const result = this.app.guard((sim) => JSON.parse(sim.pick_waypoint(x, y, tolerance)));

@@ -4,6 +4,7 @@
 import { download } from '../core/download.js';
 import { messageOf, showMessage } from '../core/errors.js';
 import { shareUrl, writeSceneToLocation } from '../core/url.js';
+import { setupShareLock } from './share-lock.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -25,11 +26,15 @@ const MODULE_ERROR_HANDLER =
   "document.querySelectorAll('flock-path:not(:defined) [data-flockpath-status]').forEach((p) => " +
   "{ p.textContent = 'The flockpath simulation could not be loaded: the browser refused or could not find ' + this.src + '.'; })";
 
-/** The snippets for the current scene string (absolute URLs: they are pasted into other sites). */
-export function snippets(sceneString, { autoplay = true, page = location.href } = {}) {
-  const link = shareUrl(sceneString, page);
+/**
+ * The snippets for the current scene string (absolute URLs: they are pasted into other sites).
+ * `classroom`: the teacher's options from share-lock.js, `{fragment, attributes}`.
+ */
+export function snippets(sceneString, { autoplay = true, page = location.href, classroom = null } = {}) {
+  const options = classroom?.fragment ? `&${classroom.fragment}` : '';
+  const link = shareUrl(sceneString, page) + options;
   const embed = new URL('embed.html', page);
-  embed.hash = `s=${sceneString}${autoplay ? '&autoplay=1' : ''}`;
+  embed.hash = `s=${sceneString}${autoplay ? '&autoplay=1' : ''}${options}`;
   const module = new URL('js/flock-path.js', page);
   const iframe =
     `<iframe src="${attr(embed.href)}" width="720" height="480" style="border:0;max-width:100%" ` +
@@ -39,7 +44,7 @@ export function snippets(sceneString, { autoplay = true, page = location.href } 
   // elements only: a Markdown tool that wraps the element in <p> would end it at a child <p>.
   const component =
     `<script type="module" src="${attr(module.href)}" onerror="${attr(MODULE_ERROR_HANDLER)}"></script>\n` +
-    `<flock-path scene="${attr(sceneString)}"${autoplay ? ' autoplay' : ''} controls height="400px">\n` +
+    `<flock-path scene="${attr(sceneString)}"${autoplay ? ' autoplay' : ''}${classroom?.attributes ?? ' controls'} height="400px">\n` +
     '  <span data-flockpath-status>Loading the flockpath simulation…</span>\n' +
     `  <a href="${attr(link)}">Open this scene in flockpath</a>\n` +
     '</flock-path>';
@@ -73,10 +78,11 @@ export function setupShare(app) {
   const dialog = $('share-dialog');
   const status = $('share-status');
   const autoplay = $('share-autoplay');
+  const lock = setupShareLock(app, () => fill());
   const fill = () => {
     const result = app.guard((sim) => sim.scene_string());
     if (!result.ok) return null;
-    const s = snippets(result.value, { autoplay: autoplay.checked });
+    const s = snippets(result.value, { autoplay: autoplay.checked, classroom: lock.options() });
     $('share-link').value = s.link;
     $('share-link-size').textContent = `(${s.link.length} characters)`;
     $('share-iframe').value = s.iframe;

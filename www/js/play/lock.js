@@ -1,0 +1,144 @@
+// Teacher-locked scenes on the playground: the link's `controls=`, `lock=` and `hide=` options
+// (read and checked in Rust, js/core/classroom.js) applied to the page. Controls not given are
+// hidden with their keys; the editor's tools for a locked part are withdrawn, dragging or
+// deleting a locked item does nothing, the Groups panel's fields are read-only while groups are
+// locked, and while any part is locked the page does not replace the scene (Scene menu, scene
+// file). The page API (`flockpath.*`) stays open for scripts. A pasted link with other options
+// applies them.
+
+import { classroomMessage, readClassroom } from '../core/classroom.js';
+import { showMessage } from '../core/errors.js';
+import { t } from '../core/i18n.js';
+import { typingInto } from '../core/playback.js';
+
+const $ = (id) => document.getElementById(id);
+const closest = (id, selector) => $(id)?.closest(selector) ?? null;
+
+/** The playground's elements each control stands for. */
+const CONTROLS = {
+  play: () => [$('play')],
+  step: () => [$('step')],
+  reset: () => [$('reset')],
+  speed: () => [closest('spf', 'label')],
+  planner: () => [closest('planner', 'label'), document.querySelector('.planner-note')],
+  params: () => [$('params'), $('params-defaults')],
+  seed: () => [closest('seed', '.row')],
+  trails: () => [closest('trails', 'label'), closest('fade', '.row'), $('clear-trails')],
+  presets: () => [closest('preset', 'label')],
+  undo: () => [$('undo')?.parentElement],
+  share: () => [$('share')],
+  export: () => [$('export')],
+  views: () => [document.querySelector('nav.pages')],
+  fullscreen: () => [],
+};
+
+/** The playground's elements each panel stands for. */
+const PANELS = {
+  metrics: () => [closest('metrics-title', 'section')],
+  plots: () => [closest('plots-title', 'section')],
+  diagnose: () => [$('diagnose')],
+  timeline: () => [document.querySelector('.timeline')],
+  groups: () => [closest('groups-title', 'section')],
+  keys: () => [closest('keys-title', 'section')],
+};
+
+/** The control a key stands for (the playground's shortcuts), or null. */
+function keyControl(e) {
+  if (e.ctrlKey || e.metaKey) return ['z', 'y'].includes(e.key.toLowerCase()) ? 'undo' : null;
+  if (e.altKey) return null;
+  if (e.key === ' ') return 'play';
+  if (e.key === 's' || e.key === 'S') return 'step';
+  if (e.key === 'r' || e.key === 'R') return 'reset';
+  return null;
+}
+
+const HIDDEN = 'classroom-hidden';
+
+/** Applies the link's classroom options to the playground; returns nothing, keeps them current. */
+export function setupLock(app, editor) {
+  const style = document.createElement('style');
+  style.textContent = `.${HIDDEN} { display: none !important; }`;
+  document.head.append(style);
+
+  let current = null;
+
+  const hide = (elements, hidden) => {
+    for (const el of elements) el?.classList.toggle(HIDDEN, hidden);
+  };
+
+  const readOnlyGroups = () => {
+    const locked = current?.view.lock.includes('groups') ?? false;
+    for (const field of $('group-editor')?.querySelectorAll('input, select, button') ?? []) field.disabled = locked;
+  };
+
+  const apply = (classroom) => {
+    current?.handle.free();
+    current = classroom;
+    const { view } = classroom;
+    app.classroom = view;
+    for (const [name, elements] of Object.entries(CONTROLS)) hide(elements(), !view.controls.includes(name));
+    for (const [name, elements] of Object.entries(PANELS)) hide(elements(), view.hide.includes(name));
+    // Cards left without their controls go too.
+    hide([closest('planner-title', 'section')], !view.controls.includes('planner') && !view.controls.includes('params'));
+    hide([closest('run-title', 'section')], !view.controls.includes('seed') && !view.controls.includes('trails'));
+    // Replacing the scene would change locked parts.
+    hide([closest('preset', 'label')], !view.controls.includes('presets') || !view.can_load);
+    hide([$('open-scene')], !view.can_load);
+    const tools = [...document.querySelectorAll('[data-tool]')];
+    for (const button of tools) {
+      const locked = view.locked_tools.includes(button.dataset.tool);
+      hide([button], locked);
+      button.disabled = locked;
+    }
+    hide([$('tools')], tools.every((b) => b.dataset.tool === 'select' || b.disabled));
+    if (view.locked_tools.includes(editor.tool)) editor.setTool('select');
+    readOnlyGroups();
+    app.dispatchEvent(new Event('classroom'));
+    for (const message of classroom.errors) showMessage(message);
+  };
+
+  editor.lock = {
+    toolAllowed: (tool) => !(current?.view.locked_tools.includes(tool) ?? false),
+    movable: (item) => {
+      if (!current) return true;
+      if (item.kind === 'waypoint') return !current.view.lock.includes('paths');
+      try {
+        current.handle.check_edit(JSON.stringify({ op: 'move', item, dx: 0, dy: 0 }));
+        return true;
+      } catch {
+        return false;
+      }
+    },
+    permit: (op) => {
+      if (!current) return op;
+      try {
+        return JSON.parse(current.handle.check_edit(JSON.stringify(op)));
+      } catch (error) {
+        const hint = $('hint');
+        const text = error?.part ? t(`classroom.locked.${error.part}`) : classroomMessage(error);
+        if (hint) hint.textContent = text;
+        return null;
+      }
+    },
+  };
+
+  // Shortcuts of controls not given do nothing; a focused element still gets its key.
+  window.addEventListener('keydown', (e) => {
+    const control = keyControl(e);
+    if (!current || !control || current.view.controls.includes(control) || typingInto(e.target)) return;
+    e.stopImmediatePropagation();
+  }, { capture: true });
+
+  // A dropped scene file would replace locked parts; the browser must not open it either.
+  for (const type of ['dragover', 'drop']) {
+    document.addEventListener(type, (e) => {
+      if (!current || current.view.can_load) return;
+      e.preventDefault();
+      e.stopPropagation();
+    }, { capture: true });
+  }
+
+  app.addEventListener('scene', readOnlyGroups);
+  addEventListener('hashchange', () => apply(readClassroom(app.module.Classroom.from_link(location.hash))));
+  apply(readClassroom(app.module.Classroom.from_link(location.hash)));
+}
