@@ -8,7 +8,7 @@
 //! teacher's options. Every option is a list of names: a link without an option allows
 //! everything (every link written before the options existed), and each name, once released, is
 //! read with the same meaning by every later build (names are added, never renamed or removed;
-//! `tests/data/fragments/classroom/` pins the released ones). A name this build does not know is
+//! `tests/data/classroom/` pins the released ones). A name this build does not know is
 //! refused with a message naming the option and the allowed names, never read as something else.
 
 use crate::model::edit::{Edit, ItemRef};
@@ -266,7 +266,11 @@ pub struct Classroom {
 
 impl Default for Classroom {
     fn default() -> Self {
-        Self { controls: Control::ALL.iter().copied().collect(), locked: BTreeSet::new(), hidden: BTreeSet::new() }
+        Self {
+            controls: Control::ALL.iter().copied().collect(),
+            locked: BTreeSet::new(),
+            hidden: BTreeSet::new(),
+        }
     }
 }
 
@@ -532,7 +536,11 @@ mod tests {
     use super::*;
     use crate::model::geometry::Obstacle;
 
-    fn parse(controls: Option<&str>, lock: Option<&str>, hide: Option<&str>) -> Result<Classroom, ClassroomError> {
+    fn parse(
+        controls: Option<&str>,
+        lock: Option<&str>,
+        hide: Option<&str>,
+    ) -> Result<Classroom, ClassroomError> {
         Classroom::from_options(Options { controls, lock, hide })
     }
 
@@ -549,7 +557,8 @@ mod tests {
 
     #[test]
     fn lists_choose_exactly_their_names() {
-        let c = parse(Some("play, Step,,reset,planner"), Some("obstacles,goals"), Some("metrics")).expect("valid");
+        let c = parse(Some("play, Step,,reset,planner"), Some("obstacles,goals"), Some("metrics"))
+            .expect("valid");
         let shown: Vec<_> = Control::ALL.iter().filter(|k| c.allows(**k)).map(|k| k.name()).collect();
         assert_eq!(shown, ["play", "step", "reset", "planner"]);
         assert!(c.is_locked(Part::Obstacles) && c.is_locked(Part::Goals));
@@ -558,7 +567,10 @@ mod tests {
         assert!(!c.can_load());
         assert_eq!(c.locked_tools(), ["circle", "rect", "polygon", "goal"]);
         assert_eq!(c.fragment(), "controls=play,step,reset,planner&lock=obstacles,goals&hide=metrics");
-        assert_eq!(c.attributes(), " controls=\"play,step,reset,planner\" lock=\"obstacles,goals\" hide=\"metrics\"");
+        assert_eq!(
+            c.attributes(),
+            " controls=\"play,step,reset,planner\" lock=\"obstacles,goals\" hide=\"metrics\""
+        );
     }
 
     #[test]
@@ -575,7 +587,10 @@ mod tests {
         let locked = parse(None, Some("all"), Some("")).expect("all");
         assert!(Part::ALL.iter().all(|p| locked.is_locked(*p)));
         assert!(Panel::ALL.iter().all(|p| locked.hides(*p)));
-        assert_eq!(locked.fragment(), "lock=obstacles,goals,groups,paths&hide=metrics,plots,diagnose,timeline,groups,keys");
+        assert_eq!(
+            locked.fragment(),
+            "lock=obstacles,goals,groups,paths&hide=metrics,plots,diagnose,timeline,groups,keys"
+        );
         // 0 and 1 are the controls option's old spellings only.
         assert!(parse(None, Some("1"), None).is_err());
     }
@@ -589,13 +604,17 @@ mod tests {
             "lock: unknown name \"walls\"; allowed: obstacles, goals, groups, paths (or all, none)"
         );
         let e = parse(Some("play,pause"), None, None).expect_err("pause");
-        assert!(e.to_string().starts_with("controls: unknown name \"pause\"; allowed: play, step, reset, speed,"), "{e}");
+        assert!(
+            e.to_string().starts_with("controls: unknown name \"pause\"; allowed: play, step, reset, speed,"),
+            "{e}"
+        );
         let e = parse(None, None, Some("metric")).expect_err("metric");
         assert_eq!(e.field(), Field::Hide);
         assert!(e.to_string().contains("allowed: metrics, plots, diagnose, timeline, groups, keys"), "{e}");
         // A long name is cut in the message; a long value is refused outright.
         let long = "x".repeat(200);
-        let ClassroomError::UnknownName { name, .. } = parse(None, Some(&long), None).expect_err("long") else {
+        let ClassroomError::UnknownName { name, .. } = parse(None, Some(&long), None).expect_err("long")
+        else {
             panic!("an unknown name")
         };
         assert_eq!(name.len(), 40);
@@ -608,8 +627,11 @@ mod tests {
 
     #[test]
     fn the_lenient_reading_keeps_the_fields_that_parse() {
-        let (c, errors) =
-            Classroom::from_options_lenient(Options { controls: Some("play"), lock: Some("goals"), hide: Some("bogus") });
+        let (c, errors) = Classroom::from_options_lenient(Options {
+            controls: Some("play"),
+            lock: Some("goals"),
+            hide: Some("bogus"),
+        });
         assert_eq!(errors.len(), 1);
         assert_eq!(errors[0].field(), Field::Hide);
         assert!(c.allows(Control::Play) && !c.allows(Control::Step));
@@ -619,7 +641,11 @@ mod tests {
 
     #[test]
     fn written_options_read_back_the_same() {
-        let c = Classroom::new([Control::Step, Control::Fullscreen], [Part::Paths, Part::Groups], [Panel::Timeline]);
+        let c = Classroom::new(
+            [Control::Step, Control::Fullscreen],
+            [Part::Paths, Part::Groups],
+            [Panel::Timeline],
+        );
         let options = c.options();
         let get = |key: &str| options.iter().find(|(k, _)| *k == key).map(|(_, v)| v.as_str());
         let back = parse(get("controls"), get("lock"), get("hide")).expect("round trip");
@@ -633,10 +659,16 @@ mod tests {
         let circle = Obstacle::Circle { center: [10.0, 10.0], radius: 5.0 };
         let refused = |e: Edit| c.check_edit(&e).map_err(|l| l.part);
         assert_eq!(refused(Edit::AddObstacle { obstacle: circle }), Err(Part::Obstacles));
-        assert_eq!(refused(Edit::Move { item: ItemRef::Obstacle(0), dx: 1.0, dy: 0.0 }), Err(Part::Obstacles));
+        assert_eq!(
+            refused(Edit::Move { item: ItemRef::Obstacle(0), dx: 1.0, dy: 0.0 }),
+            Err(Part::Obstacles)
+        );
         assert_eq!(refused(Edit::Delete { item: ItemRef::Obstacle(0) }), Err(Part::Obstacles));
         assert_eq!(refused(Edit::Move { item: ItemRef::Goal(0), dx: 1.0, dy: 0.0 }), Err(Part::Goals));
-        assert_eq!(refused(Edit::AddGoal { position: [1.0, 1.0], radius: None, group: Some(0) }), Err(Part::Goals));
+        assert_eq!(
+            refused(Edit::AddGoal { position: [1.0, 1.0], radius: None, group: Some(0) }),
+            Err(Part::Goals)
+        );
         let moved = Edit::Move { item: ItemRef::Group(0), dx: 1.0, dy: 0.0 };
         assert_eq!(c.check_edit(&moved), Ok(moved.clone()));
         let path = Edit::AddPath { points: vec![[0.0, 0.0], [1.0, 1.0]], radius: None, group: Some(0) };
@@ -651,7 +683,10 @@ mod tests {
     fn with_groups_locked_a_new_goal_is_added_without_retargeting_a_group() {
         let c = parse(None, Some("groups"), None).expect("valid");
         let goal = Edit::AddGoal { position: [1.0, 1.0], radius: None, group: Some(0) };
-        assert_eq!(c.check_edit(&goal), Ok(Edit::AddGoal { position: [1.0, 1.0], radius: None, group: None }));
+        assert_eq!(
+            c.check_edit(&goal),
+            Ok(Edit::AddGoal { position: [1.0, 1.0], radius: None, group: None })
+        );
         let path = Edit::AddPath { points: vec![[0.0, 0.0], [1.0, 1.0]], radius: None, group: Some(1) };
         assert!(matches!(c.check_edit(&path), Ok(Edit::AddPath { group: None, .. })));
         assert!(c.check_edit(&Edit::Delete { item: ItemRef::Group(0) }).is_err());

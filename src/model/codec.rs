@@ -19,7 +19,7 @@
 //! (`model::classroom`): page options like `autoplay`, not part of the scene string, so the
 //! scene's version and digest are untouched by them. A link without them (every link written
 //! before they existed) allows everything; their names are only ever added, and the released
-//! ones are pinned by `tests/data/fragments/classroom/`.
+//! ones are pinned by `tests/data/classroom/`.
 //!
 //! A refusal names the field by its path in the keyed scene JSON (`groups[2].planner.params.
 //! max_speed`), in both forms (the compact form's positions are translated), with the value as

@@ -75,7 +75,11 @@ impl Classroom {
             Ok(allowed) => serde_json::to_string(&allowed).map_err(|e| js_error(e).into()),
             Err(locked) => {
                 let error = js_sys::Error::new(&locked.to_string());
-                let _ = js_sys::Reflect::set(&error, &JsValue::from_str("part"), &JsValue::from_str(locked.part.name()));
+                let _ = js_sys::Reflect::set(
+                    &error,
+                    &JsValue::from_str("part"),
+                    &JsValue::from_str(locked.part.name()),
+                );
                 Err(error.into())
             }
         }
@@ -91,7 +95,11 @@ pub fn classroom_vocabulary_json() -> String {
 /// A classroom from the Share dialog's ticks: lists of names (an unknown name throws the
 /// refusal, as a link would).
 #[wasm_bindgen]
-pub fn classroom_from_ticks(controls: Vec<String>, lock: Vec<String>, hide: Vec<String>) -> Result<Classroom, JsValue> {
+pub fn classroom_from_ticks(
+    controls: Vec<String>,
+    lock: Vec<String>,
+    hide: Vec<String>,
+) -> Result<Classroom, JsValue> {
     let list = |names: &[String]| if names.is_empty() { "none".to_string() } else { names.join(",") };
     let (controls, lock, hide) = (list(&controls), list(&lock), list(&hide));
     let parsed = classroom::Classroom::from_options(Options {
