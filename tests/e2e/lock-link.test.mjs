@@ -1,0 +1,175 @@
+// A teacher-locked link (`index.html#s=…&controls=…&lock=…&hide=…`): only the controls named are
+// shown and their keys work, the editor cannot add, move or delete a locked obstacle or goal with
+// the pointer or keys (an unlocked part still can), the page API still can, the address bar keeps
+// the options, a typo is refused by name, and an old link still shows everything.
+
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import { assertNoUnexpectedErrors, bannerText, frames, openPage, sceneToClient, screenshot, simpleScene } from './helpers.mjs';
+
+const OBSTACLE = { shape: 'circle', center: [400, 250], radius: 40 };
+const SCENE = simpleScene({ name: 'locked', obstacles: [OBSTACLE] });
+
+/** Whether each selector's element is visible. */
+const visible = (page, selectors) =>
+  page.evaluate((list) => Object.fromEntries(list.map((s) => {
+    const el = document.querySelector(s);
+    return [s, Boolean(el && el.getClientRects().length > 0 && getComputedStyle(el).visibility !== 'hidden')];
+  })), selectors);
+
+/** Drags with the mouse from scene point a to scene point b. */
+async function drag(page, [ax, ay], [bx, by]) {
+  const a = await sceneToClient(page, ax, ay);
+  const b = await sceneToClient(page, bx, by);
+  await page.mouse.move(a.x, a.y);
+  await page.mouse.down();
+  await page.mouse.move((a.x + b.x) / 2, (a.y + b.y) / 2, { steps: 4 });
+  await page.mouse.move(b.x, b.y, { steps: 4 });
+  await page.mouse.up();
+}
+
+/** Opens `hash` on the already open page as a fresh load (not a same-document jump). */
+async function reopen(page, base, hash) {
+  await page.goto('about:blank');
+  await page.goto(base + hash);
+  await page.waitForFunction(() => window.flockpath !== undefined);
+  await page.evaluate(() => window.flockpath.ready);
+}
+
+test('a locked link shows only its controls; locked obstacles and goals resist the pointer, not the API', async () => {
+  const { page, server, errors, close } = await openPage();
+  try {
+    const fragment = await page.evaluate((scene) => {
+      window.flockpath.load(scene);
+      return window.flockpath.sceneString();
+    }, SCENE);
+    await reopen(page, server.url, `#s=${fragment}&controls=play,step,reset,planner&lock=obstacles,goals&hide=metrics,plots,timeline`);
+    await page.evaluate(() => window.flockpath.pause());
+
+    const classroom = await page.evaluate(() => window.flockpath.classroom());
+    assert.deepEqual(classroom.controls, ['play', 'step', 'reset', 'planner']);
+    assert.deepEqual(classroom.lock, ['obstacles', 'goals']);
+    assert.equal(classroom.can_load, false);
+
+    const shown = await visible(page, [
+      '#play', '#step', '#reset', '#planner', '#spf', '#undo', '#share', '#export', '#seed', '#trails', '#preset',
+      'nav.pages', '#params-defaults', '#metrics', '#plots', '.timeline', '#diagnose',
+      '[data-tool="select"]', '[data-tool="circle"]', '[data-tool="rect"]', '[data-tool="polygon"]',
+      '[data-tool="goal"]', '[data-tool="group"]', '[data-tool="path"]',
+    ]);
+    for (const s of ['#play', '#step', '#reset', '#planner', '#diagnose', '[data-tool="select"]', '[data-tool="group"]', '[data-tool="path"]']) {
+      assert.equal(shown[s], true, `${s} is shown`);
+    }
+    for (const s of ['#spf', '#undo', '#share', '#export', '#seed', '#trails', '#preset', 'nav.pages', '#params-defaults',
+      '#metrics', '#plots', '.timeline', '[data-tool="circle"]', '[data-tool="rect"]', '[data-tool="polygon"]', '[data-tool="goal"]']) {
+      assert.equal(shown[s], false, `${s} is hidden`);
+    }
+
+    // The pointer: dragging the obstacle or the goal does nothing; keys cannot pick their tools;
+    // Delete on a selected locked item does nothing.
+    const before = await page.evaluate(() => window.flockpath.scene());
+    await page.keyboard.press('1');
+    await drag(page, OBSTACLE.center, [OBSTACLE.center[0] + 120, OBSTACLE.center[1] + 80]);
+    await page.keyboard.press('Delete');
+    await drag(page, before.goals[0].position, [600, 100]);
+    await page.keyboard.press('Delete');
+    for (const key of ['2', '3', '5']) await page.keyboard.press(key);
+    assert.equal(await page.getAttribute('[data-tool="select"]', 'aria-checked'), 'true', 'locked tools cannot be picked by key');
+    const goalPoint = await sceneToClient(page, 200, 100);
+    await page.mouse.click(goalPoint.x, goalPoint.y);
+    await frames(page);
+    const after = await page.evaluate(() => window.flockpath.scene());
+    assert.deepEqual(after.obstacles, before.obstacles, 'the locked obstacle did not move');
+    assert.deepEqual(after.goals, before.goals, 'the locked goal did not move');
+    assert.match(await page.textContent('#hint'), /locked/, 'the hint says why');
+
+    // An unlocked part (a group) is still drawn with the pointer, and the address bar keeps the options.
+    await page.keyboard.press('6');
+    await drag(page, [100, 380], [180, 460]);
+    const groups = await page.evaluate(() => window.flockpath.scene().groups.length);
+    assert.equal(groups, before.groups.length + 1, 'a new group was drawn');
+    await page.waitForFunction(() => location.hash.startsWith(`#s=${window.flockpath.sceneString()}&`), null, { timeout: 5_000 });
+    const rewritten = await page.evaluate(() => location.hash);
+    assert.ok(rewritten.endsWith('&controls=play,step,reset,planner&lock=obstacles,goals&hide=metrics,plots,timeline'), rewritten);
+
+    // The page API stays open: a script moves the obstacle and the goal.
+    const moved = structuredClone(after);
+    moved.obstacles[0].center = [420, 300];
+    moved.goals[0].position = [650, 120];
+    const loaded = await page.evaluate((scene) => window.flockpath.load(scene), moved);
+    assert.deepEqual(loaded.obstacles[0].center, [420, 300]);
+    assert.deepEqual(loaded.goals[0].position, [650, 120]);
+
+    // The rewritten address reopens locked the same way.
+    await reopen(page, server.url, rewritten);
+    assert.deepEqual((await page.evaluate(() => window.flockpath.classroom())).lock, ['obstacles', 'goals']);
+    assert.equal((await visible(page, ['[data-tool="circle"]']))['[data-tool="circle"]'], false);
+    await screenshot(page, 'lock-link');
+    assertNoUnexpectedErrors(errors);
+  } finally {
+    await close();
+  }
+});
+
+test('keys of controls not given do nothing; those given still work', async () => {
+  const { page, server, errors, close } = await openPage();
+  try {
+    const fragment = await page.evaluate((scene) => {
+      window.flockpath.load(scene);
+      return window.flockpath.sceneString();
+    }, SCENE);
+    await reopen(page, server.url, `#s=${fragment}&controls=step`);
+    await page.evaluate(() => window.flockpath.pause());
+    await page.evaluate(() => document.activeElement?.blur());
+    const steps = () => page.evaluate(() => window.flockpath.metrics().steps);
+    const start = await steps();
+    await page.keyboard.press(' ');
+    await page.keyboard.press('r');
+    await frames(page, 4);
+    assert.equal(await page.evaluate(() => window.flockpath.isPlaying()), false, 'Space does not play');
+    await page.keyboard.press('s');
+    await page.keyboard.press('s');
+    assert.equal(await steps(), start + 2, 'S steps');
+    await page.keyboard.press('r');
+    assert.equal(await steps(), start + 2, 'R does not reset');
+    assertNoUnexpectedErrors(errors);
+  } finally {
+    await close();
+  }
+});
+
+test('an unknown name is refused by field with the allowed names; an old link shows everything', async () => {
+  const { page, server, errors, close } = await openPage();
+  try {
+    const fragment = await page.evaluate((scene) => {
+      window.flockpath.load(scene);
+      return window.flockpath.sceneString();
+    }, SCENE);
+    await reopen(page, server.url, `#s=${fragment}&lock=obstacles,walls&hide=plots`);
+    const banner = await bannerText(page);
+    assert.match(banner ?? '', /lock/);
+    assert.match(banner ?? '', /"walls"/);
+    assert.match(banner ?? '', /obstacles, goals, groups, paths/);
+    const refused = await page.evaluate(() => window.flockpath.classroom());
+    assert.deepEqual(refused.lock, [], 'the refused option locks nothing');
+    assert.deepEqual(refused.hide, ['plots'], 'the other options still apply');
+
+    await reopen(page, server.url, `#s=${fragment}`);
+    const open = await page.evaluate(() => window.flockpath.classroom());
+    assert.equal(open.open, true);
+    const selectors = ['#play', '#step', '#reset', '#spf', '#planner', '#undo', '#share', '#export', '#seed', '#trails',
+      '#preset', 'nav.pages', '#metrics', '#plots', '.timeline', '#diagnose',
+      ...['select', 'circle', 'rect', 'polygon', 'goal', 'group', 'path'].map((t) => `[data-tool="${t}"]`)];
+    const shown = await visible(page, selectors);
+    for (const s of selectors) assert.equal(shown[s], true, `${s} is shown for an old link`);
+    // And the editor moves the obstacle there.
+    await page.evaluate(() => window.flockpath.pause());
+    await page.keyboard.press('1');
+    await drag(page, OBSTACLE.center, [OBSTACLE.center[0] + 100, OBSTACLE.center[1]]);
+    const center = await page.evaluate(() => window.flockpath.scene().obstacles[0].center);
+    assert.ok(center[0] > OBSTACLE.center[0] + 50, `the obstacle moved to ${center}`);
+    assertNoUnexpectedErrors(errors);
+  } finally {
+    await close();
+  }
+});
