@@ -70,6 +70,7 @@ test('a locked link shows only its controls; locked obstacles and goals resist t
     const before = await page.evaluate(() => window.flockpath.scene());
     await page.keyboard.press('1');
     await drag(page, OBSTACLE.center, [OBSTACLE.center[0] + 120, OBSTACLE.center[1] + 80]);
+    assert.match(await page.textContent('#hint'), /Obstacles are locked/, 'the hint says why');
     await page.keyboard.press('Delete');
     await drag(page, before.goals[0].position, [600, 100]);
     await page.keyboard.press('Delete');
@@ -81,7 +82,6 @@ test('a locked link shows only its controls; locked obstacles and goals resist t
     const after = await page.evaluate(() => window.flockpath.scene());
     assert.deepEqual(after.obstacles, before.obstacles, 'the locked obstacle did not move');
     assert.deepEqual(after.goals, before.goals, 'the locked goal did not move');
-    assert.match(await page.textContent('#hint'), /locked/, 'the hint says why');
 
     // An unlocked part (a group) is still drawn with the pointer, and the address bar keeps the options.
     await page.keyboard.press('6');
@@ -168,6 +168,42 @@ test('an unknown name is refused by field with the allowed names; an old link sh
     await drag(page, OBSTACLE.center, [OBSTACLE.center[0] + 100, OBSTACLE.center[1]]);
     const center = await page.evaluate(() => window.flockpath.scene().obstacles[0].center);
     assert.ok(center[0] > OBSTACLE.center[0] + 50, `the obstacle moved to ${center}`);
+    assertNoUnexpectedErrors(errors);
+  } finally {
+    await close();
+  }
+});
+
+test('with groups locked the Groups panel is read-only and a new goal leaves the groups as they were', async () => {
+  const { page, server, errors, close } = await openPage();
+  try {
+    const fragment = await page.evaluate((scene) => {
+      window.flockpath.load(scene);
+      return window.flockpath.sceneString();
+    }, SCENE);
+    await reopen(page, server.url, `#s=${fragment}&lock=groups`);
+    await page.evaluate(() => window.flockpath.pause());
+    const fields = await page.evaluate(() =>
+      [...document.querySelectorAll('#group-editor input, #group-editor select, #group-editor button')].map((f) => f.disabled));
+    assert.ok(fields.length >= 5 && fields.every(Boolean), `every group field is read-only: ${fields}`);
+    assert.equal(await page.evaluate(() => document.querySelector('[data-tool="group"]').getClientRects().length), 0);
+
+    const before = await page.evaluate(() => window.flockpath.scene());
+    // The spawn region cannot be dragged; a goal can be placed, and the group keeps heading for its own.
+    await page.keyboard.press('1');
+    const spawn = before.groups[0].spawn;
+    await drag(page, [(spawn.min[0] + spawn.max[0]) / 2, (spawn.min[1] + spawn.max[1]) / 2], [300, 100]);
+    await page.keyboard.press('5');
+    const click = await sceneToClient(page, 600, 420);
+    await page.mouse.click(click.x, click.y);
+    const after = await page.evaluate(() => window.flockpath.scene());
+    assert.deepEqual(after.groups, before.groups, 'the groups are unchanged');
+    assert.equal(after.goals.length, before.goals.length + 1, 'the goal was added');
+    // An unlocked part still moves.
+    await page.keyboard.press('1');
+    await drag(page, OBSTACLE.center, [OBSTACLE.center[0], OBSTACLE.center[1] + 100]);
+    const center = await page.evaluate(() => window.flockpath.scene().obstacles[0].center);
+    assert.ok(center[1] > OBSTACLE.center[1] + 50, `the obstacle moved to ${center}`);
     assertNoUnexpectedErrors(errors);
   } finally {
     await close();

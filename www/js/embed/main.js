@@ -9,7 +9,7 @@
 //   //                   or { flockpath: 1, id: 7, ok: false, error: 'readable message' }
 //
 // Methods: load(scene), play(), pause(), step(n), reset(), metrics(), scene(), sceneString(),
-// digest(), isPlaying(). When it is ready the embed posts { flockpath: 1, event: 'ready' } to
+// digest(), isPlaying(), classroom(). When it is ready the embed posts { flockpath: 1, event: 'ready' } to
 // its parent; when it cannot load (wasm missing or refused) it posts { flockpath: 1, event:
 // 'error', error } instead, and answers every request, waiting or new, with ok: false and that
 // message.
@@ -29,6 +29,7 @@ const METHODS = {
   sceneString: (el) => el.sceneString(),
   digest: (el) => el.digest(),
   isPlaying: (el) => el.playing,
+  classroom: (el) => el.classroom(),
 };
 
 const el = document.getElementById('embedded');

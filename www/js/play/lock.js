@@ -97,29 +97,26 @@ export function setupLock(app, editor) {
     for (const message of classroom.errors) showMessage(message);
   };
 
+  /** The edit the editor may send (Rust's check), or null with the reason in the hint line. */
+  const permit = (op) => {
+    if (!current) return op;
+    try {
+      return JSON.parse(current.handle.check_edit(JSON.stringify(op)));
+    } catch (error) {
+      const hint = $('hint');
+      if (hint) hint.textContent = error?.part ? t(`classroom.locked.${error.part}`) : classroomMessage(error);
+      return null;
+    }
+  };
   editor.lock = {
     toolAllowed: (tool) => !(current?.view.locked_tools.includes(tool) ?? false),
+    // Asked when a pointer lands on an item (a refusal says why), and by the waypoint handles.
     movable: (item) => {
       if (!current) return true;
       if (item.kind === 'waypoint') return !current.view.lock.includes('paths');
-      try {
-        current.handle.check_edit(JSON.stringify({ op: 'move', item, dx: 0, dy: 0 }));
-        return true;
-      } catch {
-        return false;
-      }
+      return permit({ op: 'move', item, dx: 0, dy: 0 }) !== null;
     },
-    permit: (op) => {
-      if (!current) return op;
-      try {
-        return JSON.parse(current.handle.check_edit(JSON.stringify(op)));
-      } catch (error) {
-        const hint = $('hint');
-        const text = error?.part ? t(`classroom.locked.${error.part}`) : classroomMessage(error);
-        if (hint) hint.textContent = text;
-        return null;
-      }
-    },
+    permit,
   };
 
   // Shortcuts of controls not given do nothing; a focused element still gets its key.
