@@ -1037,6 +1037,15 @@ mod tests {
     }
 
     #[test]
+    fn link_options_are_percent_decoded_where_they_spell_ascii() {
+        assert_eq!(percent_decoded("obstacles%2Cgoals%2cpaths"), "obstacles,goals,paths");
+        // Multi-byte text, broken and non-ASCII escapes stay as written.
+        assert_eq!(percent_decoded("é%2Cü%zz%4%C3%A9%"), "é,ü%zz%4%C3%A9%");
+        assert_eq!(link_option("x#s=2.a&lock=goals&lock=paths", "lock"), Some("goals"));
+        assert_eq!(link_option("2.abc", "lock"), None);
+    }
+
+    #[test]
     fn truncated_fragments_fail_cleanly() {
         let frag = scene_to_fragment(&(presets::ALL[0].build)());
         for cut in 2..frag.len() {
