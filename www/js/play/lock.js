@@ -94,7 +94,7 @@ export function setupLock(app, editor) {
     if (view.locked_tools.includes(editor.tool)) editor.setTool('select');
     readOnlyGroups();
     app.dispatchEvent(new Event('classroom'));
-    for (const message of classroom.errors) showMessage(message);
+    if (classroom.errors.length) showMessage(classroom.errors.join(' '));
   };
 
   /** The edit the editor may send (Rust's check), or null with the reason in the hint line. */
