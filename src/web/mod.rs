@@ -21,7 +21,7 @@ use glam::Vec2;
 use std::fmt::Display;
 use wasm_bindgen::prelude::*;
 
-mod classroom;
+pub mod classroom;
 mod compare;
 pub mod lab;
 mod paths;
