@@ -42,6 +42,7 @@ test('the iframe shows only the controls named and carries the options to the pl
     assert.equal(new URL(href).hash, `#s=${fragment}&controls=play,reset&lock=obstacles&hide=metrics`);
 
     // The playground it opens is locked the same way.
+    await page.waitForLoadState('networkidle');
     await page.goto(href);
     await page.waitForFunction(() => window.flockpath !== undefined);
     await page.evaluate(() => window.flockpath.ready);

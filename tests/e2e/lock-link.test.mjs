@@ -30,6 +30,8 @@ async function drag(page, [ax, ay], [bx, by]) {
 
 /** Opens `hash` on the already open page as a fresh load (not a same-document jump). */
 async function reopen(page, base, hash) {
+  // Leaving while a request is in flight (the manifest's icon) would report it as failed.
+  await page.waitForLoadState('networkidle');
   await page.goto('about:blank');
   await page.goto(base + hash);
   await page.waitForFunction(() => window.flockpath !== undefined);

@@ -27,7 +27,8 @@ test('the Share dialog ticks produce a link, iframe and element that reproduce t
     assert.match(await component(), /autoplay controls height="400px"/);
 
     // Tick: students get play and step only, obstacles and goals locked, metrics hidden.
-    await page.click('#share-lock summary');
+    assert.equal(await shown(page, '#share-lock'), false, 'the ticks wait behind their button');
+    await page.click('#share-lock-toggle');
     for (const name of ['reset', 'speed', 'planner', 'params', 'seed', 'trails', 'presets', 'undo', 'share', 'export', 'views', 'fullscreen']) {
       await page.uncheck(`input[data-classroom="controls:${name}"]`);
     }
@@ -42,6 +43,7 @@ test('the Share dialog ticks produce a link, iframe and element that reproduce t
 
     // The link reproduces the ticks.
     const href = await link();
+    await page.waitForLoadState('networkidle');
     await page.goto('about:blank');
     await page.goto(href);
     await page.waitForFunction(() => window.flockpath !== undefined);
@@ -63,18 +65,15 @@ test('the Share dialog ticks produce a link, iframe and element that reproduce t
 });
 
 test('the ticks start from the page\'s own options', async () => {
-  const { page, server, errors, close } = await openPage();
+  const { page, errors, close } = await openPage({ hash: '#s=pillars&lock=paths&hide=keys' });
   try {
-    const scene = await page.evaluate(() => window.flockpath.sceneString());
-    await page.goto('about:blank');
-    await page.goto(`${server.url}#s=${scene}&lock=paths&hide=keys`);
-    await page.waitForFunction(() => window.flockpath !== undefined);
     await page.evaluate(() => window.flockpath.ready);
     await page.click('#share');
     const ticks = await page.evaluate(() =>
       [...document.querySelectorAll('#share-lock input:checked')].map((b) => b.dataset.classroom).filter((n) => !n.startsWith('controls:')));
     assert.deepEqual(ticks, ['lock:paths', 'hide:keys']);
-    assert.equal(await page.evaluate(() => document.getElementById('share-lock').open), true);
+    assert.equal(await shown(page, '#share-lock'), true, 'shown at once when the page is locked');
+    assert.equal(await page.getAttribute('#share-lock-toggle', 'aria-expanded'), 'true');
     assert.ok((await page.inputValue('#share-link')).endsWith('&lock=paths&hide=keys'));
     assertNoUnexpectedErrors(errors);
   } finally {

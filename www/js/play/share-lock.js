@@ -15,7 +15,8 @@ const FIELDS = [
 
 const STYLE = `
 .share-lock { margin: 0.4rem 0 0.8rem; }
-.share-lock summary { cursor: pointer; font-weight: 600; }
+.share-lock[hidden] { display: none; }
+.share-lock h3 { margin: 0; font-size: 1rem; }
 .share-lock fieldset { border: 1px solid var(--line, #d5dbe3); border-radius: 6px; margin: 0.4rem 0; padding: 0.3rem 0.6rem; }
 .share-lock .ticks { display: flex; flex-wrap: wrap; gap: 0.2rem 0.9rem; }
 .share-lock label { white-space: nowrap; }
@@ -32,15 +33,29 @@ export function setupShareLock(app, changed) {
   document.head.append(style);
   const vocabulary = JSON.parse(app.module.classroom_vocabulary_json());
 
-  const details = document.createElement('details');
-  details.className = 'share-lock';
-  details.id = 'share-lock';
-  const summary = document.createElement('summary');
-  summary.textContent = t('classroom.share.title');
+  // A section shown by a button beside "Copy link" (the dialog stays as tall as it was until the
+  // author asks for the ticks: on a phone its Close button must stay on screen).
+  const section = document.createElement('section');
+  section.className = 'share-lock';
+  section.id = 'share-lock';
+  section.setAttribute('aria-labelledby', 'share-lock-title');
+  const title = Object.assign(document.createElement('h3'), { id: 'share-lock-title', textContent: t('classroom.share.title') });
   const note = document.createElement('p');
   note.className = 'muted small-print';
   note.textContent = t('classroom.share.note');
-  details.append(summary, note);
+  section.append(title, note);
+  const toggle = Object.assign(document.createElement('button'), {
+    type: 'button',
+    id: 'share-lock-toggle',
+    textContent: t('classroom.share.toggle'),
+    title: t('classroom.share.title'),
+  });
+  toggle.setAttribute('aria-controls', section.id);
+  const show = (open) => {
+    section.hidden = !open;
+    toggle.setAttribute('aria-expanded', String(open));
+  };
+  toggle.addEventListener('click', () => show(section.hidden));
   const boxes = {};
   for (const field of FIELDS) {
     const fieldset = document.createElement('fieldset');
@@ -59,14 +74,14 @@ export function setupShareLock(app, changed) {
       return box;
     });
     fieldset.append(legend, ticks);
-    details.append(fieldset);
+    section.append(fieldset);
   }
   // The ticks start as the page's own options (lock.js applies them, also after a pasted link),
   // open when there are any: the author sees what the link will carry.
   const startFromPage = () => {
     const page = app.classroom ?? { controls: vocabulary.controls, lock: [], hide: [], open: true };
     for (const field of FIELDS) for (const box of boxes[field.key]) box.checked = page[field.key].includes(box.value);
-    details.open = !page.open;
+    show(!page.open);
   };
   startFromPage();
   app.addEventListener('classroom', () => {
@@ -74,7 +89,8 @@ export function setupShareLock(app, changed) {
     changed();
   });
   const intro = document.querySelector('#share-dialog .dialog-body > p');
-  intro.after(details);
+  intro.after(section);
+  document.getElementById('copy-link').after(toggle);
 
   const ticked = (key) => boxes[key].filter((b) => b.checked).map((b) => b.value);
   return {
