@@ -55,6 +55,7 @@ function paramForm(app, index, pane) {
 
 function paneElement(app, index, pane, count) {
   const canvas = el('canvas', { className: 'pane-canvas' });
+  canvas.setAttribute('role', 'img');
   canvas.setAttribute('aria-label', `Pane ${pane.pane}: ${pane.label}`);
   const picker = el('select', { title: 'The planner of every group in this pane' });
   picker.append(el('option', { value: 'scene', textContent: "scene's planners", selected: pane.planner === 'scene' }));

@@ -7,6 +7,7 @@ import { blit } from '../core/blit.js';
 import { bootPage } from '../core/boot.js';
 import { messageOf, showMessage } from '../core/errors.js';
 import { drawPlot } from '../core/plot.js';
+import { onPage } from '../core/keys.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -239,8 +240,10 @@ bootPage('the lab', ({ module, wasm }) => {
     state.pings += 1;
     $('lab-ping-count').textContent = String(state.pings);
   });
+  // Single-key shortcuts only while the page or a canvas has focus (core/keys.js): a focused
+  // button or checkbox keeps Space.
   window.addEventListener('keydown', (e) => {
-    if (e.target instanceof HTMLInputElement || e.target instanceof HTMLSelectElement) return;
+    if (!onPage(e) || e.ctrlKey || e.metaKey || e.altKey) return;
     if (e.key === ' ') {
       e.preventDefault();
       setPlaying(!state.playing);
