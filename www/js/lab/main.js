@@ -11,8 +11,8 @@ import { onPage } from '../core/keys.js';
 
 const $ = (id) => document.getElementById(id);
 
-/** Line colour per algorithm name. */
-const ALGORITHM_COLORS = { gsa: '#d9480f', igsa: '#1c7ed6', pso: '#2b8a3e', firefly: '#ae3ec9', ga: '#5c5f66' };
+/** Line and label colour per algorithm name; each ≥ 4.5:1 on white, as the checkbox labels are text (axe colour contrast). */
+const ALGORITHM_COLORS = { gsa: '#c2410c', igsa: '#1971c2', pso: '#2b7a3b', firefly: '#ae3ec9', ga: '#5c5f66' };
 
 /**
  * The convergence chart: best-so-far against iteration on a log scale, one line per run

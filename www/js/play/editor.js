@@ -79,7 +79,7 @@ export class Editor {
       this.showHint();
       this.draw();
     });
-    for (const button of document.querySelectorAll('[data-tool]')) {
+    for (const button of document.querySelectorAll('button[data-tool]')) {
       button.setAttribute('role', 'radio');
       button.addEventListener('click', () => this.setTool(button.dataset.tool));
     }
@@ -97,7 +97,7 @@ export class Editor {
 
   /** Tool radio group: arrows (and Home/End) move the choice and the focus, wrapping round. */
   toolKey(e) {
-    const buttons = [...document.querySelectorAll('[data-tool]')];
+    const buttons = [...document.querySelectorAll('button[data-tool]')];
     const at = buttons.indexOf(e.target);
     if (at < 0 || e.altKey || e.ctrlKey || e.metaKey) return;
     const moves = { ArrowRight: at + 1, ArrowDown: at + 1, ArrowLeft: at - 1, ArrowUp: at - 1, Home: 0, End: buttons.length - 1 };
@@ -115,7 +115,7 @@ export class Editor {
     this.tool = tool;
     this.overlay.dataset.tool = tool;
     // Roving tabindex: the checked tool is the group's one tab stop.
-    for (const button of document.querySelectorAll('[data-tool]')) {
+    for (const button of document.querySelectorAll('button[data-tool]')) {
       const checked = button.dataset.tool === tool;
       button.setAttribute('aria-checked', String(checked));
       button.tabIndex = checked ? 0 : -1;
