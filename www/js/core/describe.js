@@ -21,9 +21,9 @@ function counted(key, n, vars = {}) {
   return t(`${key}.${n === 1 ? 'one' : 'other'}`, { n: numbers().format(n), ...vars });
 }
 
-/** The list separator and the sentence for `items` (already words). */
-function list(items) {
-  return items.join(t('describe.list.separator'));
+/** `items` (already words) as one list: groups, which hold commas, with semicolons. */
+function list(items, separator = 'describe.list.separator') {
+  return items.join(t(separator));
 }
 
 /**
@@ -44,7 +44,7 @@ export function describeScene(scene, planners = []) {
       .map((shape) => [shape, obstacles.filter((o) => o.shape === shape).length])
       .filter(([, n]) => n > 0)
       .map(([shape, n]) => counted(`describe.shape.${shape}`, n));
-    sentences.push(t('describe.obstacles', { count: counted('describe.obstacle', obstacles.length), shapes: list(shapes) }));
+    sentences.push(t('describe.obstacles', { count: counted('describe.obstacle', obstacles.length), shapes: list(shapes, 'describe.shapes.separator') }));
   }
 
   const goals = scene.goals ?? [];

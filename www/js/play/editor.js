@@ -209,6 +209,7 @@ export class Editor {
   place() {
     const p = [...this.cursor];
     const before = this.countItems();
+    this.lastEdit = null;
     if (this.tool === 'select') {
       const picked = this.app.guard((sim) => JSON.parse(sim.pick(p[0], p[1], this.units(PICK_TOLERANCE_CSS))));
       const item = picked.ok ? picked.value : null;
@@ -245,7 +246,9 @@ export class Editor {
     }
     const after = this.countItems();
     const added = Object.keys(after).find((key) => after[key] > before[key]);
-    this.say(added ? `${t(`a11y.added.${this.tool}`)} ${this.cursorText()}` : `${t('a11y.cursor.too.small')} ${this.cursorText()}`);
+    // A refused edit is explained by the banner (an alert); say only that nothing was added.
+    const outcome = added ? `a11y.added.${this.tool}` : this.lastEdit && !this.lastEdit.ok ? 'a11y.cursor.refused' : 'a11y.cursor.too.small';
+    this.say(`${t(outcome)} ${this.cursorText()}`);
     this.draw();
   }
 
@@ -419,7 +422,8 @@ export class Editor {
 
   /** One undoable `edit`; errors show in the banner and leave the scene unchanged. */
   edit(op, options = {}) {
-    return this.app.change((sim) => sim.edit(JSON.stringify(op)), options).ok;
+    this.lastEdit = this.app.change((sim) => sim.edit(JSON.stringify(op)), options);
+    return this.lastEdit.ok;
   }
 
   /** Redraws the rubber-band previews. */
