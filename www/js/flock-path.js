@@ -19,6 +19,9 @@
 // Methods mirror the page API: load(text), play(), pause(), step(n), reset(), metrics(), scene(),
 // sceneString(), digest(); property `playing`, `steps`. Events: `flockpath-ready`,
 // `flockpath-error` (detail: message; also when the wasm cannot be loaded, shown in the box too).
+// For screen readers the canvas is an image named "Simulated crowd", described by a visually
+// hidden polite live region in the shadow root (core/describe.js: the scene and the run in
+// words); with prefers-reduced-motion `autoplay` waits for Play.
 
 import { loadWasm } from './core/boot.js';
 import { messageOf } from './core/errors.js';

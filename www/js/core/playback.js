@@ -3,9 +3,6 @@
 // first), Reset (#reset), the Speed slider (#spf, #spf-value: steps per frame, 1…20) and their
 // keys (Space, S, R) while the page or a canvas has focus (keys.js).
 
-// Where shortcuts may act lives in keys.js; re-exported for the pages that imported it from here.
-export { typingInto } from './keys.js';
-
 const $ = (id) => document.getElementById(id);
 
 /**
