@@ -69,6 +69,12 @@ test('axe: no serious or critical violation on the playground, its dialogs and i
     assert.match(await page.textContent('#canvas-cursor'), /Cursor at/);
     assert.deepEqual(await seriousViolations(page), [], 'index.html with the keyboard cursor');
 
+    // The projector theme (the top bar's toggle) passes too.
+    await page.click('#theme-toggle');
+    await page.waitForFunction(() => document.documentElement.dataset.theme === 'projector');
+    assert.deepEqual(await seriousViolations(page), [], 'index.html in the projector theme');
+    await page.click('#theme-toggle');
+
     for (const [button, dialog] of [['#share', '#share-dialog'], ['#export', '#export-dialog']]) {
       await page.click(button);
       await page.waitForSelector(`${dialog}[open]`);
@@ -93,6 +99,21 @@ for (const spec of PAGES) {
     }
   });
 }
+
+test('the description speaks the page language (?lang=zh)', async () => {
+  const { page, errors, close } = await openPath('index.html?lang=zh', { ready: () => window.flockpath !== undefined });
+  try {
+    await page.evaluate(() => window.flockpath.pause());
+    const obstacles = await page.evaluate(() => window.flockpath.scene().obstacles.length);
+    await page.waitForFunction(() => document.getElementById('scene-description').textContent.includes('已暂停'));
+    const text = await page.textContent('#scene-description');
+    assert.ok(text.includes(`${obstacles} 个障碍物`), text);
+    assert.match(text, /第 [\d,]+ 步，已暂停。/, text);
+    assertNoUnexpectedErrors(errors);
+  } finally {
+    await close();
+  }
+});
 
 test('<flock-path> (embed.html, course notes): the canvas has a role and a name and a live description', async () => {
   for (const [file, ready] of [['embed.html', () => window.flockpathEmbed !== undefined], ['examples/course-notes.html', allElementsRunning]]) {

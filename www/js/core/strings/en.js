@@ -75,4 +75,8 @@ export default {
   'describe.stuck.none': 'No agent stuck.',
   'describe.stuck.one': '{n} agent stuck.',
   'describe.stuck.other': '{n} agents stuck.',
+  'a11y.scroll.metrics-groups': 'Metrics per group',
+  'a11y.scroll.compare-table': 'Metrics of every pane',
+  'a11y.scroll.lab-table': '30-run table',
+  'a11y.scroll.validation-table': 'Validation results',
 };

@@ -73,4 +73,8 @@ export default {
   'describe.stuck.none': '没有被困的智能体。',
   'describe.stuck.one': '{n} 个智能体被困。',
   'describe.stuck.other': '{n} 个智能体被困。',
+  'a11y.scroll.metrics-groups': '各群组的指标',
+  'a11y.scroll.compare-table': '各窗格的指标',
+  'a11y.scroll.lab-table': '30 次运行结果表',
+  'a11y.scroll.validation-table': '验证结果',
 };
