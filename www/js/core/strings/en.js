@@ -79,4 +79,5 @@ export default {
   'a11y.scroll.compare-table': 'Metrics of every pane',
   'a11y.scroll.lab-table': '30-run table',
   'a11y.scroll.validation-table': 'Validation results',
+  'a11y.keys.canvas': 'Tab to the canvas: arrows move a cursor (Shift: further), Enter draws with the current tool.',
 };

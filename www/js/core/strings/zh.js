@@ -77,4 +77,5 @@ export default {
   'a11y.scroll.compare-table': '各窗格的指标',
   'a11y.scroll.lab-table': '30 次运行结果表',
   'a11y.scroll.validation-table': '验证结果',
+  'a11y.keys.canvas': '按 Tab 进入画布：方向键移动光标（按住 Shift 移得更远），回车用当前工具绘制。',
 };
