@@ -2,7 +2,8 @@
 // shows a cursor; arrows move it (Shift: further), Enter places with the current tool (circle,
 // rectangle, goal, group), Escape cancels a shape in progress; Space plays and pauses on the
 // canvas; the live description beside the canvas then names the obstacles, the goal, the groups
-// and the run's step and arrivals as the page API reports them. The page API only sets the
+// and the run's step and arrivals as the page API reports them. With the select tool Enter picks
+// an item up, arrows carry it, Enter puts it down, Delete removes it. The page API only sets the
 // scene up and reads the results: every input is a key press.
 
 import { test } from 'node:test';
@@ -178,6 +179,17 @@ test('keyboard only: a polygon point by point, and selecting what is under the c
     await press(page, gy > cy ? 'ArrowDown' : 'ArrowUp', Math.round(Math.abs(gy - cy) / step));
     await press(page, 'Enter');
     assert.match(await cursorText(page), /Selected goal 1/);
+    // The first Enter also picked it up: arrows carry it, Enter puts it down.
+    await press(page, 'ArrowLeft', 3);
+    assert.match(await cursorText(page), /Moved by -30, 0/);
+    await press(page, 'Enter');
+    s = await scene(page);
+    assert.deepEqual(s.goals[0].position, [gx - 30, gy], 'Enter moved the goal by the cursor’s way');
+    // Picked up again, Escape leaves it; Delete removes the selection.
+    await press(page, 'Enter');
+    await press(page, 'ArrowUp');
+    await press(page, 'Escape');
+    assert.deepEqual((await scene(page)).goals[0].position, [gx - 30, gy], 'Escape left it in place');
     await press(page, 'Delete');
     s = await scene(page);
     assert.equal(s.goals.length, 0, 'Delete removed the selected goal');

@@ -152,6 +152,9 @@ export class Editor {
     const [x, y] = this.cursor ?? [0, 0];
     const at = t('a11y.cursor.at', { x: Math.round(x), y: Math.round(y) });
     const drag = this.drag?.pointerId === KEYBOARD ? this.drag : null;
+    if (drag && this.tool === 'select') {
+      return `${at} ${t('a11y.cursor.select.second', { dx: Math.round(x - drag.start[0]), dy: Math.round(y - drag.start[1]) })}`;
+    }
     if (drag && this.tool === 'circle') {
       const r = Math.round(Math.hypot(x - drag.start[0], y - drag.start[1]));
       return `${at} ${t('a11y.cursor.circle.second', { r })}`;
@@ -210,6 +213,17 @@ export class Editor {
     const p = [...this.cursor];
     const before = this.countItems();
     this.lastEdit = null;
+    if (this.tool === 'select' && this.drag?.pointerId === KEYBOARD) {
+      // The second Enter puts the picked-up item down at the cursor (a move, as a pointer drag).
+      const drag = this.drag;
+      this.drag = null;
+      drag.current = p;
+      const moved = drag.current[0] !== drag.start[0] || drag.current[1] !== drag.start[1];
+      this.finish(drag);
+      this.say(`${t(moved ? 'a11y.cursor.moved' : 'a11y.cursor.kept')} ${this.cursorText()}`);
+      this.draw();
+      return;
+    }
     if (this.tool === 'select') {
       const picked = this.app.guard((sim) => JSON.parse(sim.pick(p[0], p[1], this.units(PICK_TOLERANCE_CSS))));
       const item = picked.ok ? picked.value : null;
@@ -217,7 +231,10 @@ export class Editor {
       if (item && item.kind === 'group') this.app.setActiveGroup(item.index);
       const detail = { x: p[0], y: p[1], tolerance: this.units(PICK_TOLERANCE_CSS) };
       this.app.dispatchEvent(new CustomEvent('canvas-click', { detail }));
+      // The first Enter on an item also picks it up: arrows carry it, Enter puts it down.
+      if (item) this.drag = { pointerId: KEYBOARD, start: p, current: p, item };
       this.say(item ? t('a11y.cursor.selected', { item: t(`a11y.item.${item.kind}`, { n: item.index + 1 }) }) : t('a11y.cursor.nothing'));
+      this.draw();
       return;
     }
     if (POINT_TOOLS.includes(this.tool)) {
@@ -417,6 +434,7 @@ export class Editor {
   deleteSelection() {
     const item = this.app.selection;
     if (!item) return;
+    if (this.drag?.pointerId === KEYBOARD) this.drag = null;
     this.edit({ op: 'delete', item });
   }
 
