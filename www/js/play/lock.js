@@ -9,7 +9,7 @@
 import { classroomMessage, readClassroom } from '../core/classroom.js';
 import { showMessage } from '../core/errors.js';
 import { t } from '../core/i18n.js';
-import { typingInto } from '../core/playback.js';
+import { commandAllowed, onPage } from '../core/keys.js';
 
 const $ = (id) => document.getElementById(id);
 const closest = (id, selector) => $(id)?.closest(selector) ?? null;
@@ -119,11 +119,13 @@ export function setupLock(app, editor) {
     permit,
   };
 
-  // Shortcuts of controls not given do nothing; a focused element still gets its key.
+  // Shortcuts of controls not given do nothing (where a shortcut would act: core/keys.js); a
+  // focused control still gets its own key.
   window.addEventListener('keydown', (e) => {
     const control = keyControl(e);
-    if (!current || !control || current.view.controls.includes(control) || typingInto(e.target)) return;
-    e.stopImmediatePropagation();
+    if (!current || !control || current.view.controls.includes(control)) return;
+    const shortcut = control === 'undo' ? commandAllowed(e) : onPage(e);
+    if (shortcut) e.stopImmediatePropagation();
   }, { capture: true });
 
   // A dropped scene file would replace locked parts; the browser must not open it either.
