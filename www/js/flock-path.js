@@ -20,6 +20,7 @@
 // sceneString(), digest(); property `playing`, `steps`. Events: `flockpath-ready`,
 // `flockpath-error` (detail: message; also when the wasm cannot be loaded, shown in the box too).
 
+import { mountActivityCard } from './core/activity-card.js';
 import { loadWasm } from './core/boot.js';
 import { messageOf } from './core/errors.js';
 import { startLoop } from './core/loop.js';
@@ -160,6 +161,8 @@ export class FlockPathElement extends HTMLElement {
     // Free the simulation only if the element is really gone (not just moved in the DOM).
     queueMicrotask(() => {
       if (!this.isConnected && this.host) {
+        this.activity?.stop();
+        this.activity = null;
         this.host.sim.free();
         this.host = null;
         this.booting = null;
@@ -221,12 +224,28 @@ export class FlockPathElement extends HTMLElement {
     this.host.addEventListener('playing', () => this.refreshBar());
     this.host.addEventListener('stepped', () => this.refreshSteps());
     this.tryLoad(this.getAttribute('scene') ?? '', { fallback: true });
+    this.mountActivity();
     this.$('.loading').hidden = true;
     this.observer = observeSize(canvas, (size) => this.fitCanvas(size));
     this.refreshBar();
     this.startLoop();
     this.resolveReady(this);
     this.dispatchEvent(new CustomEvent('flockpath-ready', { bubbles: true, composed: true }));
+  }
+
+  /** The scene's activity card (prompt, prediction, check) between the canvas and the bar. */
+  mountActivity() {
+    const slot = document.createElement('div');
+    slot.className = 'activity';
+    slot.setAttribute('part', 'activity');
+    this.$('.bar').before(slot);
+    const read = (fn) => (this.host && !this.crashed ? JSON.parse(this.call(fn)) : null);
+    this.activity = mountActivityCard(this.host, slot, {
+      readActivity: () => read((sim) => sim.activity_json()),
+      readReport: () => read((sim) => sim.activity_report_json()),
+      groupName: (i) => this.cachedScene?.groups?.[i]?.name ?? '',
+      styleRoot: this.shadowRoot,
+    });
   }
 
   /** The core's frame loop on this element's canvas (no Speed readout: the element has no slider). */
@@ -264,6 +283,7 @@ export class FlockPathElement extends HTMLElement {
     this.cachedScene = JSON.parse(this.call((sim) => sim.scene_json()));
     this.applyLayout();
     this.host.dirty = true;
+    this.activity?.refresh();
     this.refreshBar();
   }
 

@@ -15,6 +15,7 @@ import { setupInspector } from './inspector.js';
 import { Panel } from './panel.js';
 import { setupExport } from './export.js';
 import { setupShare } from './share.js';
+import { setupActivity } from './activity.js';
 import { setupSceneLinks } from './scene-links.js';
 import { setupTimeline } from './timeline.js';
 import { keepLocationInSync, sceneFromLocation, watchLocation } from '../core/url.js';
@@ -59,6 +60,7 @@ bootPage('flockpath', ({ module, wasm }) => {
   setupSceneLinks(app);
   const onFrame = setupMetrics(app);
   setupInspector(app);
+  setupActivity(app);
   startLoop(app, canvas, onFrame);
   document.getElementById('loading').hidden = true;
   if (linkError !== null) {
