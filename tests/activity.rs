@@ -5,7 +5,9 @@
 use flockpath::model::activity::{Activity, MAX_CHOICES, MAX_PROMPT_CHARS};
 use flockpath::sim::activity_check::{ActivityWatch, Page, Status};
 use flockpath::sim::compare::{Comparison, ComparisonSpec};
-use flockpath::{presets, scene_from_any, scene_from_fragment, scene_from_json, scene_to_fragment, scene_to_json};
+use flockpath::{
+    presets, scene_from_any, scene_from_fragment, scene_from_json, scene_to_fragment, scene_to_json,
+};
 use flockpath::{Scene, SceneError, World};
 
 fn preset(name: &str) -> Scene {
@@ -75,7 +77,10 @@ fn the_compact_link_carries_the_activity_and_scenes_without_one_are_unchanged() 
     let golden = include_str!("data/golden-url.txt").trim();
     let decoded = scene_from_any(golden).expect("golden link");
     assert_eq!(decoded.activity, None);
-    assert_eq!(format!("2.{}", golden.rsplit_once("#s=2.").expect("fragment").1), scene_to_fragment(&decoded));
+    assert_eq!(
+        format!("2.{}", golden.rsplit_once("#s=2.").expect("fragment").1),
+        scene_to_fragment(&decoded)
+    );
 }
 
 #[test]
@@ -102,13 +107,26 @@ fn refusals_name_the_field_and_its_limit() {
 
     // An unknown metric key, a group the scene lacks, a check without conditions.
     let bad = [
-        (r#"{"prompt": "p", "check": {"steps": 10, "conditions": [{"metric": "arrived", "op": ">=", "value": 1}]}}"#,
-         "activity.check.conditions[0].metric", "arrived_share"),
-        (r#"{"prompt": "p", "check": {"steps": 10, "conditions": [{"before": [{"group": 0}, {"group": 1}]}]}}"#,
-         "activity.check.conditions[0].before[1].group", "the scene has 1 group"),
-        (r#"{"prompt": "p", "check": {"steps": 10, "conditions": []}}"#, "activity.check.conditions", "1…8 conditions"),
-        (r#"{"prompt": "p", "check": {"steps": 0, "conditions": [{"metric": "stuck_agents", "op": "=", "value": 0}]}}"#,
-         "activity.check.steps", "1…1000000"),
+        (
+            r#"{"prompt": "p", "check": {"steps": 10, "conditions": [{"metric": "arrived", "op": ">=", "value": 1}]}}"#,
+            "activity.check.conditions[0].metric",
+            "arrived_share",
+        ),
+        (
+            r#"{"prompt": "p", "check": {"steps": 10, "conditions": [{"before": [{"group": 0}, {"group": 1}]}]}}"#,
+            "activity.check.conditions[0].before[1].group",
+            "the scene has 1 group",
+        ),
+        (
+            r#"{"prompt": "p", "check": {"steps": 10, "conditions": []}}"#,
+            "activity.check.conditions",
+            "1…8 conditions",
+        ),
+        (
+            r#"{"prompt": "p", "check": {"steps": 0, "conditions": [{"metric": "stuck_agents", "op": "=", "value": 0}]}}"#,
+            "activity.check.steps",
+            "1…1000000",
+        ),
         (r#"{"prompt": "  ", "check": null}"#, "activity.prompt", "1…1000"),
     ];
     for (json, path, words) in bad {
@@ -139,8 +157,10 @@ fn first_step_where(scene: &Scene, limit: u32, holds: impl Fn(&flockpath::Metric
 #[test]
 fn the_check_is_met_at_the_first_step_every_condition_holds() {
     let scene = with_activity("pillars", MARKUP);
-    let expected = first_step_where(&scene, 1500, |m| m.overall.arrived_share >= 0.9 && m.overall.penetrations_agent_obstacle == 0)
-        .expect("pillars arrive within 1500 steps");
+    let expected = first_step_where(&scene, 1500, |m| {
+        m.overall.arrived_share >= 0.9 && m.overall.penetrations_agent_obstacle == 0
+    })
+    .expect("pillars arrive within 1500 steps");
     let mut world = World::new(scene.clone()).expect("valid");
     let mut watch = ActivityWatch::new(Page::Run);
     let before = watch.report(world.scene(), 0).expect("a check");

@@ -200,7 +200,11 @@ pub struct ActivityFault {
     pub allowed: String,
 }
 
-fn fault<T>(path: impl Into<String>, value: impl Into<String>, allowed: impl Into<String>) -> Result<T, ActivityFault> {
+fn fault<T>(
+    path: impl Into<String>,
+    value: impl Into<String>,
+    allowed: impl Into<String>,
+) -> Result<T, ActivityFault> {
     Err(ActivityFault { path: path.into(), value: value.into(), allowed: allowed.into() })
 }
 
@@ -216,7 +220,10 @@ fn text_value(text: &str) -> String {
 fn text_in(path: &str, text: &str, max: usize, multiline: bool) -> Result<(), ActivityFault> {
     let n = text.chars().count();
     let allowed = || {
-        format!("text of 1…{max} characters{}", if multiline { " (line breaks allowed)" } else { " on one line" })
+        format!(
+            "text of 1…{max} characters{}",
+            if multiline { " (line breaks allowed)" } else { " on one line" }
+        )
     };
     if text.trim().is_empty() || n > max {
         return fault(path, text_value(text), allowed());
@@ -265,16 +272,26 @@ impl Activity {
 impl Check {
     fn validate(&self, groups: usize) -> Result<(), ActivityFault> {
         if self.steps == 0 || self.steps > MAX_CHECK_STEPS {
-            return fault("activity.check.steps", self.steps.to_string(), format!("a whole number 1…{MAX_CHECK_STEPS}"));
+            return fault(
+                "activity.check.steps",
+                self.steps.to_string(),
+                format!("a whole number 1…{MAX_CHECK_STEPS}"),
+            );
         }
         let n = self.conditions.len();
         if n == 0 || n > MAX_CONDITIONS {
-            return fault("activity.check.conditions", format!("a list of {n}"), format!("1…{MAX_CONDITIONS} conditions"));
+            return fault(
+                "activity.check.conditions",
+                format!("a list of {n}"),
+                format!("1…{MAX_CONDITIONS} conditions"),
+            );
         }
         let group_in = |path: String, g: u32| match groups {
             _ if (g as usize) < groups => Ok(()),
             0 => fault(path, g.to_string(), "no group: the scene has no groups"),
-            n => fault(path, g.to_string(), format!("a group index 0…{} (the scene has {n} group(s))", n - 1)),
+            n => {
+                fault(path, g.to_string(), format!("a group index 0…{} (the scene has {n} group(s))", n - 1))
+            }
         };
         let pane_in = |path: String, p: u32| {
             if p < MAX_PANES {
@@ -306,10 +323,18 @@ impl Check {
                 }
                 Condition::Before(b) => {
                     if !(b.share > 0.0 && b.share <= 1.0) {
-                        return fault(format!("{at}.share"), b.share.to_string(), "a share above 0 and at most 1");
+                        return fault(
+                            format!("{at}.share"),
+                            b.share.to_string(),
+                            "a share above 0 and at most 1",
+                        );
                     }
                     if b.before[0] == b.before[1] {
-                        return fault(format!("{at}.before"), "the same one twice", "two different groups or panes");
+                        return fault(
+                            format!("{at}.before"),
+                            "the same one twice",
+                            "two different groups or panes",
+                        );
                     }
                     for (i, s) in b.before.iter().enumerate() {
                         match *s {
@@ -383,7 +408,9 @@ mod tests {
     fn conditions_parse_by_shape_and_write_back_the_same() {
         let a = activity();
         let Some(check) = &a.check else { panic!("has a check") };
-        assert!(matches!(&check.conditions[0], Condition::Metric(m) if m.op == Op::AtLeast && m.group == Some(0)));
+        assert!(
+            matches!(&check.conditions[0], Condition::Metric(m) if m.op == Op::AtLeast && m.group == Some(0))
+        );
         assert!(matches!(&check.conditions[1],
             Condition::Before(b) if b.before == [Subject::Group(0), Subject::Pane(1)] && b.share == 0.5));
         let json = serde_json::to_string(&a).expect("writes");

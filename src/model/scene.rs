@@ -649,7 +649,9 @@ pub fn field_limits() -> Vec<FieldLimit> {
         row("(scene text)", format!("at most {} bytes", MAX_INPUT_BYTES), "a file or link larger than any real scene"),
         row("(unpacked scene string)", format!("at most {} bytes", MAX_SCENE_BYTES), "a guard against deflate bombs"),
     ];
-    rows.extend(crate::model::activity::limits().into_iter().map(|(field, allowed, why)| row(field, allowed, why)));
+    rows.extend(
+        crate::model::activity::limits().into_iter().map(|(field, allowed, why)| row(field, allowed, why)),
+    );
     rows
 }
 
@@ -803,7 +805,9 @@ impl Scene {
         }
         number_in(|| "view.trail_fade".into(), self.view.trail_fade, 0.0, false, 1.0)?;
         match &self.activity {
-            Some(a) => a.validate(self.groups.len()).map_err(|f| SceneError::field(f.path, f.value, f.allowed)),
+            Some(a) => {
+                a.validate(self.groups.len()).map_err(|f| SceneError::field(f.path, f.value, f.allowed))
+            }
             None => Ok(()),
         }
     }

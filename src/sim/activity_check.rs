@@ -234,12 +234,17 @@ fn measure_metric(m: &MetricCondition, page: Page, panes: &[Metrics]) -> (bool, 
             reached_step: None,
         })
         .collect();
-    let holds = !measured.is_empty()
-        && measured.iter().all(|x| x.value.is_some_and(|v| m.op.holds(v, m.value)));
+    let holds =
+        !measured.is_empty() && measured.iter().all(|x| x.value.is_some_and(|v| m.op.holds(v, m.value)));
     (holds, measured)
 }
 
-fn measure_before(b: &BeforeCondition, step: u32, panes: &[Metrics], before: &[Measured]) -> (bool, Vec<Measured>) {
+fn measure_before(
+    b: &BeforeCondition,
+    step: u32,
+    panes: &[Metrics],
+    before: &[Measured],
+) -> (bool, Vec<Measured>) {
     let measured: Vec<Measured> = b
         .before
         .iter()

@@ -28,9 +28,8 @@ impl Sim {
         let activity: Option<Activity> = if text.is_empty() {
             None
         } else {
-            serde_json::from_str(text).map_err(|e| {
-                scene_error(SceneError::Parse(format!("the activity is not valid: {e}")))
-            })?
+            serde_json::from_str(text)
+                .map_err(|e| scene_error(SceneError::Parse(format!("the activity is not valid: {e}"))))?
         };
         let mut scene = self.run.world().scene().clone();
         scene.activity = activity;

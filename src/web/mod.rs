@@ -75,7 +75,8 @@ impl Sim {
         console_error_panic_hook::set_once();
         let scene = codec::scene_from_any(scene_text).map_err(scene_error)?;
         let run = Run::new(scene, RunOptions::page()).map_err(scene_error)?;
-        let mut sim = Sim { run, renderer: Renderer::new(width, height), activity: ActivityWatch::new(Page::Run) };
+        let mut sim =
+            Sim { run, renderer: Renderer::new(width, height), activity: ActivityWatch::new(Page::Run) };
         sim.show_scene_view();
         Ok(sim)
     }
