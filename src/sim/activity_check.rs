@@ -1,6 +1,9 @@
 //! Checks a scene's activity goal ([`crate::model::activity::Check`]) on a run's metrics, step
 //! by step: "met" at the first step where every condition holds, "missed" at the step limit.
 //!
+//! An "arrives before" condition that can no longer hold (the second reached the share first)
+//! decides the check as missed at that step.
+//!
 //! The page steps in frames of several steps; the watch is fed after every single step, so the
 //! deciding step and the values shown with it are the same on every machine (the same run, the
 //! same check). While a check is open each step costs one metrics summary (O(agents), what the
@@ -25,7 +28,7 @@ pub enum Status {
     Running,
     /// Every condition held at `step`.
     Met,
-    /// The step limit came first.
+    /// The step limit came first, or an "arrives before" was lost.
     Missed,
     /// A condition does not apply on this page (a compare-only check on the playground).
     Unavailable,
@@ -285,11 +288,22 @@ fn update(report: &mut Report, page: Page, step: u32, panes: &[Metrics]) {
         c.measured = measured;
     }
     report.step = step;
+    // An "arrives before" whose second reached the share first can never hold again.
+    let lost = report.conditions.iter().any(|c| {
+        matches!(c.condition, Condition::Before(_))
+            && match (
+                c.measured.first().and_then(|m| m.reached_step),
+                c.measured.get(1).and_then(|m| m.reached_step),
+            ) {
+                (first, Some(second)) => first.is_none_or(|f| f >= second),
+                _ => false,
+            }
+    });
     report.status = if report.conditions.iter().any(|c| !c.applies) {
         Status::Unavailable
     } else if report.conditions.iter().all(|c| c.holds) {
         Status::Met
-    } else if step >= report.limit {
+    } else if lost || step >= report.limit {
         Status::Missed
     } else {
         Status::Running

@@ -61,7 +61,7 @@ test('a linked activity shows its prompt, asks the prediction before Play and ch
       el.value = '20';
       el.dispatchEvent(new Event('input', { bubbles: true }));
     });
-    await there.getByLabel('None').check();
+    await there.getByRole('radio', { name: 'None', exact: true }).check();
     await there.click(`${card} .fp-lock`);
     assert.equal(await there.evaluate(() => window.flockpath.isPlaying()), true);
     assert.equal(await there.locator(`${card} .fp-predicted`).textContent(), 'Your prediction: None');

@@ -212,6 +212,7 @@ export function mountActivityCard(host, container, { readActivity, readReport, g
       resultBox.append(el('p', { className: 'fp-muted', textContent: t('activity.partial', { step: report.from_step.toLocaleString('en-US') }) }));
     }
     const p = prediction();
+    predictedLine.hidden = Boolean(p && (status === 'met' || status === 'missed'));
     if (p && (status === 'met' || status === 'missed')) {
       const mine = answers.get(key);
       resultBox.append(
@@ -265,7 +266,11 @@ export function mountActivityCard(host, container, { readActivity, readReport, g
         lastSteps = steps;
         const report = renderReport();
         const decided = report && (report.status === 'met' || report.status === 'missed');
-        if (decided && host.playing && report.step <= steps && wasRunning) host.setPlaying(false);
+        if (decided && wasRunning) {
+          if (host.playing) host.setPlaying(false);
+          // Pages that refresh their tables on steps (the compare page) show the final values.
+          host.dispatchEvent(new Event('stepped'));
+        }
         wasRunning = report?.status === 'running';
       }
     }

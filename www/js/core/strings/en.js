@@ -34,7 +34,7 @@ export default {
   "activity.your_prediction": "Your prediction: {answer}",
   "activity.status.running": "Goal checked until step {limit} (now step {step}).",
   "activity.status.met": "Goal met at step {step}.",
-  "activity.status.missed": "Goal not met by step {step}.",
+  "activity.status.missed": "Goal not met (decided at step {step}).",
   "activity.status.unavailable": "This goal can only be checked on the compare page.",
   "activity.not_reached": "not reached",
   "activity.reached_at": "reached at step {step}",

@@ -32,7 +32,7 @@ export default {
   "activity.your_prediction": "你的预测：{answer}",
   "activity.status.running": "目标检查到第 {limit} 步为止（当前第 {step} 步）。",
   "activity.status.met": "在第 {step} 步达成目标。",
-  "activity.status.missed": "到第 {step} 步仍未达成目标。",
+  "activity.status.missed": "未达成目标（在第 {step} 步判定）。",
   "activity.status.unavailable": "此目标只能在对比页面上检查。",
   "activity.not_reached": "未达到",
   "activity.reached_at": "在第 {step} 步达到",
