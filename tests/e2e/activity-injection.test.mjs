@@ -67,12 +67,17 @@ test('markup in every activity text field is shown as text on every page that sh
     await there.goto(`${page.url().split('#')[0]}#s=${value}`);
     await there.waitForFunction(() => window.flockpath !== undefined);
     await there.locator('#activity .fp-activity').waitFor();
+    // Before the answer: the prompt, the question and every choice.
+    assertLiteral(await there.evaluate(inspectCard, ['#activity .fp-activity']), 'playground, question');
     await there.locator('#activity label.fp-choice').first().click();
     await there.click('#activity .fp-lock');
     await there.click('#play');
     await there.locator('#activity .fp-status.fp-missed').waitFor({ timeout: 30_000 });
+    // After the check: the answer given, the author's answer and the group's name.
     const onPlay = await there.evaluate(inspectCard, ['#activity .fp-activity']);
-    assertLiteral(onPlay, 'playground');
+    assert.deepEqual(onPlay.tags.filter((tag) => !ALLOWED.has(tag)), []);
+    assert.equal(onPlay.pwned, null);
+    assert.ok(onPlay.text.includes(`You predicted: ${IMG}`));
     assert.ok(onPlay.text.includes(`group 1 (${GROUP_NAME})`), 'the group name in the condition, literally');
     assert.ok(onPlay.text.includes(`The author's answer: ${IMG}`));
     assert.equal(await there.evaluate(() => document.querySelectorAll('img, script').length), before);
