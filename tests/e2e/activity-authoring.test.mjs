@@ -1,11 +1,12 @@
-// The Share dialog's activity form: a teacher writes a prompt, a question with choices and a goal;
+// The Share dialog's activity form ("Activity…" beside "Copy link" opens it): a teacher writes a
+// prompt, a question with choices and a goal;
 // "Put the activity in the link" stores it in the scene, the dialog's link carries it, and that
 // link opens the same scene (same fragment, same activity) with the card. A refused activity
 // says which field and limit, and changes nothing.
 
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { assertNoUnexpectedErrors, openPage } from './helpers.mjs';
+import { assertNoUnexpectedErrors, openPage, screenshot } from './helpers.mjs';
 
 async function openShare(page) {
   await page.evaluate(() => document.getElementById('share').click());
@@ -17,9 +18,9 @@ test('the authoring form writes an activity into a link that round-trips', { tim
   try {
     await page.evaluate(() => window.flockpath.load('two-groups-swap'));
     await openShare(page);
-    const details = page.locator('#share-activity');
-    assert.equal(await details.evaluate((d) => d.open), false, 'closed while the scene has no activity');
-    await details.locator('summary').click();
+    await page.click('#share-activity-open');
+    await page.locator('#activity-dialog[open]').waitFor();
+    assert.equal(await page.inputValue('#activity-prompt'), '', 'empty while the scene has no activity');
 
     const prompt = 'Two groups swap sides.\nWhich one is home first?';
     await page.fill('#activity-prompt', prompt);
@@ -38,8 +39,9 @@ test('the authoring form writes an activity into a link that round-trips', { tim
     await second.locator('.activity-first').selectOption('group:1');
     await second.locator('.activity-second').selectOption('group:0');
     await second.locator('.activity-share').fill('0.5');
+    await screenshot(page, 'activity-authoring');
     await page.click('#activity-apply');
-    assert.equal(await page.textContent('#activity-form-status'), 'The activity is in the link above.');
+    assert.equal(await page.textContent('#activity-form-status'), 'The activity is in the link (Share dialog).');
 
     const expected = {
       prompt,
@@ -56,7 +58,10 @@ test('the authoring form writes an activity into a link that round-trips', { tim
     // The card on this page follows at once.
     assert.equal(await page.locator('#activity .fp-prompt').textContent(), prompt);
 
-    // The dialog's link holds it; opened elsewhere it gives the same scene and the card.
+    // The Share dialog's link holds it; opened elsewhere it gives the same scene and the card.
+    await page.click('#activity-dialog .row-buttons.end button');
+    await page.locator('#activity-dialog:not([open])').waitFor({ state: 'attached' });
+    assert.equal(await page.locator('#share-dialog[open]').count(), 1, 'back in the Share dialog');
     const link = await page.inputValue('#share-link');
     const sceneString = await page.evaluate(() => window.flockpath.sceneString());
     assert.ok(link.endsWith(`#s=${sceneString}`), link);
@@ -69,11 +74,13 @@ test('the authoring form writes an activity into a link that round-trips', { tim
     assert.deepEqual(await there.locator('#activity label.fp-choice').allTextContents(), expected.prediction.choices);
     // The form there is filled from the link's activity.
     await openShare(there);
+    await there.click('#share-activity-open');
     assert.equal(await there.inputValue('#activity-prompt'), prompt);
     assert.equal(await there.locator('.activity-condition').count(), 2);
     assert.equal(await there.locator('.activity-condition').nth(1).locator('.activity-first').inputValue(), 'group:1');
 
     // Seven choices: refused with the field and its limit; the scene keeps its activity.
+    await page.click('#share-activity-open');
     await page.fill('#activity-choices', 'a\nb\nc\nd\ne\nf\ng');
     await page.click('#activity-apply');
     const refusal = await page.textContent('#activity-form-status');

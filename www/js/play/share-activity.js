@@ -1,7 +1,9 @@
-// The Share dialog's activity form (issue #15 item 4): a teacher writes a prompt, an optional
-// prediction question with its choices, and an optional goal checked on the metrics; "Put it in
-// the link" stores it in the scene (sim.set_activity: Rust validates, naming the field and its
-// limit on a refusal), so the dialog's link, iframe and <flock-path> snippets carry it.
+// The Share dialog's activity form (issue #15 item 4): "Activity…" beside "Copy link" opens a
+// dialog of its own (the Share dialog keeps its height on a phone) where a teacher writes a
+// prompt, an optional prediction question with its choices, and an optional goal checked on the
+// metrics; "Put the activity in the link" stores it in the scene (sim.set_activity: Rust
+// validates, naming the field and its limit on a refusal), so the Share dialog's link, iframe and
+// <flock-path> snippets carry it.
 
 import { t } from '../core/i18n.js';
 import { messageOf } from '../core/errors.js';
@@ -14,6 +16,22 @@ export const METRICS = [
 ];
 const OPS = [['>=', '≥'], ['<=', '≤'], ['>', '>'], ['<', '<'], ['=', '=']];
 const PANES = ['A', 'B', 'C', 'D'];
+
+const STYLE = `
+.activity-conditions { display: flex; flex-direction: column; gap: 0.4rem; }
+.activity-condition { display: flex; flex-wrap: wrap; gap: 0.35rem; align-items: center; padding: 0.4rem 0.5rem;
+  border: 1px solid var(--line, #d5dbe3); border-radius: 6px; }
+.activity-condition .activity-parts { display: contents; }
+.activity-condition select { max-width: 100%; }
+.activity-condition .activity-remove-condition { margin-left: auto; }
+`;
+
+/** The form's few rules, once (a constructed sheet: no inline <style> for a strict CSP). */
+function adoptStyle() {
+  const sheet = new CSSStyleSheet();
+  sheet.replaceSync(STYLE);
+  document.adoptedStyleSheets = [...document.adoptedStyleSheets, sheet];
+}
 
 const el = (tag, props = {}, ...children) => {
   const node = Object.assign(document.createElement(tag), props);
@@ -43,7 +61,7 @@ const subjectValue = (s) => (s.pane !== undefined ? `pane:${s.pane}` : s.group !
 
 /** One condition row: a metric compared with a number, or "arrives before". */
 function conditionRow(app, condition = null) {
-  const row = el('div', { className: 'activity-condition row-buttons' });
+  const row = el('div', { className: 'activity-condition' });
   const kind = el('select', { className: 'activity-kind' }, option('metric', t('activity.form.kind_metric')), option('before', t('activity.form.kind_before')));
   kind.setAttribute('aria-label', t('activity.form.kind'));
   const parts = el('span', { className: 'activity-parts' });
@@ -117,7 +135,7 @@ function readRow(row) {
 }
 
 export function setupShareActivity(app) {
-  const dialogForm = document.querySelector('#share-dialog form');
+  adoptStyle();
   const status = el('p', { id: 'activity-form-status', className: 'muted', role: 'status' });
   const promptInput = el('textarea', { id: 'activity-prompt', rows: 3 });
   const question = el('input', { id: 'activity-question', type: 'text' });
@@ -128,24 +146,33 @@ export function setupShareActivity(app) {
   const add = el('button', { type: 'button', id: 'activity-add-condition', className: 'small', textContent: t('activity.form.add_condition') });
   const apply = el('button', { type: 'button', id: 'activity-apply', className: 'primary', textContent: t('activity.form.apply') });
   const clear = el('button', { type: 'button', id: 'activity-clear', textContent: t('activity.form.clear') });
-  const details = el(
-    'details',
-    { id: 'share-activity', className: 'share-activity' },
-    el('summary', { textContent: t('activity.form.summary') }),
-    el('p', { className: 'muted small-print', textContent: t('activity.form.intro') }),
-    field(t('activity.form.prompt'), promptInput),
-    field(t('activity.form.question'), question),
-    field(t('activity.form.choices'), choices),
-    field(t('activity.form.expected'), expected),
-    field(t('activity.form.steps'), steps),
-    el('p', { className: 'small-print', textContent: t('activity.form.conditions') }),
-    conditions,
-    el('div', { className: 'row-buttons' }, add),
-    el('div', { className: 'row-buttons' }, apply, clear),
-    status,
+  const close = el('button', { value: 'close', className: 'ghost', textContent: t('activity.form.close') });
+  const dialog = el(
+    'dialog',
+    { id: 'activity-dialog', className: 'dialog' },
+    el(
+      'form',
+      { method: 'dialog', className: 'dialog-body' },
+      el('h2', { id: 'activity-dialog-title', textContent: t('activity.form.title') }),
+      el('p', { className: 'muted', textContent: t('activity.form.intro') }),
+      field(t('activity.form.prompt'), promptInput),
+      field(t('activity.form.question'), question),
+      field(t('activity.form.choices'), choices),
+      field(t('activity.form.expected'), expected),
+      field(t('activity.form.steps'), steps),
+      el('p', { className: 'small-print', textContent: t('activity.form.conditions') }),
+      conditions,
+      el('div', { className: 'row-buttons' }, add),
+      el('div', { className: 'row-buttons' }, apply, clear),
+      status,
+      el('div', { className: 'row-buttons end' }, close),
+    ),
   );
-  const anchor = document.getElementById('share-status');
-  dialogForm.insertBefore(details, anchor);
+  dialog.setAttribute('aria-labelledby', 'activity-dialog-title');
+  document.body.append(dialog);
+  const open = el('button', { type: 'button', id: 'share-activity-open', textContent: t('activity.form.open') });
+  open.title = t('activity.form.open_title');
+  document.getElementById('copy-link').after(open);
 
   const choiceList = () => choices.value.split('\n').map((c) => c.trim()).filter((c) => c !== '');
   const showExpected = (keep = expected.value) => {
@@ -164,8 +191,6 @@ export function setupShareActivity(app) {
     showExpected(a?.prediction?.expected === undefined ? '' : String(a.prediction.expected));
     steps.value = a?.check ? String(a.check.steps) : '';
     conditions.replaceChildren(...(a?.check?.conditions ?? []).map((c) => conditionRow(app, c)));
-    if (!a) details.open = false;
-    else details.open = true;
     status.textContent = '';
   };
 
@@ -191,6 +216,11 @@ export function setupShareActivity(app) {
   apply.addEventListener('click', () => set(JSON.stringify(read()), t('activity.form.applied')));
   clear.addEventListener('click', () => {
     if (set('', t('activity.form.cleared'))) fill();
+  });
+  open.addEventListener('click', () => {
+    fill();
+    dialog.showModal();
+    promptInput.focus();
   });
   document.getElementById('share').addEventListener('click', fill);
   fill();
