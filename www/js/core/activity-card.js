@@ -238,8 +238,12 @@ export function mountActivityCard(host, container, { readActivity, readReport, g
       card.hidden = !activity;
       prompt.textContent = activity?.prompt ?? '';
       renderPrediction();
-      // A scene with a question starts paused: the student answers before the run starts.
-      if (needsPrediction() && host.playing) host.setPlaying(false);
+      // A scene with a question starts paused: the student answers before the run starts, and
+      // a run that was meant to play (autoplay, the playground's start) plays once answered.
+      if (needsPrediction() && host.playing) {
+        host.setPlaying(false);
+        playAfterAnswer = true;
+      }
     }
     lastSteps = -1;
     wasRunning = true;
