@@ -106,9 +106,11 @@ export function mountActivityCard(host, container, { readActivity, readReport, g
   const prompt = el('p', { className: 'fp-prompt' });
   const predictionBox = el('div', { className: 'fp-prediction' });
   const predictedLine = el('p', { className: 'fp-muted fp-predicted' });
+  // The goal while the run goes (not announced: its step count changes every frame), then the
+  // result in a live region (announced once, when the check is decided).
+  const goalBox = el('div', { className: 'fp-goal' });
   const resultBox = el('div', { className: 'fp-result', role: 'status' });
-  resultBox.setAttribute('aria-live', 'polite');
-  card.append(title, prompt, predictionBox, predictedLine, resultBox);
+  card.append(title, prompt, predictionBox, predictedLine, goalBox, resultBox);
 
   const prediction = () => activity?.prediction ?? null;
   const answered = () => answers.has(key);
@@ -180,13 +182,15 @@ export function mountActivityCard(host, container, { readActivity, readReport, g
     if (!force && text === shownReport) return report;
     shownReport = text;
     resultBox.replaceChildren();
+    goalBox.replaceChildren();
     if (!report) return report;
     const status = report.status;
+    const box = status === 'met' || status === 'missed' ? resultBox : goalBox;
     const line = el('p', { className: `fp-status fp-${status}` });
     const limit = report.limit.toLocaleString('en-US');
     const step = report.step.toLocaleString('en-US');
     line.textContent = t(`activity.status.${status}`, { step, limit });
-    resultBox.append(line);
+    box.append(line);
     const list = el('ul');
     for (const c of report.conditions) {
       const item = el('li');
@@ -200,26 +204,26 @@ export function mountActivityCard(host, container, { readActivity, readReport, g
           return `${whose}${formatValue(c.condition.metric, m.value)}`;
         })
         .join('; ');
-      let text = describe(c.condition);
-      if (!c.applies) text += ` — ${t('activity.not_here')}`;
-      else if (status !== 'running' && measured) text += ` — ${t('activity.measured', { values: measured })}`;
-      item.textContent = text;
+      let words = describe(c.condition);
+      if (!c.applies) words += ` — ${t('activity.not_here')}`;
+      else if (status !== 'running' && measured) words += ` — ${t('activity.measured', { values: measured })}`;
+      item.textContent = words;
       if (status === 'met' || status === 'missed') item.className = c.holds ? 'fp-pass' : 'fp-fail';
       list.append(item);
     }
-    resultBox.append(list);
+    box.append(list);
     if (report.from_step > 1 && status !== 'unavailable') {
-      resultBox.append(el('p', { className: 'fp-muted', textContent: t('activity.partial', { step: report.from_step.toLocaleString('en-US') }) }));
+      box.append(el('p', { className: 'fp-muted', textContent: t('activity.partial', { step: report.from_step.toLocaleString('en-US') }) }));
     }
     const p = prediction();
     predictedLine.hidden = Boolean(p && (status === 'met' || status === 'missed'));
     if (p && (status === 'met' || status === 'missed')) {
       const mine = answers.get(key);
-      resultBox.append(
+      box.append(
         el('p', { className: 'fp-muted fp-compare-prediction', textContent: mine === undefined ? t('activity.no_prediction') : t('activity.you_predicted', { answer: p.choices[mine] ?? '' }) }),
       );
       if (p.expected !== undefined && p.expected !== null) {
-        resultBox.append(el('p', { className: 'fp-muted', textContent: t('activity.expected', { answer: p.choices[p.expected] ?? '' }) }));
+        box.append(el('p', { className: 'fp-muted', textContent: t('activity.expected', { answer: p.choices[p.expected] ?? '' }) }));
       }
     }
     return report;
