@@ -87,6 +87,9 @@ test('a linked activity shows its prompt, asks the prediction before Play and ch
       return null;
     }, 1500);
     assert.equal(found?.k, step, 'deciding step');
+    const report = await there.evaluate(() => window.flockpath.activityReport());
+    assert.deepEqual([report.status, report.step, report.conditions[0].measured[0].value], ['met', step, found.share],
+      'stepping one at a time through the page API decides the same check at the same step');
     assert.equal(items[0], `Arrived ≥ 90 % — measured: ${Number((100 * found.share).toFixed(1))} %`);
     assert.equal(items[1], 'Penetrations (agent-steps) = 0 — measured: 0');
     const after = await there.locator(`${card} .fp-result`).textContent();
