@@ -5,6 +5,7 @@
 //!
 //! Layer: model. Uses `rng` only (presets scatter obstacles); every layer above uses it.
 
+pub mod activity;
 pub mod classroom;
 pub mod codec;
 pub mod edit;
