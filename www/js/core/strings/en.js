@@ -165,7 +165,7 @@ export default {
   'classroom.locked.paths': 'Paths are locked in this scene: they cannot be added, moved or deleted here.',
   'classroom.share.title': 'For students: controls, locks, hidden panels',
   'classroom.share.note': 'The link, the iframe and the web component carry these ticks. They limit the page, not scripts: the page API stays open.',
-  'classroom.share.toggle': 'For students…',
+  'classroom.share.toggle': 'Lock…',
   'classroom.share.controls': 'Controls students get',
   'classroom.share.lock': 'Locked (cannot be edited)',
   'classroom.share.hide': 'Hidden panels',

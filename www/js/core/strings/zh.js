@@ -163,7 +163,7 @@ export default {
   'classroom.locked.paths': '此场景的路径已锁定：不能在此添加、移动或删除。',
   'classroom.share.title': '给学生：控件、锁定、隐藏的面板',
   'classroom.share.note': '链接、iframe 和网页组件都会带上这些勾选。它们只限制页面，不限制脚本：页面 API 仍然开放。',
-  'classroom.share.toggle': '给学生…',
+  'classroom.share.toggle': '锁定…',
   'classroom.share.controls': '学生可用的控件',
   'classroom.share.lock': '锁定（不可编辑）',
   'classroom.share.hide': '隐藏的面板',
