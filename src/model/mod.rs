@@ -11,4 +11,5 @@ pub mod geometry;
 pub mod palette;
 pub mod params;
 pub mod presets;
+pub mod refusal;
 pub mod scene;

@@ -4,6 +4,7 @@
 
 import { clientToScene, sceneUnitsPerCssPixel, viewTransform } from '../core/view.js';
 import { PathEditor } from './path-edit.js';
+import { setText, t } from '../core/i18n.js';
 
 /** Tool names in number-key order (1…7). */
 export const TOOLS = ['select', 'circle', 'rect', 'polygon', 'goal', 'group', 'path'];
@@ -11,14 +12,15 @@ export const TOOLS = ['select', 'circle', 'rect', 'polygon', 'goal', 'group', 'p
 /** Tools whose shape is a list of clicked points. */
 const POINT_TOOLS = ['polygon', 'path'];
 
+/** The hint of each tool (its key in the strings tables). */
 const HINTS = {
-  select: 'Click an item to select it, drag to move it, Delete removes it.',
-  circle: 'Drag from the centre outwards to draw a circular obstacle.',
-  rect: 'Drag from corner to corner to draw a rectangular obstacle.',
-  polygon: 'Click to add points; double-click, Enter or click the first point to close; Esc cancels.',
-  goal: 'Click to place a goal; the active group heads for it.',
-  group: 'Drag a spawn region for a new group of agents.',
-  path: 'Click points along the way; double-click or Enter ends the path; the active group follows it (Boids).',
+  select: 'hint.select',
+  circle: 'hint.circle',
+  rect: 'hint.rect',
+  polygon: 'hint.polygon',
+  goal: 'hint.goal',
+  group: 'hint.group',
+  path: 'hint.path',
 };
 
 /** Pick tolerance and gesture thresholds, in CSS px. */
@@ -68,7 +70,7 @@ export class Editor {
       button.setAttribute('aria-checked', String(button.dataset.tool === tool));
     }
     const hint = document.getElementById('hint');
-    if (hint) hint.textContent = HINTS[tool];
+    if (hint) setText(hint, HINTS[tool]);
   }
 
   /** Drops the gesture or polygon in progress (Escape). */
@@ -178,7 +180,7 @@ export class Editor {
     const groups = this.app.scene.groups ?? [];
     const model = groups[this.app.activeGroup];
     const group = {
-      name: `group ${groups.length + 1}`,
+      name: t('groups.default_name', { n: groups.length + 1 }),
       color: this.app.nextColor(),
       count: 30,
       spawn,

@@ -3,6 +3,9 @@
 // selects it; the core picks the agent (`agent_at`), explains it (`explanation_json`) and draws
 // the overlays. This module only shows what the core returns.
 
+import { onLanguageChange, t, tOr } from '../core/i18n.js';
+import { unitText } from '../core/params-form.js';
+
 /** How often the inspector and the stuck count refresh while the run goes on (ms). */
 const REFRESH_MS = 250;
 
@@ -43,7 +46,7 @@ export function setupInspector(app) {
   const refresh = () => {
     const stuck = app.guard((sim) => sim.stuck_agents().length);
     if (stuck.ok) {
-      const text = stuck.value === 0 ? '' : `${stuck.value} agent${stuck.value === 1 ? '' : 's'} stuck`;
+      const text = stuck.value === 0 ? '' : stuck.value === 1 ? t('diagnose.stuck_one') : t('diagnose.stuck_count', { n: stuck.value });
       // Written only when it changed: a write restyles the page (this runs four times a second).
       if (stuckCount.textContent !== text) stuckCount.textContent = text;
     }
@@ -53,25 +56,29 @@ export function setupInspector(app) {
     if (hint.hidden !== (e !== null)) hint.hidden = e !== null;
     if (e === null) return;
     const group = app.scene.groups?.[e.group];
-    title.textContent = `Agent ${e.agent} · ${group?.name ?? `group ${e.group + 1}`} (${e.planner})`;
+    title.textContent = t('inspector.title', {
+      agent: e.agent,
+      group: group?.name ?? t('groups.default_name', { n: e.group + 1 }),
+      planner: tOr(`planner.${e.planner}`, e.planner),
+    });
     facts.replaceChildren();
-    fact('Speed', `${e.speed.toFixed(2)} px/step`);
-    fact('State', e.state, e.stuck);
-    fact('Position', `${e.position[0].toFixed(0)}, ${e.position[1].toFixed(0)} px`);
-    fact('Neighbours', String(e.neighbours.length));
-    for (const v of e.values) fact(v.name, Number.isInteger(v.value) ? String(v.value) : v.value.toFixed(3));
+    fact(t('inspector.speed'), `${e.speed.toFixed(2)} ${unitText('px/step')}`);
+    fact(t('inspector.state'), tOr(`explain.${e.state}`, e.state), e.stuck);
+    fact(t('inspector.position'), `${e.position[0].toFixed(0)}, ${e.position[1].toFixed(0)} ${unitText('px')}`);
+    fact(t('inspector.neighbours'), String(e.neighbours.length));
+    for (const v of e.values) fact(tOr(`explain.${v.name}`, v.name), Number.isInteger(v.value) ? String(v.value) : v.value.toFixed(3));
     vectors.replaceChildren();
     for (const v of e.vectors) {
       const li = document.createElement('li');
       const swatch = document.createElement('span');
       swatch.className = 'swatch';
       swatch.style.background = v.color;
-      li.append(swatch, `${v.name}: ${v.length.toFixed(v.in_px ? 0 : 3)}${v.in_px ? ' px' : ''}`);
+      li.append(swatch, `${tOr(`explain.${v.name}`, v.name)}: ${v.length.toFixed(v.in_px ? 0 : 3)}${v.in_px ? ` ${unitText('px')}` : ''}`);
       vectors.append(li);
     }
     for (const p of e.points) {
       const li = document.createElement('li');
-      li.textContent = `${p.name} at ${p.point[0].toFixed(0)}, ${p.point[1].toFixed(0)}`;
+      li.textContent = t('inspector.point_at', { name: tOr(`explain.${p.name}`, p.name), x: p.point[0].toFixed(0), y: p.point[1].toFixed(0) });
       vectors.append(li);
     }
   };
@@ -102,4 +109,5 @@ export function setupInspector(app) {
   };
   requestAnimationFrame(tick);
   refresh();
+  onLanguageChange(refresh);
 }

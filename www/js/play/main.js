@@ -19,6 +19,7 @@ import { setupSceneLinks } from './scene-links.js';
 import { setupTimeline } from './timeline.js';
 import { keepLocationInSync, sceneFromLocation, watchLocation } from '../core/url.js';
 import { measure, setupView } from '../core/view.js';
+import { t, tOr } from '../core/i18n.js';
 
 bootPage('flockpath', ({ module, wasm }) => {
   const canvas = document.getElementById('scene-canvas');
@@ -62,7 +63,8 @@ bootPage('flockpath', ({ module, wasm }) => {
   startLoop(app, canvas, onFrame);
   document.getElementById('loading').hidden = true;
   if (linkError !== null) {
-    showMessage(`The scene in the link could not be loaded: ${linkError}. Showing the default scene “${presets[0].name}” instead.`);
+    const name = tOr(`preset.${presets[0].name}`, presets[0].name);
+    showMessage(t('play.link_failed_default', { reason: linkError, name }));
   }
 
   attach(app);

@@ -4,6 +4,7 @@
 import { download } from '../core/download.js';
 import { messageOf, showMessage } from '../core/errors.js';
 import { shareUrl, writeSceneToLocation } from '../core/url.js';
+import { t } from '../core/i18n.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -33,15 +34,15 @@ export function snippets(sceneString, { autoplay = true, page = location.href } 
   const module = new URL('js/flock-path.js', page);
   const iframe =
     `<iframe src="${attr(embed.href)}" width="720" height="480" style="border:0;max-width:100%" ` +
-    'title="flockpath simulation" allowfullscreen loading="lazy"></iframe>';
+    `title="${attr(t('share.snippet_iframe_title'))}" allowfullscreen loading="lazy"></iframe>`;
   // The element's children are fallback content: shown until the module upgrades it (then its
   // shadow DOM replaces them), and all a reader sees when scripts do not run at all. Inline
   // elements only: a Markdown tool that wraps the element in <p> would end it at a child <p>.
   const component =
     `<script type="module" src="${attr(module.href)}" onerror="${attr(MODULE_ERROR_HANDLER)}"></script>\n` +
     `<flock-path scene="${attr(sceneString)}"${autoplay ? ' autoplay' : ''} controls height="400px">\n` +
-    '  <span data-flockpath-status>Loading the flockpath simulation…</span>\n' +
-    `  <a href="${attr(link)}">Open this scene in flockpath</a>\n` +
+    `  <span data-flockpath-status>${attr(t('share.snippet_loading'))}</span>\n` +
+    `  <a href="${attr(link)}">${attr(t('share.snippet_open'))}</a>\n` +
     '</flock-path>';
   return { link, iframe, component };
 }
@@ -49,9 +50,9 @@ export function snippets(sceneString, { autoplay = true, page = location.href } 
 async function copy(text, status, what) {
   try {
     await navigator.clipboard.writeText(text);
-    status.textContent = `${what} copied to the clipboard.`;
+    status.textContent = t('share.copied', { what });
   } catch {
-    status.textContent = `${what}: the browser refused clipboard access; select the text and copy it.`;
+    status.textContent = t('share.copy_refused', { what });
   }
 }
 
@@ -61,11 +62,11 @@ async function loadFile(app, file) {
   try {
     text = await file.text();
   } catch (error) {
-    showMessage(`the file ${file.name} could not be read: ${messageOf(error)}`);
+    showMessage(t('share.file_unreadable', { name: file.name, reason: messageOf(error) }));
     return false;
   }
   const result = app.load(text);
-  if (!result.ok) showMessage(`the file ${file.name} was not loaded: ${messageOf(result.error)}. The previous scene keeps running.`);
+  if (!result.ok) showMessage(t('share.file_refused', { name: file.name, reason: messageOf(result.error) }));
   return result.ok;
 }
 
@@ -78,7 +79,7 @@ export function setupShare(app) {
     if (!result.ok) return null;
     const s = snippets(result.value, { autoplay: autoplay.checked });
     $('share-link').value = s.link;
-    $('share-link-size').textContent = `(${s.link.length} characters)`;
+    $('share-link-size').textContent = t('share.link_size', { n: s.link.length });
     $('share-iframe').value = s.iframe;
     $('share-component').value = s.component;
     return result.value;
@@ -95,15 +96,15 @@ export function setupShare(app) {
   app.addEventListener('scene', () => {
     if (dialog.open) fill();
   });
-  $('copy-link').addEventListener('click', () => copy($('share-link').value, status, 'Link'));
-  $('copy-iframe').addEventListener('click', () => copy($('share-iframe').value, status, 'Iframe snippet'));
-  $('copy-component').addEventListener('click', () => copy($('share-component').value, status, 'Web-component snippet'));
+  $('copy-link').addEventListener('click', () => copy($('share-link').value, status, t('share.what_link')));
+  $('copy-iframe').addEventListener('click', () => copy($('share-iframe').value, status, t('share.what_iframe')));
+  $('copy-component').addEventListener('click', () => copy($('share-component').value, status, t('share.what_component')));
   $('download-scene').addEventListener('click', () => {
     const result = app.guard((sim) => sim.scene_json());
     if (!result.ok) return;
     const name = `${fileStem(app.scene)}.json`;
     download(name, `${result.value}\n`, 'application/json');
-    status.textContent = `Downloading ${name}.`;
+    status.textContent = t('share.downloading', { name });
   });
   const picker = $('scene-file');
   $('open-scene').addEventListener('click', () => picker.click());
@@ -111,7 +112,7 @@ export function setupShare(app) {
     const file = picker.files?.[0];
     picker.value = '';
     if (file && (await loadFile(app, file))) {
-      status.textContent = `Loaded ${file.name}.`;
+      status.textContent = t('share.loaded', { name: file.name });
       dialog.close();
     }
   });
