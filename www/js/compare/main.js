@@ -155,7 +155,7 @@ function refresh(app) {
   drawPlots($('plots'), series);
 }
 
-bootPage('the comparison', ({ module, wasm }) => {
+bootPage(t('boot.what_compare'), ({ module, wasm }) => {
   const presets = JSON.parse(module.presets_json());
   const fallback = module.preset_scene_json(presets[0].name);
   const linked = parseHash();

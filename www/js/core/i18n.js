@@ -208,5 +208,8 @@ export function translatePage(root = document) {
   }
 }
 
+/** The English table (the reference; refusals.js finds a label's key by its English words). */
+export { en };
+
 /** Every shipped table, for the missing-key test. */
 export const TABLES_FOR_TESTS = TABLES;

@@ -51,7 +51,7 @@ function convergence(runs) {
 /** Format a value the way Table 3 does. */
 const fmt = (v) => (Number.isFinite(v) ? (v === 0 ? '0' : v.toExponential(4)) : String(v));
 
-bootPage('the lab', ({ module, wasm }) => {
+bootPage(t('boot.what_lab'), ({ module, wasm }) => {
   const options = JSON.parse(module.lab_options_json());
   const fnSelect = $('lab-function');
   const algSelect = $('lab-algorithm');

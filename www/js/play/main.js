@@ -21,7 +21,7 @@ import { keepLocationInSync, sceneFromLocation, watchLocation } from '../core/ur
 import { measure, setupView } from '../core/view.js';
 import { t, tOr } from '../core/i18n.js';
 
-bootPage('flockpath', ({ module, wasm }) => {
+bootPage(t('boot.what_play'), ({ module, wasm }) => {
   const canvas = document.getElementById('scene-canvas');
   const overlay = document.getElementById('overlay-canvas');
   const { width, height } = measure(canvas);

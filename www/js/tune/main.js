@@ -201,7 +201,7 @@ function readQuery(linkedScene) {
   return query.get('autostart') === '1';
 }
 
-bootPage('the Tune page', ({ module, wasm }) => {
+bootPage(t('boot.what_tune'), ({ module, wasm }) => {
 
   const linkedScene = sceneFromLocation();
   if (linkedScene !== null) {
