@@ -3,7 +3,8 @@
 // text for per-group planners. Blitting copies each pane's wasm frame to its canvas.
 
 import { blit } from '../core/blit.js';
-import { paramControl, paramReadout } from '../core/params-form.js';
+import { paramControl, paramLabel, paramReadout } from '../core/params-form.js';
+import { onLanguageChange, t, tOr } from '../core/i18n.js';
 import { backingSize } from '../core/view.js';
 
 const el = (tag, props = {}, ...children) => {
@@ -45,37 +46,50 @@ function paramForm(app, index, pane) {
     const input = paramControl(p, {
       id,
       value,
+      planner: pane.planner,
       onInput: (v) => (readout.textContent = paramReadout(p, v)),
       onChange: (v) => app.change((sim) => sim.set_pane_param(index, p.key, JSON.stringify(v))),
     });
-    form.append(el('label', { className: 'param', htmlFor: id }, el('span', { textContent: p.label }), input, readout ?? el('span')));
+    form.append(el('label', { className: 'param', htmlFor: id }, el('span', { textContent: paramLabel(pane.planner, p) }), input, readout ?? el('span')));
   }
   return form;
 }
 
+/**
+ * A pane's label in the page's language: the core's words (planner and changed parameters) on
+ * English pages; elsewhere the translated planner name when the label is just that planner.
+ */
+export function paneLabel(app, pane) {
+  const planner = app.planners.find((p) => p.name === pane.planner);
+  if (!planner || pane.per_group) return pane.label;
+  const short = planner.label.split(' (')[0];
+  return pane.label === short || pane.label === planner.label ? tOr(`planner.${planner.name}`, pane.label) : pane.label;
+}
+
 function paneElement(app, index, pane, count) {
+  const label = paneLabel(app, pane);
   const canvas = el('canvas', { className: 'pane-canvas' });
-  canvas.setAttribute('aria-label', `Pane ${pane.pane}: ${pane.label}`);
-  const picker = el('select', { title: 'The planner of every group in this pane' });
-  picker.append(el('option', { value: 'scene', textContent: "scene's planners", selected: pane.planner === 'scene' }));
+  canvas.setAttribute('aria-label', t('compare.pane_label', { pane: pane.pane, label }));
+  const picker = el('select', { title: t('compare.pane_planner_title') });
+  picker.append(el('option', { value: 'scene', textContent: t('compare.scene_planners'), selected: pane.planner === 'scene' }));
   for (const p of app.planners) {
-    picker.append(el('option', { value: p.name, textContent: p.label, selected: pane.planner === p.name && !pane.per_group }));
+    picker.append(el('option', { value: p.name, textContent: tOr(`planner.${p.name}`, p.label), selected: pane.planner === p.name && !pane.per_group }));
   }
-  if (pane.per_group) picker.append(el('option', { value: '', textContent: 'per group (see spec)', selected: true, disabled: true }));
+  if (pane.per_group) picker.append(el('option', { value: '', textContent: t('compare.per_group'), selected: true, disabled: true }));
   picker.addEventListener('change', () => app.change((sim) => sim.set_pane_planner(index, picker.value)));
-  const remove = el('button', { type: 'button', className: 'small ghost', textContent: '✕', title: 'Remove this pane', disabled: count <= 1 });
+  const remove = el('button', { type: 'button', className: 'small ghost', textContent: '✕', title: t('compare.remove_pane'), disabled: count <= 1 });
   remove.addEventListener('click', () => app.change((sim) => sim.remove_pane(index)));
   const head = el('div', { className: 'pane-head' },
     el('span', { className: 'pane-name', textContent: pane.pane }),
     picker,
-    el('span', { className: 'pane-label', textContent: pane.label, title: pane.label }),
+    el('span', { className: 'pane-label', textContent: label, title: label }),
     remove);
 
-  const details = el('details', {}, el('summary', { textContent: 'Parameters' }));
+  const details = el('details', {}, el('summary', { textContent: t('compare.parameters') }));
   if (pane.planner !== 'scene' && !pane.per_group) details.append(paramForm(app, index, pane));
   const specInput = el('input', { type: 'text', value: pane.spec, spellcheck: false,
-    title: 'This pane as spec text: scene, or planner(values…), or per group 1=pso;2=firefly(…)' });
-  specInput.setAttribute('aria-label', `Pane ${pane.pane} spec`);
+    title: t('compare.spec_title') });
+  specInput.setAttribute('aria-label', t('compare.spec_label', { pane: pane.pane }));
   specInput.addEventListener('change', () => {
     const all = JSON.parse(app.guard((sim) => sim.panes_json()).value ?? '[]').map((p) => p.spec);
     all[index] = specInput.value.trim();
@@ -111,6 +125,7 @@ export function buildPanes(app) {
     app.dirty = true;
   };
   app.addEventListener('panes', build);
+  onLanguageChange(build);
   build();
   const fit = () => {
     const { width, height } = measurePane();
