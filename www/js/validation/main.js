@@ -5,6 +5,7 @@
 
 import { messageOf, setupBanner, showMessage } from '../core/errors.js';
 import { drawPlot } from '../core/plot.js';
+import { t } from '../core/i18n.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -64,10 +65,10 @@ async function boot() {
     const link = Object.assign(document.createElement('a'), { textContent: titles.get(row.test) ?? row.test, target: '_blank' });
     if (row.scene) link.href = `index.html#s=${row.scene}`;
     link.className = 'scene-link';
-    link.title = 'Open this test\'s scene with this planner in the playground';
+    link.title = t('validation.open_title');
     test.append(link);
     const cells = [row.planner, row.measured, row.criterion].map((text) => Object.assign(document.createElement('td'), { textContent: text }));
-    const result = Object.assign(document.createElement('td'), { textContent: row.pass ? 'pass' : 'fail', className: row.pass ? 'pass' : 'fail' });
+    const result = Object.assign(document.createElement('td'), { textContent: row.pass ? t('validation.pass') : t('validation.fail'), className: row.pass ? 'pass' : 'fail' });
     tr.append(test, ...cells, result);
     tbody.append(tr);
     state.rows += 1;
@@ -88,13 +89,13 @@ async function boot() {
       span.style.color = colorOf.get(c.planner) ?? '#888';
       legend.append(span);
     }
-    plotOver($('val-plot'), densities, lines, 'speed (m/s) against density (persons/m²)', 'no data yet');
+    plotOver($('val-plot'), densities, lines, t('validation.fd_axes'), t('plots.empty'));
   };
 
   const drawSweep = () => {
     const sweeps = state.curves.filter((c) => c.test === 't8-speed-sweep');
     if (sweeps.length === 0) {
-      plotOver($('val-sweep'), [0.8, 1.6], [], 'evacuation time (s) against desired speed (m/s)', 'no data yet');
+      plotOver($('val-sweep'), [0.8, 1.6], [], t('validation.sweep_axes'), t('plots.empty'));
       return;
     }
     const speeds = sweeps[0].rows.map((r) => r[0]);
@@ -106,7 +107,7 @@ async function boot() {
       span.style.color = colorOf.get(c.planner) ?? '#888';
       return span;
     }));
-    plotOver($('val-sweep'), speeds, lines, 'evacuation time (s) against desired speed (m/s)', 'no data yet');
+    plotOver($('val-sweep'), speeds, lines, t('validation.sweep_axes'), t('plots.empty'));
   };
 
   const finish = (text) => {
@@ -121,7 +122,7 @@ async function boot() {
     const planners = checked('val-planners');
     const tests = checked('val-tests');
     if (planners.length === 0 || tests.length === 0) {
-      showMessage('Pick at least one planner and one test.');
+      showMessage(t('validation.pick'));
       return;
     }
     tbody.replaceChildren();
@@ -138,7 +139,7 @@ async function boot() {
     worker.onmessage = ({ data }) => {
       if (data.type === 'progress') {
         $('val-progress').value = data.done / data.total;
-        $('val-progress-text').textContent = `${data.done}/${data.total}: ${data.test} with ${data.planner}…`;
+        $('val-progress-text').textContent = t('validation.progress', { done: data.done, total: data.total, test: data.test, planner: data.planner });
       } else if (data.type === 'outcome') {
         $('val-progress').value = data.done / data.total;
         for (const row of data.outcome.rows) addRow(row);
@@ -147,21 +148,21 @@ async function boot() {
         drawSweep();
       } else if (data.type === 'done') {
         $('val-progress').value = 1;
-        $('val-summary').textContent = `${state.passed} of ${state.rows} passed in ${data.seconds.toFixed(1)} s.`;
-        finish('done');
+        $('val-summary').textContent = t('validation.summary', { passed: state.passed, rows: state.rows, seconds: data.seconds.toFixed(1) });
+        finish(t('validation.done'));
       } else if (data.type === 'error') {
         showMessage(data.message);
-        finish('stopped by an error');
+        finish(t('validation.stopped'));
       }
     };
     worker.onerror = (e) => {
       showMessage(messageOf(e));
-      finish('stopped by an error');
+      finish(t('validation.stopped'));
     };
     worker.postMessage({ tests, planners });
   });
 
-  $('val-cancel').addEventListener('click', () => finish('cancelled'));
+  $('val-cancel').addEventListener('click', () => finish(t('lab.cancelled')));
   drawDiagram();
   drawSweep();
   window.flockpathValidation = { rows: () => state.rows, running: () => state.worker !== null };
