@@ -485,6 +485,21 @@ export default {
   'validation.done': 'done',
   'validation.stopped': 'stopped by an error',
 
+  // — <flock-path> and embed —
+  'element.canvas': 'Simulated crowd',
+  'element.play_title': 'Play / pause',
+  'element.step_title': 'Advance one step',
+  'element.reset_title': 'Restart from the seed',
+  'element.fullscreen': 'Full screen',
+  'element.dismiss': 'Click to dismiss',
+  'element.crashed': 'The simulation crashed (a bug in flockpath): {message}',
+  'element.load_failed_fallback': 'The scene could not be loaded: {reason}. Showing “{name}” instead.',
+  'element.load_failed_kept': 'The scene could not be loaded: {reason}. The previous scene keeps running.',
+  'embed.doc_title': 'flockpath — embedded scene',
+  'embed.open': 'Open in flockpath ↗',
+  'embed.open_title': 'Open this scene in the full flockpath playground',
+  'embed.not_loaded': 'flockpath could not be loaded',
+
   // — core tables (planners, parameters, choices, units, presets, metric series) —
   // Same words as the Rust tables (planners_json, presets_json, history_json); i18n.test.mjs
   // checks that every Rust entry has its keys here, so a new parameter fails the test until translated.

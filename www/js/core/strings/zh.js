@@ -485,6 +485,21 @@ export default {
   'validation.done': '完成',
   'validation.stopped': '因错误而停止',
 
+  // — <flock-path> and embed —
+  'element.canvas': '模拟的人群',
+  'element.play_title': '播放 / 暂停',
+  'element.step_title': '前进一步',
+  'element.reset_title': '从随机种子重新开始',
+  'element.fullscreen': '全屏',
+  'element.dismiss': '单击关闭',
+  'element.crashed': '模拟崩溃了（flockpath 的缺陷）：{message}',
+  'element.load_failed_fallback': '无法加载场景：{reason}。改为显示“{name}”。',
+  'element.load_failed_kept': '无法加载场景：{reason}。之前的场景继续运行。',
+  'embed.doc_title': 'flockpath — 嵌入的场景',
+  'embed.open': '在 flockpath 中打开 ↗',
+  'embed.open_title': '在完整的 flockpath 演练场中打开此场景',
+  'embed.not_loaded': '无法加载 flockpath',
+
   // — core tables (planners, parameters, choices, units, presets, metric series) —
   // Same words as the Rust tables (planners_json, presets_json, history_json); i18n.test.mjs
   // checks that every Rust entry has its keys here, so a new parameter fails the test until translated.
