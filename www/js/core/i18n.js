@@ -192,10 +192,12 @@ function setInlineHtml(el, text) {
  * Fills every marked element under `root` in the current language: `data-i18n="key"` sets the
  * text (the element must hold text only), `data-i18n-html="key"` text with inline markup,
  * `data-i18n-title="key"` etc. set that attribute; `data-i18n-vars` (JSON) fills `{name}`s.
- * On a document it also sets `<html lang>`.
+ * On a document it also sets `<html lang>` (unless it carries `data-i18n-keep-lang`).
  */
 export function translatePage(root = document) {
-  if (root.documentElement) root.documentElement.lang = htmlLang();
+  // A page whose content is written in one language (course notes) keeps its own `lang`.
+  const html = root.documentElement;
+  if (html && !html.hasAttribute('data-i18n-keep-lang')) html.lang = htmlLang();
   for (const el of root.querySelectorAll('[data-i18n]')) {
     const text = t(el.dataset.i18n, varsOf(el, 'data-i18n-vars'));
     if (el.textContent !== text) el.textContent = text;

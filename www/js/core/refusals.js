@@ -44,7 +44,11 @@ const VALUES = { missing: 'value.missing', 'an unknown key': 'value.unknown_key'
 function match(list, text) {
   for (const [re, key] of list) {
     const m = re.exec(text);
-    if (m) return t(key, { ...m.groups });
+    if (!m) continue;
+    const groups = { ...m.groups };
+    // `1 and 2`: the core's list joined in the reader's language.
+    if (groups.readable) groups.readable = groups.readable.split(' and ').join(` ${t('list.and')} `);
+    return t(key, groups);
   }
   return null;
 }

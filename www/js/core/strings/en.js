@@ -499,6 +499,7 @@ export default {
   'embed.open': 'Open in flockpath ↗',
   'embed.open_title': 'Open this scene in the full flockpath playground',
   'embed.not_loaded': 'flockpath could not be loaded',
+  'list.and': 'and',
 
   // — core tables (planners, parameters, choices, units, presets, metric series) —
   // Same words as the Rust tables (planners_json, presets_json, history_json); i18n.test.mjs
