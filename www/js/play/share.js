@@ -20,11 +20,17 @@ const attr = (text) => text.replace(/&/g, '&amp;').replace(/"/g, '&quot;').repla
 /**
  * The `<flock-path>` snippet's script runs this when the module cannot load (blocked by CORS or a
  * Content-Security-Policy, 404, offline): no flockpath code runs then, so the snippet itself turns
- * its fallback text ("Loading…", shown until the element upgrades) into the reason.
+ * its fallback text ("Loading…", shown until the element upgrades) into the reason, in the
+ * language the snippet was made in.
  */
-const MODULE_ERROR_HANDLER =
-  "document.querySelectorAll('flock-path:not(:defined) [data-flockpath-status]').forEach((p) => " +
-  "{ p.textContent = 'The flockpath simulation could not be loaded: the browser refused or could not find ' + this.src + '.'; })";
+function moduleErrorHandler() {
+  const quote = (text) => `'${text.replace(/\\/g, '\\\\').replace(/'/g, "\\'")}'`;
+  const [before, after = ''] = t('share.snippet_module_error').split('{url}');
+  return (
+    "document.querySelectorAll('flock-path:not(:defined) [data-flockpath-status]').forEach((p) => " +
+    `{ p.textContent = ${quote(before)} + this.src + ${quote(after)}; })`
+  );
+}
 
 /** The snippets for the current scene string (absolute URLs: they are pasted into other sites). */
 export function snippets(sceneString, { autoplay = true, page = location.href } = {}) {
@@ -39,7 +45,7 @@ export function snippets(sceneString, { autoplay = true, page = location.href } 
   // shadow DOM replaces them), and all a reader sees when scripts do not run at all. Inline
   // elements only: a Markdown tool that wraps the element in <p> would end it at a child <p>.
   const component =
-    `<script type="module" src="${attr(module.href)}" onerror="${attr(MODULE_ERROR_HANDLER)}"></script>\n` +
+    `<script type="module" src="${attr(module.href)}" onerror="${attr(moduleErrorHandler())}"></script>\n` +
     `<flock-path scene="${attr(sceneString)}"${autoplay ? ' autoplay' : ''} controls height="400px">\n` +
     `  <span data-flockpath-status>${attr(t('share.snippet_loading'))}</span>\n` +
     `  <a href="${attr(link)}">${attr(t('share.snippet_open'))}</a>\n` +

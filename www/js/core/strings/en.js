@@ -500,6 +500,7 @@ export default {
   'embed.open_title': 'Open this scene in the full flockpath playground',
   'embed.not_loaded': 'flockpath could not be loaded',
   'list.and': 'and',
+  'share.snippet_module_error': 'The flockpath simulation could not be loaded: the browser refused or could not find {url}.',
 
   // — core tables (planners, parameters, choices, units, presets, metric series) —
   // Same words as the Rust tables (planners_json, presets_json, history_json); i18n.test.mjs

@@ -500,6 +500,7 @@ export default {
   'embed.open_title': '在完整的 flockpath 演练场中打开此场景',
   'embed.not_loaded': '无法加载 flockpath',
   'list.and': '和',
+  'share.snippet_module_error': '无法加载 flockpath 模拟：浏览器拒绝或找不到 {url}。',
 
   // — core tables (planners, parameters, choices, units, presets, metric series) —
   // Same words as the Rust tables (planners_json, presets_json, history_json); i18n.test.mjs
