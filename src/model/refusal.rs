@@ -96,8 +96,12 @@ impl Refusal for SetParamError {
 
     fn args(&self) -> Vec<(&'static str, String)> {
         match self {
-            SetParamError::UnknownKey { planner, key } => vec![("planner", planner.to_string()), ("key", key.clone())],
-            SetParamError::WrongType { label, problem } => vec![("label", label.to_string()), ("problem", problem.clone())],
+            SetParamError::UnknownKey { planner, key } => {
+                vec![("planner", planner.to_string()), ("key", key.clone())]
+            }
+            SetParamError::WrongType { label, problem } => {
+                vec![("label", label.to_string()), ("problem", problem.clone())]
+            }
             SetParamError::Refused(e) => e.args(),
         }
     }
@@ -157,6 +161,10 @@ mod tests {
     fn an_unknown_version_is_a_parse_refusal_with_its_message() {
         let e = codec::scene_from_any("9.abc").expect_err("version 9");
         assert_eq!(e.code(), "parse");
-        assert!(arg(&e.args(), "message").starts_with("unknown scene format version \"9\""), "{:?}", e.args());
+        assert!(
+            arg(&e.args(), "message").starts_with("unknown scene format version \"9\""),
+            "{:?}",
+            e.args()
+        );
     }
 }

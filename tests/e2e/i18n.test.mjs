@@ -221,7 +221,7 @@ const ALLOWED_WORDS = ['flock', 'path', 'flockpath', 'Boids', 'PSO', 'IGSA', 'GS
 
 /** Each page with `?lang=zh`: what must be Chinese, and where no English may be left. */
 const ZH_PAGES = [
-  { page: 'index.html', ready: () => window.flockpath !== undefined, chinese: { '#play': '暂停', '#metrics-title': '指标', '#planner-title': '规划器', '#groups-title': '群组' }, scan: 'header, .toolbar, .timeline, .panel' },
+  { page: 'index.html', ready: () => window.flockpath !== undefined, chinese: { '#play': '暂停', '#metrics-title > span[data-i18n]': '指标', '#planner-title': '规划器', '#groups-title': '群组' }, scan: 'header, .toolbar, .timeline, .panel' },
   { page: 'compare.html', ready: () => window.flockpathCompare !== undefined, chinese: { '#play': '暂停', '#table-title': '指标', '#add-pane': '添加窗格' }, scan: 'header, .toolbar, .compare-side' },
   { page: 'tune.html', ready: () => document.getElementById('loading').hidden, chinese: { '#tune': '调优', '#setup-title': '设置', '#status': '尚未开始。' }, scan: 'header, .panel' },
   { page: 'lab.html', ready: () => window.flockpathLab !== undefined || document.querySelector('#lab-function option') !== null, chinese: { '#lab-play': '播放', '#lab-plot-title': '收敛曲线（目前最优，对数坐标）' }, scan: 'header, .lab-toolbar' },
@@ -301,6 +301,12 @@ test('switching language in the menu keeps the scene and the run, and is remembe
     assert.equal(location.search, '?lang=zh');
     assert.ok(location.hash.includes(before.scene), 'the scene stays in the fragment');
     assert.deepEqual(await englishLeftovers(page, 'header, .toolbar, .timeline, .panel'), [], 'no English left after the switch');
+    // The inspector words the core's explanation (state, forces) in Chinese too.
+    await page.evaluate(() => window.flockpath.inspect(0));
+    await page.waitForSelector('#inspector:not([hidden])');
+    assert.equal(await page.textContent('#inspector-facts dt'), '速度');
+    assert.match(await page.textContent('#inspector-facts dd:nth-of-type(2)'), /[\u4e00-\u9fff]/, 'the state in Chinese');
+    assert.deepEqual(await englishLeftovers(page, '#inspector'), [], 'no English in the inspector');
 
     // Remembered: another page opened without ?lang speaks Chinese.
     await page.goto(`${url}compare.html`);

@@ -11,6 +11,22 @@ const REFRESH_MS = 250;
 
 const OVERLAYS = ['stuck', 'explanation', 'landscape', 'fireflies'];
 
+/** Words the core composes with numbers: [regex over its English, key]. */
+const COMPOSED = [
+  [/^stuck: no progress towards the goal for 300\+ steps; (?<rest>.+)$/, 'explain.stuck_prefix'],
+  [/^the velocity nearest v_pref that keeps all (?<n>\d+) half-planes$/, 'explain.orca_keeps'],
+  [/^densely packed: no velocity keeps all (?<n>\d+) half-planes; (?<m>\d+) given up least$/, 'explain.orca_dense'],
+];
+
+/** One of the core's explanation words (a state, a force, a point, a value) in the page's language. */
+export function explainText(words) {
+  for (const [re, key] of COMPOSED) {
+    const m = re.exec(words);
+    if (m) return t(key, { ...m.groups, ...(m.groups.rest ? { rest: explainText(m.groups.rest) } : {}) });
+  }
+  return tOr(`explain.${words}`, words);
+}
+
 export function setupInspector(app) {
   const panel = document.getElementById('inspector');
   const title = document.getElementById('inspector-title');
@@ -63,22 +79,22 @@ export function setupInspector(app) {
     });
     facts.replaceChildren();
     fact(t('inspector.speed'), `${e.speed.toFixed(2)} ${unitText('px/step')}`);
-    fact(t('inspector.state'), tOr(`explain.${e.state}`, e.state), e.stuck);
+    fact(t('inspector.state'), explainText(e.state), e.stuck);
     fact(t('inspector.position'), `${e.position[0].toFixed(0)}, ${e.position[1].toFixed(0)} ${unitText('px')}`);
     fact(t('inspector.neighbours'), String(e.neighbours.length));
-    for (const v of e.values) fact(tOr(`explain.${v.name}`, v.name), Number.isInteger(v.value) ? String(v.value) : v.value.toFixed(3));
+    for (const v of e.values) fact(explainText(v.name), Number.isInteger(v.value) ? String(v.value) : v.value.toFixed(3));
     vectors.replaceChildren();
     for (const v of e.vectors) {
       const li = document.createElement('li');
       const swatch = document.createElement('span');
       swatch.className = 'swatch';
       swatch.style.background = v.color;
-      li.append(swatch, `${tOr(`explain.${v.name}`, v.name)}: ${v.length.toFixed(v.in_px ? 0 : 3)}${v.in_px ? ` ${unitText('px')}` : ''}`);
+      li.append(swatch, `${explainText(v.name)}: ${v.length.toFixed(v.in_px ? 0 : 3)}${v.in_px ? ` ${unitText('px')}` : ''}`);
       vectors.append(li);
     }
     for (const p of e.points) {
       const li = document.createElement('li');
-      li.textContent = t('inspector.point_at', { name: tOr(`explain.${p.name}`, p.name), x: p.point[0].toFixed(0), y: p.point[1].toFixed(0) });
+      li.textContent = t('inspector.point_at', { name: explainText(p.name), x: p.point[0].toFixed(0), y: p.point[1].toFixed(0) });
       vectors.append(li);
     }
   };
