@@ -2,8 +2,7 @@
 // (tests/e2e/i18n.test.mjs). Keys: `<page or concern>.<thing>`; `{name}` is filled by t().
 // Sections are grouped by concern so parallel work appends to its own block.
 export default {
-  // — language menu —
-  'lang.label': 'Language',
+  // — i18n: words of every page (the tables' main part; other areas append below) —
   'lang.title': 'Language of the page (remembered; ?lang= in the link)',
 
   // — common —
@@ -852,4 +851,7 @@ export default {
   "series.queue_order": "Queue order (firefly)",
   "series.stuck_agents": "Stuck agents",
   "series.mean_speed": "Mean speed",
+
+  // — language menu —
+  'lang.label': 'Language',
 };

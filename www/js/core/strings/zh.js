@@ -2,8 +2,7 @@
 // Planner terms follow DESIGN §3.3 and the Chinese firefly paper (Zhang, Wei, Chen 2017):
 // 萤火虫算法, 亮度, 吸引度, 感知触须, 最大安全距离, 随机步长, 光强吸收系数; 粒子群 (PSO), 引力搜索 (GSA).
 export default {
-  // — language menu —
-  'lang.label': '语言',
+  // — i18n: words of every page (the tables' main part; other areas append below) —
   'lang.title': '页面语言（会被记住；链接中的 ?lang= 也可指定）',
 
   // — common —
@@ -852,4 +851,7 @@ export default {
   "series.queue_order": "排队有序度（萤火虫）",
   "series.stuck_agents": "受困个体",
   "series.mean_speed": "平均速度",
+
+  // — language menu —
+  'lang.label': '语言',
 };
