@@ -59,7 +59,7 @@ test('the Chinese table is Chinese: most values hold CJK characters', async () =
   assert.ok(cjk / values.length > 0.85, `only ${cjk} of ${values.length} zh values hold Chinese`);
 });
 
-test('the core’s planners, parameters, choices, units, presets and series all have their keys', async () => {
+test('the core’s planners, parameters, choices, units, presets, series and validation tests all have their keys', async () => {
   const pkg = path.join(WWW, 'pkg');
   const m = await import(path.join(pkg, 'flockpath.js'));
   m.initSync({ module: await readFile(path.join(pkg, 'flockpath_bg.wasm')) });
@@ -82,6 +82,10 @@ test('the core’s planners, parameters, choices, units, presets and series all 
   const sim = new m.Sim(m.preset_scene_json('open-field'), 200, 150);
   for (const s of JSON.parse(sim.history_json()).series) expect.set(`series.${s.key}`, s.label);
   sim.free();
+  for (const test of JSON.parse(m.validation_options_json()).tests) {
+    expect.set(`validation.test.${test.id}`, test.title);
+    expect.set(`validation.test.${test.id}.criterion`, test.criterion);
+  }
   assert.ok(expect.size > 250, `${expect.size} core words`);
   for (const [key, words] of expect) {
     assert.equal(en[key], words, `en ${key} is the core’s own words`);

@@ -5,7 +5,7 @@
 
 import { messageOf, setupBanner, showMessage } from '../core/errors.js';
 import { drawPlot } from '../core/plot.js';
-import { t } from '../core/i18n.js';
+import { t, tOr } from '../core/i18n.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -37,7 +37,11 @@ async function boot() {
   const module = await import('../../pkg/flockpath.js');
   await module.default();
   const options = JSON.parse(module.validation_options_json());
-  const titles = new Map(options.tests.map((t) => [t.id, t.title]));
+  // The tests' titles and criteria in the page's language (keys by test id; the core's words otherwise).
+  const titleOf = (test) => tOr(`validation.test.${test.id}`, test.title);
+  const criterionOf = (test) => tOr(`validation.test.${test.id}.criterion`, test.criterion);
+  const titles = new Map(options.tests.map((test) => [test.id, titleOf(test)]));
+  const criteria = new Map(options.tests.map((test) => [test.id, [test.criterion, criterionOf(test)]]));
   const colorOf = new Map(options.planners.map((p, i) => [p.name, COLORS[i % COLORS.length]]));
 
   const picks = (box, items, checked) => {
@@ -50,8 +54,8 @@ async function boot() {
       box.append(label);
     }
   };
-  picks($('val-planners'), options.planners.map((p) => ({ value: p.name, label: p.name, title: p.label })), () => true);
-  picks($('val-tests'), options.tests.map((t) => ({ value: t.id, label: t.id, title: `${t.title} — ${t.criterion}` })), (id) => DEFAULT_TESTS.has(id));
+  picks($('val-planners'), options.planners.map((p) => ({ value: p.name, label: p.name, title: tOr(`planner.${p.name}`, p.label) })), () => true);
+  picks($('val-tests'), options.tests.map((test) => ({ value: test.id, label: test.id, title: `${titleOf(test)} — ${criterionOf(test)}` })), (id) => DEFAULT_TESTS.has(id));
   const checked = (box) => [...$(box).querySelectorAll('input:checked')].map((i) => i.value);
 
   const state = { worker: null, curves: [], rows: 0, passed: 0 };
@@ -67,7 +71,9 @@ async function boot() {
     link.className = 'scene-link';
     link.title = t('validation.open_title');
     test.append(link);
-    const cells = [row.planner, row.measured, row.criterion].map((text) => Object.assign(document.createElement('td'), { textContent: text }));
+    const [coreCriterion, criterion] = criteria.get(row.test) ?? [];
+    const shown = row.criterion === coreCriterion ? criterion : row.criterion;
+    const cells = [row.planner, row.measured, shown].map((text) => Object.assign(document.createElement('td'), { textContent: text }));
     const result = Object.assign(document.createElement('td'), { textContent: row.pass ? t('validation.pass') : t('validation.fail'), className: row.pass ? 'pass' : 'fail' });
     tr.append(test, ...cells, result);
     tbody.append(tr);

@@ -564,6 +564,32 @@ export default {
   'explain.walls': 'walls',
   'explain.contact': 'contact',
 
+  // — validation: the suite's tests (experiments/validation), keyed by test id —
+  'validation.test.t1-free-walking': 'T1 free walking: one walker, 40 m × 2 m corridor',
+  'validation.test.t1-free-walking.criterion': 'speed over 5…35 m within 5% of the desired 1.34 m/s',
+  'validation.test.t4-fundamental-diagram': 'T4 fundamental diagram: periodic 20 m × 2 m corridor at 0.5…6 persons/m²',
+  'validation.test.t4-fundamental-diagram.criterion': 'mean |v − v_Weidmann| over the 7 densities ≤ 0.2 m/s',
+  'validation.test.t6-corner': 'T6 corner: 20 walkers round a left-hand corner',
+  'validation.test.t6-corner.criterion': 'no wall crossed and all 20 arrive within 40 s',
+  'validation.test.juelich-rotation': 'Jülich: the same scene turned by 45°',
+  'validation.test.juelich-rotation.criterion': 'mean and last arrival times within 2% of the unturned scene\'s',
+  'validation.test.juelich-head-on': 'Jülich: two walkers head-on',
+  'validation.test.juelich-head-on.criterion': 'both arrive and their bodies never overlap (gap ≥ 0)',
+  'validation.test.counter-flow-lanes': 'Counter-flow: 2 × 40 walkers in a periodic 20 m × 4 m corridor',
+  'validation.test.counter-flow-lanes.criterion': 'lane order (Rex & Löwen) over the last 10 s ≥ 0.75',
+  'validation.test.t9-four-vs-two-exits': 'T9 large room: 1,000 walkers, 4 exits vs 2 exits',
+  'validation.test.t9-four-vs-two-exits.criterion': 'exit flow with 4 exits / with 2 exits within 1.5…2.5',
+  'validation.test.t12-bottleneck': 'T12 bottleneck: 150 walkers, room → 2 m corridor → room',
+  'validation.test.t12-bottleneck.criterion': '≥ 90% of jammed samples (< 0.2 m/s) before the corridor, ≥ 90% arrive in 90 s',
+  'validation.test.t7-demographics': 'T7 demographics: four age groups with desired-speed ranges',
+  'validation.test.t7-demographics.criterion': 'every walker\'s speed over 5…35 m inside its age group\'s range',
+  'validation.test.t8-speed-sweep': 'T8 parameter study: evacuation time of a 10 m room vs desired speed',
+  'validation.test.t8-speed-sweep.criterion': 'all 40 out at every speed, evacuation time falling as speed rises',
+  'validation.test.t15-corner-crowd': 'T15 large crowd round a corner vs straight corridors',
+  'validation.test.t15-corner-crowd.criterion': 'evacuation time between the short (24 m) and long (30 m) straight corridors\'',
+  'validation.test.t16-single-file': 'T16 single file: periodic 20 m ring corridor 0.5 m wide',
+  'validation.test.t16-single-file.criterion': 'mean |v − v_Seyfried| over the 5 line densities ≤ 0.2 m/s',
+
   // — core tables (planners, parameters, choices, units, presets, metric series) —
   // Same words as the Rust tables (planners_json, presets_json, history_json); i18n.test.mjs
   // checks that every Rust entry has its keys here, so a new parameter fails the test until translated.

@@ -564,6 +564,32 @@ export default {
   'explain.walls': '墙体',
   'explain.contact': '接触',
 
+  // — validation: the suite's tests (experiments/validation), keyed by test id —
+  'validation.test.t1-free-walking': 'T1 自由行走：一名行人，40 m × 2 m 走廊',
+  'validation.test.t1-free-walking.criterion': '5…35 m 段的速度与期望的 1.34 m/s 相差不超过 5%',
+  'validation.test.t4-fundamental-diagram': 'T4 基本图：20 m × 2 m 周期性走廊，密度 0.5…6 人/m²',
+  'validation.test.t4-fundamental-diagram.criterion': '7 个密度上的平均 |v − v_Weidmann| ≤ 0.2 m/s',
+  'validation.test.t6-corner': 'T6 拐角：20 名行人绕过左转拐角',
+  'validation.test.t6-corner.criterion': '不穿墙，且 20 人全部在 40 秒内到达',
+  'validation.test.juelich-rotation': 'Jülich：同一场景旋转 45°',
+  'validation.test.juelich-rotation.criterion': '平均与最后到达时间与未旋转场景相差不超过 2%',
+  'validation.test.juelich-head-on': 'Jülich：两名行人相向而行',
+  'validation.test.juelich-head-on.criterion': '两人都到达，且身体从不重叠（间隙 ≥ 0）',
+  'validation.test.counter-flow-lanes': '对向流：20 m × 4 m 周期性走廊中 2 × 40 名行人',
+  'validation.test.counter-flow-lanes.criterion': '最后 10 秒的分道有序度（Rex & Löwen）≥ 0.75',
+  'validation.test.t9-four-vs-two-exits': 'T9 大房间：1,000 名行人，4 个出口对比 2 个出口',
+  'validation.test.t9-four-vs-two-exits.criterion': '4 个出口与 2 个出口的出口流量之比在 1.5…2.5 之间',
+  'validation.test.t12-bottleneck': 'T12 瓶颈：150 名行人，房间 → 2 m 走廊 → 房间',
+  'validation.test.t12-bottleneck.criterion': '≥ 90% 的拥堵样本（< 0.2 m/s）位于走廊之前，≥ 90% 的人在 90 秒内到达',
+  'validation.test.t7-demographics': 'T7 人口构成：四个年龄组及其期望速度范围',
+  'validation.test.t7-demographics.criterion': '每名行人在 5…35 m 段的速度都在其年龄组的范围内',
+  'validation.test.t8-speed-sweep': 'T8 参数研究：10 m 房间的疏散时间与期望速度',
+  'validation.test.t8-speed-sweep.criterion': '每种速度下 40 人全部疏散，且疏散时间随速度增大而下降',
+  'validation.test.t15-corner-crowd': 'T15 大量人群绕过拐角，对比直走廊',
+  'validation.test.t15-corner-crowd.criterion': '疏散时间介于短（24 m）与长（30 m）直走廊的疏散时间之间',
+  'validation.test.t16-single-file': 'T16 单列行走：宽 0.5 m 的 20 m 周期性环形走廊',
+  'validation.test.t16-single-file.criterion': '5 个线密度上的平均 |v − v_Seyfried| ≤ 0.2 m/s',
+
   // — core tables (planners, parameters, choices, units, presets, metric series) —
   // Same words as the Rust tables (planners_json, presets_json, history_json); i18n.test.mjs
   // checks that every Rust entry has its keys here, so a new parameter fails the test until translated.
