@@ -2,7 +2,7 @@
 // restores the nearest checkpoint and re-simulates, bit-identical to the original run); playing
 // goes on from the step shown. The recording's budget and any thinning are stated under it.
 
-import { formatNumber, onLanguageChange, setAttr, setText, t } from '../core/i18n.js';
+import { formatNumber, language, onLanguageChange, setAttr, setText, t } from '../core/i18n.js';
 
 /** How often the slider follows a playing run (ms, display only). */
 const REFRESH_MS = 100;
@@ -37,6 +37,29 @@ export function seekTo(app, step, options = {}) {
   if (info && info.edits.length > 0) app.sceneChanged();
   app.dispatchEvent(new Event('stepped'));
   return result;
+}
+
+/**
+ * The timeline's note (thinned positions or checkpoints, a replay that differed): the core's
+ * words on English pages, else composed from the same numbers in the page's language.
+ */
+function noteText(app, info) {
+  if (info.note === null || language() === 'en') return info.note;
+  const agents = (app.scene.groups ?? []).reduce((sum, g) => sum + (g.count ?? 0), 0);
+  const parts = [];
+  if (info.frames_thinned > 0) {
+    parts.push(t('timeline.note_frames', {
+      every: info.frame_every,
+      mb: Math.floor(info.frame_budget_bytes / 1e6),
+      capacity: info.capacity_steps,
+      agents,
+    }));
+  }
+  if (info.checkpoints_thinned > 0) {
+    parts.push(t('timeline.note_checkpoints', { every: info.checkpoint_every, resimulated: info.checkpoint_every - 1 }));
+  }
+  if (info.diverged > 0) parts.push(t('timeline.note_diverged', { n: info.diverged }));
+  return parts.length ? t('timeline.note', { text: parts.join(t('list.semicolon')) }) : info.note;
 }
 
 export function setupTimeline(app) {
@@ -92,7 +115,8 @@ export function setupTimeline(app) {
       }),
     );
     note.hidden = info.note === null;
-    if (info.note !== null && note.textContent !== info.note) note.textContent = info.note;
+    const text = noteText(app, info);
+    if (text !== null && note.textContent !== text) note.textContent = text;
   };
 
   // Jumps are coalesced to one per animation frame: a fast drag asks for many.

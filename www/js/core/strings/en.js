@@ -590,6 +590,13 @@ export default {
   'validation.test.t16-single-file': 'T16 single file: periodic 20 m ring corridor 0.5 m wide',
   'validation.test.t16-single-file.criterion': 'mean |v − v_Seyfried| over the 5 line densities ≤ 0.2 m/s',
 
+  // — timeline note (composed from timeline_json's numbers on non-English pages) —
+  'timeline.note': '{text}.',
+  'timeline.note_frames': 'positions are kept every {every} steps (the {mb} MB budget holds {capacity} steps of {agents} agents)',
+  'timeline.note_checkpoints': 'checkpoints are kept every {every} steps, so a jump re-simulates up to {resimulated} steps',
+  'timeline.note_diverged': '{n} replayed step(s) differed from the recording (a determinism bug; please report it)',
+  'list.semicolon': ';',
+
   // — core tables (planners, parameters, choices, units, presets, metric series) —
   // Same words as the Rust tables (planners_json, presets_json, history_json); i18n.test.mjs
   // checks that every Rust entry has its keys here, so a new parameter fails the test until translated.

@@ -590,6 +590,13 @@ export default {
   'validation.test.t16-single-file': 'T16 单列行走：宽 0.5 m 的 20 m 周期性环形走廊',
   'validation.test.t16-single-file.criterion': '5 个线密度上的平均 |v − v_Seyfried| ≤ 0.2 m/s',
 
+  // — timeline note (composed from timeline_json's numbers on non-English pages) —
+  'timeline.note': '{text}。',
+  'timeline.note_frames': '位置每 {every} 步保留一次（{mb} MB 预算可存 {agents} 个个体的 {capacity} 步）',
+  'timeline.note_checkpoints': '检查点每 {every} 步保留一个，因此一次跳转最多重新模拟 {resimulated} 步',
+  'timeline.note_diverged': '有 {n} 个重放步与记录不同（确定性缺陷；请报告）',
+  'list.semicolon': '；',
+
   // — core tables (planners, parameters, choices, units, presets, metric series) —
   // Same words as the Rust tables (planners_json, presets_json, history_json); i18n.test.mjs
   // checks that every Rust entry has its keys here, so a new parameter fails the test until translated.
