@@ -55,6 +55,29 @@ fn coded(e: &impl Refusal) -> js_sys::Error {
     error
 }
 
+/// JSON from the page that does not read as the call's input (an edit with a negative count):
+/// `cannot read the <what>: <the reader's words>`, coded `unreadable`.
+struct Unreadable {
+    what: &'static str,
+    reason: String,
+}
+
+impl Display for Unreadable {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "cannot read the {}: {}", self.what, self.reason)
+    }
+}
+
+impl Refusal for Unreadable {
+    fn code(&self) -> &'static str {
+        "unreadable"
+    }
+
+    fn args(&self) -> Vec<(&'static str, String)> {
+        vec![("what", self.what.to_string()), ("reason", self.reason.clone())]
+    }
+}
+
 /// A coded refusal ([`coded`]) as a JS value, for `map_err`.
 fn refusal(e: impl Refusal) -> JsValue {
     coded(&e).into()
@@ -233,8 +256,8 @@ impl Sim {
 
     /// Applies an editor operation (JSON of `crate::model::edit::Edit`); on error nothing changes.
     pub fn edit(&mut self, edit_json: &str) -> Result<(), JsValue> {
-        let edit: Edit =
-            serde_json::from_str(edit_json).map_err(|e| js_error(format!("cannot read the edit: {e}")))?;
+        let edit: Edit = serde_json::from_str(edit_json)
+            .map_err(|e| refusal(Unreadable { what: "edit", reason: e.to_string() }))?;
         let scene = edit::apply(self.run.world().scene(), &edit).map_err(scene_error)?;
         self.run.edit_scene(scene).map_err(scene_error)?;
         if self.run.world().step_count() == 0 {

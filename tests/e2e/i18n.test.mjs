@@ -99,6 +99,63 @@ test('the core’s planners, parameters, choices, units, presets, series and val
   }
 });
 
+test('the core’s refusals are worded in Chinese (real errors from the wasm module, no browser)', async () => {
+  const pkg = path.join(WWW, 'pkg');
+  const m = await import(path.join(pkg, 'flockpath.js'));
+  m.initSync({ module: await readFile(path.join(pkg, 'flockpath_bg.wasm')) });
+  const i18n = await import(path.join(WWW, 'js', 'core', 'i18n.js'));
+  const { refusalText } = await import(path.join(WWW, 'js', 'core', 'refusals.js'));
+  const refused = (fn) => {
+    try {
+      fn();
+    } catch (error) {
+      return error;
+    }
+    throw new Error('not refused');
+  };
+  const base = JSON.parse(m.preset_scene_json('open-field'));
+  const dense = structuredClone(base);
+  Object.assign(dense.groups[0], { count: 5000, spawn: { min: [10, 10], max: [60, 60] } });
+  const costly = structuredClone(base);
+  Object.assign(costly.groups[0], { count: 200000, agent_radius: 0.5, spawn: { min: [0, 0], max: [base.width, base.height] } });
+  const sim = new m.Sim(m.preset_scene_json('open-field'), 200, 100);
+  const cases = {
+    density: refused(() => new m.Sim(JSON.stringify(dense), 100, 100)),
+    cost: refused(() => new m.Sim(JSON.stringify(costly), 100, 100)),
+    planner: refused(() => sim.set_group_planner(0, 'teleport')),
+    preset: refused(() => m.preset_scene_json('no-such-preset')),
+    range: refused(() => sim.set_group_param(0, 'max_speed', '1000000')),
+    type: refused(() => sim.set_group_param(0, 'max_speed', '"fast"')),
+    base64: refused(() => sim.load('2.!!!')),
+    damaged: refused(() => sim.load('2.AAAA')),
+    version: refused(() => sim.load('7.abc')),
+    field: refused(() => sim.edit(JSON.stringify({ op: 'set_group', index: 0, group: { ...base.groups[0], agent_radius: 500 } }))),
+    negative: refused(() => sim.edit(JSON.stringify({ op: 'set_group', index: 0, group: { ...base.groups[0], count: -5 } }))),
+  };
+  sim.free();
+  // Identifiers the messages quote (preset and planner names) are no language.
+  const names = new Set(JSON.parse(m.presets_json()).map((p) => p.name));
+  try {
+    assert.equal(refusalText(cases.density), null, 'English pages show the core’s words');
+    i18n.setLanguage('zh', null);
+    const zh = Object.fromEntries(Object.entries(cases).map(([k, e]) => [k, refusalText(e)]));
+    for (const [k, text] of Object.entries(zh)) {
+      assert.equal(typeof cases[k].code, 'string', `${k} carries a code`);
+      assert.ok(text && /[\u4e00-\u9fff]/.test(text), `${k} in Chinese: ${text} (core: ${cases[k].message})`);
+      const english = (text.match(/[A-Za-z][\w'-]{3,}/g) ?? []).filter((w) => !names.has(w) && !['flock', 'boids', 'teleport', 'firefly', 'forces', 'igsa', 'orca', 'social_force', 'fast', 'string', 'flockpath', 'pillars', 'open', 'field', 'groups', 'agent_radius', 'max_speed', 'count', 'preset', 'such', 'base64'].includes(w) && !/^[a-z]+(-[a-z0-9]+)+$/.test(w));
+      assert.deepEqual(english, [], `${k}: no English words left in ${text}`);
+    }
+    assert.equal(zh.density, '群组 1（flock）：5000 个半径 4 像素的个体放不进其出生区域（50×50 像素）：在彼此、障碍物和其他群组之间保持间隔时最多只能放 49 个（密度上限）');
+    assert.match(zh.cost, /^群组 1（flock）：200000 个 boids 个体会使每步在浏览器中耗时约 \d+ 毫秒，超过 \d+ 毫秒的上限/);
+    assert.equal(zh.range, '最大速度（max_speed）的值为 1000000；允许：0.1…20 像素/步 之间的数');
+    assert.equal(zh.version, '无法读取场景：未知的场景格式版本“7”；此 flockpath 能读取的版本为 1 和 2');
+    assert.equal(zh.field, 'groups[0].agent_radius 的值为 500；允许：0.5…100 像素 之间的数');
+    assert.equal(zh.negative, '无法读取编辑操作：无效的值：整数 -5，应为 u32');
+  } finally {
+    i18n.setLanguage('en', null);
+  }
+});
+
 // ---- static scan of the pages' HTML ----
 
 /** Pages a student meets; bench.html is a developer benchmark (not linked from any page). */
@@ -330,7 +387,7 @@ test('refused input is worded in Chinese: a field out of range, an unknown scene
     await page.goto(`${url}index.html?lang=zh#s=9.abcdef`);
     await page.waitForFunction(() => window.flockpath !== undefined);
     const banner = () => page.textContent('#banner-text');
-    assert.match(await banner(), /^无法加载链接中的场景：未知的场景格式版本“9”；此 flockpath 能读取的版本为 1 和 2。改为显示默认场景“立柱”。$/);
+    assert.match(await banner(), /^无法加载链接中的场景：无法读取场景：未知的场景格式版本“9”；此 flockpath 能读取的版本为 1 和 2。改为显示默认场景“立柱”。$/);
 
     // The group editor's Radius field: 500 px is over the limit.
     await page.fill('#group-editor input[name="agent_radius"]', '500');

@@ -37,6 +37,20 @@ const ALLOWED = [
   [/^a colour "#rrggbb"$/, 'allowed.colour'],
 ];
 
+/** The JSON reader's words (serde) about a value of the wrong kind: [regex, table key]. */
+const REASONS = [
+  [/^invalid value: integer `(?<value>[^`]+)`, expected (?<type>\w+)$/, 'reason.invalid_value'],
+  [/^invalid type: (?<found>.+), expected (?<type>[\w ]+)$/, 'reason.invalid_type'],
+  [/^Invalid symbol (?<symbol>\d+), offset (?<offset>\d+)\.$/, 'reason.base64_symbol'],
+  [/^Invalid last symbol (?<symbol>\d+), offset (?<offset>\d+)\.$/, 'reason.base64_symbol'],
+  [/^Invalid input length\.?$/, 'reason.base64_length'],
+];
+
+/** A JSON reader's reason in the reader's language, or its own words. */
+function reasonText(text) {
+  return typeof text === 'string' ? match(REASONS, text) ?? text : text;
+}
+
 /** Values the core writes in words. */
 const VALUES = { missing: 'value.missing', 'an unknown key': 'value.unknown_key', 'not a finite number (too large, infinite or NaN)': 'value.not_finite' };
 
@@ -48,6 +62,7 @@ function match(list, text) {
     const groups = { ...m.groups };
     // `1 and 2`: the core's list joined in the reader's language.
     if (groups.readable) groups.readable = groups.readable.split(' and ').join(` ${t('list.and')} `);
+    if (groups.reason) groups.reason = reasonText(groups.reason);
     return t(key, groups);
   }
   return null;
@@ -68,7 +83,7 @@ export function allowedText(text) {
 /** A parameter's label in the reader's language, found by its English label and key. */
 function labelText(key, label) {
   for (const [k, v] of Object.entries(en)) {
-    if (v === label && k.startsWith('param.') && k.endsWith(`.${key}`)) return t(k);
+    if (v === label && k.startsWith('param.') && !k.endsWith('.help') && (key === null || k.endsWith(`.${key}`))) return t(k);
   }
   return label;
 }
@@ -94,12 +109,20 @@ export function refusalText(error) {
       });
     case 'too_large':
       return t(a.bytes ? 'error.too_large_bytes' : 'error.too_large', { what: tOr(`what.${a.what}`, a.what), bytes: a.bytes, limit: a.limit });
+    case 'param_type':
+      return t('error.param_type', { label: labelText(null, a.label), problem: reasonText(a.problem) });
+    case 'unreadable':
+      return t('error.unreadable', { what: tOr(`what.${a.what}`, a.what), reason: reasonText(a.reason) });
     case 'unknown_preset':
     case 'unknown_planner':
     case 'unknown_param':
-    case 'param_type':
     case 'not_finite':
       return t(`error.${code}`, a);
+    case 'parse': {
+      // The core says `cannot read the scene: <why>`; the why is matched, the frame kept.
+      const why = typeof a.message === 'string' ? match(PATTERNS, a.message) : null;
+      return why === null ? null : t('error.parse', { message: why });
+    }
     default:
       return typeof a.message === 'string' ? match(PATTERNS, a.message) : null;
   }

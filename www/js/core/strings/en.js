@@ -597,6 +597,15 @@ export default {
   'timeline.note_diverged': '{n} replayed step(s) differed from the recording (a determinism bug; please report it)',
   'list.semicolon': ';',
 
+  // — refusals: more codes —
+  'error.parse': 'cannot read the scene: {message}',
+  'error.unreadable': 'cannot read the {what}: {reason}',
+  'what.edit': 'edit',
+  'reason.invalid_value': 'invalid value: integer `{value}`, expected {type}',
+  'reason.invalid_type': 'invalid type: {found}, expected {type}',
+  'reason.base64_symbol': 'Invalid symbol {symbol}, offset {offset}.',
+  'reason.base64_length': 'Invalid input length',
+
   // — core tables (planners, parameters, choices, units, presets, metric series) —
   // Same words as the Rust tables (planners_json, presets_json, history_json); i18n.test.mjs
   // checks that every Rust entry has its keys here, so a new parameter fails the test until translated.

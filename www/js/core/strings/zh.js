@@ -265,7 +265,7 @@ export default {
   'boot.what_lab': '优化器实验室',
   'error.field': '{path} 的值为 {value}；允许：{allowed}',
   'error.param_range': '{label}（{key}）的值为 {value}；允许：{allowed}',
-  'error.param_type': '{label}：类型不对（{problem}）',
+  'error.param_type': '{label}：{problem}',
   'error.unknown_param': '{planner} 没有参数“{key}”',
   'error.unknown_planner': '未知的规划器“{name}”；可用的有：{known}',
   'error.unknown_preset': '未知的预设场景“{name}”（可用的有：{known}）',
@@ -596,6 +596,15 @@ export default {
   'timeline.note_checkpoints': '检查点每 {every} 步保留一个，因此一次跳转最多重新模拟 {resimulated} 步',
   'timeline.note_diverged': '有 {n} 个重放步与记录不同（确定性缺陷；请报告）',
   'list.semicolon': '；',
+
+  // — refusals: more codes —
+  'error.parse': '无法读取场景：{message}',
+  'error.unreadable': '无法读取{what}：{reason}',
+  'what.edit': '编辑操作',
+  'reason.invalid_value': '无效的值：整数 {value}，应为 {type}',
+  'reason.invalid_type': '类型无效：{found}，应为 {type}',
+  'reason.base64_symbol': '第 {offset} 位的字符无效（编码 {symbol}）',
+  'reason.base64_length': '长度无效',
 
   // — core tables (planners, parameters, choices, units, presets, metric series) —
   // Same words as the Rust tables (planners_json, presets_json, history_json); i18n.test.mjs
