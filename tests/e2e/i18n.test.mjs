@@ -258,7 +258,7 @@ async function englishLeftovers(page, selector) {
         const walker = document.createTreeWalker(root, NodeFilter.SHOW_TEXT);
         for (let node = walker.nextNode(); node; node = walker.nextNode()) {
           const el = node.parentElement;
-          if (!el || el.closest('script, style, code, kbd, #lang-select, [hidden], .pane-label')) continue;
+          if (!el || el.closest('script, style, code, kbd, #lang-select, [hidden]')) continue;
           if (el.getClientRects().length === 0) continue;
           const style = getComputedStyle(el);
           if (style.visibility === 'hidden' || style.display === 'none') continue;
@@ -283,7 +283,7 @@ const ALLOWED_WORDS = ['flock', 'path', 'flockpath', 'Boids', 'PSO', 'IGSA', 'GS
 /** Each page with `?lang=zh`: what must be Chinese, and where no English may be left. */
 const ZH_PAGES = [
   { page: 'index.html', ready: () => window.flockpath !== undefined, chinese: { '#play': '暂停', '#metrics-title > span[data-i18n]': '指标', '#planner-title': '规划器', '#groups-title': '群组' }, scan: 'header, .toolbar, .timeline, .panel' },
-  { page: 'compare.html', ready: () => window.flockpathCompare !== undefined, chinese: { '#play': '暂停', '#table-title': '指标', '#add-pane': '添加窗格' }, scan: 'header, .toolbar, .compare-side' },
+  { page: 'compare.html', ready: () => window.flockpathCompare !== undefined, chinese: { '#play': '暂停', '#table-title': '指标', '#add-pane': '添加窗格' }, scan: 'header, .toolbar, .compare-side, .pane-head' },
   { page: 'tune.html', ready: () => document.getElementById('loading').hidden, chinese: { '#tune': '调优', '#setup-title': '设置', '#status': '尚未开始。' }, scan: 'header, .panel' },
   { page: 'lab.html', ready: () => window.flockpathLab !== undefined || document.querySelector('#lab-function option') !== null, chinese: { '#lab-play': '播放', '#lab-plot-title': '收敛曲线（目前最优，对数坐标）' }, scan: 'header, .lab-toolbar' },
   { page: 'validation.html', ready: () => document.querySelector('#val-planners input') !== null, chinese: { '#val-run': '运行', '#val-table-title': '结果' }, scan: 'header, #val-run-title, fieldset legend, .row-buttons' },

@@ -4,7 +4,7 @@
 
 import { blit } from '../core/blit.js';
 import { paramControl, paramLabel, paramReadout } from '../core/params-form.js';
-import { onLanguageChange, t, tOr } from '../core/i18n.js';
+import { language, onLanguageChange, t, tOr } from '../core/i18n.js';
 import { backingSize } from '../core/view.js';
 
 const el = (tag, props = {}, ...children) => {
@@ -56,14 +56,41 @@ function paramForm(app, index, pane) {
 }
 
 /**
- * A pane's label in the page's language: the core's words (planner and changed parameters) on
- * English pages; elsewhere the translated planner name when the label is just that planner.
+ * A pane's label in the page's language: the core's words (its planner and up to two parameters
+ * that differ from their defaults) on English pages; elsewhere the same composed from the
+ * translated planner name and parameter labels (per-group panes keep the core's words).
  */
 export function paneLabel(app, pane) {
-  const planner = app.planners.find((p) => p.name === pane.planner);
-  if (!planner || pane.per_group) return pane.label;
-  const short = planner.label.split(' (')[0];
-  return pane.label === short || pane.label === planner.label ? tOr(`planner.${planner.name}`, pane.label) : pane.label;
+  if (pane.per_group || language() === 'en') return pane.label;
+  if (pane.planner === 'scene') {
+    // The scene's own planners: described like a pane's when every group has the same one.
+    const scene = app.guard((sim) => JSON.parse(sim.scene_json()));
+    const configs = (scene.ok ? scene.value.groups ?? [] : []).map((g) => JSON.stringify(g.planner));
+    if (configs.length === 0 || configs.some((c) => c !== configs[0])) return pane.label;
+    const config = JSON.parse(configs[0]);
+    return describe(app, config.kind, config.params) ?? pane.label;
+  }
+  return describe(app, pane.planner, pane.params) ?? pane.label;
+}
+
+/** `planner, label value, label value` in the page's language (null for an unknown planner). */
+function describe(app, kind, params) {
+  const planner = app.planners.find((p) => p.name === kind);
+  if (!planner) return null;
+  const changed = [];
+  for (const spec of planner.params) {
+    const value = params?.[spec.key];
+    const fallback = spec.choices?.length ? spec.choices[spec.default] : spec.default;
+    if (value === undefined || value === fallback) continue;
+    if (typeof value === 'number' && Math.abs(value - fallback) <= 1e-6 * Math.max(1, Math.abs(fallback))) continue;
+    changed.push(`${paramLabel(planner.name, spec)} ${typeof value === 'string' ? tOr(`choice.${value}`, value) : value}`);
+  }
+  const name = tOr(`planner.${planner.name}`, planner.label).replace(/\s*[（(].*[)）]$/, '');
+  if (changed.length === 0) return name;
+  const list = changed.slice(0, 2).join(t('list.comma'));
+  return changed.length <= 2
+    ? t('compare.label_changed', { name, changed: list })
+    : t('compare.label_more', { name, changed: list, n: changed.length - 2 });
 }
 
 function paneElement(app, index, pane, count) {

@@ -605,6 +605,9 @@ export default {
   'reason.invalid_type': 'invalid type: {found}, expected {type}',
   'reason.base64_symbol': 'Invalid symbol {symbol}, offset {offset}.',
   'reason.base64_length': 'Invalid input length',
+  'list.comma': ',',
+  'compare.label_changed': '{name}, {changed}',
+  'compare.label_more': '{name}, {changed} and {n} more',
 
   // — core tables (planners, parameters, choices, units, presets, metric series) —
   // Same words as the Rust tables (planners_json, presets_json, history_json); i18n.test.mjs

@@ -605,6 +605,9 @@ export default {
   'reason.invalid_type': '类型无效：{found}，应为 {type}',
   'reason.base64_symbol': '第 {offset} 位的字符无效（编码 {symbol}）',
   'reason.base64_length': '长度无效',
+  'list.comma': '，',
+  'compare.label_changed': '{name}，{changed}',
+  'compare.label_more': '{name}，{changed} 等另外 {n} 项',
 
   // — core tables (planners, parameters, choices, units, presets, metric series) —
   // Same words as the Rust tables (planners_json, presets_json, history_json); i18n.test.mjs
