@@ -108,6 +108,8 @@ async function boot() {
     // Column 1 is the evacuation time (s), null when someone was still inside after 60 s.
     const lines = sweeps.map((c) => ({ ys: c.rows.map((r) => (r[1] === null ? NaN : r[1])), color: colorOf.get(c.planner) ?? '#888', name: c.planner }));
     const legend = $('val-sweep-legend');
+    // The planners' legend replaces the hint: a language switch must not write the hint back.
+    delete legend.dataset.i18n;
     legend.replaceChildren(...sweeps.map((c) => {
       const span = Object.assign(document.createElement('span'), { textContent: `━ ${c.planner}` });
       span.style.color = colorOf.get(c.planner) ?? '#888';
