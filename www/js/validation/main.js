@@ -5,7 +5,7 @@
 
 import { messageOf, setupBanner, showMessage } from '../core/errors.js';
 import { drawPlot } from '../core/plot.js';
-import { t, tOr } from '../core/i18n.js';
+import { onLanguageChange, t, tOr } from '../core/i18n.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -173,6 +173,11 @@ async function boot() {
   $('val-cancel').addEventListener('click', () => finish(t('lab.cancelled')));
   drawDiagram();
   drawSweep();
+  // The plots' axes and empty notes are drawn on canvases: draw them again in a new language.
+  onLanguageChange(() => {
+    drawDiagram();
+    drawSweep();
+  });
   window.flockpathValidation = { rows: () => state.rows, running: () => state.worker !== null };
 }
 
