@@ -274,7 +274,7 @@ async function englishLeftovers(page, selector) {
 }
 
 /** Proper names, units and file formats shown as they are in every language. */
-const ALLOWED_WORDS = ['flock', 'path', 'flockpath', 'Boids', 'PSO', 'IGSA', 'GSA', 'ORCA', 'Gsum', 'Ctrl', 'Esc', 'Del',
+const ALLOWED_WORDS = ['flock', 'path', 'flockpath', 'Boids', 'PSO', 'IGSA', 'GSA', 'ORCA', 'Gsum', 'Ctrl', 'Esc', 'Del', 'Tab', 'Shift', 'Enter',
   'Space', 'fps', 'CSV', 'JSON', 'SVG', 'PNG', 'WebM', 'MEL', 'Maya', 'Blender', 'Python', 'Chen', 'Lin', 'Zhang', 'Liu',
   'Helbing', 'Molnár', 'van', 'den', 'Berg', 'RiMEA', 'Jülich', 'Weidmann', 'Web', 'Worker', 'MiB', 'KiB', 'iframe', 'LMS',
   'Markdown', 'rastrigin', 'sphere', 'ackley', 'griewank', 'igsa', 'pso', 'firefly', 'boids', 'forces', 'orca', 'social_force',

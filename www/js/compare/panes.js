@@ -96,8 +96,10 @@ function describe(app, kind, params) {
 function paneElement(app, index, pane, count) {
   const label = paneLabel(app, pane);
   const canvas = el('canvas', { className: 'pane-canvas' });
+  canvas.setAttribute('role', 'img');
   canvas.setAttribute('aria-label', t('compare.pane_label', { pane: pane.pane, label }));
   const picker = el('select', { title: t('compare.pane_planner_title') });
+  picker.setAttribute('aria-label', t('compare.pane_planner_label', { pane: pane.pane }));
   picker.append(el('option', { value: 'scene', textContent: t('compare.scene_planners'), selected: pane.planner === 'scene' }));
   for (const p of app.planners) {
     picker.append(el('option', { value: p.name, textContent: tOr(`planner.${p.name}`, p.label), selected: pane.planner === p.name && !pane.per_group }));
