@@ -12,6 +12,7 @@ import { SimHost } from '../core/sim-host.js';
 import { buildPanes, blitPanes, measurePane } from './panes.js';
 import { drawPlots, drawTable } from './plots.js';
 import { download } from '../core/download.js';
+import { setupActivity } from './activity.js';
 import { onLanguageChange, setText, t, tOr } from '../core/i18n.js';
 
 const $ = (id) => document.getElementById(id);
@@ -204,6 +205,7 @@ bootPage(t('boot.what_compare'), ({ module, wasm }) => {
   const canvases = buildPanes(app);
   setupControls(app);
   keepLocationInSync(app);
+  setupActivity(app);
   startLoop(app, canvases);
   $('loading').hidden = true;
   if (problems.length) showMessage(problems.join(' '));
