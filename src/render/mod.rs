@@ -15,10 +15,12 @@
 
 mod overlay;
 mod paint;
+mod sprite;
 
 pub use overlay::{Overlays, ARROW_COLORS};
 use paint::{color, draw_wide_segment, paint, stroke_scene_path};
 pub use paint::{Style, Theme, ViewTransform, PROJECTOR, STANDARD};
+use sprite::{agent_sprite, blit_over, Sprite};
 
 use crate::model::edit::ItemRef;
 use crate::model::geometry::Obstacle;
@@ -27,7 +29,7 @@ use crate::model::scene::{parse_color, Hill, Scene};
 use crate::sim::world::World;
 use glam::Vec2;
 use std::f32::consts::TAU;
-use tiny_skia::{FillRule, Path, PathBuilder, Pixmap, PixmapMut, Rect, Stroke, Transform};
+use tiny_skia::{FillRule, Path, PathBuilder, PixmapMut, Rect, Stroke, Transform};
 
 /// Fill colour of obstacles (RGB, standard theme). Tests and page checks look for it at an
 /// obstacle's centre.
@@ -110,20 +112,6 @@ impl BaseKey {
     }
 }
 
-/// A pre-rendered agent image: premultiplied RGBA, cropped to its visible pixels.
-#[derive(Clone, Debug, Default)]
-struct Sprite {
-    /// Offset of the image's top-left pixel from the agent's pixel.
-    left: i32,
-    top: i32,
-    width: usize,
-    height: usize,
-    data: Vec<u8>,
-    /// Per row, the columns `start..end` holding visible pixels (a triangle leaves half of its
-    /// box empty).
-    spans: Vec<(u16, u16)>,
-}
-
 /// An agent ready to draw: its pixel, group and heading bucket.
 #[derive(Clone, Copy, Debug, Default)]
 struct Placed {
@@ -190,6 +178,8 @@ pub struct Renderer {
     placed: Vec<Placed>,
     drawing_order: Vec<u32>,
     band_counts: Vec<u32>,
+    /// Stuck-ring sprites by radius (see `overlay::Target::rings`).
+    rings: Vec<(u32, Sprite)>,
 }
 
 impl Renderer {
@@ -221,6 +211,7 @@ impl Renderer {
             placed: Vec::new(),
             drawing_order: Vec::new(),
             band_counts: Vec::new(),
+            rings: Vec::new(),
         };
         r.resize(width, height);
         r
@@ -476,6 +467,7 @@ impl Renderer {
             width: self.width,
             height: self.height,
             view: self.view,
+            rings: &mut self.rings,
         };
         overlay::draw(target, world, self.overlays, self.inspected);
         if let Some(item) = self.selection {
@@ -617,7 +609,9 @@ impl Renderer {
             let headings = if radius_px < DOT_RADIUS_PX {
                 Vec::new()
             } else {
-                (0..HEADING_BUCKETS).map(|b| agent_sprite(rgb, radius_px, b)).collect()
+                (0..HEADING_BUCKETS)
+                    .map(|b| agent_sprite(rgb, radius_px, b as f32 * TAU / HEADING_BUCKETS as f32))
+                    .collect()
             };
             let sprites = GroupSprites { color: rgb, radius_px, headings };
             if i < self.sprites.len() {
@@ -703,116 +697,6 @@ fn fade_row(trail: &mut [u8], base: &[u8], amount: i16) {
         let step = (gap * amount + if gap > 0 { 127 } else { 0 }) >> 7;
         *t = (i16::from(*t) + step) as u8;
     }
-}
-
-/// Draws `sprite` centred on pixel `(x, y)` of an opaque `w × h` RGBA frame with
-/// premultiplied source-over, clipped to the frame.
-fn blit_over(frame: &mut [u8], w: i32, h: i32, sprite: &Sprite, x: i32, y: i32) {
-    let left = x + sprite.left;
-    let top = y + sprite.top;
-    let x0 = left.max(0);
-    let x1 = (left + sprite.width as i32).min(w);
-    let y0 = top.max(0);
-    let y1 = (top + sprite.height as i32).min(h);
-    if x0 >= x1 || y0 >= y1 {
-        return;
-    }
-    for row in y0..y1 {
-        let sprite_row = (row - top) as usize;
-        let Some(&(start, end)) = sprite.spans.get(sprite_row) else { continue };
-        // Visible columns of this row, in frame coordinates, clipped to the frame.
-        let from = (left + i32::from(start)).max(x0);
-        let to = (left + i32::from(end)).min(x1);
-        if from >= to {
-            continue;
-        }
-        let span = (to - from) as usize * 4;
-        let src_at = (sprite_row * sprite.width + (from - left) as usize) * 4;
-        let dst_at = (row as usize * w as usize + from as usize) * 4;
-        let src = &sprite.data[src_at..src_at + span];
-        let dst = &mut frame[dst_at..dst_at + span];
-        for (d, s) in dst.chunks_exact_mut(4).zip(src.chunks_exact(4)) {
-            let alpha = s[3];
-            if alpha == 0 {
-                continue;
-            }
-            if alpha == 255 {
-                d[..3].copy_from_slice(&s[..3]);
-                continue;
-            }
-            let inverse = 255 - u32::from(alpha);
-            for k in 0..3 {
-                d[k] = s[k].saturating_add(div255(u32::from(d[k]) * inverse));
-            }
-        }
-    }
-}
-
-/// `x / 255` rounded, for `x ≤ 255 · 255`.
-#[inline]
-fn div255(x: u32) -> u8 {
-    let x = x + 128;
-    ((x + (x >> 8)) >> 8) as u8
-}
-
-/// An oriented triangle for heading bucket `bucket`, cropped to its visible pixels.
-fn agent_sprite(rgb: [u8; 3], radius_px: f32, bucket: usize) -> Sprite {
-    let reach = 1.5 * radius_px;
-    let half = (reach + 2.0).ceil() as i32;
-    let side = (2 * half + 1) as u32;
-    let Some(mut pixmap) = Pixmap::new(side, side) else {
-        return Sprite::default();
-    };
-    let angle = bucket as f32 * TAU / HEADING_BUCKETS as f32;
-    let (sin, cos) = (libm::sinf(angle), libm::cosf(angle));
-    // Pixel (half, half) is the agent's pixel; its centre is at half + 0.5.
-    let centre = Vec2::splat(half as f32 + 0.5);
-    let corner = |forward: f32, side: f32| {
-        let p = centre + Vec2::new(cos, sin) * forward + Vec2::new(-sin, cos) * side;
-        (p.x, p.y)
-    };
-    let mut pb = PathBuilder::new();
-    let tip = corner(reach, 0.0);
-    let left = corner(-radius_px, 0.9 * radius_px);
-    let notch = corner(-0.5 * radius_px, 0.0);
-    let right = corner(-radius_px, -0.9 * radius_px);
-    pb.move_to(tip.0, tip.1);
-    pb.line_to(left.0, left.1);
-    pb.line_to(notch.0, notch.1);
-    pb.line_to(right.0, right.1);
-    pb.close();
-    if let Some(path) = pb.finish() {
-        pixmap.fill_path(&path, &paint(rgb, 255), FillRule::Winding, Transform::identity(), None);
-        if radius_px >= 3.0 {
-            let dark = rgb.map(|c| (u16::from(c) * 3 / 5) as u8);
-            let stroke = Stroke { width: (0.12 * radius_px).clamp(1.0, 2.0), ..Stroke::default() };
-            pixmap.stroke_path(&path, &paint(dark, 230), &stroke, Transform::identity(), None);
-        }
-    }
-    crop(&pixmap, half)
-}
-
-/// The smallest sub-image holding every non-transparent pixel of `pixmap`.
-fn crop(pixmap: &Pixmap, half: i32) -> Sprite {
-    let (w, h) = (pixmap.width() as usize, pixmap.height() as usize);
-    let data = pixmap.data();
-    let visible = |x: usize, y: usize| data[(y * w + x) * 4 + 3] != 0;
-    let rows: Vec<usize> = (0..h).filter(|&y| (0..w).any(|x| visible(x, y))).collect();
-    let cols: Vec<usize> = (0..w).filter(|&x| (0..h).any(|y| visible(x, y))).collect();
-    let (Some(&y0), Some(&y1), Some(&x0), Some(&x1)) = (rows.first(), rows.last(), cols.first(), cols.last())
-    else {
-        return Sprite::default();
-    };
-    let (width, height) = (x1 - x0 + 1, y1 - y0 + 1);
-    let mut out = Vec::with_capacity(width * height * 4);
-    let mut spans = Vec::with_capacity(height);
-    for y in y0..=y1 {
-        out.extend_from_slice(&data[(y * w + x0) * 4..(y * w + x1 + 1) * 4]);
-        let start = (x0..=x1).find(|&x| visible(x, y)).map_or(0, |x| x - x0);
-        let end = (x0..=x1).rev().find(|&x| visible(x, y)).map_or(0, |x| x - x0 + 1);
-        spans.push((start as u16, end as u16));
-    }
-    Sprite { left: x0 as i32 - half, top: y0 as i32 - half, width, height, data: out, spans }
 }
 
 /// The outline of an obstacle in scene px.
