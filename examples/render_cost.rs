@@ -57,19 +57,31 @@ fn main() {
         ms.push(1e3 * t.elapsed().as_secs_f64());
     }
     println!("  stuck_agents: {stuck} agents in {:.2} ms", median(ms));
-    for (label, overlays) in [
-        ("default overlays", Overlays::default()),
-        ("no stuck rings", Overlays { stuck: false, ..Overlays::default() }),
+    for (label, overlays, trails) in [
+        ("default overlays", Overlays::default(), true),
+        ("no stuck rings", Overlays { stuck: false, ..Overlays::default() }, true),
+        ("no stuck rings, trails off", Overlays { stuck: false, ..Overlays::default() }, false),
     ] {
+        let mut w = world.clone();
         let mut r = Renderer::new(1239, 640);
         r.set_overlays(overlays);
-        r.render(&world);
+        r.set_trails(trails);
+        r.render(&w);
+        // A frame as the page draws it: 2 steps (each traced), then the render; only the render
+        // and the tracing are timed.
         let mut ms = Vec::new();
         for _ in 0..9 {
+            let mut traced = 0.0;
+            for _ in 0..2 {
+                w.step();
+                let t = Instant::now();
+                r.trace_step(&w);
+                traced += 1e3 * t.elapsed().as_secs_f64();
+            }
             let t = Instant::now();
-            r.render(&world);
-            ms.push(1e3 * t.elapsed().as_secs_f64());
+            r.render(&w);
+            ms.push(traced + 1e3 * t.elapsed().as_secs_f64());
         }
-        println!("  render, {label}: {:.2} ms", median(ms));
+        println!("  trace + render per frame, {label}: {:.2} ms", median(ms));
     }
 }

@@ -693,8 +693,13 @@ impl Renderer {
         self.placed.clear();
         let agents = world.positions().iter().zip(world.velocities()).zip(world.group_of());
         for (((&p, &v), &group), heading) in agents.zip(self.heading.iter_mut()) {
-            if let Some(b) = heading_bucket(v) {
-                *heading = b;
+            // Dots have no heading: no arctangent per agent for a crowd too small to show one
+            // (100,000 agents on a page canvas).
+            let dots = self.sprites.get(group as usize).is_none_or(|s| s.headings.is_empty());
+            if !dots {
+                if let Some(b) = heading_bucket(v) {
+                    *heading = b;
+                }
             }
             let c = view.to_canvas(p);
             if c.is_finite() {
