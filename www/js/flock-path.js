@@ -23,6 +23,7 @@
 // hidden polite live region in the shadow root (core/describe.js: the scene and the run in
 // words); with prefers-reduced-motion `autoplay` waits for Play.
 
+import { mountActivityCard } from './core/activity-card.js';
 import { loadWasm } from './core/boot.js';
 import { messageOf } from './core/errors.js';
 import { startLoop } from './core/loop.js';
@@ -169,6 +170,8 @@ export class FlockPathElement extends HTMLElement {
     // Free the simulation only if the element is really gone (not just moved in the DOM).
     queueMicrotask(() => {
       if (!this.isConnected && this.host) {
+        this.activity?.stop();
+        this.activity = null;
         this.description?.stop();
         this.description?.element.remove();
         this.description = null;
@@ -234,6 +237,7 @@ export class FlockPathElement extends HTMLElement {
     this.host.addEventListener('playing', () => this.refreshBar());
     this.host.addEventListener('stepped', () => this.refreshSteps());
     this.tryLoad(this.getAttribute('scene') ?? '', { fallback: true });
+    this.mountActivity();
     this.$('.loading').hidden = true;
     // The scene and the run in words for screen readers, beside the canvas (core/describe.js).
     this.description = setupDescription(this.host, canvas, () =>
@@ -251,6 +255,21 @@ export class FlockPathElement extends HTMLElement {
     this.startLoop();
     this.resolveReady(this);
     this.dispatchEvent(new CustomEvent('flockpath-ready', { bubbles: true, composed: true }));
+  }
+
+  /** The scene's activity card (prompt, prediction, check) between the canvas and the bar. */
+  mountActivity() {
+    const slot = document.createElement('div');
+    slot.className = 'activity';
+    slot.setAttribute('part', 'activity');
+    this.$('.bar').before(slot);
+    const read = (fn) => (this.host && !this.crashed ? JSON.parse(this.call(fn)) : null);
+    this.activity = mountActivityCard(this.host, slot, {
+      readActivity: () => read((sim) => sim.activity_json()),
+      readReport: () => read((sim) => sim.activity_report_json()),
+      groupName: (i) => this.cachedScene?.groups?.[i]?.name ?? '',
+      styleRoot: this.shadowRoot,
+    });
   }
 
   /** The core's frame loop on this element's canvas (no Speed readout: the element has no slider). */
@@ -288,6 +307,7 @@ export class FlockPathElement extends HTMLElement {
     this.cachedScene = JSON.parse(this.call((sim) => sim.scene_json()));
     this.applyLayout();
     this.host.dirty = true;
+    this.activity?.refresh();
     this.refreshBar();
     this.description?.update();
   }

@@ -12,6 +12,7 @@ import { SimHost } from '../core/sim-host.js';
 import { buildPanes, blitPanes, measurePane } from './panes.js';
 import { drawPlots, drawTable } from './plots.js';
 import { download } from '../core/download.js';
+import { setupActivity } from './activity.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -189,6 +190,7 @@ bootPage('the comparison', ({ module, wasm }) => {
   const canvases = buildPanes(app);
   setupControls(app);
   keepLocationInSync(app);
+  setupActivity(app);
   startLoop(app, canvases);
   $('loading').hidden = true;
   if (problems.length) showMessage(problems.join(' '));

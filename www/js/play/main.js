@@ -16,6 +16,7 @@ import { setupInspector } from './inspector.js';
 import { Panel } from './panel.js';
 import { setupExport } from './export.js';
 import { setupShare } from './share.js';
+import { setupActivity } from './activity.js';
 import { setupSceneLinks } from './scene-links.js';
 import { setupTimeline } from './timeline.js';
 import { keepLocationInSync, sceneFromLocation, watchLocation } from '../core/url.js';
@@ -63,6 +64,7 @@ bootPage('flockpath', ({ module, wasm }) => {
   setupSceneLinks(app);
   const onFrame = setupMetrics(app);
   setupInspector(app);
+  setupActivity(app);
   // The canvas in words for screen readers (core/describe.js), beside the canvas.
   setupDescription(app, overlay, () => ({
     scene: app.scene,
