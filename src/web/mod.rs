@@ -294,8 +294,8 @@ impl Sim {
         self.set_view(ViewOptions { trails: on, ..self.run.world().scene().view })
     }
 
-    /// Share of a trail's visibility lost per frame (0 = permanent, 1 = one frame); saved in the
-    /// scene's view options. Throws outside 0…1.
+    /// Share of a trail's visibility lost every two steps (0 = permanent, 1 = the newest segments
+    /// only); saved in the scene's view options. Throws outside 0…1.
     pub fn set_trail_fade(&mut self, fade: f32) -> Result<(), JsError> {
         self.set_view(ViewOptions { trail_fade: fade, ..self.run.world().scene().view })
     }
