@@ -719,7 +719,7 @@ impl World {
         // Parked bodies that can block a place: (position, grid position or none if jumped).
         let mut bodies: Vec<(Vec2, Option<Vec2>, f32)> = Vec::new();
         let mut gathered_to = 0u32;
-        let mut blocked: Vec<bool> = Vec::new();
+        let (mut blocked, mut places): (Vec<bool>, Vec<Vec2>) = (Vec::new(), Vec::new());
         for ring in 1..=PARK_SEARCH_RINGS {
             let distance = ring as f32 * r;
             if ring > gathered_to {
@@ -742,10 +742,12 @@ impl World {
             }
             let directions = 8 * ring.max(2);
             let step = std::f32::consts::TAU / directions as f32;
-            let place = |k: u32| {
+            places.clear();
+            places.extend((0..directions).map(|k| {
                 let angle = k as f32 * step;
                 p + Vec2::new(libm::cosf(angle), libm::sinf(angle)) * distance
-            };
+            }));
+            let place = |k: u32| places[k as usize];
             blocked.clear();
             blocked.resize(directions as usize, false);
             for &(at, held, radius) in &bodies {
