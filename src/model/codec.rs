@@ -20,6 +20,7 @@
 //! written and what is allowed; the parser's own words and position ride along as details.
 //! Scene text and fragments may start with a UTF-8 byte-order mark; a bare name is a preset.
 
+use crate::model::activity::Activity;
 use crate::model::geometry::Obstacle;
 use crate::model::params::{PlannerConfig, PlannerKind};
 use crate::model::scene::{
@@ -204,6 +205,8 @@ fn fragment_value(input: &str) -> &str {
 /// Version 2's compact scene: `[name, width, height, seed, obstacles, goals, groups, view]`, a
 /// ninth element `terrain` when the scene has paths or hills, and a tenth `px_per_metre` when
 /// the scale is not the default (then `terrain` is written, perhaps empty, to keep positions).
+/// An eleventh, the scene's activity as its keyed JSON, follows when the scene has one (then
+/// `terrain` and `px_per_metre` are written whatever they hold, to keep positions).
 /// Links made before those existed have eight or nine elements and still decode, to a scene
 /// without them; a scene at the default scale writes exactly what it wrote before the scale.
 #[derive(Debug, Serialize, Deserialize)]
@@ -218,6 +221,7 @@ struct CompactScene(
     CompactView,
     #[serde(default, skip_serializing_if = "Option::is_none")] Option<CompactTerrain>,
     #[serde(default, skip_serializing_if = "Option::is_none")] Option<f32>,
+    #[serde(default, skip_serializing_if = "Option::is_none")] Option<Activity>,
 );
 
 /// `[paths, hills]`: a path is `[radius, [[x, y], …]]`, a hill `[x, y, radius, height]`.
@@ -263,7 +267,9 @@ impl CompactScene {
             s.paths.iter().map(|p| (p.radius, p.points.clone())).collect(),
             s.hills.iter().map(|h| [h.center[0], h.center[1], h.radius, h.height]).collect(),
         );
-        let scale = (s.px_per_metre.to_bits() != DEFAULT_PX_PER_METRE.to_bits()).then_some(s.px_per_metre);
+        let activity = s.activity.clone();
+        let scale = (activity.is_some() || s.px_per_metre.to_bits() != DEFAULT_PX_PER_METRE.to_bits())
+            .then_some(s.px_per_metre);
         let obstacles = s
             .obstacles
             .iter()
@@ -311,11 +317,13 @@ impl CompactScene {
             CompactView(s.view.trails, s.view.trail_fade),
             (!terrain.is_empty() || scale.is_some()).then_some(terrain),
             scale,
+            activity,
         )
     }
 
     fn to_scene(&self) -> Result<Scene, SceneError> {
-        let CompactScene(name, width, height, seed, obstacles, goals, groups, view, terrain, scale) = self;
+        let CompactScene(name, width, height, seed, obstacles, goals, groups, view, terrain, scale, activity) =
+            self;
         let empty = CompactTerrain::default();
         let terrain = terrain.as_ref().unwrap_or(&empty);
         let obstacles = obstacles
@@ -378,6 +386,7 @@ impl CompactScene {
                 .map(|&[x, y, radius, height]| Hill { center: [x, y], radius, height })
                 .collect(),
             px_per_metre: scale.unwrap_or(DEFAULT_PX_PER_METRE),
+            activity: activity.clone(),
         })
     }
 }
@@ -578,6 +587,9 @@ fn field_refusal(
         return with_detail(SceneError::field(path, "missing", allowed), detail);
     } else if message.contains("untagged enum CompactObstacle") {
         (value, "a circle [x, y, radius], a rectangle [x0, y0, x1, y1] or a polygon [[x, y], …]".to_string())
+    } else if message.contains("untagged enum Condition") {
+        let allowed = "a condition {\"metric\": key, \"op\": \">=\", \"value\": number} (optional \"group\" or \"pane\") or {\"before\": [{\"group\": i} | {\"pane\": i}, …], \"share\": 0.9}";
+        (value, allowed.to_string())
     } else if message.contains("untagged enum CompactGoal") {
         (value, "[x, y, radius] or [x, y, radius, motion]".to_string())
     } else if message.starts_with("number out of range") {
@@ -865,6 +877,7 @@ fn compact_path(segments: &[Segment], json: Option<&serde_json::Value>) -> Strin
             _ => "hills".into(),
         },
         (9, _) => "px_per_metre".into(),
+        (10, _) => format!("activity{}", rest(1)),
         _ => keyed_path(segments),
     }
 }

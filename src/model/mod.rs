@@ -4,6 +4,7 @@
 //!
 //! Layer: model. Uses `rng` only (presets scatter obstacles); every layer above uses it.
 
+pub mod activity;
 pub mod codec;
 pub mod edit;
 pub mod forces_cases;

@@ -1,5 +1,6 @@
 //! The scene a user draws: bounds, obstacles, goals, groups of agents, seed; and its validation.
 
+use crate::model::activity::Activity;
 use crate::model::geometry::{v, Obstacle};
 use crate::model::params::spec::number_text;
 use crate::model::params::PlannerConfig;
@@ -61,6 +62,10 @@ pub struct Scene {
     /// their exact text. Only metrics and metre-based settings read it: the simulation runs in px.
     #[serde(default = "default_px_per_metre", skip_serializing_if = "is_default_px_per_metre")]
     pub px_per_metre: f32,
+    /// A classroom activity (prompt, prediction, goal checked on the metrics); absent in most
+    /// scenes and then left out of the JSON and the link, so older scenes keep their exact text.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub activity: Option<Activity>,
 }
 
 /// Pixels per metre of a scene that does not say (20 px = 1 m: a 4 px body radius is 0.2 m,
@@ -595,7 +600,7 @@ pub fn field_limits() -> Vec<FieldLimit> {
         "a number within {WORLD_MARGIN} px of the world (−{WORLD_MARGIN}…width/height + {WORLD_MARGIN} px)"
     );
     let length = format!("a number above 0 and at most {MAX_SIDE} px");
-    vec![
+    let mut rows = vec![
         row("width", side.clone(), "a world from a dot to a large poster; bigger worlds cost memory per grid cell"),
         row("height", side, "as width"),
         row(
@@ -643,7 +648,11 @@ pub fn field_limits() -> Vec<FieldLimit> {
         row("(any object)", "only the keys listed here and in the planner tables; an unknown key is refused".into(), "a misspelt key would otherwise be ignored without a word"),
         row("(scene text)", format!("at most {} bytes", MAX_INPUT_BYTES), "a file or link larger than any real scene"),
         row("(unpacked scene string)", format!("at most {} bytes", MAX_SCENE_BYTES), "a guard against deflate bombs"),
-    ]
+    ];
+    rows.extend(
+        crate::model::activity::limits().into_iter().map(|(field, allowed, why)| row(field, allowed, why)),
+    );
+    rows
 }
 
 /// What `path` accepts, from [`field_limits`] (indices in the path may be any number).
@@ -715,6 +724,7 @@ impl Scene {
             paths: vec![],
             hills: vec![],
             px_per_metre: DEFAULT_PX_PER_METRE,
+            activity: None,
         }
     }
 
@@ -793,7 +803,13 @@ impl Scene {
             number_in(|| format!("hills[{i}].radius"), h.radius, 0.0, true, MAX_SIDE)?;
             number_in(|| format!("hills[{i}].height"), h.height, 0.0, false, MAX_HILL_HEIGHT)?;
         }
-        number_in(|| "view.trail_fade".into(), self.view.trail_fade, 0.0, false, 1.0)
+        number_in(|| "view.trail_fade".into(), self.view.trail_fade, 0.0, false, 1.0)?;
+        match &self.activity {
+            Some(a) => {
+                a.validate(self.groups.len()).map_err(|f| SceneError::field(f.path, f.value, f.allowed))
+            }
+            None => Ok(()),
+        }
     }
 
     fn validate_group(&self, i: usize, g: &Group) -> Result<(), SceneError> {

@@ -3,10 +3,12 @@
 //! measures, diagnosis of one agent, and the run's timeline (one bounded series that halves
 //! when full, the recording, the metric series, the replay, lockstep comparison), a `Run` that keeps
 //! a world and its recording, replay and metric series in step for the page and the command
-//! line, and the budgets and limits of the front-ends in `limits`.
+//! line, the budgets and limits of the front-ends in `limits`, and the check of a scene's
+//! activity goal on the metrics (`activity_check`).
 //!
 //! Layer: sim. Uses `model`, `spatial`, `planners` and `rng`.
 
+pub mod activity_check;
 pub mod compare;
 pub mod cost;
 pub mod diagnose;

@@ -5,6 +5,7 @@ use super::{js_error, to_json};
 use crate::model::codec;
 use crate::model::params::PlannerKind;
 use crate::render::Renderer;
+use crate::sim::activity_check::{ActivityWatch, Page};
 use crate::sim::compare::{Comparison, ComparisonSpec, MAX_PANES, PANE_COLORS, PANE_NAMES, SERIES_KEYS};
 use wasm_bindgen::prelude::*;
 
@@ -15,6 +16,8 @@ pub struct CompareSim {
     renderers: Vec<Renderer>,
     width: u32,
     height: u32,
+    /// The scene activity's check over the panes, fed after every step.
+    activity: ActivityWatch,
 }
 
 /// A pane's planner by name: `None` for `"scene"` (the scene's own planners).
@@ -40,7 +43,8 @@ impl CompareSim {
             ComparisonSpec::parse(spec_text).map_err(js_error)?
         };
         let comparison = Comparison::new(scene, spec).map_err(js_error)?;
-        let mut sim = CompareSim { comparison, renderers: Vec::new(), width, height };
+        let activity = ActivityWatch::new(Page::Compare);
+        let mut sim = CompareSim { comparison, renderers: Vec::new(), width, height, activity };
         sim.fit_renderers();
         Ok(sim)
     }
@@ -85,6 +89,8 @@ impl CompareSim {
     pub fn step(&mut self, n: u32) {
         for _ in 0..n {
             self.comparison.step_n(1);
+            let comparison = &self.comparison;
+            self.activity.observe(comparison.scene(), comparison.step_count(), || comparison.metrics());
             for (r, p) in self.renderers.iter_mut().zip(self.comparison.panes()) {
                 r.trace_step(p.world());
             }
@@ -263,6 +269,13 @@ impl CompareSim {
     /// The scene as pretty JSON.
     pub fn scene_json(&self) -> String {
         codec::scene_to_json(self.comparison.scene())
+    }
+
+    /// The activity check over the panes as JSON (`crate::sim::activity_check::Report`), or
+    /// `null` when the scene has no check.
+    pub fn activity_report_json(&self) -> Result<String, JsError> {
+        let scene = self.comparison.scene();
+        to_json(&self.activity.report(scene, self.comparison.step_count()))
     }
 
     /// Every pane's digest as JSON `["16 hex digits", …]`.

@@ -7,6 +7,7 @@
 //!
 //! Layer: web (wasm32 only). Uses every layer below; converts and reports errors, no simulation logic.
 
+mod activity;
 mod diagnose;
 
 use crate::export::{self, ExportOptions};
@@ -16,6 +17,7 @@ use crate::model::params::PlannerKind;
 use crate::model::presets;
 use crate::model::scene::ViewOptions;
 use crate::render::{Renderer, Theme};
+use crate::sim::activity_check::{ActivityWatch, Page};
 use crate::sim::run::{Run, RunOptions};
 use glam::Vec2;
 use std::fmt::Display;
@@ -61,6 +63,8 @@ fn to_json<T: serde::Serialize>(value: &T) -> Result<String, JsError> {
 pub struct Sim {
     run: Run,
     renderer: Renderer,
+    /// The scene activity's check, fed after every step.
+    activity: ActivityWatch,
 }
 
 #[wasm_bindgen]
@@ -71,7 +75,8 @@ impl Sim {
         console_error_panic_hook::set_once();
         let scene = codec::scene_from_any(scene_text).map_err(scene_error)?;
         let run = Run::new(scene, RunOptions::page()).map_err(scene_error)?;
-        let mut sim = Sim { run, renderer: Renderer::new(width, height) };
+        let mut sim =
+            Sim { run, renderer: Renderer::new(width, height), activity: ActivityWatch::new(Page::Run) };
         sim.show_scene_view();
         Ok(sim)
     }
@@ -110,8 +115,11 @@ impl Sim {
     /// Advances `n` fixed steps, recording each and tracing its trail.
     pub fn step(&mut self, n: u32) {
         // Every step leaves its trail, however many run before the next frame.
-        let renderer = &mut self.renderer;
-        self.run.step_each(n, |world| renderer.trace_step(world));
+        let (renderer, activity) = (&mut self.renderer, &mut self.activity);
+        self.run.step_each(n, |world| {
+            renderer.trace_step(world);
+            activity.observe_world(world);
+        });
     }
 
     /// Steps simulated since the start.

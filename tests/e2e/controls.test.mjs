@@ -22,12 +22,16 @@ test('play, pause, step and reset by button and by key', async () => {
 
     await page.click('#step');
     assert.equal(await steps(page), paused + 1, 'Step advances one step');
+    // Single-key shortcuts act while the canvas or the page has focus, never on a focused button
+    // (issue #15: Space presses the focused button); a click on a button leaves focus on it.
+    await page.focus('#overlay-canvas');
     await page.keyboard.press('s');
     assert.equal(await steps(page), paused + 2, 'S advances one step');
 
     await page.click('#reset');
     assert.equal(await steps(page), 0, 'Reset goes back to step 0');
     await page.evaluate(() => window.flockpath.step(5));
+    await page.focus('#overlay-canvas');
     await page.keyboard.press('r');
     assert.equal(await steps(page), 0, 'R resets');
 
@@ -45,6 +49,7 @@ test('play, pause, step and reset by button and by key', async () => {
     assert.equal(await page.textContent('#play'), 'Pause');
 
     // Number keys pick tools.
+    await page.focus('#overlay-canvas');
     await page.keyboard.press('3');
     assert.equal(await page.getAttribute('[data-tool="rect"]', 'aria-checked'), 'true');
     await page.keyboard.press('1');
@@ -86,6 +91,7 @@ test('undo and redo an edit; a slider changes the group parameters live', async 
     assert.deepEqual(await page.evaluate(() => window.flockpath.scene()), edited, 'Ctrl+Y redoes');
 
     // Select the rectangle and delete it with the Delete key; undo brings it back.
+    await page.focus('#overlay-canvas');
     await page.keyboard.press('1');
     const inside = await sceneToClient(page, 360, 100);
     await page.mouse.click(inside.x, inside.y);

@@ -82,7 +82,9 @@ test('polygon, group and move tools edit the scene through the page', async () =
     const planners = await page.$$eval('#planner option', (os) => os.map((o) => o.value));
     assert.ok(planners.includes('boids'), planners.join(','));
 
-    // Select tool: drag the first polygon by (+40, +100).
+    // Select tool: drag the first polygon by (+40, +100). (Keys are shortcuts only while the page
+    // or the canvas has focus, not the group panel's field.)
+    await page.evaluate(() => document.activeElement?.blur());
     await page.keyboard.press('1');
     const before = s.obstacles[0].points;
     await dragFrom(page, [350, 90], [390, 190]);

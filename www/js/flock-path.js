@@ -19,11 +19,18 @@
 // Methods mirror the page API: load(text), play(), pause(), step(n), reset(), metrics(), scene(),
 // sceneString(), digest(); property `playing`, `steps`. Events: `flockpath-ready`,
 // `flockpath-error` (detail: message; also when the wasm cannot be loaded, shown in the box too).
+// For screen readers the canvas is an image named "Simulated crowd", described by a visually
+// hidden polite live region in the shadow root (core/describe.js: the scene and the run in
+// words); with prefers-reduced-motion `autoplay` waits for Play.
 
+import { mountActivityCard } from './core/activity-card.js';
 import { loadWasm } from './core/boot.js';
 import { messageOf } from './core/errors.js';
 import { startLoop } from './core/loop.js';
 import { SimHost } from './core/sim-host.js';
+import { setupDescription } from './core/describe.js';
+import { prefersReducedMotion } from './core/motion.js';
+import { t } from './core/i18n.js';
 import { measure, observeSize } from './core/view.js';
 // Prints a still of each scene instead of a blank box.
 import './core/print.js';
@@ -65,6 +72,8 @@ button.play { background: #2f6fdf; border-color: #2f6fdf; color: #fff; min-width
 .loading { position: absolute; inset: 0; display: flex; align-items: center; justify-content: center; color: #5a6676; }
 .loading[hidden] { display: none; }
 ::slotted(a) { color: #2f6fdf; }
+.visually-hidden { position: absolute; width: 1px; height: 1px; margin: -1px; padding: 0; overflow: hidden;
+  clip-path: inset(50%); white-space: nowrap; border: 0; }
 `;
 
 let sheet = null;
@@ -94,7 +103,7 @@ export class FlockPathElement extends HTMLElement {
     root.innerHTML = `${adoptStyle(root) ? '' : `<style>${STYLE}</style>`}
       <div class="frame" part="frame">
         <div class="stage" part="stage">
-          <canvas part="canvas" role="img" aria-label="Simulated crowd"></canvas>
+          <canvas part="canvas" role="img" aria-describedby="description"></canvas>
           <div class="loading">Loading…</div>
           <p class="message" role="alert" hidden></p>
         </div>
@@ -109,6 +118,7 @@ export class FlockPathElement extends HTMLElement {
         </div>
       </div>`;
     this.$ = (selector) => root.querySelector(selector);
+    this.$('canvas').setAttribute('aria-label', t('a11y.canvas.label'));
     /** The simulation behind the core's guarded door (a SimHost), once booted. */
     this.host = null;
     this.module = null;
@@ -160,6 +170,11 @@ export class FlockPathElement extends HTMLElement {
     // Free the simulation only if the element is really gone (not just moved in the DOM).
     queueMicrotask(() => {
       if (!this.isConnected && this.host) {
+        this.activity?.stop();
+        this.activity = null;
+        this.description?.stop();
+        this.description?.element.remove();
+        this.description = null;
         this.host.sim.free();
         this.host = null;
         this.booting = null;
@@ -216,17 +231,45 @@ export class FlockPathElement extends HTMLElement {
         event(message);
       },
     });
-    this.host.playing = this.wantPlaying || this.hasAttribute('autoplay');
+    // `autoplay` waits for Play when the reader asked for less motion; a script's play() does not.
+    this.host.playing = this.wantPlaying || (this.hasAttribute('autoplay') && !prefersReducedMotion());
     this.host.afterLoad = () => this.afterLoad();
     this.host.addEventListener('playing', () => this.refreshBar());
     this.host.addEventListener('stepped', () => this.refreshSteps());
     this.tryLoad(this.getAttribute('scene') ?? '', { fallback: true });
+    this.mountActivity();
     this.$('.loading').hidden = true;
+    // The scene and the run in words for screen readers, beside the canvas (core/describe.js).
+    this.description = setupDescription(this.host, canvas, () =>
+      this.host && !this.crashed
+        ? {
+            scene: this.cachedScene,
+            planners: this.planners,
+            playing: this.playing,
+            metrics: this.host.guard((s) => JSON.parse(s.metrics_json())).value ?? null,
+          }
+        : null,
+    { id: 'description' });
     this.observer = observeSize(canvas, (size) => this.fitCanvas(size));
     this.refreshBar();
     this.startLoop();
     this.resolveReady(this);
     this.dispatchEvent(new CustomEvent('flockpath-ready', { bubbles: true, composed: true }));
+  }
+
+  /** The scene's activity card (prompt, prediction, check) between the canvas and the bar. */
+  mountActivity() {
+    const slot = document.createElement('div');
+    slot.className = 'activity';
+    slot.setAttribute('part', 'activity');
+    this.$('.bar').before(slot);
+    const read = (fn) => (this.host && !this.crashed ? JSON.parse(this.call(fn)) : null);
+    this.activity = mountActivityCard(this.host, slot, {
+      readActivity: () => read((sim) => sim.activity_json()),
+      readReport: () => read((sim) => sim.activity_report_json()),
+      groupName: (i) => this.cachedScene?.groups?.[i]?.name ?? '',
+      styleRoot: this.shadowRoot,
+    });
   }
 
   /** The core's frame loop on this element's canvas (no Speed readout: the element has no slider). */
@@ -264,7 +307,9 @@ export class FlockPathElement extends HTMLElement {
     this.cachedScene = JSON.parse(this.call((sim) => sim.scene_json()));
     this.applyLayout();
     this.host.dirty = true;
+    this.activity?.refresh();
     this.refreshBar();
+    this.description?.update();
   }
 
   /**

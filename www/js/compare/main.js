@@ -5,11 +5,14 @@
 import { bootPage } from '../core/boot.js';
 import { isPanic, messageOf, showMessage } from '../core/errors.js';
 import { fragmentValue } from '../core/fragment.js';
-import { setupPlayback, typingInto } from '../core/playback.js';
+import { setupPlayback } from '../core/playback.js';
+import { onPage } from '../core/keys.js';
+import { prefersReducedMotion } from '../core/motion.js';
 import { SimHost } from '../core/sim-host.js';
 import { buildPanes, blitPanes, measurePane } from './panes.js';
 import { drawPlots, drawTable } from './plots.js';
 import { download } from '../core/download.js';
+import { setupActivity } from './activity.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -92,7 +95,8 @@ function setupControls(app) {
   showPreset();
 
   document.addEventListener('keydown', (e) => {
-    if (app.crashed || typingInto(e.target) || e.ctrlKey || e.metaKey || e.altKey) return;
+    // Single-key shortcuts only while the page or a canvas has focus (core/keys.js).
+    if (app.crashed || !onPage(e) || e.ctrlKey || e.metaKey || e.altKey) return;
     if (playbackKey(e)) e.preventDefault();
   });
 }
@@ -180,10 +184,13 @@ bootPage('the comparison', ({ module, wasm }) => {
   }
 
   const app = new CompareApp(wasm, module, sim);
+  // A reader who asked for less motion starts paused (Play plays).
+  if (prefersReducedMotion()) app.playing = false;
   app.watchPanics();
   const canvases = buildPanes(app);
   setupControls(app);
   keepLocationInSync(app);
+  setupActivity(app);
   startLoop(app, canvases);
   $('loading').hidden = true;
   if (problems.length) showMessage(problems.join(' '));

@@ -55,8 +55,10 @@ function paramForm(app, index, pane) {
 
 function paneElement(app, index, pane, count) {
   const canvas = el('canvas', { className: 'pane-canvas' });
+  canvas.setAttribute('role', 'img');
   canvas.setAttribute('aria-label', `Pane ${pane.pane}: ${pane.label}`);
   const picker = el('select', { title: 'The planner of every group in this pane' });
+  picker.setAttribute('aria-label', `Pane ${pane.pane} planner`);
   picker.append(el('option', { value: 'scene', textContent: "scene's planners", selected: pane.planner === 'scene' }));
   for (const p of app.planners) {
     picker.append(el('option', { value: p.name, textContent: p.label, selected: pane.planner === p.name && !pane.per_group }));

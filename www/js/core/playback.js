@@ -1,16 +1,9 @@
 // Playback controls every page with a SimHost shares (the playground and the compare page): the
 // Play/Pause button (#play, its label and aria-pressed following the host), Step (#step, pauses
 // first), Reset (#reset), the Speed slider (#spf, #spf-value: steps per frame, 1…20) and their
-// keys (Space, S, R) outside text fields.
+// keys (Space, S, R) while the page or a canvas has focus (keys.js).
 
 const $ = (id) => document.getElementById(id);
-
-/** Whether a key event is typing into a field (shortcuts must not steal those keys). */
-export function typingInto(target) {
-  if (!(target instanceof HTMLElement)) return false;
-  if (target.isContentEditable || target.tagName === 'TEXTAREA' || target.tagName === 'SELECT') return true;
-  return target.tagName === 'INPUT' && !['checkbox', 'radio', 'range', 'button', 'color'].includes(target.type);
-}
 
 /**
  * Wires the playback buttons and the Speed slider to `app`; returns `key(e)`, which runs the

@@ -93,7 +93,8 @@ function targets() {
     list.push(canvas);
   }
   for (const canvas of document.querySelectorAll('canvas')) {
-    if (canvas.getAttribute('aria-hidden') === 'true' || canvas.hasAttribute(MARK)) continue;
+    // Decoration and input layers (the editor's overlay: `data-no-print`) print nothing of their own.
+    if (canvas.getAttribute('aria-hidden') === 'true' || canvas.hasAttribute('data-no-print') || canvas.hasAttribute(MARK)) continue;
     if (canvas.getClientRects().length === 0) continue; // not displayed
     list.push(canvas);
   }

@@ -7,11 +7,12 @@ import { blit } from '../core/blit.js';
 import { bootPage } from '../core/boot.js';
 import { messageOf, showMessage } from '../core/errors.js';
 import { drawPlot } from '../core/plot.js';
+import { onPage } from '../core/keys.js';
 
 const $ = (id) => document.getElementById(id);
 
-/** Line colour per algorithm name. */
-const ALGORITHM_COLORS = { gsa: '#d9480f', igsa: '#1c7ed6', pso: '#2b8a3e', firefly: '#ae3ec9', ga: '#5c5f66' };
+/** Line and label colour per algorithm name; each ≥ 4.5:1 on white, as the checkbox labels are text (axe colour contrast). */
+const ALGORITHM_COLORS = { gsa: '#c2410c', igsa: '#1971c2', pso: '#2b7a3b', firefly: '#ae3ec9', ga: '#5c5f66' };
 
 /**
  * The convergence chart: best-so-far against iteration on a log scale, one line per run
@@ -239,8 +240,10 @@ bootPage('the lab', ({ module, wasm }) => {
     state.pings += 1;
     $('lab-ping-count').textContent = String(state.pings);
   });
+  // Single-key shortcuts only while the page or a canvas has focus (core/keys.js): a focused
+  // button or checkbox keeps Space.
   window.addEventListener('keydown', (e) => {
-    if (e.target instanceof HTMLInputElement || e.target instanceof HTMLSelectElement) return;
+    if (!onPage(e) || e.ctrlKey || e.metaKey || e.altKey) return;
     if (e.key === ' ') {
       e.preventDefault();
       setPlaying(!state.playing);

@@ -217,6 +217,15 @@ export function theme(name) {
   return a.guard((sim) => sim.theme(), { rethrow: true }).value;
 }
 
+/**
+ * The scene activity's check (null without one): `{status: 'running' | 'met' | 'missed' |
+ * 'unavailable', step, limit, from_step, conditions: [{condition, applies, holds, measured}]}`,
+ * the values of the deciding step once decided (the page's activity card shows the same).
+ */
+export function activityReport() {
+  return booted().guard((sim) => JSON.parse(sim.activity_report_json()), { rethrow: true }).value;
+}
+
 /** The API object: `window.flockpath` and this module's default export. */
 export const flockpath = Object.freeze({
   ready,
@@ -242,6 +251,7 @@ export const flockpath = Object.freeze({
   overlays,
   metricsHistory,
   theme,
+  activityReport,
 });
 
 export default flockpath;

@@ -1,7 +1,8 @@
 // Playback, run settings, presets and keyboard shortcuts.
 
 import { TOOLS } from './editor.js';
-import { setupPlayback, typingInto } from '../core/playback.js';
+import { commandAllowed, onPage } from '../core/keys.js';
+import { setupPlayback } from '../core/playback.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -72,11 +73,15 @@ export function setupControls(app, editor) {
   app.addEventListener('scene', showPreset);
   showPreset();
 
+  // Shortcuts never take a focused control's keys (keys.js): Ctrl/⌘ ones act anywhere but in a
+  // text field, single keys only while the page or the canvas has focus. On the focused canvas
+  // the editor's keyboard cursor (arrows, Enter) gets its keys first.
   document.addEventListener('keydown', (e) => {
-    if (app.crashed || typingInto(e.target)) return;
+    if (app.crashed || e.defaultPrevented) return;
     const key = e.key;
     const ctrl = e.ctrlKey || e.metaKey;
     if (ctrl && !e.altKey) {
+      if (!commandAllowed(e)) return;
       const lower = key.toLowerCase();
       if (lower === 'z' && !e.shiftKey) app.undo();
       else if ((lower === 'z' && e.shiftKey) || lower === 'y') app.redo();
@@ -84,7 +89,7 @@ export function setupControls(app, editor) {
       e.preventDefault();
       return;
     }
-    if (e.altKey) return;
+    if (e.altKey || ctrl || !onPage(e)) return;
     if (playbackKey(e)) {
       e.preventDefault();
       return;
@@ -97,9 +102,5 @@ export function setupControls(app, editor) {
     } else if (key === 'Enter' && ['polygon', 'path'].includes(editor.tool) && editor.polygon.length) editor.closePolygon();
     else return;
     e.preventDefault();
-  });
-  // A Space keyup on a focused button would also click it: the keydown already toggled.
-  document.addEventListener('keyup', (e) => {
-    if (e.key === ' ' && !typingInto(e.target)) e.preventDefault();
   });
 }

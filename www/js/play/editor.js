@@ -1,9 +1,17 @@
 // Drawing tools on the overlay canvas, with Pointer Events and pointer capture so mouse, pen and
 // touch behave the same. Every scene change goes through `Sim.edit`; hit testing is `Sim.pick`.
 // The overlay only shows rubber-band previews of gestures in progress.
+//
+// Keyboard: the focused overlay canvas shows a cursor; arrows move it (Shift: five times
+// further), Enter places with the current tool through the same `finish` / `polygonClick` a
+// pointer uses (circle, rectangle and group: one Enter for the first point, one for the second;
+// polygon and path: Enter adds a point, Enter again on the last point ends the shape), Escape
+// cancels. What happens is said in a polite live region next to the canvas. The tool buttons are
+// a radio group: one tab stop, arrows move and select.
 
 import { clientToScene, sceneUnitsPerCssPixel, viewTransform } from '../core/view.js';
 import { PathEditor } from './path-edit.js';
+import { t } from '../core/i18n.js';
 
 /** Tool names in number-key order (1…7). */
 export const TOOLS = ['select', 'circle', 'rect', 'polygon', 'goal', 'group', 'path'];
@@ -20,6 +28,12 @@ const HINTS = {
   group: 'Drag a spawn region for a new group of agents.',
   path: 'Click points along the way; double-click or Enter ends the path; the active group follows it (Boids).',
 };
+
+/** The `pointerId` of a gesture made with the keyboard cursor (no pointer has it). */
+const KEYBOARD = 'keyboard';
+
+/** Arrow keys → cursor direction. */
+const ARROWS = { ArrowLeft: [-1, 0], ArrowRight: [1, 0], ArrowUp: [0, -1], ArrowDown: [0, 1] };
 
 /** Pick tolerance and gesture thresholds, in CSS px. */
 const PICK_TOLERANCE_CSS = 10;
@@ -38,6 +52,10 @@ export class Editor {
     /** Polygon vertices placed so far (scene coordinates). */
     this.polygon = [];
     this.hover = null;
+    /** The keyboard cursor (scene coordinates) and whether it is shown (keyboard in use). */
+    this.cursor = null;
+    this.keyboard = false;
+    this.status = this.makeStatus();
     this.paths = new PathEditor(app, this, overlay, canvas);
     overlay.addEventListener('pointerdown', (e) => this.pointerDown(e));
     overlay.addEventListener('pointermove', (e) => this.pointerMove(e));
@@ -51,11 +69,43 @@ export class Editor {
     });
     app.addEventListener('resize', () => this.draw());
     app.addEventListener('scene', () => this.draw());
-    for (const button of document.querySelectorAll('[data-tool]')) {
+    overlay.addEventListener('keydown', (e) => this.keyDown(e));
+    overlay.addEventListener('focus', () => {
+      if (overlay.matches(':focus-visible')) this.showCursor();
+    });
+    overlay.addEventListener('blur', () => {
+      this.keyboard = false;
+      if (this.drag?.pointerId === KEYBOARD) this.drag = null;
+      this.showHint();
+      this.draw();
+    });
+    for (const button of document.querySelectorAll('button[data-tool]')) {
       button.setAttribute('role', 'radio');
       button.addEventListener('click', () => this.setTool(button.dataset.tool));
     }
+    document.getElementById('tools')?.addEventListener('keydown', (e) => this.toolKey(e));
     this.setTool('select');
+  }
+
+  /** The live region that says where the keyboard cursor is and what Enter did. */
+  makeStatus() {
+    const status = Object.assign(document.createElement('p'), { id: 'canvas-cursor', className: 'visually-hidden' });
+    status.setAttribute('aria-live', 'polite');
+    this.overlay.after(status);
+    return status;
+  }
+
+  /** Tool radio group: arrows (and Home/End) move the choice and the focus, wrapping round. */
+  toolKey(e) {
+    const buttons = [...document.querySelectorAll('button[data-tool]')];
+    const at = buttons.indexOf(e.target);
+    if (at < 0 || e.altKey || e.ctrlKey || e.metaKey) return;
+    const moves = { ArrowRight: at + 1, ArrowDown: at + 1, ArrowLeft: at - 1, ArrowUp: at - 1, Home: 0, End: buttons.length - 1 };
+    if (!Object.hasOwn(moves, e.key)) return;
+    e.preventDefault();
+    const next = buttons[(moves[e.key] + buttons.length) % buttons.length];
+    this.setTool(next.dataset.tool);
+    next.focus();
   }
 
   /** Switches tool, dropping any unfinished shape. */
@@ -64,11 +114,165 @@ export class Editor {
     this.cancel();
     this.tool = tool;
     this.overlay.dataset.tool = tool;
-    for (const button of document.querySelectorAll('[data-tool]')) {
-      button.setAttribute('aria-checked', String(button.dataset.tool === tool));
+    // Roving tabindex: the checked tool is the group's one tab stop.
+    for (const button of document.querySelectorAll('button[data-tool]')) {
+      const checked = button.dataset.tool === tool;
+      button.setAttribute('aria-checked', String(checked));
+      button.tabIndex = checked ? 0 : -1;
     }
+    this.showHint();
+    if (this.keyboard) this.say(this.cursorText());
+  }
+
+  /** The hint line under the canvas: the tool's, plus the keys while the keyboard cursor shows. */
+  showHint() {
     const hint = document.getElementById('hint');
-    if (hint) hint.textContent = HINTS[tool];
+    if (hint) hint.textContent = this.keyboard ? `${HINTS[this.tool]} ${t('a11y.cursor.keys')}` : HINTS[this.tool];
+  }
+
+  /** Shows the keyboard cursor (at the scene's centre the first time). */
+  showCursor() {
+    const { width, height } = this.app.scene;
+    this.cursor ??= [Math.round(width / 2), Math.round(height / 2)];
+    if (!this.keyboard) {
+      this.keyboard = true;
+      this.showHint();
+      this.say(this.cursorText());
+    }
+    this.draw();
+  }
+
+  /** Writes `text` into the cursor's live region. */
+  say(text) {
+    this.status.textContent = text;
+  }
+
+  /** Where the cursor is and what Enter would do there. */
+  cursorText() {
+    const [x, y] = this.cursor ?? [0, 0];
+    const at = t('a11y.cursor.at', { x: Math.round(x), y: Math.round(y) });
+    const drag = this.drag?.pointerId === KEYBOARD ? this.drag : null;
+    if (drag && this.tool === 'select') {
+      return `${at} ${t('a11y.cursor.select.second', { dx: Math.round(x - drag.start[0]), dy: Math.round(y - drag.start[1]) })}`;
+    }
+    if (drag && this.tool === 'circle') {
+      const r = Math.round(Math.hypot(x - drag.start[0], y - drag.start[1]));
+      return `${at} ${t('a11y.cursor.circle.second', { r })}`;
+    }
+    if (drag) {
+      const w = Math.round(Math.abs(x - drag.start[0]));
+      const h = Math.round(Math.abs(y - drag.start[1]));
+      return `${at} ${t(`a11y.cursor.${this.tool}.second`, { w, h })}`;
+    }
+    if (POINT_TOOLS.includes(this.tool) && this.polygon.length) {
+      return `${at} ${t(`a11y.cursor.${this.tool}.more`, { n: this.polygon.length })}`;
+    }
+    return `${at} ${t(`a11y.cursor.${this.tool}`)}`;
+  }
+
+  /** Keys on the focused canvas: arrows move the cursor, Enter places, Escape cancels. */
+  keyDown(e) {
+    if (this.app.crashed || e.altKey || e.ctrlKey || e.metaKey) return;
+    const arrow = ARROWS[e.key];
+    if (arrow) {
+      e.preventDefault();
+      const wasShown = this.keyboard;
+      this.showCursor();
+      if (wasShown) this.moveCursor(arrow, e.shiftKey);
+      return;
+    }
+    if (e.key === 'Enter') {
+      // A polygon clicked with the pointer (no cursor shown) ends on Enter as before (controls.js).
+      if (!this.keyboard && POINT_TOOLS.includes(this.tool) && this.polygon.length) return;
+      e.preventDefault();
+      if (!this.keyboard) this.showCursor();
+      else this.place();
+      return;
+    }
+    if (e.key === 'Escape' && this.keyboard && (this.drag?.pointerId === KEYBOARD || this.polygon.length)) {
+      e.preventDefault();
+      this.cancel();
+      this.say(`${t('a11y.cursor.cancelled')} ${this.cursorText()}`);
+    }
+  }
+
+  /** Moves the cursor one step (Shift: five), kept inside the scene. */
+  moveCursor([dx, dy], big) {
+    const { width, height } = this.app.scene;
+    const step = Math.max(1, Math.round(Math.min(width, height) / 50)) * (big ? 5 : 1);
+    const [x, y] = this.cursor;
+    this.cursor = [Math.min(Math.max(x + dx * step, 0), width), Math.min(Math.max(y + dy * step, 0), height)];
+    if (this.drag?.pointerId === KEYBOARD) this.drag.current = this.cursor;
+    if (POINT_TOOLS.includes(this.tool) && this.polygon.length) this.hover = this.cursor;
+    this.say(this.cursorText());
+    this.draw();
+  }
+
+  /** Enter with the keyboard cursor: the current tool's pointer gesture, at the cursor. */
+  place() {
+    const p = [...this.cursor];
+    const before = this.countItems();
+    this.lastEdit = null;
+    if (this.tool === 'select' && this.drag?.pointerId === KEYBOARD) {
+      // The second Enter puts the picked-up item down at the cursor (a move, as a pointer drag).
+      const drag = this.drag;
+      this.drag = null;
+      drag.current = p;
+      const moved = drag.current[0] !== drag.start[0] || drag.current[1] !== drag.start[1];
+      this.finish(drag);
+      this.say(`${t(moved ? 'a11y.cursor.moved' : 'a11y.cursor.kept')} ${this.cursorText()}`);
+      this.draw();
+      return;
+    }
+    if (this.tool === 'select') {
+      const picked = this.app.guard((sim) => JSON.parse(sim.pick(p[0], p[1], this.units(PICK_TOLERANCE_CSS))));
+      const item = picked.ok ? picked.value : null;
+      this.app.select(item);
+      if (item && item.kind === 'group') this.app.setActiveGroup(item.index);
+      const detail = { x: p[0], y: p[1], tolerance: this.units(PICK_TOLERANCE_CSS) };
+      this.app.dispatchEvent(new CustomEvent('canvas-click', { detail }));
+      // The first Enter on an item also picks it up: arrows carry it, Enter puts it down.
+      if (item) this.drag = { pointerId: KEYBOARD, start: p, current: p, item };
+      this.say(item ? t('a11y.cursor.selected', { item: t(`a11y.item.${item.kind}`, { n: item.index + 1 }) }) : t('a11y.cursor.nothing'));
+      this.draw();
+      return;
+    }
+    if (POINT_TOOLS.includes(this.tool)) {
+      const last = this.polygon[this.polygon.length - 1];
+      const round = (v) => Math.round(v * 10) / 10;
+      if (last && last[0] === round(p[0]) && last[1] === round(p[1])) this.closePolygon();
+      else this.polygonClick(p);
+      if (this.polygon.length) {
+        this.hover = this.cursor;
+        this.say(this.cursorText());
+        this.draw();
+        return;
+      }
+    } else if (this.tool === 'goal') {
+      this.finish({ start: p, current: p, item: null });
+    } else if (!this.drag) {
+      this.drag = { pointerId: KEYBOARD, start: p, current: p, item: null };
+      this.say(this.cursorText());
+      this.draw();
+      return;
+    } else {
+      const drag = this.drag;
+      this.drag = null;
+      drag.current = p;
+      this.finish(drag);
+    }
+    const after = this.countItems();
+    const added = Object.keys(after).find((key) => after[key] > before[key]);
+    // A refused edit is explained by the banner (an alert); say only that nothing was added.
+    const outcome = added ? `a11y.added.${this.tool}` : this.lastEdit && !this.lastEdit.ok ? 'a11y.cursor.refused' : 'a11y.cursor.too.small';
+    this.say(`${t(outcome)} ${this.cursorText()}`);
+    this.draw();
+  }
+
+  /** How many obstacles, goals, groups and paths the scene has (to say whether Enter added one). */
+  countItems() {
+    const s = this.app.scene;
+    return { obstacles: s.obstacles?.length ?? 0, goals: s.goals?.length ?? 0, groups: s.groups?.length ?? 0, paths: s.paths?.length ?? 0 };
   }
 
   /** Drops the gesture or polygon in progress (Escape). */
@@ -95,6 +299,12 @@ export class Editor {
     if (this.app.crashed || (e.pointerType === 'mouse' && e.button !== 0)) return;
     e.preventDefault();
     this.overlay.focus?.({ preventScroll: true });
+    // The pointer takes over from the keyboard cursor (a keyboard gesture in progress ends).
+    if (this.drag?.pointerId === KEYBOARD) this.drag = null;
+    if (this.keyboard) {
+      this.keyboard = false;
+      this.showHint();
+    }
     const p = this.point(e);
     if (POINT_TOOLS.includes(this.tool)) {
       this.polygonClick(p);
@@ -224,12 +434,14 @@ export class Editor {
   deleteSelection() {
     const item = this.app.selection;
     if (!item) return;
+    if (this.drag?.pointerId === KEYBOARD) this.drag = null;
     this.edit({ op: 'delete', item });
   }
 
   /** One undoable `edit`; errors show in the banner and leave the scene unchanged. */
   edit(op, options = {}) {
-    return this.app.change((sim) => sim.edit(JSON.stringify(op)), options).ok;
+    this.lastEdit = this.app.change((sim) => sim.edit(JSON.stringify(op)), options);
+    return this.lastEdit.ok;
   }
 
   /** Redraws the rubber-band previews. */
@@ -237,11 +449,14 @@ export class Editor {
     const ctx = this.ctx;
     ctx.setTransform(1, 0, 0, 1, 0, 0);
     ctx.clearRect(0, 0, this.overlay.width, this.overlay.height);
-    if (this.app.crashed || (!this.drag && !this.polygon.length)) return;
+    const cursor = this.keyboard && this.cursor;
+    if (this.app.crashed || (!this.drag && !this.polygon.length && !cursor)) return;
     const { scale, ox, oy } = viewTransform(this.app);
     ctx.setTransform(scale, 0, 0, scale, ox, oy);
     const px = 1 / scale;
     const ratio = window.devicePixelRatio || 1;
+    if (cursor) this.drawCursor(ctx, ratio * px);
+    if (!this.drag && !this.polygon.length) return;
     ctx.lineWidth = 2 * ratio * px;
     ctx.setLineDash([6 * ratio * px, 4 * ratio * px]);
     ctx.strokeStyle = '#17202c';
@@ -272,6 +487,27 @@ export class Editor {
     }
     ctx.fill();
     ctx.stroke();
+  }
+
+  /** The keyboard cursor: a cross in a ring, dark over light so it shows on any field. */
+  drawCursor(ctx, cssPx) {
+    const [x, y] = this.cursor;
+    const arm = 12 * cssPx;
+    ctx.save();
+    ctx.setLineDash([]);
+    for (const [colour, width] of [['#ffffff', 5], ['#17202c', 2]]) {
+      ctx.strokeStyle = colour;
+      ctx.lineWidth = width * cssPx;
+      ctx.beginPath();
+      ctx.moveTo(x - arm, y);
+      ctx.lineTo(x + arm, y);
+      ctx.moveTo(x, y - arm);
+      ctx.lineTo(x, y + arm);
+      ctx.moveTo(x + arm * 0.6, y);
+      ctx.arc(x, y, arm * 0.6, 0, Math.PI * 2);
+      ctx.stroke();
+    }
+    ctx.restore();
   }
 
   drawPolygon(ctx, cssPx) {

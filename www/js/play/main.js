@@ -5,6 +5,7 @@
 import { App } from './app.js';
 import { attach, flockpath } from './api.js';
 import { setupControls } from './controls.js';
+import { setupDescription } from '../core/describe.js';
 import { Editor } from './editor.js';
 import { bootPage } from '../core/boot.js';
 import { isPanic, messageOf, showMessage } from '../core/errors.js';
@@ -15,10 +16,12 @@ import { setupInspector } from './inspector.js';
 import { Panel } from './panel.js';
 import { setupExport } from './export.js';
 import { setupShare } from './share.js';
+import { setupActivity } from './activity.js';
 import { setupSceneLinks } from './scene-links.js';
 import { setupTimeline } from './timeline.js';
 import { keepLocationInSync, sceneFromLocation, watchLocation } from '../core/url.js';
 import { measure, setupView } from '../core/view.js';
+import { prefersReducedMotion } from '../core/motion.js';
 
 bootPage('flockpath', ({ module, wasm }) => {
   const canvas = document.getElementById('scene-canvas');
@@ -44,6 +47,8 @@ bootPage('flockpath', ({ module, wasm }) => {
   }
 
   const app = new App(wasm, module, sim);
+  // A reader who asked for less motion starts paused (Play plays).
+  if (prefersReducedMotion()) app.playing = false;
   app.watchPanics();
   app.afterLoad();
   setupView(app, canvas, overlay);
@@ -59,6 +64,14 @@ bootPage('flockpath', ({ module, wasm }) => {
   setupSceneLinks(app);
   const onFrame = setupMetrics(app);
   setupInspector(app);
+  setupActivity(app);
+  // The canvas in words for screen readers (core/describe.js), beside the canvas.
+  setupDescription(app, overlay, () => ({
+    scene: app.scene,
+    planners: app.planners,
+    playing: app.playing,
+    metrics: app.guard((s) => JSON.parse(s.metrics_json())).value ?? null,
+  }), { id: 'scene-description' });
   startLoop(app, canvas, onFrame);
   document.getElementById('loading').hidden = true;
   if (linkError !== null) {

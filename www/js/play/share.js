@@ -4,6 +4,7 @@
 import { download } from '../core/download.js';
 import { messageOf, showMessage } from '../core/errors.js';
 import { shareUrl, writeSceneToLocation } from '../core/url.js';
+import { setupShareActivity } from './share-activity.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -105,6 +106,8 @@ export function setupShare(app) {
     download(name, `${result.value}\n`, 'application/json');
     status.textContent = `Downloading ${name}.`;
   });
+  // The activity form (prompt, prediction, goal), above the status line.
+  setupShareActivity(app);
   const picker = $('scene-file');
   $('open-scene').addEventListener('click', () => picker.click());
   picker.addEventListener('change', async () => {

@@ -1,0 +1,13 @@
+// Shared by the activity tests: a scene link with an activity, made through the page API.
+
+/** The link (fragment value) of preset `preset` with `activity` added, made by the page's API. */
+export async function linkWithActivity(page, activity, preset = 'pillars') {
+  return page.evaluate(
+    ([a, name]) => {
+      window.flockpath.load(name);
+      window.flockpath.load({ ...window.flockpath.scene(), activity: a });
+      return window.flockpath.sceneString();
+    },
+    [activity, preset],
+  );
+}
