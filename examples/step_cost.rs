@@ -1,7 +1,9 @@
 //! Measures what the cost limits in `src/cost.rs` are set from: ns per agent-step of every
 //! planner in its worst valid scene (a square crowd packed at the spawn density limit, heading
 //! for a goal in its middle) against the constant-density scene of the benchmarks, natively.
-//! `taskset -c 0 cargo run --release --example step_cost [N] [PLANNER]`. Timing lives here, never
+//! `taskset -c 0 cargo run --release --example step_cost [N] [PLANNER|all] [SCENES]`, SCENES a
+//! comma list of `spread`, `packed`, `late` (packed after 300 steps), all three by default; a
+//! scene not run prints `-`. Timing lives here, never
 //! in the core. Figures are on-CPU time where the OS reports it (Linux `schedstat`): on a machine
 //! shared with other work, wall-clock time also counts the time other processes held the core.
 
@@ -85,16 +87,23 @@ fn main() {
         "planner", "spread (steps 0-100)", "packed (0-100)", "packed (300-400)"
     );
     let only = std::env::args().nth(2).and_then(|name| PlannerKind::from_name(&name));
+    let scenes = std::env::args().nth(3).unwrap_or_else(|| "spread,packed,late".into());
+    let wanted = |name: &str| scenes.split(',').any(|s| s.trim() == name);
+    let cell = |run: bool, timed: &dyn Fn() -> (f64, f64, f64)| {
+        if run {
+            let (m, w, s) = timed();
+            format!("{m:.0} / {w:.0}; {s:.0}")
+        } else {
+            "-".to_string()
+        }
+    };
     for &kind in PlannerKind::ALL.iter().filter(|&&k| only.is_none_or(|o| o == k)) {
-        let (sm, sw, ss) = time(spread(n, kind), 0, 10, 10);
-        let (pm, pw, ps) = time(packed(n, kind), 0, 10, 10);
-        let (lm, lw, ls) = time(packed(n, kind), 300, 10, 10);
         println!(
             "{:>8}  {:>26}  {:>26}  {:>26}",
             kind.name(),
-            format!("{sm:.0} / {sw:.0}; {ss:.0}"),
-            format!("{pm:.0} / {pw:.0}; {ps:.0}"),
-            format!("{lm:.0} / {lw:.0}; {ls:.0}")
+            cell(wanted("spread"), &|| time(spread(n, kind), 0, 10, 10)),
+            cell(wanted("packed"), &|| time(packed(n, kind), 0, 10, 10)),
+            cell(wanted("late"), &|| time(packed(n, kind), 300, 10, 10)),
         );
     }
 }

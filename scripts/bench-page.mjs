@@ -10,7 +10,7 @@
 // processes on the core do not inflate: 1000 / (cpu ms per frame) is about the fps the page
 // reaches with the core to itself, and the step's CPU time bounds the wait of a click.
 //
-// Usage: node scripts/bench-page.mjs [--seconds S] [--planners boids,pso] [--sizes 1000,10000]
+// Usage: node scripts/bench-page.mjs [--seconds S] [--planners boids,pso,orca,social_force] [--sizes 1000,10000]
 //          [--layouts spread,packed] [--no-profile] [--json FILE] [--www DIR] [--before DIR]
 // --before DIR: runs every case on that copy of the page too, right before the same case on
 // www/, so a before/after comparison sees the same machine load (printed as two rows).
@@ -45,7 +45,7 @@ const CHROMIUM_ARGS = [
   '--no-sandbox', '--disable-dev-shm-usage', '--disable-gpu', '--disable-quic', '--no-first-run',
   '--disable-background-networking', '--disable-component-update', '--disable-sync',
 ];
-const PLANNERS = ['boids', 'pso', 'firefly', 'forces', 'igsa'];
+const PLANNERS = ['boids', 'pso', 'firefly', 'forces', 'igsa', 'orca', 'social_force'];
 const SIZES = [1000, 10000, 100000];
 const LAYOUTS = ['spread', 'packed'];
 const VIEWPORT = { width: 1280, height: 800 };
@@ -58,12 +58,15 @@ const CLICKS = 3;
 
 const list = (name, fallback) => flag(name, fallback.join(',')).split(',').filter(Boolean);
 const seconds = Number(flag('--seconds', '3'));
-const planners = list('--planners', PLANNERS);
+// `social-force` as the page's menu spells it is `social_force` in a scene.
+const planners = list('--planners', PLANNERS).map((p) => p.replace(/-/g, '_'));
 const sizes = list('--sizes', SIZES.map(String)).map(Number);
 const layouts = list('--layouts', LAYOUTS);
 const profiling = !args.includes('--no-profile');
 const jsonFile = flag('--json', null);
 const BEFORE = flag('--before', null) && path.resolve(flag('--before'));
+/** Width of the planner column: the longest name asked for (`social_force`), at least 8. */
+const NAME_W = Math.max(8, ...planners.map((p) => p.length));
 
 const server = await serveStatic(BEFORE ? { '/': WWW, '/before/': BEFORE } : { '/': WWW });
 const origin = server.origin;
@@ -376,7 +379,7 @@ async function runCase(planner, n, layout, skipReason, [variant, url]) {
 
 const fmt = (x, digits = 1) => (typeof x === 'number' && Number.isFinite(x) ? x.toFixed(digits) : '–');
 function printCase(r) {
-  const head = `${r.planner.padEnd(8)}${String(r.agents).padStart(7)} ${r.layout.padEnd(7)}` +
+  const head = `${r.planner.padEnd(NAME_W)}${String(r.agents).padStart(7)} ${r.layout.padEnd(7)}` +
     (r.variant ? r.variant.padEnd(7) : '');
   if (r.refused) return console.log(`${head} refused: ${r.refused}`);
   if (r.skipped) return console.log(`${head} skipped: ${r.skipped}`);
@@ -391,7 +394,7 @@ function printCase(r) {
   if (r.profile) {
     const top = r.profile.filter((p) => p.name !== '(idle)').slice(0, 5);
     const idle = r.profile.find((p) => p.name === '(idle)')?.share ?? 0;
-    console.log(`${' '.repeat(23)}main thread ${fmt(100 * (1 - idle), 0)}% busy; top self: ` +
+    console.log(`${' '.repeat(NAME_W + 15)}main thread ${fmt(100 * (1 - idle), 0)}% busy; top self: ` +
       top.map((p) => `${p.name} ${fmt(100 * p.share, 0)}%`).join(', '));
   }
 }
@@ -411,7 +414,7 @@ try {
     'cpu/frm, step cpu = main-thread CPU ms per frame played and per paused step (CDP ThreadTime: holds under load).');
   const cols = ['fps med', 'fps p5', 'frame p95', 'steps/frm', 'step ms', 'pause ms', 'pause→frm', 'metrics ms',
     'cpu/frm ms', 'step cpu'];
-  console.log(`${'planner'.padEnd(8)}${'agents'.padStart(7)} ${'layout'.padEnd(7)}${BEFORE ? 'page   ' : ''}${cols.map((c) => c.padStart(11)).join('')}`);
+  console.log(`${'planner'.padEnd(NAME_W)}${'agents'.padStart(7)} ${'layout'.padEnd(7)}${BEFORE ? 'page   ' : ''}${cols.map((c) => c.padStart(11)).join('')}`);
   for (const planner of planners) {
     for (const layout of layouts) {
       for (const n of sizes) {
@@ -450,7 +453,7 @@ try {
           const r = rows.find((x) => x.planner === planner && x.layout === layout && x.agents === n && x.variant === variant);
           return `${n}: ${r ? fmt(r.metrics_ms, 2) : '–'}`;
         });
-        console.log(`  ${planner.padEnd(8)} ${layout.padEnd(7)} ${variant.padEnd(7)}${cells.join('   ')}`);
+        console.log(`  ${planner.padEnd(NAME_W)} ${layout.padEnd(7)} ${variant.padEnd(7)}${cells.join('   ')}`);
       }
     }
   }

@@ -14,4 +14,5 @@ pub mod geometry;
 pub mod palette;
 pub mod params;
 pub mod presets;
+pub mod refusal;
 pub mod scene;

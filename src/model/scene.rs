@@ -290,7 +290,9 @@ pub fn ground_height(hills: &[Hill], p: Vec2) -> f32 {
 pub struct ViewOptions {
     /// Whether agents leave trails. Default on.
     pub trails: bool,
-    /// Share of a trail's visibility lost per frame: 0 = permanent, 1 = one frame. Default 0.01.
+    /// Share of a trail's visibility lost every two steps (a frame at the page's default speed;
+    /// trails fade with the steps, not with redraws): 0 = permanent, 1 = the newest segments
+    /// only. Default 0.01.
     pub trail_fade: f32,
 }
 
@@ -644,7 +646,7 @@ pub fn field_limits() -> Vec<FieldLimit> {
         row("hills[].center[]", near, "as obstacle centres"),
         row("hills[].radius", length, "as obstacle radii"),
         row("hills[].height", format!("a number in 0…{MAX_HILL_HEIGHT} px"), "hills, not pits; tall enough for any scene"),
-        row("view.trail_fade", "a number in 0…1".into(), "the share of a trail lost per frame"),
+        row("view.trail_fade", "a number in 0…1".into(), "the share of a trail lost every two steps"),
         row("(any object)", "only the keys listed here and in the planner tables; an unknown key is refused".into(), "a misspelt key would otherwise be ignored without a word"),
         row("(scene text)", format!("at most {} bytes", MAX_INPUT_BYTES), "a file or link larger than any real scene"),
         row("(unpacked scene string)", format!("at most {} bytes", MAX_SCENE_BYTES), "a guard against deflate bombs"),

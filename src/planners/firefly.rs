@@ -361,56 +361,80 @@ impl Firefly {
         let near_radius = (prm.feeler_length + prm.safe_distance).max(contact_reach);
         let near_radius = near_radius.min(self.interaction_radius());
         ctx.grid.gather_within(p, near_radius, NEIGHBOUR_CAP, slots);
-        let is_own = |other: u32| group.agents.contains(&other);
+        let is_own = |other: u32| other.wrapping_sub(group.agents.start) < group.agents.len() as u32;
         let (bodies_before, mut bodies) = (contacts.len(), 0usize);
         // The largest allowed speed among the bodies kept (the farthest of them).
         let mut farthest = f32::NEG_INFINITY;
+        // No body lies within reach of a contact unless within this (the widest body's reach).
+        let widest_reach2 = contact_reach * contact_reach;
+        // The nearest brighter firefly and the blocker as keys `(squared distance bits, id)`:
+        // squared distances are finite and non-negative, so their bits order like them, and
+        // the smallest key is the smallest `(squared distance, id)`. Computed for every
+        // neighbour without branching on brightness (half of a crowd is brighter, in no order
+        // a CPU could predict); `u64::MAX` when not a candidate.
+        let key = |d2: f32, other: u32, candidate: bool| {
+            if candidate {
+                (u64::from(d2.to_bits()) << 32) | u64::from(other)
+            } else {
+                u64::MAX
+            }
+        };
+        let (mut nearest, mut nearest_slot) = (u64::MAX, 0usize);
+        let (mut blocker, mut blocker_slot) = (u64::MAX, 0usize);
+        let t = target.unwrap_or(p);
         for &k in slots.iter() {
             let k = k as usize;
             let (other, pos) = (columns.ids[k], Vec2::new(columns.x[k], columns.y[k]));
-            if other == id {
-                continue;
-            }
             let d2 = p.distance_squared(pos);
-            let their_radius = ctx.radii.get(other as usize).copied().unwrap_or(0.0);
-            // Each of the two moves at most half the gap (less a margin) towards the other per
-            // step, whatever the other does, so together they cannot close it in one step.
-            // The limit binds only within 2 × max_velocity of touching: the square root only then.
-            let reach = my_radius + their_radius + CONTACT_MARGIN + 2.0 * prm.max_velocity;
-            if d2 < reach * reach {
-                let allowed = 0.5 * (d2.sqrt() - my_radius - their_radius - CONTACT_MARGIN);
-                // Coincident bodies part along x, the lower id to the left.
-                let apart = if other < id { Vec2::NEG_X } else { Vec2::X };
-                let contact = Contact { towards: unit_or(pos - p, apart), allowed };
-                if bodies < MAX_CONTACT_BODIES {
-                    contacts.push(contact);
-                    bodies += 1;
-                    farthest = farthest.max(allowed);
-                } else if allowed < farthest {
-                    // Only a nearer body than the farthest kept changes the list (a pile).
-                    let kept = contacts.get_mut(bodies_before..).unwrap_or_default();
-                    keep_nearest(kept, contact);
-                    farthest = kept.iter().fold(f32::NEG_INFINITY, |m, c| m.max(c.allowed));
-                }
-                if on_the_way
-                    && heading.dot(pos - p) > 0.0
-                    && target.is_some_and(|t| is_own(other) && pos.distance_squared(t) < my2)
-                {
-                    survey.brighter_in_contact_ahead = true;
+            if d2 < widest_reach2 && other != id {
+                let their_radius = ctx.radii.get(other as usize).copied().unwrap_or(0.0);
+                // Each of the two moves at most half the gap (less a margin) towards the other
+                // per step, whatever the other does, so together they cannot close it in one
+                // step. The limit binds only within 2 × max_velocity of touching: the square
+                // root only then.
+                let reach = my_radius + their_radius + CONTACT_MARGIN + 2.0 * prm.max_velocity;
+                if d2 < reach * reach {
+                    let allowed = 0.5 * (d2.sqrt() - my_radius - their_radius - CONTACT_MARGIN);
+                    // Coincident bodies part along x, the lower id to the left.
+                    let apart = if other < id { Vec2::NEG_X } else { Vec2::X };
+                    let contact = Contact { towards: unit_or(pos - p, apart), allowed };
+                    if bodies < MAX_CONTACT_BODIES {
+                        contacts.push(contact);
+                        bodies += 1;
+                        farthest = farthest.max(allowed);
+                    } else if allowed < farthest {
+                        // Only a nearer body than the farthest kept changes the list (a pile).
+                        let kept = contacts.get_mut(bodies_before..).unwrap_or_default();
+                        keep_nearest(kept, contact);
+                        farthest = kept.iter().fold(f32::NEG_INFINITY, |m, c| m.max(c.allowed));
+                    }
+                    if on_the_way
+                        && heading.dot(pos - p) > 0.0
+                        && target.is_some_and(|t| is_own(other) && pos.distance_squared(t) < my2)
+                    {
+                        survey.brighter_in_contact_ahead = true;
+                    }
                 }
             }
-            let Some(target) = target else { continue };
-            if !is_own(other) || pos.distance_squared(target) >= my2 {
-                continue;
-            }
+            // Brighter: of the group, nearer the target (no target: none is brighter).
+            let brighter = target.is_some() & (other != id) & is_own(other) & (pos.distance_squared(t) < my2);
             let at_tip = pos.distance_squared(tip);
-            if at_tip < safe2 && survey.blocker.is_none_or(|(d2, j, _)| (at_tip, other) < (d2, j)) {
-                survey.blocker = Some((at_tip, other, pos));
+            let b = key(at_tip, other, brighter & (at_tip < safe2));
+            if b < blocker {
+                (blocker, blocker_slot) = (b, k);
             }
-            if d2 <= view2 && survey.nearest.is_none_or(|(d2n, j, _)| (d2, other) < (d2n, j)) {
-                survey.nearest = Some((d2, other, pos));
+            let n = key(d2, other, brighter & (d2 <= view2));
+            if n < nearest {
+                (nearest, nearest_slot) = (n, k);
             }
         }
+        let found = |key: u64, k: usize| {
+            (key != u64::MAX).then(|| {
+                (f32::from_bits((key >> 32) as u32), key as u32, Vec2::new(columns.x[k], columns.y[k]))
+            })
+        };
+        survey.blocker = found(blocker, blocker_slot);
+        survey.nearest = found(nearest, nearest_slot);
         let Some(target) = target else { return survey };
         if survey.nearest.is_none() && near_radius < prm.view_radius {
             // No brighter firefly within the feeler's reach: the nearest one farther off.
@@ -420,13 +444,14 @@ impl Firefly {
                 let k = k as usize;
                 let (other, pos) = (columns.ids[k], Vec2::new(columns.x[k], columns.y[k]));
                 let d2 = p.distance_squared(pos);
-                if other == id || d2 <= near2 || !is_own(other) || pos.distance_squared(target) >= my2 {
-                    continue;
-                }
-                if survey.nearest.is_none_or(|(d2n, j, _)| (d2, other) < (d2n, j)) {
-                    survey.nearest = Some((d2, other, pos));
+                let brighter =
+                    (other != id) & (d2 > near2) & is_own(other) & (pos.distance_squared(target) < my2);
+                let n = key(d2, other, brighter);
+                if n < nearest {
+                    (nearest, nearest_slot) = (n, k);
                 }
             }
+            survey.nearest = found(nearest, nearest_slot);
         }
         survey
     }

@@ -275,6 +275,8 @@ pub struct Orca {
     lines: Vec<HalfPlane>,
     scratch: Vec<HalfPlane>,
     nearest: Vec<Near>,
+    /// Grid slots of the agents within a query's radius.
+    slots: Vec<u32>,
 }
 
 /// A neighbour kept by the nearest-neighbour selection.
@@ -306,6 +308,7 @@ impl Orca {
             lines: Vec::new(),
             scratch: Vec::new(),
             nearest: Vec::new(),
+            slots: Vec::new(),
         }
     }
 
@@ -319,26 +322,38 @@ impl Orca {
     /// usually finds them all (then they are the nearest overall); otherwise the whole distance.
     fn gather_nearest(&mut self, ctx: &StepContext, id: u32, p: Vec2) {
         let k = self.params.max_neighbours as usize;
-        let nearest = &mut self.nearest;
-        let collect = |radius: f32, nearest: &mut Vec<Near>| {
+        let (nearest, slots) = (&mut self.nearest, &mut self.slots);
+        // The agents within `radius` first (a branch-free pass, the same agents in the same
+        // order as a capped visit), then the k nearest of them by `(distance², id)` as keys:
+        // squared distances are finite and non-negative, so their bits order like them.
+        let collect = |radius: f32, nearest: &mut Vec<Near>, slots: &mut Vec<u32>| {
             nearest.clear();
-            ctx.grid.for_each_within_capped(p, radius, NEIGHBOUR_CAP, |n| {
-                if n.id == id {
-                    return;
+            ctx.grid.gather_within(p, radius, NEIGHBOUR_CAP, slots);
+            let columns = ctx.grid.columns();
+            let mut last = u64::MAX;
+            for &slot in slots.iter() {
+                let slot = slot as usize;
+                let (other, pos) = (columns.ids[slot], Vec2::new(columns.x[slot], columns.y[slot]));
+                let d2 = p.distance_squared(pos);
+                let key = (u64::from(d2.to_bits()) << 32) | u64::from(other);
+                if other == id || key >= last {
+                    continue;
                 }
-                let key = (n.d2, n.id);
-                if nearest.len() == k && nearest.last().is_some_and(|l| (l.d2, l.id) <= key) {
-                    return;
-                }
-                let at = nearest.partition_point(|m| (m.d2, m.id) < key);
-                nearest.insert(at, Near { d2: n.d2, id: n.id, pos: n.pos, vel: n.vel });
+                let at = nearest.partition_point(|m| (m.d2, m.id) < (d2, other));
+                let vel = Vec2::new(columns.vx[slot], columns.vy[slot]);
+                nearest.insert(at, Near { d2, id: other, pos, vel });
                 nearest.truncate(k);
-            });
+                if nearest.len() == k {
+                    last = nearest
+                        .last()
+                        .map_or(u64::MAX, |l| (u64::from(l.d2.to_bits()) << 32) | u64::from(l.id));
+                }
+            }
         };
         let quarter = 0.25 * self.neighbour_dist;
-        collect(quarter, nearest);
+        collect(quarter, nearest, slots);
         if nearest.len() < k {
-            collect(self.neighbour_dist, nearest);
+            collect(self.neighbour_dist, nearest, slots);
         }
     }
 

@@ -134,12 +134,7 @@ impl Pso {
         }
         // Agent–agent: σp + σq = 2σ in both axes, so the scaled distance is |p − q| / 2σ.
         let pair = 2.0 * sigma;
-        let mut nearest2 = f32::INFINITY;
-        ctx.grid.for_each_within_capped(p, CUTOFF_SCALED * pair, NEIGHBOUR_CAP, |n| {
-            if n.id != me {
-                nearest2 = nearest2.min(n.d2);
-            }
-        });
+        let nearest2 = ctx.grid.nearest_d2_within_capped(p, CUTOFF_SCALED * pair, NEIGHBOUR_CAP, me);
         scaled2 = scaled2.min(nearest2 / (pair * pair));
         if !ctx.scene.hills.is_empty() {
             // Hills join the uniform model as one more object: cost `e^{−k} · h / climb_limit`,

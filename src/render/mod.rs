@@ -15,10 +15,12 @@
 
 mod overlay;
 mod paint;
+mod sprite;
 
 pub use overlay::{Overlays, ARROW_COLORS};
 use paint::{color, draw_wide_segment, paint, stroke_scene_path};
 pub use paint::{Style, Theme, ViewTransform, PROJECTOR, STANDARD};
+use sprite::{agent_sprite, blit_over, Sprite};
 
 use crate::model::edit::ItemRef;
 use crate::model::geometry::Obstacle;
@@ -27,7 +29,7 @@ use crate::model::scene::{parse_color, Hill, Scene};
 use crate::sim::world::World;
 use glam::Vec2;
 use std::f32::consts::TAU;
-use tiny_skia::{FillRule, Path, PathBuilder, Pixmap, PixmapMut, Rect, Stroke, Transform};
+use tiny_skia::{FillRule, Path, PathBuilder, PixmapMut, Rect, Stroke, Transform};
 
 /// Fill colour of obstacles (RGB, standard theme). Tests and page checks look for it at an
 /// obstacle's centre.
@@ -53,8 +55,12 @@ pub const WAYPOINT_HANDLE_PX: f32 = 5.0;
 pub const SELECTION_COLOR: [u8; 3] = [0xff, 0x8c, 0x00];
 /// Colour of hill shading (earth brown).
 pub const HILL_COLOR: [u8; 3] = [0x8a, 0x6a, 0x3c];
-/// Default share of a trail's visibility lost per frame.
+/// Default share of a trail's visibility lost per fade tick ([`FADE_STEPS`] steps).
 pub const DEFAULT_TRAIL_FADE: f32 = 0.01;
+/// Steps per fade tick: trails fade with the steps simulated, by `trail_fade` every this many
+/// steps (a frame at the page's default speed, so scenes look as they did when trails faded per
+/// frame), never by a frame drawn again without a step (a print, a resize, a paused redraw).
+pub const FADE_STEPS: u32 = 2;
 /// Number of pre-rendered headings per group: 32 steps of 11.25°.
 pub const HEADING_BUCKETS: usize = 32;
 /// Largest canvas side in device px; larger requests are clamped (and smaller than 1 become 1).
@@ -76,8 +82,9 @@ const TRACED_SEGMENT_MIN_PX: f32 = 2.0;
 /// Agents are drawn in bands of 2^this device rows, top to bottom, so that consecutive sprites
 /// touch nearby frame memory (10,000 agents in id order hit the cache far less well).
 const BAND_SHIFT: u32 = 3;
-/// Fading is spread over this many frames: each frame fades every n-th row by n frames' worth
-/// (an eighth of a full pass per frame; neighbouring rows differ by at most 7 frames' fade).
+/// Fading is spread over this many ticks: each tick fades every n-th row by n ticks' worth (an
+/// eighth of a full pass per tick; neighbouring rows differ by at most 7 ticks' fade). A frame
+/// after many ticks fades each row once by all of its ticks, so a frame costs at most one pass.
 const FADE_ROW_PERIOD: u32 = 8;
 /// Agents whose body radius is below this (device px) are drawn as single pixels.
 const DOT_RADIUS_PX: f32 = 1.0;
@@ -89,8 +96,6 @@ const PENDING_SEGMENTS_MAX: usize = 16_384;
 /// step (50 steps of 10,000 agents, 625 of the 80 in `pillars`): about 125,000 segments,
 /// tens of milliseconds, so scrubbing stays fluid.
 const TRAIL_REBUILD_AGENT_STEPS: usize = 500_000;
-/// Steps per frame assumed when a rebuilt trail is faded by its age: the page's default speed.
-const TRAIL_REBUILD_STEPS_PER_FRAME: f32 = 2.0;
 
 /// What the base layer was drawn from: it is rebuilt when any of this changes.
 #[derive(Clone, Debug, PartialEq)]
@@ -110,20 +115,6 @@ impl BaseKey {
     }
 }
 
-/// A pre-rendered agent image: premultiplied RGBA, cropped to its visible pixels.
-#[derive(Clone, Debug, Default)]
-struct Sprite {
-    /// Offset of the image's top-left pixel from the agent's pixel.
-    left: i32,
-    top: i32,
-    width: usize,
-    height: usize,
-    data: Vec<u8>,
-    /// Per row, the columns `start..end` holding visible pixels (a triangle leaves half of its
-    /// box empty).
-    spans: Vec<(u16, u16)>,
-}
-
 /// An agent ready to draw: its pixel, group and heading bucket.
 #[derive(Clone, Copy, Debug, Default)]
 struct Placed {
@@ -140,6 +131,8 @@ struct Segment {
     to: Vec2,
     rgb: [u8; 3],
     alpha: u8,
+    /// The fade tick it was traced at: drawn later, it is drawn as faded as the ticks since.
+    tick: u32,
 }
 
 /// The sprites of one group, valid for one colour and one device radius.
@@ -180,7 +173,8 @@ pub struct Renderer {
     last_step: u32,
     /// Heading bucket of each agent, kept while it stands still.
     heading: Vec<u8>,
-    fade_phase: u32,
+    /// The fade tick (step / [`FADE_STEPS`]) the trail layer has been faded up to.
+    faded_tick: u32,
     sprites: Vec<GroupSprites>,
     selection: Option<ItemRef>,
     /// Diagnosis overlays that are on, and the agent being inspected.
@@ -190,6 +184,8 @@ pub struct Renderer {
     placed: Vec<Placed>,
     drawing_order: Vec<u32>,
     band_counts: Vec<u32>,
+    /// Stuck-ring sprites by radius (see `overlay::Target::rings`).
+    rings: Vec<(u32, Sprite)>,
 }
 
 impl Renderer {
@@ -213,7 +209,7 @@ impl Renderer {
             trail_groups: Vec::new(),
             last_step: 0,
             heading: Vec::new(),
-            fade_phase: 0,
+            faded_tick: 0,
             sprites: Vec::new(),
             selection: None,
             overlays: Overlays::default(),
@@ -221,6 +217,7 @@ impl Renderer {
             placed: Vec::new(),
             drawing_order: Vec::new(),
             band_counts: Vec::new(),
+            rings: Vec::new(),
         };
         r.resize(width, height);
         r
@@ -298,15 +295,15 @@ impl Renderer {
         self.trails_on
     }
 
-    /// Share of a trail's visibility lost per frame: 0 keeps trails forever, 1 shows only the
-    /// newest segment. Values outside 0…1 are clamped; NaN is ignored.
+    /// Share of a trail's visibility lost every [`FADE_STEPS`] steps: 0 keeps trails forever, 1
+    /// shows only the newest segments. Values outside 0…1 are clamped; NaN is ignored.
     pub fn set_trail_fade(&mut self, fade: f32) {
         if !fade.is_nan() {
             self.trail_fade = fade.clamp(0.0, 1.0);
         }
     }
 
-    /// The current trail fade per frame.
+    /// The current trail fade per [`FADE_STEPS`] steps.
     pub fn trail_fade(&self) -> f32 {
         self.trail_fade
     }
@@ -362,9 +359,11 @@ impl Renderer {
         } else {
             let positions = world.positions();
             let alpha = self.style.trail_alpha;
-            self.trace(world.scene(), positions, world.group_of(), TRACED_SEGMENT_MIN_PX, alpha);
+            let tick = world.step_count() / FADE_STEPS;
+            self.trace(world.scene(), positions, world.group_of(), TRACED_SEGMENT_MIN_PX, alpha, tick);
             if self.pending.len() >= PENDING_SEGMENTS_MAX {
-                self.draw_pending();
+                self.fade_to(world.step_count());
+                self.draw_pending(tick);
             }
         }
         self.last_step = world.step_count();
@@ -372,16 +371,16 @@ impl Renderer {
 
     /// The first step whose recorded positions [`Renderer::rebuild_trails`] draws for `world`:
     /// at most [`TRAIL_REBUILD_AGENT_STEPS`] agent-steps back, and no further back than the fade
-    /// leaves visible (assuming [`TRAIL_REBUILD_STEPS_PER_FRAME`]).
+    /// leaves visible.
     pub fn trail_rebuild_start(&self, world: &World) -> u32 {
         let by_cost = TRAIL_REBUILD_AGENT_STEPS / world.agent_count().max(1);
         let keep = 1.0 - self.trail_fade;
         let by_fade = if keep >= 1.0 {
             usize::MAX
         } else {
-            // Frames until the segment's opacity drops below half a level.
-            let frames = libm::logf(0.5 / f32::from(self.style.trail_alpha)) / libm::logf(keep);
-            (frames * TRAIL_REBUILD_STEPS_PER_FRAME).max(0.0) as usize
+            // Fade ticks until the segment's opacity drops below half a level.
+            let ticks = libm::logf(0.5 / f32::from(self.style.trail_alpha)) / libm::logf(keep);
+            (ticks * FADE_STEPS as f32).max(0.0) as usize
         };
         let back = u32::try_from(by_cost.min(by_fade)).unwrap_or(u32::MAX);
         world.step_count().saturating_sub(back)
@@ -390,7 +389,7 @@ impl Renderer {
     /// Redraws the trails after a jump to `world`'s step from the recorded positions before it
     /// (`(step, positions)` in increasing step order; steps after `world`'s, or with another
     /// agent count, are skipped), instead of erasing them. Each segment is drawn faded by its
-    /// age as the frames would have faded it. Pass the frames from
+    /// age as the steps would have faded it. Pass the frames from
     /// [`Renderer::trail_rebuild_start`] on: older ones cost time and add nothing visible.
     pub fn rebuild_trails(&mut self, world: &World, history: impl IntoIterator<Item = (u32, Vec<Vec2>)>) {
         self.fit_scene(world.scene());
@@ -400,6 +399,7 @@ impl Renderer {
             return;
         }
         let now = world.step_count();
+        let tick = now / FADE_STEPS;
         let keep = 1.0 - self.trail_fade;
         let mut started = false;
         for (step, positions) in history {
@@ -413,14 +413,14 @@ impl Renderer {
                 started = true;
                 continue;
             }
-            let frames_ago = (now - step) as f32 / TRAIL_REBUILD_STEPS_PER_FRAME;
-            let alpha = (f32::from(self.style.trail_alpha) * libm::powf(keep, frames_ago)).round() as u8;
-            self.trace(world.scene(), &positions, world.group_of(), TRACED_SEGMENT_MIN_PX, alpha);
+            let ticks_ago = (now - step) as f32 / FADE_STEPS as f32;
+            let alpha = (f32::from(self.style.trail_alpha) * libm::powf(keep, ticks_ago)).round() as u8;
+            self.trace(world.scene(), &positions, world.group_of(), TRACED_SEGMENT_MIN_PX, alpha, tick);
             if self.pending.len() >= PENDING_SEGMENTS_MAX {
-                self.draw_pending();
+                self.draw_pending(tick);
             }
         }
-        self.draw_pending();
+        self.draw_pending(tick);
     }
 
     /// Rebuilds the base layer and the view when the scene's size, obstacles or hills changed
@@ -451,11 +451,13 @@ impl Renderer {
             self.restart_trails(world);
         }
         if self.trails_on {
-            self.fade_trails();
+            // Faded by the steps since the last frame (none when the same step is drawn again).
+            self.fade_to(world.step_count());
             // The segments traced by the steps since the last frame, then those from the last
             // traced points to where the agents are now (all of them when nothing was traced).
-            self.trace(scene, world.positions(), world.group_of(), 0.0, self.style.trail_alpha);
-            self.draw_pending();
+            let tick = world.step_count() / FADE_STEPS;
+            self.trace(scene, world.positions(), world.group_of(), 0.0, self.style.trail_alpha, tick);
+            self.draw_pending(tick);
             self.frame.copy_from_slice(&self.trails);
         } else {
             self.frame.copy_from_slice(&self.base);
@@ -476,6 +478,7 @@ impl Renderer {
             width: self.width,
             height: self.height,
             view: self.view,
+            rings: &mut self.rings,
         };
         overlay::draw(target, world, self.overlays, self.inspected);
         if let Some(item) = self.selection {
@@ -539,12 +542,21 @@ impl Renderer {
         self.last_drawn.extend(world.positions().iter().map(|&p| view.to_canvas(p)));
         self.heading.clear();
         self.heading.extend(world.velocities().iter().map(|&v| heading_bucket(v).unwrap_or(0)));
+        self.faded_tick = world.step_count() / FADE_STEPS;
         self.trails_stale = false;
     }
 
-    /// Moves a stripe of rows (every [`FADE_ROW_PERIOD`]-th) of the trail layer towards the
-    /// base by [`FADE_ROW_PERIOD`] frames' worth of fade: an even, small cost per frame.
-    fn fade_trails(&mut self) {
+    /// Fades the trail layer up to the fade tick of `step`: tick `t` moves the stripe of rows
+    /// `t mod` [`FADE_ROW_PERIOD`] (every [`FADE_ROW_PERIOD`]-th row) towards the base by
+    /// [`FADE_ROW_PERIOD`] ticks' worth, an even, small cost per tick; a stripe due several times
+    /// since the last call is faded once by all of them, so a call costs at most one pass.
+    fn fade_to(&mut self, step: u32) {
+        let target = step / FADE_STEPS;
+        if target <= self.faded_tick {
+            return;
+        }
+        let from = self.faded_tick;
+        self.faded_tick = target;
         if self.trail_fade <= 0.0 {
             return;
         }
@@ -552,23 +564,44 @@ impl Renderer {
             self.trails.copy_from_slice(&self.base);
             return;
         }
-        let keep = libm::powf(1.0 - self.trail_fade, FADE_ROW_PERIOD as f32);
-        let amount = (((1.0 - keep) * 128.0).round() as i16).clamp(1, 128);
+        let ticks = target - from;
+        let period = FADE_ROW_PERIOD;
         let row = self.width as usize * 4;
-        let phase = self.fade_phase as usize;
-        self.fade_phase = (self.fade_phase + 1) % FADE_ROW_PERIOD;
-        let period = FADE_ROW_PERIOD as usize;
-        for (trail_row, base_row) in
-            self.trails.chunks_exact_mut(row).zip(self.base.chunks_exact(row)).skip(phase).step_by(period)
-        {
-            fade_row(trail_row, base_row, amount);
+        for phase in 0..period {
+            // Ticks from + 1 ..= target whose stripe is `phase`.
+            let first = (from + 1) % period;
+            let extra = u32::from((phase + period - first) % period < ticks % period);
+            let due = ticks / period + extra;
+            if due == 0 {
+                continue;
+            }
+            let keep = libm::powf(1.0 - self.trail_fade, (period * due.min(1 << 16)) as f32);
+            let amount = (((1.0 - keep) * 128.0).round() as i16).clamp(1, 128);
+            for (trail_row, base_row) in self
+                .trails
+                .chunks_exact_mut(row)
+                .zip(self.base.chunks_exact(row))
+                .skip(phase as usize)
+                .step_by(period as usize)
+            {
+                fade_row(trail_row, base_row, amount);
+            }
         }
     }
 
     /// Queues the segment from each agent's last traced point to `positions` (scene px) when it
     /// has moved its group's [`TRAIL_SEGMENT_PX`] and at least `min_px` (device px), with
-    /// opacity `alpha`.
-    fn trace(&mut self, scene: &Scene, positions: &[Vec2], group_of: &[u32], min_px: f32, alpha: u8) {
+    /// opacity `alpha`, as traced at fade tick `tick`.
+    #[allow(clippy::too_many_arguments, reason = "the plain inputs of a per-agent loop")]
+    fn trace(
+        &mut self,
+        scene: &Scene,
+        positions: &[Vec2],
+        group_of: &[u32],
+        min_px: f32,
+        alpha: u8,
+        tick: u32,
+    ) {
         let view = self.view;
         let style = self.style;
         let (lo, hi) = TRAIL_SEGMENT_PX;
@@ -584,7 +617,7 @@ impl Renderer {
             if now.distance(*last) < min_step {
                 continue;
             }
-            self.pending.push(Segment { from: *last, to: now, rgb, alpha });
+            self.pending.push(Segment { from: *last, to: now, rgb, alpha, tick });
             *last = now;
         }
     }
@@ -595,11 +628,32 @@ impl Renderer {
     /// tiny-skia path per group: tiny-skia's hairline costs 0.6–0.8 µs per 3 px segment on this
     /// machine (its pipeline runs once per one- or two-pixel span), which at 10,000 agents is the
     /// whole frame budget; the direct loop costs a few blends per pixel column.
-    fn draw_pending(&mut self) {
+    ///
+    /// A segment traced at an earlier fade tick than `tick` (a multi-step advance that filled
+    /// the buffer) is drawn as faded as those ticks would have faded it.
+    fn draw_pending(&mut self, tick: u32) {
         let (w, h) = (self.width as usize, self.height as usize);
         let width = self.style.trail_width_px;
+        let keep = 1.0 - self.trail_fade;
+        // Segments come in tick order: the faded opacity is recomputed when the tick changes.
+        let mut faded: Option<(u32, u8, u8)> = None;
         for s in self.pending.drain(..) {
-            draw_wide_segment(&mut self.trails, w, h, s.from, s.to, s.rgb, s.alpha, width);
+            let alpha = if s.tick >= tick {
+                s.alpha
+            } else {
+                match faded {
+                    Some((t, a, out)) if t == s.tick && a == s.alpha => out,
+                    _ => {
+                        let out =
+                            (f32::from(s.alpha) * libm::powf(keep, (tick - s.tick) as f32)).round() as u8;
+                        faded = Some((s.tick, s.alpha, out));
+                        out
+                    }
+                }
+            };
+            if alpha > 0 {
+                draw_wide_segment(&mut self.trails, w, h, s.from, s.to, s.rgb, alpha, width);
+            }
         }
     }
 
@@ -617,7 +671,9 @@ impl Renderer {
             let headings = if radius_px < DOT_RADIUS_PX {
                 Vec::new()
             } else {
-                (0..HEADING_BUCKETS).map(|b| agent_sprite(rgb, radius_px, b)).collect()
+                (0..HEADING_BUCKETS)
+                    .map(|b| agent_sprite(rgb, radius_px, b as f32 * TAU / HEADING_BUCKETS as f32))
+                    .collect()
             };
             let sprites = GroupSprites { color: rgb, radius_px, headings };
             if i < self.sprites.len() {
@@ -637,8 +693,13 @@ impl Renderer {
         self.placed.clear();
         let agents = world.positions().iter().zip(world.velocities()).zip(world.group_of());
         for (((&p, &v), &group), heading) in agents.zip(self.heading.iter_mut()) {
-            if let Some(b) = heading_bucket(v) {
-                *heading = b;
+            // Dots have no heading: no arctangent per agent for a crowd too small to show one
+            // (100,000 agents on a page canvas).
+            let dots = self.sprites.get(group as usize).is_none_or(|s| s.headings.is_empty());
+            if !dots {
+                if let Some(b) = heading_bucket(v) {
+                    *heading = b;
+                }
             }
             let c = view.to_canvas(p);
             if c.is_finite() {
@@ -703,116 +764,6 @@ fn fade_row(trail: &mut [u8], base: &[u8], amount: i16) {
         let step = (gap * amount + if gap > 0 { 127 } else { 0 }) >> 7;
         *t = (i16::from(*t) + step) as u8;
     }
-}
-
-/// Draws `sprite` centred on pixel `(x, y)` of an opaque `w × h` RGBA frame with
-/// premultiplied source-over, clipped to the frame.
-fn blit_over(frame: &mut [u8], w: i32, h: i32, sprite: &Sprite, x: i32, y: i32) {
-    let left = x + sprite.left;
-    let top = y + sprite.top;
-    let x0 = left.max(0);
-    let x1 = (left + sprite.width as i32).min(w);
-    let y0 = top.max(0);
-    let y1 = (top + sprite.height as i32).min(h);
-    if x0 >= x1 || y0 >= y1 {
-        return;
-    }
-    for row in y0..y1 {
-        let sprite_row = (row - top) as usize;
-        let Some(&(start, end)) = sprite.spans.get(sprite_row) else { continue };
-        // Visible columns of this row, in frame coordinates, clipped to the frame.
-        let from = (left + i32::from(start)).max(x0);
-        let to = (left + i32::from(end)).min(x1);
-        if from >= to {
-            continue;
-        }
-        let span = (to - from) as usize * 4;
-        let src_at = (sprite_row * sprite.width + (from - left) as usize) * 4;
-        let dst_at = (row as usize * w as usize + from as usize) * 4;
-        let src = &sprite.data[src_at..src_at + span];
-        let dst = &mut frame[dst_at..dst_at + span];
-        for (d, s) in dst.chunks_exact_mut(4).zip(src.chunks_exact(4)) {
-            let alpha = s[3];
-            if alpha == 0 {
-                continue;
-            }
-            if alpha == 255 {
-                d[..3].copy_from_slice(&s[..3]);
-                continue;
-            }
-            let inverse = 255 - u32::from(alpha);
-            for k in 0..3 {
-                d[k] = s[k].saturating_add(div255(u32::from(d[k]) * inverse));
-            }
-        }
-    }
-}
-
-/// `x / 255` rounded, for `x ≤ 255 · 255`.
-#[inline]
-fn div255(x: u32) -> u8 {
-    let x = x + 128;
-    ((x + (x >> 8)) >> 8) as u8
-}
-
-/// An oriented triangle for heading bucket `bucket`, cropped to its visible pixels.
-fn agent_sprite(rgb: [u8; 3], radius_px: f32, bucket: usize) -> Sprite {
-    let reach = 1.5 * radius_px;
-    let half = (reach + 2.0).ceil() as i32;
-    let side = (2 * half + 1) as u32;
-    let Some(mut pixmap) = Pixmap::new(side, side) else {
-        return Sprite::default();
-    };
-    let angle = bucket as f32 * TAU / HEADING_BUCKETS as f32;
-    let (sin, cos) = (libm::sinf(angle), libm::cosf(angle));
-    // Pixel (half, half) is the agent's pixel; its centre is at half + 0.5.
-    let centre = Vec2::splat(half as f32 + 0.5);
-    let corner = |forward: f32, side: f32| {
-        let p = centre + Vec2::new(cos, sin) * forward + Vec2::new(-sin, cos) * side;
-        (p.x, p.y)
-    };
-    let mut pb = PathBuilder::new();
-    let tip = corner(reach, 0.0);
-    let left = corner(-radius_px, 0.9 * radius_px);
-    let notch = corner(-0.5 * radius_px, 0.0);
-    let right = corner(-radius_px, -0.9 * radius_px);
-    pb.move_to(tip.0, tip.1);
-    pb.line_to(left.0, left.1);
-    pb.line_to(notch.0, notch.1);
-    pb.line_to(right.0, right.1);
-    pb.close();
-    if let Some(path) = pb.finish() {
-        pixmap.fill_path(&path, &paint(rgb, 255), FillRule::Winding, Transform::identity(), None);
-        if radius_px >= 3.0 {
-            let dark = rgb.map(|c| (u16::from(c) * 3 / 5) as u8);
-            let stroke = Stroke { width: (0.12 * radius_px).clamp(1.0, 2.0), ..Stroke::default() };
-            pixmap.stroke_path(&path, &paint(dark, 230), &stroke, Transform::identity(), None);
-        }
-    }
-    crop(&pixmap, half)
-}
-
-/// The smallest sub-image holding every non-transparent pixel of `pixmap`.
-fn crop(pixmap: &Pixmap, half: i32) -> Sprite {
-    let (w, h) = (pixmap.width() as usize, pixmap.height() as usize);
-    let data = pixmap.data();
-    let visible = |x: usize, y: usize| data[(y * w + x) * 4 + 3] != 0;
-    let rows: Vec<usize> = (0..h).filter(|&y| (0..w).any(|x| visible(x, y))).collect();
-    let cols: Vec<usize> = (0..w).filter(|&x| (0..h).any(|y| visible(x, y))).collect();
-    let (Some(&y0), Some(&y1), Some(&x0), Some(&x1)) = (rows.first(), rows.last(), cols.first(), cols.last())
-    else {
-        return Sprite::default();
-    };
-    let (width, height) = (x1 - x0 + 1, y1 - y0 + 1);
-    let mut out = Vec::with_capacity(width * height * 4);
-    let mut spans = Vec::with_capacity(height);
-    for y in y0..=y1 {
-        out.extend_from_slice(&data[(y * w + x0) * 4..(y * w + x1 + 1) * 4]);
-        let start = (x0..=x1).find(|&x| visible(x, y)).map_or(0, |x| x - x0);
-        let end = (x0..=x1).rev().find(|&x| visible(x, y)).map_or(0, |x| x - x0 + 1);
-        spans.push((start as u16, end as u16));
-    }
-    Sprite { left: x0 as i32 - half, top: y0 as i32 - half, width, height, data: out, spans }
 }
 
 /// The outline of an obstacle in scene px.
@@ -1130,10 +1081,19 @@ mod tests {
         assert!(trail[0] > trail[1] && trail[0] > trail[2], "trail is not reddish: {trail:?}");
         assert_eq!(r.pixels()[at..at + 3], *trail, "the frame shows the trail");
 
-        // With fading on, the trail returns exactly to the base.
+        // Frames drawn again without a step change nothing, whatever the fade.
         r.set_trail_fade(0.5);
+        let shown = r.pixels().to_vec();
         for _ in 0..40 {
             r.render(&world);
+        }
+        assert!(r.pixels() == &shown[..], "drawing the same step again faded the trails");
+
+        // Steps fade it: it returns exactly to the base.
+        let mut later = world.clone();
+        for _ in 0..80 {
+            later.step();
+            r.render(&later);
         }
         assert_eq!(&r.trails[at..at + 3], &r.base[at..at + 3]);
 
@@ -1194,6 +1154,80 @@ mod tests {
             trail_pixels_inside_pillars(&chords, scene, 2.0) > 100,
             "one chord per 2000 steps should cross the pillars (else this test proves nothing)"
         );
+    }
+
+    #[test]
+    fn a_frame_depends_on_the_steps_not_on_how_often_it_is_drawn() {
+        let mut world = World::new(presets::two_groups_swap()).expect("valid");
+        let (mut once, mut often) = (Renderer::new(640, 360), Renderer::new(640, 360));
+        for r in [&mut once, &mut often] {
+            r.set_trail_fade(0.05);
+        }
+        for step in 0..150 {
+            world.step();
+            once.trace_step(&world);
+            often.trace_step(&world);
+            once.render(&world);
+            // A print, a resize check, a paused redraw: the same step drawn again.
+            for _ in 0..1 + step % 3 {
+                often.render(&world);
+            }
+            assert!(once.pixels() == often.pixels(), "step {step} differs");
+        }
+    }
+
+    /// Mean |trail − base| over the trail layer's colour bytes.
+    fn trail_ink(r: &Renderer) -> f64 {
+        let total: u64 = r
+            .trails
+            .iter()
+            .zip(&r.base)
+            .enumerate()
+            .filter(|(k, _)| k % 4 != 3)
+            .map(|(_, (&t, &b))| u64::from(t.abs_diff(b)))
+            .sum();
+        total as f64 / (r.trails.len() as f64 * 0.75)
+    }
+
+    #[test]
+    fn trails_fade_with_the_steps_whether_drawn_every_step_or_after_many() {
+        let mut world = World::new(presets::pillars()).expect("valid");
+        world.step_n(20);
+        let mut history = vec![world.positions().to_vec()];
+        let (mut every, mut once) = (Renderer::new(900, 560), Renderer::new(900, 560));
+        for r in [&mut every, &mut once] {
+            r.set_trail_fade(0.1);
+            r.render(&world);
+        }
+        // 400 steps drawn after each step, or traced and drawn in one frame at the end.
+        for _ in 0..400 {
+            world.step();
+            history.push(world.positions().to_vec());
+            every.trace_step(&world);
+            every.render(&world);
+            once.trace_step(&world);
+        }
+        once.render(&world);
+        let (a, b) = (trail_ink(&every), trail_ink(&once));
+        assert!(a > 0.05, "the trails show: {a}");
+        assert!((a - b).abs() < 0.25 * a, "ink drawn every step {a:.3}, after 400 steps {b:.3}");
+        // Fade 0.1 per 2 steps leaves about 100 steps visible: where the agents were 300 steps
+        // ago shows no trail, where they were 20 steps ago does.
+        let near = |r: &Renderer, p: Vec2| {
+            let c = r.view().to_canvas(p);
+            let w = r.width() as usize;
+            (c.y as usize - 1..=c.y as usize + 1)
+                .flat_map(|y| (c.x as usize - 1..=c.x as usize + 1).map(move |x| (y * w + x) * 4))
+                .any(|at| r.trails[at..at + 3] != r.base[at..at + 3])
+        };
+        let moved =
+            |k: usize| history[k].iter().zip(&history[k + 1]).filter(|(p, q)| p.distance(**q) > 0.5).count();
+        assert!(moved(100) > 20 && moved(379) > 20, "the crowd still moves");
+        for r in [&every, &once] {
+            let old = history[100].iter().filter(|&&p| near(r, p)).count();
+            let recent = history[380].iter().filter(|&&p| near(r, p)).count();
+            assert!(recent > 20 && old * 4 < recent, "trails near old positions {old}, recent {recent}");
+        }
     }
 
     #[test]

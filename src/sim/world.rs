@@ -579,8 +579,9 @@ impl World {
         }
         let slack = self.max_radius + self.max_step + 2.0 * PARK_CONTACT_DIAMETERS * self.max_radius;
         let solid: Vec<bool> = self.groups.iter().map(|g| !g.planner.passes_through_obstacles()).collect();
-        // Agents placed far from where the grid holds them in this pass (few, usually none).
-        let mut jumped: Vec<usize> = Vec::new();
+        // Agents placed far from where the grid holds them in this pass (few, usually none; in
+        // a jam many).
+        let mut jumped = Jumped::new(slack + self.max_radius);
         for i in 0..self.pos.len() {
             if self.parked[i] {
                 continue;
@@ -634,7 +635,7 @@ impl World {
                     p = match self.free_place_near(before, r, slack, towards, &jumped, &placeable) {
                         Some(q) => {
                             // The grid still holds it where the step started.
-                            jumped.push(i);
+                            jumped.push(i, q);
                             q
                         }
                         None => self.previous[i],
@@ -674,50 +675,121 @@ impl World {
 
     /// Visits each parked agent the grid holds within `reach` of `p` (plus the step's slack the
     /// caller adds), bounded by [`PARK_NEIGHBOUR_CAP`], and each parked one of `jumped` (agents
-    /// the grid holds at an old place).
-    fn for_each_parked_near(&self, p: Vec2, reach: f32, jumped: &[usize], mut visit: impl FnMut(usize)) {
+    /// the grid holds at an old place) within `reach` of `p`, in the order they jumped (every
+    /// caller ignores parked bodies farther than `reach`).
+    fn for_each_parked_near(&self, p: Vec2, reach: f32, jumped: &Jumped, mut visit: impl FnMut(usize)) {
         self.grid.for_each_within_capped(p, reach, PARK_NEIGHBOUR_CAP, |n| {
             let j = n.id as usize;
-            if self.parked[j] && !jumped.contains(&j) {
+            if self.parked[j] && !jumped.contains(j) {
                 visit(j);
             }
         });
-        for &j in jumped {
+        jumped.for_each_near(p, reach, |j| {
             if self.parked[j] {
                 visit(j);
             }
-        }
+        });
     }
 
     /// The free place (overlapping no parked body, `placeable`) nearest to `p` for a body of
     /// radius `r`: on rings ½, 1, 1½ … [`PARK_SEARCH_RINGS`]/2 diameters around `p` (8 × ring
     /// directions, at least 16); on the nearest ring with one, the one nearest `towards` (the
-    /// goal). Only for a body boxed in by parked ones, which is rare: its cost does not matter.
+    /// goal). Only for a body boxed in by parked ones: rare in a crowd that parks as it arrives,
+    /// but in a jam packed round its goal most bodies of its edge are boxed in every step and
+    /// find no free place within the rings.
+    ///
+    /// A place is blocked by a parked body within `r` + its radius, among the bodies the
+    /// grid holds within `r + slack` of the place and the jumped ones. Instead of one grid query
+    /// per place (up to 1,688 of them for a body that finds nothing), the parked bodies round
+    /// `p` are gathered once and each tests only the few places of a ring its disc can reach
+    /// (found from its bearing); the places are the same points, tested with the same
+    /// expressions, so the answer is the same as testing every place against every body,
+    /// except that no per-place cap applies ([`PARK_NEIGHBOUR_CAP`] bounded the old queries;
+    /// non-overlapping bodies never reach it).
     fn free_place_near(
         &self,
         p: Vec2,
         r: f32,
         slack: f32,
         towards: Option<Vec2>,
-        jumped: &[usize],
+        jumped: &Jumped,
         placeable: &impl Fn(Vec2) -> bool,
     ) -> Option<Vec2> {
+        let query = r + slack;
+        // Parked bodies that can block a place: (position, grid position or none if jumped).
+        let mut bodies: Vec<(Vec2, Option<Vec2>, f32)> = Vec::new();
+        let mut gathered_to = 0u32;
+        let (mut blocked, mut places): (Vec<bool>, Vec<Vec2>) = (Vec::new(), Vec::new());
         for ring in 1..=PARK_SEARCH_RINGS {
             let distance = ring as f32 * r;
-            let mut best: Option<(f32, Vec2)> = None;
+            if ring > gathered_to {
+                // The rings up to 4, then all: most boxed-in bodies that find a place find it
+                // on the first rings.
+                gathered_to = if ring <= 4 { 4 } else { PARK_SEARCH_RINGS };
+                let reach = gathered_to as f32 * r + query + 1.0;
+                bodies.clear();
+                self.grid.for_each_within(p, reach, |n| {
+                    let j = n.id as usize;
+                    if self.parked[j] && !jumped.contains(j) {
+                        bodies.push((self.pos[j], Some(n.pos), self.radius[j]));
+                    }
+                });
+                jumped.for_each_near(p, reach, |j| {
+                    if self.parked[j] {
+                        bodies.push((self.pos[j], None, self.radius[j]));
+                    }
+                });
+            }
             let directions = 8 * ring.max(2);
-            for k in 0..directions {
-                let angle = k as f32 * (std::f32::consts::TAU / directions as f32);
-                let q = p + Vec2::new(libm::cosf(angle), libm::sinf(angle)) * distance;
-                if !placeable(q) {
+            let step = std::f32::consts::TAU / directions as f32;
+            places.clear();
+            places.extend((0..directions).map(|k| {
+                let angle = k as f32 * step;
+                p + Vec2::new(libm::cosf(angle), libm::sinf(angle)) * distance
+            }));
+            let place = |k: u32| places[k as usize];
+            blocked.clear();
+            blocked.resize(directions as usize, false);
+            for &(at, held, radius) in &bodies {
+                let reach = r + radius;
+                let w = at - p;
+                let d = w.length();
+                // |place − p| = distance (to rounding): a body off the ring by more than its
+                // reach blocks none of its places.
+                if (d - distance).abs() > reach + 0.01 + 1e-5 * distance {
                     continue;
                 }
-                let mut blocked = false;
-                let (pos, radius) = (&self.pos, &self.radius);
-                self.for_each_parked_near(q, r + slack, jumped, |j| {
-                    blocked |= q.distance(pos[j]) < r + radius[j];
-                });
-                if blocked {
+                // Half the angle of the ring's arc within `reach` of the body (law of cosines),
+                // widened by a place for rounding.
+                let span = if d > 1e-3 {
+                    let c = (distance * distance + d * d - reach * reach) / (2.0 * distance * d);
+                    (libm::acosf(c.clamp(-1.0, 1.0)) / step).ceil() as i64 + 1
+                } else {
+                    i64::from(directions)
+                };
+                let test = |k: u32| {
+                    let q = place(k);
+                    held.is_none_or(|g| q.distance_squared(g) <= query * query) && q.distance(at) < reach
+                };
+                if 2 * span + 1 >= i64::from(directions) {
+                    for k in 0..directions {
+                        blocked[k as usize] = blocked[k as usize] || test(k);
+                    }
+                } else {
+                    let centre = (libm::atan2f(w.y, w.x) / step).round() as i64;
+                    for t in centre - span..=centre + span {
+                        let k = t.rem_euclid(i64::from(directions)) as u32;
+                        blocked[k as usize] = blocked[k as usize] || test(k);
+                    }
+                }
+            }
+            let mut best: Option<(f32, Vec2)> = None;
+            for k in 0..directions {
+                if blocked[k as usize] {
+                    continue;
+                }
+                let q = place(k);
+                if !placeable(q) {
                     continue;
                 }
                 let score = towards.map_or(0.0, |t| q.distance_squared(t));
@@ -755,6 +827,66 @@ impl World {
             eat(v.y);
         }
         h
+    }
+}
+
+/// The agents the parking pass placed far from where the grid holds them (see
+/// [`World::free_place_near`]), in the order they jumped, bucketed by place: a jam can make
+/// thousands jump in one pass, and every query of the pass asks which lie near it.
+struct Jumped {
+    /// Whether each agent jumped.
+    flag: Vec<bool>,
+    /// Side of a bucket (px): the largest reach of a query of the pass.
+    cell: f32,
+    /// Per bucket `(x, y)`, the jumped agents in it as `(order of jumping, agent)`.
+    buckets: std::collections::HashMap<(i32, i32), Vec<(u32, u32)>>,
+    /// How many jumped.
+    count: u32,
+}
+
+impl Jumped {
+    /// None yet; buckets of `cell` px. The flags are allocated on the first jump.
+    fn new(cell: f32) -> Self {
+        Self { flag: Vec::new(), cell: cell.max(1.0), buckets: Default::default(), count: 0 }
+    }
+
+    fn bucket(&self, p: Vec2) -> (i32, i32) {
+        ((p.x / self.cell).floor() as i32, (p.y / self.cell).floor() as i32)
+    }
+
+    fn push(&mut self, i: usize, at: Vec2) {
+        if self.flag.len() <= i {
+            self.flag.resize(i + 1, false);
+        }
+        self.flag[i] = true;
+        let key = self.bucket(at);
+        self.buckets.entry(key).or_default().push((self.count, i as u32));
+        self.count += 1;
+    }
+
+    fn contains(&self, i: usize) -> bool {
+        self.flag.get(i).copied().unwrap_or(false)
+    }
+
+    /// Calls `visit` with each jumped agent whose bucket meets the square of `reach` round `p`
+    /// (a superset of those within `reach` of it), in the order they jumped.
+    fn for_each_near(&self, p: Vec2, reach: f32, mut visit: impl FnMut(usize)) {
+        if self.count == 0 {
+            return;
+        }
+        let (lo, hi) = (self.bucket(p - Vec2::splat(reach)), self.bucket(p + Vec2::splat(reach)));
+        let mut near: Vec<(u32, u32)> = Vec::new();
+        for x in lo.0..=hi.0 {
+            for y in lo.1..=hi.1 {
+                if let Some(list) = self.buckets.get(&(x, y)) {
+                    near.extend_from_slice(list);
+                }
+            }
+        }
+        near.sort_unstable();
+        for (_, j) in near {
+            visit(j as usize);
+        }
     }
 }
 

@@ -373,6 +373,42 @@ impl SpatialGrid {
         self.scan_capped(p, radius, cap, hit) == CappedScan::Hit
     }
 
+    /// The smallest squared distance from `p` to an agent other than `exclude` among those
+    /// [`Self::for_each_within_capped`] visits (within `radius`, capped), or infinity: the same
+    /// answer, found without a branch per candidate when the caps do not bind (the count of
+    /// candidates and of agents within `radius` tells), else by that query.
+    pub fn nearest_d2_within_capped(&self, p: Vec2, radius: f32, cap: QueryCap, exclude: u32) -> f32 {
+        let r2 = radius * radius;
+        let [xs, ys, _, _] = &self.columns;
+        let (mut best, mut within, mut candidates) = (f32::INFINITY, 0usize, 0usize);
+        for Range { start, end } in self.query_rows(p, radius) {
+            candidates += end - start;
+            if candidates > cap.candidates {
+                break;
+            }
+            if let (Some(xs), Some(ys), Some(ids)) =
+                (xs.get(start..end), ys.get(start..end), self.ids.get(start..end))
+            {
+                for ((&x, &y), &id) in xs.iter().zip(ys).zip(ids) {
+                    let d2 = p.distance_squared(Vec2::new(x, y));
+                    let inside = d2 <= r2;
+                    within += usize::from(inside);
+                    best = if inside & (id != exclude) { best.min(d2) } else { best };
+                }
+            }
+        }
+        if candidates <= cap.candidates && within <= cap.neighbours {
+            return best;
+        }
+        let mut nearest = f32::INFINITY;
+        self.for_each_within_capped(p, radius, cap, |n| {
+            if n.id != exclude {
+                nearest = nearest.min(n.d2);
+            }
+        });
+        nearest
+    }
+
     /// The scan both capped queries share: visits the agents within `radius` of `p` in scan
     /// order until `stop` returns true for one of them or a cap is reached.
     #[inline(always)]

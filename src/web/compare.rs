@@ -1,7 +1,7 @@
 //! The compare page's bindings: an opaque handle over `crate::sim::compare::Comparison` with one
 //! renderer per pane. Conversion and errors only; the panes, series and summary are the core's.
 
-use super::{js_error, to_json};
+use super::{js_error, refusal, scene_error, to_json};
 use crate::model::codec;
 use crate::model::params::PlannerKind;
 use crate::render::Renderer;
@@ -21,11 +21,11 @@ pub struct CompareSim {
 }
 
 /// A pane's planner by name: `None` for `"scene"` (the scene's own planners).
-fn pane_planner(name: &str) -> Result<Option<PlannerKind>, JsError> {
+fn pane_planner(name: &str) -> Result<Option<PlannerKind>, JsValue> {
     if name == "scene" {
         return Ok(None);
     }
-    PlannerKind::parse(name).map(Some).map_err(|e| js_error(e.also_accepting(&["scene"])))
+    PlannerKind::parse(name).map(Some).map_err(|e| refusal(e.also_accepting(&["scene"])))
 }
 
 #[wasm_bindgen]
@@ -34,9 +34,9 @@ impl CompareSim {
     /// empty for the default: the scene's planners against another), each pane rendered at
     /// `width × height` device px.
     #[wasm_bindgen(constructor)]
-    pub fn new(scene_text: &str, spec_text: &str, width: u32, height: u32) -> Result<CompareSim, JsError> {
+    pub fn new(scene_text: &str, spec_text: &str, width: u32, height: u32) -> Result<CompareSim, JsValue> {
         console_error_panic_hook::set_once();
-        let scene = codec::scene_from_any(scene_text).map_err(js_error)?;
+        let scene = codec::scene_from_any(scene_text).map_err(scene_error)?;
         let spec = if spec_text.trim().is_empty() {
             ComparisonSpec::default_for(&scene)
         } else {
@@ -105,8 +105,8 @@ impl CompareSim {
     }
 
     /// Replaces the scene, keeping the panes' planners; on error nothing changes.
-    pub fn load(&mut self, scene_text: &str) -> Result<(), JsError> {
-        let scene = codec::scene_from_any(scene_text).map_err(js_error)?;
+    pub fn load(&mut self, scene_text: &str) -> Result<(), JsValue> {
+        let scene = codec::scene_from_any(scene_text).map_err(scene_error)?;
         self.comparison.set_scene(scene).map_err(js_error)?;
         self.fit_renderers();
         Ok(())
@@ -122,7 +122,7 @@ impl CompareSim {
 
     /// Sets pane `pane`'s planner for every group (`"scene"` for the scene's own planners), with
     /// that planner's defaults; restarts every pane.
-    pub fn set_pane_planner(&mut self, pane: u32, planner_name: &str) -> Result<(), JsError> {
+    pub fn set_pane_planner(&mut self, pane: u32, planner_name: &str) -> Result<(), JsValue> {
         let kind = pane_planner(planner_name)?;
         self.comparison.set_pane_planner(pane as usize, kind).map_err(js_error)?;
         self.fit_renderers();
@@ -139,7 +139,7 @@ impl CompareSim {
     }
 
     /// Adds a pane running `planner_name` (or `"scene"`); restarts. Throws past the limit.
-    pub fn add_pane(&mut self, planner_name: &str) -> Result<(), JsError> {
+    pub fn add_pane(&mut self, planner_name: &str) -> Result<(), JsValue> {
         let kind = pane_planner(planner_name)?;
         self.comparison.add_pane(kind).map_err(js_error)?;
         self.fit_renderers();

@@ -15,6 +15,7 @@ use crate::model::codec;
 use crate::model::edit::{self, Edit, ItemRef};
 use crate::model::params::PlannerKind;
 use crate::model::presets;
+use crate::model::refusal::Refusal;
 use crate::model::scene::ViewOptions;
 use crate::render::{Renderer, Theme};
 use crate::sim::activity_check::{ActivityWatch, Page};
@@ -43,10 +44,52 @@ fn js_error(e: impl Display) -> JsError {
     JsError::new(&e.to_string())
 }
 
-/// A refused scene as a JS `Error`: its message is the readable text, and its `details` property
-/// (when the parser had its own words and position) what the page shows behind "details".
-fn scene_error(e: crate::model::scene::SceneError) -> JsValue {
+/// A refusal as a JS `Error`: its message is the core's English text; `code` and `args` (an
+/// object of strings, [`Refusal`]) let the page word it in the reader's language.
+fn coded(e: &impl Refusal) -> js_sys::Error {
     let error = js_sys::Error::new(&e.to_string());
+    let args = js_sys::Object::new();
+    for (name, value) in e.args() {
+        // Setting a property on a fresh object cannot fail.
+        let _ = js_sys::Reflect::set(&args, &JsValue::from_str(name), &JsValue::from_str(&value));
+    }
+    let _ = js_sys::Reflect::set(&error, &JsValue::from_str("code"), &JsValue::from_str(e.code()));
+    let _ = js_sys::Reflect::set(&error, &JsValue::from_str("args"), &args);
+    error
+}
+
+/// JSON from the page that does not read as the call's input (an edit with a negative count):
+/// `cannot read the <what>: <the reader's words>`, coded `unreadable`.
+struct Unreadable {
+    what: &'static str,
+    reason: String,
+}
+
+impl Display for Unreadable {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "cannot read the {}: {}", self.what, self.reason)
+    }
+}
+
+impl Refusal for Unreadable {
+    fn code(&self) -> &'static str {
+        "unreadable"
+    }
+
+    fn args(&self) -> Vec<(&'static str, String)> {
+        vec![("what", self.what.to_string()), ("reason", self.reason.clone())]
+    }
+}
+
+/// A coded refusal ([`coded`]) as a JS value, for `map_err`.
+fn refusal(e: impl Refusal) -> JsValue {
+    coded(&e).into()
+}
+
+/// A refused scene as a JS `Error` ([`coded`]), and its `details` property (when the parser had
+/// its own words and position) what the page shows behind "details".
+fn scene_error(e: crate::model::scene::SceneError) -> JsValue {
+    let error = coded(&e);
     if let Some(detail) = e.detail() {
         // Setting a property on a fresh Error object cannot fail.
         let _ = js_sys::Reflect::set(&error, &JsValue::from_str("details"), &JsValue::from_str(detail));
@@ -107,8 +150,8 @@ impl Sim {
     }
 
     /// Restarts the current scene from step 0 with the same seed.
-    pub fn reset(&mut self) -> Result<(), JsError> {
-        self.run.reset().map_err(js_error)?;
+    pub fn reset(&mut self) -> Result<(), JsValue> {
+        self.run.reset().map_err(scene_error)?;
         self.renderer.clear_trails();
         Ok(())
     }
@@ -191,14 +234,14 @@ impl Sim {
     }
 
     /// Changes the seed and restarts the run; on error the current run continues.
-    pub fn set_seed(&mut self, seed: u32) -> Result<(), JsError> {
-        self.run.set_seed(seed).map_err(js_error)?;
+    pub fn set_seed(&mut self, seed: u32) -> Result<(), JsValue> {
+        self.run.set_seed(seed).map_err(scene_error)?;
         self.renderer.clear_trails();
         Ok(())
     }
 
     /// Sets one planner parameter of a group (0-based) from a JSON value, live, without a reset.
-    pub fn set_group_param(&mut self, group: u32, key: &str, value_json: &str) -> Result<(), JsError> {
+    pub fn set_group_param(&mut self, group: u32, key: &str, value_json: &str) -> Result<(), JsValue> {
         let value: serde_json::Value = serde_json::from_str(value_json)
             .map_err(|e| js_error(format!("the value for {key:?} is not JSON: {e}")))?;
         let mut config = self
@@ -210,22 +253,22 @@ impl Sim {
             .ok_or_else(|| js_error(format!("there is no group {}", u64::from(group) + 1)))?
             .planner
             .clone();
-        config.set_param(key, value).map_err(js_error)?;
-        self.run.set_group_planner(group as usize, config).map_err(js_error)
+        config.set_param(key, value).map_err(refusal)?;
+        self.run.set_group_planner(group as usize, config).map_err(scene_error)
     }
 
     /// Switches a group (0-based) to another planner with that planner's default parameters.
-    pub fn set_group_planner(&mut self, group: u32, planner_name: &str) -> Result<(), JsError> {
-        let kind = PlannerKind::parse(planner_name).map_err(js_error)?;
-        self.run.set_group_planner(group as usize, kind.default_config()).map_err(js_error)
+    pub fn set_group_planner(&mut self, group: u32, planner_name: &str) -> Result<(), JsValue> {
+        let kind = PlannerKind::parse(planner_name).map_err(refusal)?;
+        self.run.set_group_planner(group as usize, kind.default_config()).map_err(scene_error)
     }
 
     /// Applies an editor operation (JSON of `crate::model::edit::Edit`); on error nothing changes.
-    pub fn edit(&mut self, edit_json: &str) -> Result<(), JsError> {
-        let edit: Edit =
-            serde_json::from_str(edit_json).map_err(|e| js_error(format!("cannot read the edit: {e}")))?;
-        let scene = edit::apply(self.run.world().scene(), &edit).map_err(js_error)?;
-        self.run.edit_scene(scene).map_err(js_error)?;
+    pub fn edit(&mut self, edit_json: &str) -> Result<(), JsValue> {
+        let edit: Edit = serde_json::from_str(edit_json)
+            .map_err(|e| refusal(Unreadable { what: "edit", reason: e.to_string() }))?;
+        let scene = edit::apply(self.run.world().scene(), &edit).map_err(scene_error)?;
+        self.run.edit_scene(scene).map_err(scene_error)?;
         if self.run.world().step_count() == 0 {
             // The agents may have been respawned elsewhere: do not draw the jump as a trail.
             self.renderer.clear_trails();
@@ -252,8 +295,8 @@ impl Sim {
         self.set_view(ViewOptions { trails: on, ..self.run.world().scene().view })
     }
 
-    /// Share of a trail's visibility lost per frame (0 = permanent, 1 = one frame); saved in the
-    /// scene's view options. Throws outside 0…1.
+    /// Share of a trail's visibility lost every two steps (0 = permanent, 1 = the newest segments
+    /// only); saved in the scene's view options. Throws outside 0…1.
     pub fn set_trail_fade(&mut self, fade: f32) -> Result<(), JsError> {
         self.set_view(ViewOptions { trail_fade: fade, ..self.run.world().scene().view })
     }
@@ -371,8 +414,8 @@ pub fn presets_json() -> Result<String, JsError> {
 
 /// The scene JSON of a preset; throws for an unknown name.
 #[wasm_bindgen]
-pub fn preset_scene_json(name: &str) -> Result<String, JsError> {
-    let preset = presets::lookup(name).map_err(js_error)?;
+pub fn preset_scene_json(name: &str) -> Result<String, JsValue> {
+    let preset = presets::lookup(name).map_err(scene_error)?;
     Ok(codec::scene_to_json(&(preset.build)()))
 }
 

@@ -34,7 +34,7 @@ import { startLoop } from './core/loop.js';
 import { SimHost } from './core/sim-host.js';
 import { setupDescription } from './core/describe.js';
 import { prefersReducedMotion } from './core/motion.js';
-import { t } from './core/i18n.js';
+import { onLanguageChange, t, translatePage, tOr } from './core/i18n.js';
 import { measure, observeSize } from './core/view.js';
 // Prints a still of each scene instead of a blank box.
 import './core/print.js';
@@ -107,22 +107,30 @@ export class FlockPathElement extends HTMLElement {
     root.innerHTML = `${adoptStyle(root) ? '' : `<style>${STYLE}</style>`}
       <div class="frame" part="frame">
         <div class="stage" part="stage">
-          <canvas part="canvas" role="img" aria-describedby="description"></canvas>
-          <div class="loading">Loading…</div>
+          <canvas part="canvas" role="img" aria-describedby="description" data-i18n-aria-label="a11y.canvas.label"></canvas>
+          <div class="loading" data-i18n="common.loading">Loading…</div>
           <p class="message" role="alert" hidden></p>
         </div>
         <div class="bar" part="controls" hidden>
-          <button type="button" class="play" title="Play / pause">Play</button>
-          <button type="button" class="step" title="Advance one step">Step</button>
-          <button type="button" class="reset" title="Restart from the seed">Reset</button>
+          <button type="button" class="play" title="Play / pause" data-i18n-title="element.play_title">Play</button>
+          <button type="button" class="step" title="Advance one step" data-i18n-title="element.step_title" data-i18n="playback.step">Step</button>
+          <button type="button" class="reset" title="Restart from the seed" data-i18n-title="element.reset_title" data-i18n="playback.reset">Reset</button>
           <span class="planner"></span>
           <span class="steps" aria-live="off"></span>
-          <button type="button" class="fullscreen" title="Full screen" aria-label="Full screen" hidden><svg width="14" height="14" viewBox="0 0 14 14" aria-hidden="true" fill="none" stroke="currentColor" stroke-width="2"><path d="M1 5V1h4M9 1h4v4M13 9v4H9M5 13H1V9"/></svg></button>
+          <button type="button" class="fullscreen" title="Full screen" aria-label="Full screen" data-i18n-title="element.fullscreen" data-i18n-aria-label="element.fullscreen" hidden><svg width="14" height="14" viewBox="0 0 14 14" aria-hidden="true" fill="none" stroke="currentColor" stroke-width="2"><path d="M1 5V1h4M9 1h4v4M13 9v4H9M5 13H1V9"/></svg></button>
           <slot name="actions"></slot>
         </div>
       </div>`;
     this.$ = (selector) => root.querySelector(selector);
     this.$('canvas').setAttribute('aria-label', t('a11y.canvas.label'));
+    // The element's own words in the page's language (the page's `?lang=` or the browser's).
+    translatePage(root);
+    this.retranslate = () => {
+      translatePage(root);
+      this.refreshBar();
+      this.shownSteps = -1;
+      this.refreshSteps();
+    };
     /** The simulation behind the core's guarded door (a SimHost), once booted. */
     this.host = null;
     this.module = null;
@@ -144,7 +152,7 @@ export class FlockPathElement extends HTMLElement {
       if (document.fullscreenElement === this) document.exitFullscreen();
       else this.requestFullscreen?.().catch(() => {});
     });
-    this.$('.message').title = 'Click to dismiss';
+    this.$('.message').title = t('element.dismiss');
     this.$('.message').addEventListener('click', () => this.hideMessage());
   }
 
@@ -162,12 +170,15 @@ export class FlockPathElement extends HTMLElement {
   }
 
   connectedCallback() {
+    this.offLanguage ??= onLanguageChange(this.retranslate);
     this.applyLayout();
     if (!this.booting) this.booting = this.boot();
     else if (this.host) this.startLoop();
   }
 
   disconnectedCallback() {
+    this.offLanguage?.();
+    this.offLanguage = null;
     this.stopLoop?.();
     this.stopLoop = null;
     this.observer?.disconnect();
@@ -233,7 +244,7 @@ export class FlockPathElement extends HTMLElement {
     this.host = new SimHost(loaded.wasm, this.module, sim, {
       error: event,
       panic: (message) => {
-        this.showMessage(`The simulation crashed (a bug in flockpath): ${message}`);
+        this.showMessage(t('element.crashed', { message }));
         event(message);
       },
     });
@@ -329,9 +340,9 @@ export class FlockPathElement extends HTMLElement {
       this.call((sim) => sim.load(this.sceneText(text)));
       this.hideMessage();
     } catch (error) {
-      const keep = fallback ? `showing “${this.presets[0].name}” instead` : 'the previous scene keeps running';
-      const reason = messageOf(error).replace(/[.?!]$/, '');
-      this.showMessage(`The scene could not be loaded: ${reason}. ${keep[0].toUpperCase()}${keep.slice(1)}.`);
+      const reason = messageOf(error).replace(/[.?!。]$/, '');
+      const name = tOr(`preset.${this.presets[0].name}`, this.presets[0].name);
+      this.showMessage(t(fallback ? 'element.load_failed_fallback' : 'element.load_failed_kept', { reason, name }));
     }
     this.afterLoad();
   }
@@ -391,10 +402,10 @@ export class FlockPathElement extends HTMLElement {
   }
 
   refreshBar() {
-    this.$('.play').textContent = this.playing ? 'Pause' : 'Play';
+    this.$('.play').textContent = this.playing ? t('playback.pause') : t('playback.play');
     this.$('.play').setAttribute('aria-pressed', String(this.playing));
     const names = [...new Set((this.cachedScene?.groups ?? []).map((g) => g.planner.kind))];
-    const label = (name) => this.planners?.find((p) => p.name === name)?.label ?? name;
+    const label = (name) => tOr(`planner.${name}`, this.planners?.find((p) => p.name === name)?.label ?? name);
     this.$('.planner').textContent = names.map(label).join(', ');
     this.refreshSteps();
   }
@@ -404,7 +415,7 @@ export class FlockPathElement extends HTMLElement {
     const steps = this.host.sim.steps();
     if (steps === this.shownSteps) return;
     this.shownSteps = steps;
-    this.$('.steps').textContent = `step ${steps.toLocaleString('en-US')}`;
+    this.$('.steps').textContent = t('playback.step_count', { n: steps.toLocaleString('en-US') });
   }
 
   // ---- the page API, per element ----

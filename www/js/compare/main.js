@@ -13,6 +13,7 @@ import { buildPanes, blitPanes, measurePane } from './panes.js';
 import { drawPlots, drawTable } from './plots.js';
 import { download } from '../core/download.js';
 import { setupActivity } from './activity.js';
+import { onLanguageChange, setText, t, tOr } from '../core/i18n.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -71,18 +72,32 @@ function setupControls(app) {
     const link = app.link();
     try {
       await navigator.clipboard.writeText(link);
-      $('copy-link').textContent = 'Link copied';
+      setText($('copy-link'), 'compare.link_copied');
     } catch {
-      showMessage(`the browser refused clipboard access; the link is: ${link}`);
+      showMessage(t('compare.clipboard_refused', { link }));
     }
-    setTimeout(() => ($('copy-link').textContent = 'Copy link'), 2000);
+    setTimeout(() => setText($('copy-link'), 'share.copy_link'), 2000);
   });
 
   const preset = $('preset');
   for (const p of app.presets) {
-    preset.append(Object.assign(document.createElement('option'), { value: p.name, textContent: p.name, title: p.description }));
+    preset.append(Object.assign(document.createElement('option'), {
+      value: p.name,
+      textContent: tOr(`preset.${p.name}`, p.name),
+      title: tOr(`preset.${p.name}.description`, p.description),
+    }));
   }
-  preset.append(Object.assign(document.createElement('option'), { value: '', textContent: '(linked scene)', disabled: true }));
+  const linkedOption = Object.assign(document.createElement('option'), { value: '', textContent: t('compare.linked_scene'), disabled: true });
+  preset.append(linkedOption);
+  onLanguageChange(() => {
+    for (const option of preset.options) {
+      const p = app.presets.find((q) => q.name === option.value);
+      if (p) Object.assign(option, { textContent: tOr(`preset.${p.name}`, p.name), title: tOr(`preset.${p.name}.description`, p.description) });
+    }
+    linkedOption.textContent = t('compare.linked_scene');
+    app.dirty = true;
+    refresh(app);
+  });
   const showPreset = () => {
     const name = JSON.parse(app.guard((sim) => sim.scene_json()).value ?? '{}').name;
     preset.value = app.presets.some((p) => p.name === name) ? name : '';
@@ -154,12 +169,12 @@ function refresh(app) {
   }));
   if (!result.ok) return;
   const { steps, metrics, panes, series } = result.value;
-  $('steps').textContent = `step ${steps.toLocaleString('en-US')}`;
+  setText($('steps'), 'playback.step_count', { n: steps.toLocaleString('en-US') });
   drawTable($('metrics-table'), panes, metrics);
   drawPlots($('plots'), series);
 }
 
-bootPage('the comparison', ({ module, wasm }) => {
+bootPage(t('boot.what_compare'), ({ module, wasm }) => {
   const presets = JSON.parse(module.presets_json());
   const fallback = module.preset_scene_json(presets[0].name);
   const linked = parseHash();
@@ -172,14 +187,14 @@ bootPage('the comparison', ({ module, wasm }) => {
     module.scene_from_text(sceneText);
   } catch (error) {
     if (isPanic(error)) throw error;
-    problems.push(`The scene in the link could not be loaded: ${messageOf(error)}. Showing “${presets[0].name}” instead.`);
+    problems.push(t('compare.link_scene_failed', { reason: messageOf(error), name: tOr(`preset.${presets[0].name}`, presets[0].name) }));
     sceneText = fallback;
   }
   try {
     sim = new module.CompareSim(sceneText, linked.c ?? '', width, height);
   } catch (error) {
     if (isPanic(error)) throw error;
-    problems.push(`The comparison in the link could not be used: ${messageOf(error)}. Showing the default comparison instead.`);
+    problems.push(t('compare.link_spec_failed', { reason: messageOf(error) }));
     sim = new module.CompareSim(sceneText, '', width, height);
   }
 

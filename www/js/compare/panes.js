@@ -3,7 +3,8 @@
 // text for per-group planners. Blitting copies each pane's wasm frame to its canvas.
 
 import { blit } from '../core/blit.js';
-import { paramControl, paramReadout } from '../core/params-form.js';
+import { paramControl, paramLabel, paramReadout } from '../core/params-form.js';
+import { language, onLanguageChange, t, tOr } from '../core/i18n.js';
 import { backingSize } from '../core/view.js';
 
 const el = (tag, props = {}, ...children) => {
@@ -45,39 +46,79 @@ function paramForm(app, index, pane) {
     const input = paramControl(p, {
       id,
       value,
+      planner: pane.planner,
       onInput: (v) => (readout.textContent = paramReadout(p, v)),
       onChange: (v) => app.change((sim) => sim.set_pane_param(index, p.key, JSON.stringify(v))),
     });
-    form.append(el('label', { className: 'param', htmlFor: id }, el('span', { textContent: p.label }), input, readout ?? el('span')));
+    form.append(el('label', { className: 'param', htmlFor: id }, el('span', { textContent: paramLabel(pane.planner, p) }), input, readout ?? el('span')));
   }
   return form;
 }
 
+/**
+ * A pane's label in the page's language: the core's words (its planner and up to two parameters
+ * that differ from their defaults) on English pages; elsewhere the same composed from the
+ * translated planner name and parameter labels (per-group panes keep the core's words).
+ */
+export function paneLabel(app, pane) {
+  if (pane.per_group || language() === 'en') return pane.label;
+  if (pane.planner === 'scene') {
+    // The scene's own planners: described like a pane's when every group has the same one.
+    const scene = app.guard((sim) => JSON.parse(sim.scene_json()));
+    const configs = (scene.ok ? scene.value.groups ?? [] : []).map((g) => JSON.stringify(g.planner));
+    if (configs.length === 0 || configs.some((c) => c !== configs[0])) return pane.label;
+    const config = JSON.parse(configs[0]);
+    return describe(app, config.kind, config.params) ?? pane.label;
+  }
+  return describe(app, pane.planner, pane.params) ?? pane.label;
+}
+
+/** `planner, label value, label value` in the page's language (null for an unknown planner). */
+function describe(app, kind, params) {
+  const planner = app.planners.find((p) => p.name === kind);
+  if (!planner) return null;
+  const changed = [];
+  for (const spec of planner.params) {
+    const value = params?.[spec.key];
+    const fallback = spec.choices?.length ? spec.choices[spec.default] : spec.default;
+    if (value === undefined || value === fallback) continue;
+    if (typeof value === 'number' && Math.abs(value - fallback) <= 1e-6 * Math.max(1, Math.abs(fallback))) continue;
+    changed.push(`${paramLabel(planner.name, spec)} ${typeof value === 'string' ? tOr(`choice.${value}`, value) : value}`);
+  }
+  const name = tOr(`planner.${planner.name}`, planner.label).replace(/\s*[（(].*[)）]$/, '');
+  if (changed.length === 0) return name;
+  const list = changed.slice(0, 2).join(t('list.comma'));
+  return changed.length <= 2
+    ? t('compare.label_changed', { name, changed: list })
+    : t('compare.label_more', { name, changed: list, n: changed.length - 2 });
+}
+
 function paneElement(app, index, pane, count) {
+  const label = paneLabel(app, pane);
   const canvas = el('canvas', { className: 'pane-canvas' });
   canvas.setAttribute('role', 'img');
-  canvas.setAttribute('aria-label', `Pane ${pane.pane}: ${pane.label}`);
-  const picker = el('select', { title: 'The planner of every group in this pane' });
-  picker.setAttribute('aria-label', `Pane ${pane.pane} planner`);
-  picker.append(el('option', { value: 'scene', textContent: "scene's planners", selected: pane.planner === 'scene' }));
+  canvas.setAttribute('aria-label', t('compare.pane_label', { pane: pane.pane, label }));
+  const picker = el('select', { title: t('compare.pane_planner_title') });
+  picker.setAttribute('aria-label', t('compare.pane_planner_label', { pane: pane.pane }));
+  picker.append(el('option', { value: 'scene', textContent: t('compare.scene_planners'), selected: pane.planner === 'scene' }));
   for (const p of app.planners) {
-    picker.append(el('option', { value: p.name, textContent: p.label, selected: pane.planner === p.name && !pane.per_group }));
+    picker.append(el('option', { value: p.name, textContent: tOr(`planner.${p.name}`, p.label), selected: pane.planner === p.name && !pane.per_group }));
   }
-  if (pane.per_group) picker.append(el('option', { value: '', textContent: 'per group (see spec)', selected: true, disabled: true }));
+  if (pane.per_group) picker.append(el('option', { value: '', textContent: t('compare.per_group'), selected: true, disabled: true }));
   picker.addEventListener('change', () => app.change((sim) => sim.set_pane_planner(index, picker.value)));
-  const remove = el('button', { type: 'button', className: 'small ghost', textContent: '✕', title: 'Remove this pane', disabled: count <= 1 });
+  const remove = el('button', { type: 'button', className: 'small ghost', textContent: '✕', title: t('compare.remove_pane'), disabled: count <= 1 });
   remove.addEventListener('click', () => app.change((sim) => sim.remove_pane(index)));
   const head = el('div', { className: 'pane-head' },
     el('span', { className: 'pane-name', textContent: pane.pane }),
     picker,
-    el('span', { className: 'pane-label', textContent: pane.label, title: pane.label }),
+    el('span', { className: 'pane-label', textContent: label, title: label }),
     remove);
 
-  const details = el('details', {}, el('summary', { textContent: 'Parameters' }));
+  const details = el('details', {}, el('summary', { textContent: t('compare.parameters') }));
   if (pane.planner !== 'scene' && !pane.per_group) details.append(paramForm(app, index, pane));
   const specInput = el('input', { type: 'text', value: pane.spec, spellcheck: false,
-    title: 'This pane as spec text: scene, or planner(values…), or per group 1=pso;2=firefly(…)' });
-  specInput.setAttribute('aria-label', `Pane ${pane.pane} spec`);
+    title: t('compare.spec_title') });
+  specInput.setAttribute('aria-label', t('compare.spec_label', { pane: pane.pane }));
   specInput.addEventListener('change', () => {
     const all = JSON.parse(app.guard((sim) => sim.panes_json()).value ?? '[]').map((p) => p.spec);
     all[index] = specInput.value.trim();
@@ -113,6 +154,7 @@ export function buildPanes(app) {
     app.dirty = true;
   };
   app.addEventListener('panes', build);
+  onLanguageChange(build);
   build();
   const fit = () => {
     const { width, height } = measurePane();

@@ -3,32 +3,33 @@
 // only formats them and says what to draw.
 
 import { drawPlot } from '../core/plot.js';
+import { t } from '../core/i18n.js';
 
 /**
  * [metrics key, label, format]. Units sit in the label, not in every cell, so four panes' columns
  * fit the side card.
  */
 const ROWS = [
-  ['steps', 'Steps', (m) => m.steps.toLocaleString('en-US')],
-  ['agents', 'Agents', (m) => m.agents.toLocaleString('en-US')],
-  ['arrived_share', 'Arrived (%)', (m) => (100 * m.arrived_share).toFixed(1)],
-  ['mean_time_to_goal_s', 'Time to goal (s)', (m) => (m.mean_time_to_goal_s == null ? '–' : m.mean_time_to_goal_s.toFixed(1))],
-  ['collisions_agent_agent', 'Collisions', (m) => m.collisions_agent_agent.toLocaleString('en-US')],
-  ['penetrations_agent_obstacle', 'Penetrations', (m) => m.penetrations_agent_obstacle.toLocaleString('en-US')],
-  ['mean_path_length', 'Path length (px)', (m) => m.mean_path_length.toFixed(0)],
-  ['mean_turn_deg', 'Mean turn (°)', (m) => m.mean_turn_deg.toFixed(2)],
-  ['max_turn_deg', 'Max turn (°)', (m) => m.max_turn_deg.toFixed(1)],
-  ['mean_speed', 'Mean speed (px/step)', (m) => m.mean_speed.toFixed(2)],
-  ['stuck_agents', 'Stuck', (m) => m.stuck_agents.toLocaleString('en-US')],
+  ['steps', 'compare.row.steps', (m) => m.steps.toLocaleString('en-US')],
+  ['agents', 'compare.row.agents', (m) => m.agents.toLocaleString('en-US')],
+  ['arrived_share', 'compare.row.arrived', (m) => (100 * m.arrived_share).toFixed(1)],
+  ['mean_time_to_goal_s', 'compare.row.time_to_goal', (m) => (m.mean_time_to_goal_s == null ? '–' : m.mean_time_to_goal_s.toFixed(1))],
+  ['collisions_agent_agent', 'compare.row.collisions', (m) => m.collisions_agent_agent.toLocaleString('en-US')],
+  ['penetrations_agent_obstacle', 'compare.row.penetrations', (m) => m.penetrations_agent_obstacle.toLocaleString('en-US')],
+  ['mean_path_length', 'compare.row.path_length', (m) => m.mean_path_length.toFixed(0)],
+  ['mean_turn_deg', 'compare.row.mean_turn', (m) => m.mean_turn_deg.toFixed(2)],
+  ['max_turn_deg', 'compare.row.max_turn', (m) => m.max_turn_deg.toFixed(1)],
+  ['mean_speed', 'compare.row.mean_speed', (m) => m.mean_speed.toFixed(2)],
+  ['stuck_agents', 'compare.row.stuck', (m) => m.stuck_agents.toLocaleString('en-US')],
 ];
 
 /** Plot titles per series key. */
 const TITLES = {
-  arrived_share: 'Arrived (share)',
-  collisions_agent_agent: 'Collisions (cumulative)',
-  penetrations_agent_obstacle: 'Penetrations (cumulative)',
-  speed: 'Mean speed (px/step)',
-  stuck_agents: 'Stuck agents',
+  arrived_share: 'compare.plot.arrived',
+  collisions_agent_agent: 'compare.plot.collisions',
+  penetrations_agent_obstacle: 'compare.plot.penetrations',
+  speed: 'compare.plot.speed',
+  stuck_agents: 'compare.plot.stuck',
 };
 
 /** Fills the table: a header row of pane names, one row per metric, one column per pane. */
@@ -46,7 +47,7 @@ export function drawTable(table, panes, metrics) {
   for (const [key, label, format] of ROWS) {
     const tr = document.createElement('tr');
     tr.dataset.key = key;
-    tr.append(Object.assign(document.createElement('td'), { textContent: label }));
+    tr.append(Object.assign(document.createElement('td'), { textContent: t(label) }));
     for (const m of metrics) tr.append(Object.assign(document.createElement('td'), { textContent: format(m) }));
     body.append(tr);
   }
@@ -60,8 +61,11 @@ function plotCanvas(container, key) {
     figure.className = 'plot';
     figure.dataset.key = key;
     const canvas = document.createElement('canvas');
-    canvas.setAttribute('aria-label', TITLES[key] ?? key);
-    figure.append(Object.assign(document.createElement('figcaption'), { textContent: TITLES[key] ?? key }), canvas);
+    const title = TITLES[key] ? t(TITLES[key]) : key;
+    canvas.setAttribute('aria-label', title);
+    const caption = Object.assign(document.createElement('figcaption'), { textContent: title });
+    if (TITLES[key]) caption.dataset.i18n = TITLES[key];
+    figure.append(caption, canvas);
     container.append(figure);
   }
   return figure.querySelector('canvas');

@@ -5,6 +5,7 @@
 // on another site (<flock-path>; the server must allow CORS, see README "Hosting").
 
 import { capturePanicReports, isPanic, messageOf, setupBanner, showMessage, showPanic } from './errors.js';
+import { t } from './i18n.js';
 
 /** The wasm-bindgen glue and the wasm it loads (named here to say what went wrong). */
 export const PKG_URL = new URL('../../pkg/flockpath.js', import.meta.url).href;
@@ -14,21 +15,18 @@ export const WASM_URL = new URL('../../pkg/flockpath_bg.wasm', import.meta.url).
 function loadError(what, url, error, hint = '') {
   // The browser's detail often repeats the URL the message already names.
   const detail = messageOf(error).replace(` fetching '${url}'`, '').replace(`: ${url}`, '');
-  return new Error(`The flockpath simulation could not be loaded: ${what} (${detail}).${hint}`);
+  return new Error(t('boot.load_failed', { what, detail, hint: hint ? ` ${hint}` : '' }));
 }
 
 /** The hint for a request the browser refused: on another site, CORS or the page's CSP. */
 function refusedHint() {
   if (new URL(PKG_URL).origin === location.origin) return '';
-  return (
-    ' This page is on another site than flockpath: the flockpath server must send Access-Control-Allow-Origin, ' +
-    'and a Content-Security-Policy must allow its origin (see flockpath’s README, “Hosting”).'
-  );
+  return t('boot.hint_cors');
 }
 
 /** The hint for glue missing on flockpath's own site: the build did not run. */
 function buildHint() {
-  return new URL(PKG_URL).origin === location.origin ? ' Build it with: bash scripts/build-wasm.sh' : '';
+  return new URL(PKG_URL).origin === location.origin ? t('boot.hint_build') : '';
 }
 
 let loaded = null;
@@ -43,7 +41,7 @@ export function loadWasm() {
     try {
       module = await import(PKG_URL);
     } catch (error) {
-      throw loadError(`the browser refused or could not find ${PKG_URL}`, PKG_URL, error, refusedHint() || buildHint());
+      throw loadError(t('boot.not_found', { url: PKG_URL }), PKG_URL, error, refusedHint() || buildHint());
     }
     let wasm;
     try {
@@ -52,14 +50,13 @@ export function loadWasm() {
       // fetch() rejects with a TypeError when the browser refuses it (CORS, CSP) or is offline; a
       // CompileError is the CSP refusing WebAssembly or a file that is not wasm; else an HTTP error.
       if (error instanceof TypeError) {
-        throw loadError(`the browser refused or could not fetch ${WASM_URL}`, WASM_URL, error, refusedHint());
+        throw loadError(t('boot.not_fetched', { url: WASM_URL }), WASM_URL, error, refusedHint());
       }
       const wasmApi = typeof WebAssembly !== 'undefined' ? WebAssembly : null;
       if (wasmApi && (error instanceof wasmApi.CompileError || error instanceof wasmApi.LinkError)) {
-        const hint = " A Content-Security-Policy must allow 'wasm-unsafe-eval' in script-src (see flockpath’s README, “Hosting”).";
-        throw loadError(`${WASM_URL} could not be started as WebAssembly`, WASM_URL, error, hint);
+        throw loadError(t('boot.not_wasm', { url: WASM_URL }), WASM_URL, error, t('boot.hint_csp'));
       }
-      throw loadError(`${WASM_URL} could not be loaded`, WASM_URL, error);
+      throw loadError(t('boot.not_loaded', { url: WASM_URL }), WASM_URL, error);
     }
     return { module, wasm };
   })();
@@ -78,7 +75,7 @@ export function bootPage(what, start) {
   return (async () => start(await loadWasm()))().catch((error) => {
     const message = messageOf(error);
     document.getElementById('loading')?.setAttribute('hidden', '');
-    if (!(isPanic(error) && showPanic(message))) showMessage(`${what} could not start: ${message}`);
+    if (!(isPanic(error) && showPanic(message))) showMessage(t('boot.could_not_start', { what, message }));
     console.error(error);
   });
 }

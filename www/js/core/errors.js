@@ -1,5 +1,8 @@
 // Messages for the user: a dismissable banner for refused input, a loud panel for a crash.
 
+import { t } from './i18n.js';
+import { refusalText } from './refusals.js';
+
 const banner = () => document.getElementById('banner');
 
 /**
@@ -17,6 +20,9 @@ export function messageOf(error) {
 }
 
 function readableText(error) {
+  // A refusal from the core in the page's language (English pages: the core's own words).
+  const worded = refusalText(error);
+  if (worded) return worded;
   if (error instanceof Error) return error.message || String(error);
   if (typeof error === 'string') return error;
   try {
@@ -65,7 +71,8 @@ function showDetails(details) {
     box = document.createElement('details');
     box.id = 'banner-details';
     const summary = document.createElement('summary');
-    summary.textContent = 'details';
+    summary.dataset.i18n = 'common.details';
+    summary.textContent = t('common.details');
     box.append(summary, document.createElement('code'));
     document.getElementById('banner-text')?.after(box);
   }
@@ -114,15 +121,14 @@ export function showPanic(message) {
   panel.className = 'panic';
   panel.setAttribute('role', 'alert');
   const title = document.createElement('h2');
-  title.textContent = 'The simulation crashed';
+  title.textContent = t('panic.title');
   const explain = document.createElement('p');
-  explain.textContent =
-    'This is a bug in flockpath, not in your scene. Copy the message below into a bug report, then reload.';
+  explain.textContent = t('panic.explain');
   const pre = document.createElement('pre');
   pre.textContent = lastPanicReport ? `${lastPanicReport}\n\n${message}` : message;
   const reload = document.createElement('button');
   reload.type = 'button';
-  reload.textContent = 'Reload the page';
+  reload.textContent = t('panic.reload');
   reload.addEventListener('click', () => location.reload());
   panel.append(title, explain, pre, reload);
   stage.append(panel);

@@ -1,11 +1,13 @@
 // The pages' words: one table per language (strings/en.js, strings/zh.js), chosen by `?lang=`
-// (also read from the fragment's query part) or else the browser's languages; English when
-// neither names a shipped language. Every user-visible string of the pages comes from `t`.
+// (also read from the fragment's options), else the language picked earlier in the language menu
+// (localStorage), else the browser's languages; English when none names a shipped language.
+// Every user-visible string of the pages comes from `t`.
 //
 //   t('play.pause')                       → "Pause"
 //   t('limit.agents', { count: 5, max: 4 }) → "… 5 … 4 …" (`{name}` is replaced, text only)
-//   translatePage(document)               → fills [data-i18n], [data-i18n-title],
-//                                           [data-i18n-aria-label], [data-i18n-placeholder]
+//   translatePage(document)               → fills [data-i18n], [data-i18n-html], [data-i18n-title],
+//                                           [data-i18n-aria-label], [data-i18n-placeholder], [data-i18n-alt]
+//   setText(el, key, vars)                → el's text now, and again after every language switch
 //
 // Keys are dotted: `<page or concern>.<thing>`. A key missing from a shipped table fails
 // tests/e2e/i18n.test.mjs; at run time it falls back to English, then to the key itself.
@@ -18,6 +20,9 @@ export const LANGUAGES = Object.freeze({ en: 'English', zh: '简体中文' });
 
 const TABLES = { en, zh };
 
+/** Where the language picked in the menu is remembered. */
+export const STORAGE_KEY = 'flockpath-lang';
+
 /** A shipped language code for a BCP 47 tag (`zh-CN`, `zh-Hans` → `zh`), or null. */
 export function shippedLanguage(tag) {
   if (typeof tag !== 'string') return null;
@@ -25,9 +30,28 @@ export function shippedLanguage(tag) {
   return Object.hasOwn(TABLES, primary) ? primary : null;
 }
 
+/** The `lang=` option of a location: the query's, else the fragment's (`#s=…&lang=zh`). */
+export function languageFromLocation(loc = typeof location === 'undefined' ? null : location) {
+  if (!loc) return null;
+  const fromQuery = new URLSearchParams(loc.search).get('lang');
+  if (shippedLanguage(fromQuery)) return shippedLanguage(fromQuery);
+  const part = loc.hash.replace(/^#/, '').split('&').find((p) => p.startsWith('lang='));
+  return part ? shippedLanguage(decodeURIComponent(part.slice('lang='.length))) : null;
+}
+
+function storedLanguage() {
+  try {
+    return shippedLanguage(globalThis.localStorage?.getItem(STORAGE_KEY) ?? null);
+  } catch {
+    return null; // storage refused (sandboxed iframe, privacy settings)
+  }
+}
+
 function chooseLanguage() {
-  const fromUrl = typeof location === 'undefined' ? null : new URLSearchParams(location.search).get('lang');
-  if (fromUrl && shippedLanguage(fromUrl)) return shippedLanguage(fromUrl);
+  const linked = languageFromLocation();
+  if (linked) return linked;
+  const stored = storedLanguage();
+  if (stored) return stored;
   const preferred = typeof navigator === 'undefined' ? [] : navigator.languages ?? [navigator.language];
   for (const tag of preferred) {
     const code = shippedLanguage(tag);
@@ -37,46 +61,157 @@ function chooseLanguage() {
 }
 
 let current = chooseLanguage();
+const listeners = new Set();
 
 /** The language the page speaks now (`en` or `zh`). */
 export function language() {
   return current;
 }
 
-/** Switches language (an unknown code is ignored) and re-translates `root`. */
+/** The BCP 47 tag of a shipped language for `<html lang>` (`zh` → `zh-Hans`). */
+export function htmlLang(code = current) {
+  return code === 'zh' ? 'zh-Hans' : code;
+}
+
+/**
+ * Switches language (an unknown code is ignored), re-translates `root` and tells every listener
+ * (`onLanguageChange`) and the window (`flockpath-language` event). Returns the language now.
+ */
 export function setLanguage(code, root = typeof document === 'undefined' ? null : document) {
   const shipped = shippedLanguage(code);
   if (!shipped) return current;
+  const changed = shipped !== current;
   current = shipped;
   if (root) translatePage(root);
+  if (changed) {
+    for (const fn of [...listeners]) {
+      try {
+        fn(current);
+      } catch (error) {
+        console.error(error);
+      }
+    }
+    if (typeof window !== 'undefined') window.dispatchEvent(new CustomEvent('flockpath-language', { detail: current }));
+  }
   return current;
 }
 
-/** The text for `key` in the current language, with `{name}` replaced by `vars.name`. */
-export function t(key, vars = undefined) {
-  const text = TABLES[current][key] ?? en[key] ?? key;
-  if (!vars) return text;
-  return text.replace(/\{(\w+)\}/g, (whole, name) => (Object.hasOwn(vars, name) ? String(vars[name]) : whole));
+/** Runs `fn(code)` after every language switch (to redraw words drawn in code); returns an off switch. */
+export function onLanguageChange(fn) {
+  listeners.add(fn);
+  return () => listeners.delete(fn);
 }
 
-const ATTRIBUTES = [
-  ['data-i18n-title', 'title'],
-  ['data-i18n-aria-label', 'aria-label'],
-  ['data-i18n-placeholder', 'placeholder'],
-  ['data-i18n-alt', 'alt'],
-];
+/** Whether the current (or English) table has `key`. */
+export function hasKey(key) {
+  return Object.hasOwn(TABLES[current], key) || Object.hasOwn(en, key);
+}
+
+const fill = (text, vars) =>
+  vars ? text.replace(/\{(\w+)\}/g, (whole, name) => (Object.hasOwn(vars, name) ? String(vars[name]) : whole)) : text;
+
+/** The text for `key` in the current language, with `{name}` replaced by `vars.name`. */
+export function t(key, vars = undefined) {
+  return fill(TABLES[current][key] ?? en[key] ?? key, vars);
+}
+
+/**
+ * The text for `key`, or `fallback` when no table has it: for words that come from the core
+ * (a planner's label, a parameter's help, a preset's description) keyed by their stable name.
+ */
+export function tOr(key, fallback, vars = undefined) {
+  const text = TABLES[current][key] ?? en[key];
+  return text === undefined ? fill(String(fallback ?? ''), vars) : fill(text, vars);
+}
+
+/** A number in the page's language (digit grouping). */
+export function formatNumber(value, options = undefined) {
+  return Number(value).toLocaleString(current === 'zh' ? 'zh-CN' : 'en-US', options);
+}
+
+/**
+ * Sets `el`'s text to `t(key, vars)` and marks it, so `translatePage` (a language switch) writes
+ * it again in the new language. Returns `el`.
+ */
+export function setText(el, key, vars = undefined) {
+  el.dataset.i18n = key;
+  if (vars) el.dataset.i18nVars = JSON.stringify(vars);
+  else delete el.dataset.i18nVars;
+  const text = t(key, vars);
+  if (el.textContent !== text) el.textContent = text;
+  return el;
+}
+
+/** Sets attribute `name` (`title`, `aria-label`, `placeholder`, `alt`) to `t(key, vars)`, marked likewise. */
+export function setAttr(el, name, key, vars = undefined) {
+  el.setAttribute(`data-i18n-${name}`, key);
+  if (vars) el.setAttribute(`data-i18n-${name}-vars`, JSON.stringify(vars));
+  else el.removeAttribute(`data-i18n-${name}-vars`);
+  el.setAttribute(name, t(key, vars));
+  return el;
+}
+
+const ATTRIBUTES = ['title', 'aria-label', 'placeholder', 'alt'];
+
+/** Elements a `data-i18n-html` text may hold; any other markup is shown as its text. */
+const INLINE = new Set(['KBD', 'CODE', 'STRONG', 'EM', 'B', 'I', 'SPAN']);
+
+function varsOf(el, attribute) {
+  const json = el.getAttribute(attribute);
+  if (!json) return undefined;
+  try {
+    return JSON.parse(json);
+  } catch {
+    return undefined;
+  }
+}
+
+/** Puts a table's text with inline markup (`<kbd>`, `<code>`, …; no attributes) into `el`. */
+function setInlineHtml(el, text) {
+  const template = el.ownerDocument.createElement('template');
+  template.innerHTML = text;
+  const clean = (node) => {
+    for (const child of [...node.childNodes]) {
+      if (child.nodeType === 1) {
+        if (!INLINE.has(child.tagName)) {
+          child.replaceWith(el.ownerDocument.createTextNode(child.textContent));
+          continue;
+        }
+        for (const a of [...child.attributes]) child.removeAttribute(a.name);
+        clean(child);
+      } else if (child.nodeType !== 3) {
+        child.remove();
+      }
+    }
+  };
+  clean(template.content);
+  el.replaceChildren(template.content);
+}
 
 /**
  * Fills every marked element under `root` in the current language: `data-i18n="key"` sets the
- * text (the element must hold text only), `data-i18n-title="key"` etc. set that attribute.
+ * text (the element must hold text only), `data-i18n-html="key"` text with inline markup,
+ * `data-i18n-title="key"` etc. set that attribute; `data-i18n-vars` (JSON) fills `{name}`s.
+ * On a document it also sets `<html lang>` (unless it carries `data-i18n-keep-lang`).
  */
 export function translatePage(root = document) {
-  if (root.documentElement) root.documentElement.lang = current === 'zh' ? 'zh-Hans' : current;
-  for (const el of root.querySelectorAll('[data-i18n]')) el.textContent = t(el.dataset.i18n);
-  for (const [data, attribute] of ATTRIBUTES) {
-    for (const el of root.querySelectorAll(`[${data}]`)) el.setAttribute(attribute, t(el.getAttribute(data)));
+  // A page whose content is written in one language (course notes) keeps its own `lang`.
+  const html = root.documentElement;
+  if (html && !html.hasAttribute('data-i18n-keep-lang')) html.lang = htmlLang();
+  for (const el of root.querySelectorAll('[data-i18n]')) {
+    const text = t(el.dataset.i18n, varsOf(el, 'data-i18n-vars'));
+    if (el.textContent !== text) el.textContent = text;
+  }
+  for (const el of root.querySelectorAll('[data-i18n-html]')) setInlineHtml(el, t(el.dataset.i18nHtml));
+  for (const attribute of ATTRIBUTES) {
+    for (const el of root.querySelectorAll(`[data-i18n-${attribute}]`)) {
+      el.setAttribute(attribute, t(el.getAttribute(`data-i18n-${attribute}`), varsOf(el, `data-i18n-${attribute}-vars`)));
+    }
   }
 }
+
+/** The English table (the reference; refusals.js finds a label's key by its English words). */
+export { en };
 
 /** Every shipped table, for the missing-key test. */
 export const TABLES_FOR_TESTS = TABLES;

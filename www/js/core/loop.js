@@ -31,6 +31,7 @@ const STYLE = `
 
 import { blitSim } from './blit.js';
 import { PlanningSlices } from './planning.js';
+import { t } from './i18n.js';
 
 /** Whether the browser has input waiting (Chromium's `isInputPending`; false elsewhere). */
 function inputPending() {
@@ -91,12 +92,8 @@ function setupPaceReadout(app) {
       app.pace = { wanted: asked, run, limited };
       show(
         limited,
-        limited ? `→ ${run.toFixed(1)}× (frame budget)` : '',
-        limited
-          ? `Speed asks for ${asked} steps per frame; ${run.toFixed(1)} fit in this frame budget ` +
-              `(${SIM_BUDGET_MS} ms of simulation per frame), so the page stays responsive. ` +
-              'The run is the same, it only advances more slowly.'
-          : '',
+        limited ? t('pace.short', { run: run.toFixed(1) }) : '',
+        limited ? t('pace.long', { asked, run: run.toFixed(1), budget: SIM_BUDGET_MS }) : '',
       );
       frames = 0;
       wanted = 0;

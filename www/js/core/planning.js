@@ -5,6 +5,8 @@
 // back to the scene shown before (`Sim.cancel_planning`). The path is the same whatever the
 // slices: the core runs the same iterations. Used by the playground's loop and by <flock-path>.
 
+import { setAttr, setText, t } from './i18n.js';
+
 /** Time (ms) given to planning per frame: short enough that input is answered at once. */
 export const PLANNING_BUDGET_MS = 24;
 
@@ -61,15 +63,15 @@ export class PlanningSlices {
       const cancel = document.createElement('button');
       cancel.type = 'button';
       cancel.className = 'planning-cancel';
-      cancel.textContent = 'Cancel';
-      cancel.title = 'Stop planning and go back to the previous scene';
+      setText(cancel, 'common.cancel');
+      setAttr(cancel, 'title', 'planning.cancel_title');
       cancel.addEventListener('click', () => this.cancel());
       box.append(label, bar, cancel);
       this.stage.append(box);
       this.box = box;
     }
     const percent = Math.floor(progress * 100);
-    this.box.querySelector('.planning-label').textContent = `Planning the group path… ${percent}%`;
+    this.box.querySelector('.planning-label').textContent = t('planning.progress', { percent });
     this.box.querySelector('progress').value = progress;
     this.box.querySelector('.planning-cancel').hidden = !this.call((sim) => sim.can_cancel_planning());
   }

@@ -3,6 +3,8 @@
 // first), Reset (#reset), the Speed slider (#spf, #spf-value: steps per frame, 1…20) and their
 // keys (Space, S, R) while the page or a canvas has focus (keys.js).
 
+import { setText } from './i18n.js';
+
 const $ = (id) => document.getElementById(id);
 
 /**
@@ -12,7 +14,7 @@ const $ = (id) => document.getElementById(id);
 export function setupPlayback(app) {
   const play = $('play');
   const refreshPlay = () => {
-    play.textContent = app.playing ? 'Pause' : 'Play';
+    setText(play, app.playing ? 'playback.pause' : 'playback.play');
     play.setAttribute('aria-pressed', String(app.playing));
   };
   app.addEventListener('playing', refreshPlay);
@@ -30,7 +32,7 @@ export function setupPlayback(app) {
   const spfValue = $('spf-value');
   const applySpeed = () => {
     app.stepsPerFrame = Math.min(20, Math.max(1, Math.round(Number(spf.value)) || 1));
-    spfValue.textContent = `${app.stepsPerFrame}×`;
+    setText(spfValue, 'playback.times', { n: app.stepsPerFrame });
   };
   spf.value = String(app.stepsPerFrame);
   spf.addEventListener('input', applySpeed);

@@ -4,6 +4,7 @@
 // and reset.
 
 import { isPanic, messageOf, showMessage, showPanic } from './errors.js';
+import { t } from './i18n.js';
 
 export class SimHost extends EventTarget {
   /**
@@ -35,7 +36,7 @@ export class SimHost extends EventTarget {
    */
   guard(fn, { rethrow = false } = {}) {
     if (this.crashed) {
-      const error = new Error('the simulation crashed; reload the page');
+      const error = new Error(t('panic.crashed_short'));
       if (rethrow) throw error;
       return { ok: false, error };
     }

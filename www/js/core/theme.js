@@ -8,6 +8,8 @@
 // bar (replaceState; the fragment, which holds the scene and is rewritten by url.js, is left
 // alone), so a shared link keeps the theme.
 
+import { setAttr, setText } from './i18n.js';
+
 export const THEMES = ['standard', 'projector'];
 
 /** The theme a location asks for: the fragment's `theme=` option, else the query's, else standard. */
@@ -73,8 +75,8 @@ function addToggle() {
   button.type = 'button';
   button.id = 'theme-toggle';
   button.className = 'ghost';
-  button.textContent = 'Projector';
-  button.title = 'Projector mode: white field, thick dark trails, large agents, larger text (URL option theme=projector)';
+  setText(button, 'theme.projector');
+  setAttr(button, 'title', 'theme.projector_title');
   button.setAttribute('aria-pressed', String(current === 'projector'));
   button.addEventListener('click', () => {
     writeToLocation(setTheme(current === 'projector' ? 'standard' : 'projector'));

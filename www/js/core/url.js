@@ -4,6 +4,7 @@
 
 import { messageOf, showMessage } from './errors.js';
 import { fragmentValue } from './fragment.js';
+import { t } from './i18n.js';
 
 /** The `s=` value of the current location's fragment, or null when there is none. */
 export function sceneFromLocation(hash = location.hash) {
@@ -45,7 +46,7 @@ export function watchLocation(app) {
       app.load(value, { rethrow: true });
     } catch (error) {
       if (!app.crashed) {
-        showMessage(`The scene in the link could not be loaded: ${messageOf(error)}. The previous scene keeps running.`);
+        showMessage(t('error.link_kept', { reason: messageOf(error) }));
       }
     }
   });

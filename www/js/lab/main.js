@@ -8,6 +8,7 @@ import { bootPage } from '../core/boot.js';
 import { messageOf, showMessage } from '../core/errors.js';
 import { drawPlot } from '../core/plot.js';
 import { onPage } from '../core/keys.js';
+import { setText, t } from '../core/i18n.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -42,7 +43,7 @@ function convergence(runs) {
     margin: { left: 58, right: 10, top: 10, bottom: 26 },
     yTicks,
     xTicks: [{ value: 0, text: '0' }, { value: budget, text: String(budget) }],
-    xLabel: 'iteration',
+    xLabel: t('lab.iteration'),
     legend: true,
     background: '#ffffff',
     fit: false,
@@ -52,7 +53,7 @@ function convergence(runs) {
 /** Format a value the way Table 3 does. */
 const fmt = (v) => (Number.isFinite(v) ? (v === 0 ? '0' : v.toExponential(4)) : String(v));
 
-bootPage('the lab', ({ module, wasm }) => {
+bootPage(t('boot.what_lab'), ({ module, wasm }) => {
   const options = JSON.parse(module.lab_options_json());
   const fnSelect = $('lab-function');
   const algSelect = $('lab-algorithm');
@@ -114,7 +115,7 @@ bootPage('the lab', ({ module, wasm }) => {
 
   const setPlaying = (playing) => {
     state.playing = playing;
-    $('lab-play').textContent = playing ? 'Pause' : 'Play';
+    setText($('lab-play'), playing ? 'playback.pause' : 'playback.play');
   };
 
   const step = (n) => {
@@ -137,7 +138,7 @@ bootPage('the lab', ({ module, wasm }) => {
     }
     drawPlot(plot, convergence(state.runs.map((r) => ({ name: r.name, curve: r.lab.curve(), budget: r.lab.iterations(), primary: r.primary }))));
     $('lab-status').textContent =
-      `· ${primary.name} · iteration ${lab.iteration()}/${lab.iterations()} · best ${fmt(lab.best_value())} · ${lab.particles()} particles`;
+      t('lab.status', { name: primary.name, iteration: lab.iteration(), iterations: lab.iterations(), best: fmt(lab.best_value()), particles: lab.particles() });
   };
 
   let last = performance.now();
@@ -151,7 +152,7 @@ bootPage('the lab', ({ module, wasm }) => {
     fpsFrames += 1;
     if (now - last > 1000) {
       const mean = state.renderMs.reduce((a, b) => a + b, 0) / Math.max(1, state.renderMs.length);
-      $('lab-fps').textContent = `${Math.round((fpsFrames * 1000) / (now - last))} fps · frame ${mean.toFixed(2)} ms`;
+      $('lab-fps').textContent = t('lab.fps', { fps: Math.round((fpsFrames * 1000) / (now - last)), ms: mean.toFixed(2) });
       last = now;
       fpsFrames = 0;
     }
@@ -176,13 +177,13 @@ bootPage('the lab', ({ module, wasm }) => {
     $('lab-progress-text').textContent = '';
     $('lab-30').disabled = true;
     $('lab-cancel').disabled = false;
-    $('lab-table-time').textContent = `${s.fn}, d = ${s.dim}, N = ${s.population}, T = ${s.iterations}, seed ${s.seed}: running…`;
+    $('lab-table-time').textContent = t('lab.table_running', { fn: s.fn, dim: s.dim, population: s.population, iterations: s.iterations, seed: s.seed });
     const worker = new Worker(new URL('./worker.js', import.meta.url), { type: 'module' });
     state.worker = worker;
     worker.onmessage = ({ data }) => {
       if (data.type === 'progress') {
         $('lab-progress').value = data.done / data.total;
-        $('lab-progress-text').textContent = `${data.done}/${data.total} runs`;
+        $('lab-progress-text').textContent = t('lab.runs_progress', { done: data.done, total: data.total });
       } else if (data.type === 'row') {
         const r = data.row;
         const tr = document.createElement('tr');
@@ -197,8 +198,7 @@ bootPage('the lab', ({ module, wasm }) => {
         const best = Math.min(...means);
         for (const row of tbody.rows) row.cells[3].classList.toggle('best', Number(row.cells[3].textContent) === best);
       } else if (data.type === 'done') {
-        finishTable(`${s.fn}, d = ${s.dim}, N = ${s.population}, T = ${s.iterations}, seed ${s.seed}: ` +
-          `${list.length} × 30 runs in ${data.seconds.toFixed(1)} s (worker)`);
+        finishTable(t('lab.table_done', { fn: s.fn, dim: s.dim, population: s.population, iterations: s.iterations, seed: s.seed, n: list.length, seconds: data.seconds.toFixed(1) }));
         state.lastTableSeconds = data.seconds;
       } else if (data.type === 'error') {
         finishTable('');
@@ -207,7 +207,7 @@ bootPage('the lab', ({ module, wasm }) => {
     };
     worker.onerror = (e) => {
       finishTable('');
-      showMessage(`the worker failed: ${e.message}`);
+      showMessage(t('lab.worker_failed', { reason: e.message }));
     };
     worker.postMessage({ algorithms: list, fn: s.fn, dim: s.dim, population: s.population, iterations: s.iterations, seed: s.seed, runs: 30 });
   };
@@ -225,7 +225,7 @@ bootPage('the lab', ({ module, wasm }) => {
   });
   $('lab-speed').addEventListener('input', () => {
     state.speed = Number($('lab-speed').value);
-    $('lab-speed-value').textContent = `${state.speed}×`;
+    $('lab-speed-value').textContent = t('playback.times', { n: state.speed });
   });
   for (const input of [fnSelect, algSelect, $('lab-dim'), $('lab-pop'), $('lab-iters'), $('lab-seed')]) {
     input.addEventListener('change', () => {
@@ -235,7 +235,7 @@ bootPage('the lab', ({ module, wasm }) => {
   }
   compare.addEventListener('change', () => reset());
   $('lab-30').addEventListener('click', startTable);
-  $('lab-cancel').addEventListener('click', () => finishTable('cancelled'));
+  $('lab-cancel').addEventListener('click', () => finishTable(t('lab.cancelled')));
   $('lab-ping').addEventListener('click', () => {
     state.pings += 1;
     $('lab-ping-count').textContent = String(state.pings);

@@ -3,6 +3,7 @@
 import { TOOLS } from './editor.js';
 import { commandAllowed, onPage } from '../core/keys.js';
 import { setupPlayback } from '../core/playback.js';
+import { onLanguageChange, t, tOr } from '../core/i18n.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -17,7 +18,7 @@ export function setupControls(app, editor) {
   const setSeed = (value) => {
     if (!Number.isInteger(value) || value < 0 || value > 0xffffffff) {
       app.guard(() => {
-        throw new Error(`the seed must be a whole number from 0 to 4294967295, not ${seed.value || 'empty'}`);
+        throw new Error(t('run.seed_refused', { value: seed.value || t('run.empty') }));
       });
       seed.value = String(app.scene.seed ?? 0);
       return;
@@ -55,15 +56,29 @@ export function setupControls(app, editor) {
   const preset = $('preset');
   const description = $('preset-description');
   for (const p of app.presets) {
-    preset.append(Object.assign(document.createElement('option'), { value: p.name, textContent: p.name, title: p.description }));
+    preset.append(Object.assign(document.createElement('option'), {
+      value: p.name,
+      textContent: tOr(`preset.${p.name}`, p.name),
+      title: tOr(`preset.${p.name}.description`, p.description),
+    }));
   }
-  const custom = Object.assign(document.createElement('option'), { value: '', textContent: '(edited scene)', disabled: true });
+  const custom = Object.assign(document.createElement('option'), { value: '', textContent: t('play.edited_scene'), disabled: true });
   preset.append(custom);
   const showPreset = () => {
     const match = app.presets.find((p) => p.name === app.scene.name);
     preset.value = match ? match.name : '';
-    description.textContent = match ? match.description : app.scene.name ? `Scene “${app.scene.name}”` : '';
+    description.textContent = match
+      ? tOr(`preset.${match.name}.description`, match.description)
+      : app.scene.name ? t('play.scene_named', { name: app.scene.name }) : '';
   };
+  onLanguageChange(() => {
+    for (const option of preset.options) {
+      const p = app.presets.find((q) => q.name === option.value);
+      if (p) Object.assign(option, { textContent: tOr(`preset.${p.name}`, p.name), title: tOr(`preset.${p.name}.description`, p.description) });
+    }
+    custom.textContent = t('play.edited_scene');
+    showPreset();
+  });
   preset.addEventListener('change', () => {
     const name = preset.value;
     const text = app.guard(() => app.module.preset_scene_json(name));

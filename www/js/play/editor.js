@@ -11,7 +11,7 @@
 
 import { clientToScene, sceneUnitsPerCssPixel, viewTransform } from '../core/view.js';
 import { PathEditor } from './path-edit.js';
-import { t } from '../core/i18n.js';
+import { onLanguageChange, setText, t } from '../core/i18n.js';
 
 /** Tool names in number-key order (1…7). */
 export const TOOLS = ['select', 'circle', 'rect', 'polygon', 'goal', 'group', 'path'];
@@ -19,14 +19,15 @@ export const TOOLS = ['select', 'circle', 'rect', 'polygon', 'goal', 'group', 'p
 /** Tools whose shape is a list of clicked points. */
 const POINT_TOOLS = ['polygon', 'path'];
 
+/** The hint of each tool (its key in the strings tables). */
 const HINTS = {
-  select: 'Click an item to select it, drag to move it, Delete removes it.',
-  circle: 'Drag from the centre outwards to draw a circular obstacle.',
-  rect: 'Drag from corner to corner to draw a rectangular obstacle.',
-  polygon: 'Click to add points; double-click, Enter or click the first point to close; Esc cancels.',
-  goal: 'Click to place a goal; the active group heads for it.',
-  group: 'Drag a spawn region for a new group of agents.',
-  path: 'Click points along the way; double-click or Enter ends the path; the active group follows it (Boids).',
+  select: 'hint.select',
+  circle: 'hint.circle',
+  rect: 'hint.rect',
+  polygon: 'hint.polygon',
+  goal: 'hint.goal',
+  group: 'hint.group',
+  path: 'hint.path',
 };
 
 /** The `pointerId` of a gesture made with the keyboard cursor (no pointer has it). */
@@ -87,6 +88,7 @@ export class Editor {
     }
     document.getElementById('tools')?.addEventListener('keydown', (e) => this.toolKey(e));
     this.setTool('select');
+    onLanguageChange(() => this.showHint());
   }
 
   /** The live region that says where the keyboard cursor is and what Enter did. */
@@ -129,7 +131,13 @@ export class Editor {
   /** The hint line under the canvas: the tool's, plus the keys while the keyboard cursor shows. */
   showHint() {
     const hint = document.getElementById('hint');
-    if (hint) hint.textContent = this.keyboard ? `${HINTS[this.tool]} ${t('a11y.cursor.keys')}` : HINTS[this.tool];
+    if (!hint) return;
+    // The tool's hint from the tables (re-translated on a language switch), plus the cursor keys.
+    if (!this.keyboard) setText(hint, HINTS[this.tool]);
+    else {
+      delete hint.dataset.i18n;
+      hint.textContent = `${t(HINTS[this.tool])} ${t('a11y.cursor.keys')}`;
+    }
   }
 
   /** Shows the keyboard cursor (at the scene's centre the first time). */
@@ -391,7 +399,7 @@ export class Editor {
     const groups = this.app.scene.groups ?? [];
     const model = groups[this.app.activeGroup];
     const group = {
-      name: `group ${groups.length + 1}`,
+      name: t('groups.default_name', { n: groups.length + 1 }),
       color: this.app.nextColor(),
       count: 30,
       spawn,

@@ -5,6 +5,7 @@
 import { messageOf, showMessage } from '../core/errors.js';
 import { download } from '../core/download.js';
 import { fileStem } from './share.js';
+import { formatNumber, onLanguageChange, setAttr, setText, t } from '../core/i18n.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -20,18 +21,20 @@ const PATH_EXPORTS = {
   svg: { ext: 'svg', type: 'image/svg+xml', make: (sim) => sim.export_trails_svg() },
 };
 
-const ordinal = (n) => (n === 2 ? '2nd' : n === 3 ? '3rd' : `${n}th`);
+const ordinal = (n) => (n === 2 ? t('export.2nd') : n === 3 ? t('export.3rd') : t('export.nth', { n }));
 
 /** One line about the recording, and the thinning note (null when not thinned). */
 export function describeRecording(info) {
   const steps = info.last_step ?? 0;
-  const line =
-    `Recorded for export: ${info.frames.toLocaleString('en-US')} frames up to step ` +
-    `${steps.toLocaleString('en-US')} of ${info.agents.toLocaleString('en-US')} agents ` +
-    `(budget ${Math.round(info.budget_bytes / MIB)} MiB ≈ ${info.capacity_steps.toLocaleString('en-US')} steps).`;
+  const line = t('export.recorded', {
+    frames: formatNumber(info.frames),
+    steps: formatNumber(steps),
+    agents: formatNumber(info.agents),
+    mib: Math.round(info.budget_bytes / MIB),
+    capacity: formatNumber(info.capacity_steps),
+  });
   const note = info.thinned > 0
-    ? `The recording reached its ${Math.round(info.budget_bytes / MIB)} MiB budget and now keeps every ` +
-      `${ordinal(info.every)} step: exports are coarser in time; the run itself is unchanged.`
+    ? t('export.thinned', { mib: Math.round(info.budget_bytes / MIB), ordinal: ordinal(info.every) })
     : null;
   return { line, note };
 }
@@ -57,6 +60,7 @@ export function setupExport(app, canvas) {
     if (app.playing && !app.crashed) refreshInfo();
   }, INFO_REFRESH_MS);
   refreshInfo();
+  onLanguageChange(refreshInfo);
 
   const options = () => ({ fps: Number($('export-fps').value), scale: Number($('export-scale').value) });
 
@@ -75,23 +79,23 @@ export function setupExport(app, canvas) {
         const name = `${stem}-step-${steps}.png`;
         canvas.toBlob((blob) => {
           if (!blob) {
-            showMessage('the canvas could not be turned into a PNG');
+            showMessage(t('export.png_failed'));
             return;
           }
           download(name, blob);
-          status.textContent = `Downloading ${name}.`;
+          status.textContent = t('share.downloading', { name });
         }, 'image/png');
         return;
       }
       const spec = PATH_EXPORTS[kind];
       const result = app.guard((sim) => spec.make(sim, options()));
       if (!result.ok) {
-        status.textContent = `Not exported: ${messageOf(result.error)}`;
+        status.textContent = t('export.not_exported', { reason: messageOf(result.error) });
         return;
       }
       const name = `${stem}.${spec.ext}`;
       download(name, result.value, spec.type);
-      status.textContent = `Downloading ${name} (${Math.ceil(result.value.length / 1024).toLocaleString('en-US')} KiB).`;
+      status.textContent = t('export.downloading_size', { name, kib: formatNumber(Math.ceil(result.value.length / 1024)) });
     });
   }
 
@@ -109,7 +113,7 @@ function setupVideo(app, canvas, status) {
   const supported = typeof MediaRecorder !== 'undefined' && typeof canvas.captureStream === 'function';
   if (!supported) {
     button.disabled = true;
-    button.title = 'This browser cannot record the canvas (no MediaRecorder)';
+    setAttr(button, 'title', 'export.no_recorder');
     return;
   }
   const mimeType = ['video/webm;codecs=vp9', 'video/webm;codecs=vp8', 'video/webm']
@@ -124,7 +128,7 @@ function setupVideo(app, canvas, status) {
       stream = canvas.captureStream(30);
       recorder = new MediaRecorder(stream, mimeType ? { mimeType } : undefined);
     } catch (error) {
-      status.textContent = `Recording could not start: ${messageOf(error)}`;
+      status.textContent = t('export.record_failed', { reason: messageOf(error) });
       return;
     }
     const chunks = [];
@@ -136,17 +140,17 @@ function setupVideo(app, canvas, status) {
       clearInterval(timer);
       for (const track of stream.getTracks()) track.stop();
       indicator.hidden = true;
-      button.textContent = 'Record WebM';
+      setText(button, 'export.record');
       button.classList.remove('recording');
       recorder = null;
       const name = `${fileStem(app.scene)}.webm`;
       download(name, new Blob(chunks, { type: 'video/webm' }));
-      status.textContent = `Downloading ${name}.`;
+      status.textContent = t('share.downloading', { name });
       app.dispatchEvent(new Event('video-saved'));
     });
     recorder.start(250);
     indicator.hidden = false;
-    button.textContent = 'Stop recording';
+    setText(button, 'export.stop');
     button.classList.add('recording');
     clock.textContent = '0:00';
     timer = setInterval(() => {
@@ -159,7 +163,7 @@ function setupVideo(app, canvas, status) {
   };
   button.addEventListener('click', () => (recorder ? stop() : start()));
   // The indicator doubles as the stop button once the dialog is closed.
-  indicator.title = 'Recording the canvas: click to stop and download the WebM';
+  setAttr(indicator, 'title', 'export.rec_title');
   indicator.style.cursor = 'pointer';
   indicator.addEventListener('click', stop);
   app.addEventListener('crash', stop);

@@ -3,10 +3,29 @@
 // selects it; the core picks the agent (`agent_at`), explains it (`explanation_json`) and draws
 // the overlays. This module only shows what the core returns.
 
+import { onLanguageChange, t, tOr } from '../core/i18n.js';
+import { unitText } from '../core/params-form.js';
+
 /** How often the inspector and the stuck count refresh while the run goes on (ms). */
 const REFRESH_MS = 250;
 
 const OVERLAYS = ['stuck', 'explanation', 'landscape', 'fireflies'];
+
+/** Words the core composes with numbers: [regex over its English, key]. */
+const COMPOSED = [
+  [/^stuck: no progress towards the goal for 300\+ steps; (?<rest>.+)$/, 'explain.stuck_prefix'],
+  [/^the velocity nearest v_pref that keeps all (?<n>\d+) half-planes$/, 'explain.orca_keeps'],
+  [/^densely packed: no velocity keeps all (?<n>\d+) half-planes; (?<m>\d+) given up least$/, 'explain.orca_dense'],
+];
+
+/** One of the core's explanation words (a state, a force, a point, a value) in the page's language. */
+export function explainText(words) {
+  for (const [re, key] of COMPOSED) {
+    const m = re.exec(words);
+    if (m) return t(key, { ...m.groups, ...(m.groups.rest ? { rest: explainText(m.groups.rest) } : {}) });
+  }
+  return tOr(`explain.${words}`, words);
+}
 
 export function setupInspector(app) {
   const panel = document.getElementById('inspector');
@@ -43,7 +62,7 @@ export function setupInspector(app) {
   const refresh = () => {
     const stuck = app.guard((sim) => sim.stuck_agents().length);
     if (stuck.ok) {
-      const text = stuck.value === 0 ? '' : `${stuck.value} agent${stuck.value === 1 ? '' : 's'} stuck`;
+      const text = stuck.value === 0 ? '' : stuck.value === 1 ? t('diagnose.stuck_one') : t('diagnose.stuck_count', { n: stuck.value });
       // Written only when it changed: a write restyles the page (this runs four times a second).
       if (stuckCount.textContent !== text) stuckCount.textContent = text;
     }
@@ -53,25 +72,29 @@ export function setupInspector(app) {
     if (hint.hidden !== (e !== null)) hint.hidden = e !== null;
     if (e === null) return;
     const group = app.scene.groups?.[e.group];
-    title.textContent = `Agent ${e.agent} · ${group?.name ?? `group ${e.group + 1}`} (${e.planner})`;
+    title.textContent = t('inspector.title', {
+      agent: e.agent,
+      group: group?.name ?? t('groups.default_name', { n: e.group + 1 }),
+      planner: tOr(`planner.${e.planner}`, e.planner),
+    });
     facts.replaceChildren();
-    fact('Speed', `${e.speed.toFixed(2)} px/step`);
-    fact('State', e.state, e.stuck);
-    fact('Position', `${e.position[0].toFixed(0)}, ${e.position[1].toFixed(0)} px`);
-    fact('Neighbours', String(e.neighbours.length));
-    for (const v of e.values) fact(v.name, Number.isInteger(v.value) ? String(v.value) : v.value.toFixed(3));
+    fact(t('inspector.speed'), `${e.speed.toFixed(2)} ${unitText('px/step')}`);
+    fact(t('inspector.state'), explainText(e.state), e.stuck);
+    fact(t('inspector.position'), `${e.position[0].toFixed(0)}, ${e.position[1].toFixed(0)} ${unitText('px')}`);
+    fact(t('inspector.neighbours'), String(e.neighbours.length));
+    for (const v of e.values) fact(explainText(v.name), Number.isInteger(v.value) ? String(v.value) : v.value.toFixed(3));
     vectors.replaceChildren();
     for (const v of e.vectors) {
       const li = document.createElement('li');
       const swatch = document.createElement('span');
       swatch.className = 'swatch';
       swatch.style.background = v.color;
-      li.append(swatch, `${v.name}: ${v.length.toFixed(v.in_px ? 0 : 3)}${v.in_px ? ' px' : ''}`);
+      li.append(swatch, `${explainText(v.name)}: ${v.length.toFixed(v.in_px ? 0 : 3)}${v.in_px ? ` ${unitText('px')}` : ''}`);
       vectors.append(li);
     }
     for (const p of e.points) {
       const li = document.createElement('li');
-      li.textContent = `${p.name} at ${p.point[0].toFixed(0)}, ${p.point[1].toFixed(0)}`;
+      li.textContent = t('inspector.point_at', { name: explainText(p.name), x: p.point[0].toFixed(0), y: p.point[1].toFixed(0) });
       vectors.append(li);
     }
   };
@@ -102,4 +125,5 @@ export function setupInspector(app) {
   };
   requestAnimationFrame(tick);
   refresh();
+  onLanguageChange(refresh);
 }

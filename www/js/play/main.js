@@ -23,8 +23,9 @@ import { setupTimeline } from './timeline.js';
 import { keepLocationInSync, sceneFromLocation, watchLocation } from '../core/url.js';
 import { measure, setupView } from '../core/view.js';
 import { prefersReducedMotion } from '../core/motion.js';
+import { t, tOr } from '../core/i18n.js';
 
-bootPage('flockpath', ({ module, wasm }) => {
+bootPage(t('boot.what_play'), ({ module, wasm }) => {
   const canvas = document.getElementById('scene-canvas');
   const overlay = document.getElementById('overlay-canvas');
   const { width, height } = measure(canvas);
@@ -78,7 +79,8 @@ bootPage('flockpath', ({ module, wasm }) => {
   startLoop(app, canvas, onFrame);
   document.getElementById('loading').hidden = true;
   if (linkError !== null) {
-    showMessage(`The scene in the link could not be loaded: ${linkError}. Showing the default scene “${presets[0].name}” instead.`);
+    const name = tOr(`preset.${presets[0].name}`, presets[0].name);
+    showMessage(t('play.link_failed_default', { reason: linkError, name }));
   }
 
   attach(app);

@@ -9,24 +9,27 @@
 // pass of the whole page).
 
 import { drawPlot, formatTick } from '../core/plot.js';
+import { onLanguageChange, setAttr, setText as bindText, t, tOr } from '../core/i18n.js';
+import { unitText } from '../core/params-form.js';
 
-/** [key, label, format, shown in red when above zero]; tooltips explain the counting rules. */
+/** [key, label key, format, shown in red when above zero]; tooltips explain the counting rules. */
 const ROWS = [
-  ['steps', 'Steps', (m) => m.steps.toLocaleString('en-US')],
-  ['agents', 'Agents', (m) => m.agents.toLocaleString('en-US')],
-  ['arrived_share', 'Arrived', (m) => `${(100 * m.arrived_share).toFixed(1)} %`],
-  ['collisions_agent_agent', 'Collisions', (m) => m.collisions_agent_agent.toLocaleString('en-US')],
-  ['penetrations_agent_obstacle', 'Penetrations', (m) => m.penetrations_agent_obstacle.toLocaleString('en-US'), true],
-  ['mean_speed', 'Mean speed', (m) => `${m.mean_speed.toFixed(2)} px/step`],
-  ['stuck_agents', 'Stuck', (m) => m.stuck_agents.toLocaleString('en-US'), true],
+  ['steps', 'metrics.steps', (m) => m.steps.toLocaleString('en-US')],
+  ['agents', 'metrics.agents', (m) => m.agents.toLocaleString('en-US')],
+  ['arrived_share', 'metrics.arrived', (m) => `${(100 * m.arrived_share).toFixed(1)} %`],
+  ['collisions_agent_agent', 'metrics.collisions', (m) => m.collisions_agent_agent.toLocaleString('en-US')],
+  ['penetrations_agent_obstacle', 'metrics.penetrations', (m) => m.penetrations_agent_obstacle.toLocaleString('en-US'), true],
+  ['mean_speed', 'metrics.mean_speed', (m) => `${m.mean_speed.toFixed(2)} ${unitText('px/step')}`],
+  ['stuck_agents', 'metrics.stuck', (m) => m.stuck_agents.toLocaleString('en-US'), true],
 ];
 
+/** Tooltip keys of the rows. */
 const TIPS = {
-  arrived_share: 'Share of agents inside their goal',
-  collisions_agent_agent: 'Pairs of agents whose discs overlap at the end of a step, summed over steps',
-  penetrations_agent_obstacle: 'Agents whose centre is inside an obstacle at the end of a step, summed over steps',
-  mean_speed: 'Mean speed over agents and steps (60 steps = 1 s)',
-  stuck_agents: 'Agents that made no progress towards their goal for 300 steps',
+  arrived_share: 'metrics.tip.arrived_share',
+  collisions_agent_agent: 'metrics.tip.collisions',
+  penetrations_agent_obstacle: 'metrics.tip.penetrations',
+  mean_speed: 'metrics.tip.mean_speed',
+  stuck_agents: 'metrics.tip.stuck',
 };
 
 /** How often the readout refreshes (ms): fast enough to feel live, slow enough to read. */
@@ -39,14 +42,14 @@ function setText(node, text) {
   if (node.textContent !== text) node.textContent = text;
 }
 
-/** Per-group table columns: [key, heading, format, tooltip]. */
+/** Per-group table columns: [key, heading key, format, tooltip key]. */
 const GROUP_COLUMNS = [
-  ['arrived_share', 'Arr.', (v) => `${Math.round(100 * v)}%`, 'Share arrived'],
-  ['collisions_agent_agent', 'Coll.', (v) => v.toLocaleString('en-US'), 'Agent–agent collisions (pair-steps)'],
-  ['penetrations_agent_obstacle', 'Pen.', (v) => v.toLocaleString('en-US'), 'Agent–obstacle penetrations (agent-steps)'],
-  ['stuck_agents', 'Stuck', (v) => String(v), 'Agents without progress for 300 steps'],
-  ['queue_order', 'Queue', (v) => (v === null ? '–' : v.toFixed(2)), 'Queue order (firefly): share queued behind a brighter neighbour'],
-  ['fitness', 'Gsum', (v) => (v ? v.gsum.toFixed(1) : '–'), 'Fitness Gsum out of 100 (DESIGN §3.5, B1 weights 35/20/20/15/10 on Gm spacing, Gg goal, Gc no collision, Ga orientation, Gd distance), sampled every 20 steps'],
+  ['arrived_share', 'metrics.col.arrived', (v) => `${Math.round(100 * v)}%`, 'metrics.col.arrived_tip'],
+  ['collisions_agent_agent', 'metrics.col.collisions', (v) => v.toLocaleString('en-US'), 'metrics.col.collisions_tip'],
+  ['penetrations_agent_obstacle', 'metrics.col.penetrations', (v) => v.toLocaleString('en-US'), 'metrics.col.penetrations_tip'],
+  ['stuck_agents', 'metrics.col.stuck', (v) => String(v), 'metrics.col.stuck_tip'],
+  ['queue_order', 'metrics.col.queue', (v) => (v === null ? '–' : v.toFixed(2)), 'metrics.col.queue_tip'],
+  ['fitness', 'metrics.col.gsum', (v) => (v ? v.gsum.toFixed(1) : '–'), 'metrics.col.gsum_tip'],
 ];
 
 /** Colour of the whole-run line in the plots. */
@@ -58,8 +61,9 @@ export function setupMetrics(app) {
   const cells = new Map();
   for (const [key, label] of ROWS) {
     const dt = document.createElement('dt');
-    dt.textContent = label;
-    dt.title = TIPS[key] ?? '';
+    bindText(dt, label);
+    if (TIPS[key]) setAttr(dt, 'title', TIPS[key]);
+    else dt.title = '';
     const dd = document.createElement('dd');
     dd.dataset.key = key;
     dd.textContent = '–';
@@ -93,9 +97,11 @@ export function setupMetrics(app) {
       const canvas = document.createElement('canvas');
       canvas.className = 'plot';
       canvas.dataset.key = series.key;
-      canvas.title = `${series.label} (${series.unit}) over steps: one line per group, dark = whole run`;
+      const label = tOr(`series.${series.key}`, series.label);
+      const unit = unitText(series.unit);
+      canvas.title = t('plots.tip', { label, unit });
       plotBox.append(canvas);
-      return { ...series, canvas };
+      return { ...series, label, unit, canvas };
     });
   };
   const drawPlots = () => {
@@ -124,10 +130,11 @@ export function setupMetrics(app) {
     const body = groupTable.tBodies[0] ?? groupTable.createTBody();
     if (!groupTable.tHead) {
       const head = groupTable.createTHead().insertRow();
-      for (const text of ['Group', ...GROUP_COLUMNS.map((c) => c[1])]) {
+      for (const key of ['metrics.col.group', ...GROUP_COLUMNS.map((c) => c[1])]) {
         const th = document.createElement('th');
-        th.textContent = text;
-        th.title = GROUP_COLUMNS.find((c) => c[1] === text)?.[3] ?? '';
+        bindText(th, key);
+        const tip = GROUP_COLUMNS.find((c) => c[1] === key)?.[3];
+        if (tip) setAttr(th, 'title', tip);
         head.append(th);
       }
     }
@@ -161,6 +168,12 @@ export function setupMetrics(app) {
   // Groups (names, colours) change with the scene; the series list never does.
   app.addEventListener('scene', buildPlots);
   buildPlots();
+  // A language switch: the plots' titles are drawn on their canvases, so build and draw them again.
+  onLanguageChange(() => {
+    plots = [];
+    buildPlots();
+    forced = true;
+  });
 
   const refresh = () => {
     const result = app.guard((sim) => JSON.parse(sim.metrics_json()));
@@ -186,7 +199,7 @@ export function setupMetrics(app) {
     frames += 1;
     if (fpsSince === null) fpsSince = now;
     if (now - fpsSince >= 1000) {
-      setText(fps, `${Math.round((frames * 1000) / (now - fpsSince))} fps`);
+      setText(fps, t('metrics.fps', { n: Math.round((frames * 1000) / (now - fpsSince)) }));
       frames = 0;
       fpsSince = now;
     }
@@ -223,8 +236,8 @@ function overTime(steps, lines, { label, unit }) {
     yTicks: [{ value: 0 }],
     font: 10,
     title: label,
-    note: `max ${formatTick(hi)} ${unit}`.trim(),
-    empty: 'no data yet',
+    note: t('plots.max', { value: formatTick(hi), unit }).trim(),
+    empty: t('plots.empty'),
     background: '#ffffff',
   };
 }

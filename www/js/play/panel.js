@@ -1,7 +1,8 @@
 // The side panel: the group list and editor, the planner picker and the parameter sliders, all
 // generated from `planners_json()` (the Rust params table), so a new planner needs no JS.
 
-import { paramControl, paramReadout } from '../core/params-form.js';
+import { paramControl, paramHelp, paramLabel, paramReadout } from '../core/params-form.js';
+import { onLanguageChange, t, tOr } from '../core/i18n.js';
 
 const el = (tag, props = {}, children = []) => {
   const node = document.createElement(tag);
@@ -27,8 +28,17 @@ export class Panel {
     /** Scene before a slider gesture started; recorded for undo when the gesture ends. */
     this.pendingUndo = null;
     for (const planner of app.planners) {
-      this.plannerSelect.append(el('option', { value: planner.name, textContent: planner.label }));
+      this.plannerSelect.append(el('option', { value: planner.name, textContent: tOr(`planner.${planner.name}`, planner.label) }));
     }
+    // A language switch rebuilds the generated controls in the new words.
+    onLanguageChange(() => {
+      for (const option of this.plannerSelect.options) {
+        const spec = app.plannerSpec(option.value);
+        if (spec) option.textContent = tOr(`planner.${spec.name}`, spec.label);
+      }
+      this.builtFor = '';
+      this.render();
+    });
     this.plannerSelect.addEventListener('change', () => {
       const index = this.app.activeGroup;
       const name = this.plannerSelect.value;
@@ -75,9 +85,9 @@ export class Panel {
         const button = el('button', {
           type: 'button',
           role: 'option',
-          title: `Edit group ${i + 1}`,
+          title: t('groups.edit', { n: i + 1 }),
           'aria-selected': String(i === this.app.activeGroup),
-        }, [el('span', { className: 'swatch' }), g.name || `group ${i + 1}`]);
+        }, [el('span', { className: 'swatch' }), g.name || t('groups.default_name', { n: i + 1 })]);
         button.querySelector('.swatch').style.background = g.color;
         button.addEventListener('click', () => {
           this.app.setActiveGroup(i);
@@ -108,28 +118,28 @@ export class Panel {
     const row = (label, input) => el('label', { className: 'row' }, [el('span', { className: 'label', textContent: label }), input]);
     const name = el('input', { type: 'text', name: 'name', maxLength: 40 });
     name.addEventListener('change', () => this.updateGroup({ name: name.value }));
-    const count = el('input', { type: 'number', name: 'count', min: 0, max: 200000, step: 1, title: 'Number of agents' });
+    const count = el('input', { type: 'number', name: 'count', min: 0, max: 200000, step: 1, title: t('groups.agents_title') });
     count.addEventListener('change', () => this.updateGroup({ count: Number(count.value) }));
-    const color = el('input', { type: 'color', name: 'color', title: 'Group colour' });
+    const color = el('input', { type: 'color', name: 'color', title: t('groups.colour_title') });
     color.addEventListener('change', () => this.updateGroup({ color: color.value }));
-    const goal = el('select', { name: 'goal', title: 'The goal this group heads for' }, [
-      el('option', { value: '', textContent: 'none (wander)' }),
-      ...goals.map((_, i) => el('option', { value: String(i), textContent: `goal ${i + 1}` })),
+    const goal = el('select', { name: 'goal', title: t('groups.goal_title') }, [
+      el('option', { value: '', textContent: t('groups.goal_none') }),
+      ...goals.map((_, i) => el('option', { value: String(i), textContent: t('groups.goal_n', { n: i + 1 }) })),
     ]);
     goal.addEventListener('change', () => this.updateGroup({ goal: goal.value === '' ? null : Number(goal.value) }));
-    const radius = el('input', { type: 'number', name: 'agent_radius', min: 0.5, max: 100, step: 0.5, title: 'Body radius of each agent (px)' });
+    const radius = el('input', { type: 'number', name: 'agent_radius', min: 0.5, max: 100, step: 0.5, title: t('groups.radius_title') });
     radius.addEventListener('change', () => this.updateGroup({ agent_radius: Number(radius.value) }));
-    const remove = el('button', { type: 'button', className: 'small ghost', textContent: 'Delete group', title: 'Remove this group (undo brings it back)' });
+    const remove = el('button', { type: 'button', className: 'small ghost', textContent: t('groups.delete'), title: t('groups.delete_title') });
     remove.addEventListener('click', () => {
       const item = { kind: 'group', index: this.app.activeGroup };
       this.app.change((sim) => sim.edit(JSON.stringify({ op: 'delete', item })));
     });
     this.groupForm.replaceChildren(
-      row('Name', name),
-      row('Agents', count),
-      row('Colour', color),
-      row('Goal', goal),
-      row('Radius (px)', radius),
+      row(t('groups.name'), name),
+      row(t('groups.agents'), count),
+      row(t('groups.colour'), color),
+      row(t('groups.goal'), goal),
+      row(t('groups.radius'), radius),
       remove,
     );
     this.fields = { name, count, color, goal, radius };
@@ -151,19 +161,20 @@ export class Panel {
       if (spec.key === 'path') {
         // A scene path by number, not a slider: "none" or one of the drawn paths.
         const paths = this.app.scene.paths ?? [];
-        input = el('select', { id, name: spec.key, title: spec.help }, [
-          el('option', { value: '0', textContent: 'none' }),
-          ...paths.map((_, i) => el('option', { value: String(i + 1), textContent: `path ${i + 1}` })),
+        input = el('select', { id, name: spec.key, title: paramHelp(planner.name, spec) }, [
+          el('option', { value: '0', textContent: t('planner.path_none') }),
+          ...paths.map((_, i) => el('option', { value: String(i + 1), textContent: t('planner.path_n', { n: i + 1 }) })),
         ]);
         input.addEventListener('change', () => this.setParam(spec, Number(input.value), true));
       } else {
         input = paramControl(spec, {
           id,
+          planner: planner.name,
           onInput: (value) => this.setParam(spec, value, false),
           onChange: (value) => this.setParam(spec, value, true),
         });
       }
-      const label = el('label', { className: 'label', htmlFor: id, textContent: spec.label, title: spec.help });
+      const label = el('label', { className: 'label', htmlFor: id, textContent: paramLabel(planner.name, spec), title: paramHelp(planner.name, spec) });
       this.params.append(el('div', { className: 'param', dataset: { key: spec.key } }, [label, output, input]));
       this.sliders.set(spec.key, { spec, input, output });
     }

@@ -6,6 +6,7 @@
 // reaches the editor's own tools.
 
 import { showMessage } from '../core/errors.js';
+import { t } from '../core/i18n.js';
 import { clientToScene, sceneUnitsPerCssPixel, viewTransform } from '../core/view.js';
 
 /** Pick tolerance for a handle, in CSS px (the handles are 5 device px in radius). */
@@ -90,10 +91,7 @@ export class PathEditor {
     // A path planned again (no waypoints) is null until the frame loop has planned it.
     const crossing = (result.value?.crossing ?? []).map((c, i) => (c ? i + 1 : 0)).filter((i) => i > 0);
     if (crossing.length) {
-      showMessage(
-        `Warning: the edited path of group ${group + 1} crosses an obstacle on segment ${crossing.join(', ')} ` +
-          '(red). The agents will be pushed along the obstacle; drag the waypoints clear of it.',
-      );
+      showMessage(t('path.crossing', { group: group + 1, segments: crossing.join(', ') }));
     }
   }
 

@@ -6,6 +6,7 @@ import { messageOf, showMessage } from '../core/errors.js';
 import { shareUrl, writeSceneToLocation } from '../core/url.js';
 import { setupShareLock } from './share-lock.js';
 import { setupShareActivity } from './share-activity.js';
+import { t } from '../core/i18n.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -21,11 +22,17 @@ const attr = (text) => text.replace(/&/g, '&amp;').replace(/"/g, '&quot;').repla
 /**
  * The `<flock-path>` snippet's script runs this when the module cannot load (blocked by CORS or a
  * Content-Security-Policy, 404, offline): no flockpath code runs then, so the snippet itself turns
- * its fallback text ("Loading…", shown until the element upgrades) into the reason.
+ * its fallback text ("Loading…", shown until the element upgrades) into the reason, in the
+ * language the snippet was made in.
  */
-const MODULE_ERROR_HANDLER =
-  "document.querySelectorAll('flock-path:not(:defined) [data-flockpath-status]').forEach((p) => " +
-  "{ p.textContent = 'The flockpath simulation could not be loaded: the browser refused or could not find ' + this.src + '.'; })";
+function moduleErrorHandler() {
+  const quote = (text) => `'${text.replace(/\\/g, '\\\\').replace(/'/g, "\\'")}'`;
+  const [before, after = ''] = t('share.snippet_module_error').split('{url}');
+  return (
+    "document.querySelectorAll('flock-path:not(:defined) [data-flockpath-status]').forEach((p) => " +
+    `{ p.textContent = ${quote(before)} + this.src + ${quote(after)}; })`
+  );
+}
 
 /**
  * The snippets for the current scene string (absolute URLs: they are pasted into other sites).
@@ -39,15 +46,15 @@ export function snippets(sceneString, { autoplay = true, page = location.href, c
   const module = new URL('js/flock-path.js', page);
   const iframe =
     `<iframe src="${attr(embed.href)}" width="720" height="480" style="border:0;max-width:100%" ` +
-    'title="flockpath simulation" allowfullscreen loading="lazy"></iframe>';
+    `title="${attr(t('share.snippet_iframe_title'))}" allowfullscreen loading="lazy"></iframe>`;
   // The element's children are fallback content: shown until the module upgrades it (then its
   // shadow DOM replaces them), and all a reader sees when scripts do not run at all. Inline
   // elements only: a Markdown tool that wraps the element in <p> would end it at a child <p>.
   const component =
-    `<script type="module" src="${attr(module.href)}" onerror="${attr(MODULE_ERROR_HANDLER)}"></script>\n` +
+    `<script type="module" src="${attr(module.href)}" onerror="${attr(moduleErrorHandler())}"></script>\n` +
     `<flock-path scene="${attr(sceneString)}"${autoplay ? ' autoplay' : ''}${classroom?.attributes ?? ' controls'} height="400px">\n` +
-    '  <span data-flockpath-status>Loading the flockpath simulation…</span>\n' +
-    `  <a href="${attr(link)}">Open this scene in flockpath</a>\n` +
+    `  <span data-flockpath-status>${attr(t('share.snippet_loading'))}</span>\n` +
+    `  <a href="${attr(link)}">${attr(t('share.snippet_open'))}</a>\n` +
     '</flock-path>';
   return { link, iframe, component };
 }
@@ -55,9 +62,9 @@ export function snippets(sceneString, { autoplay = true, page = location.href, c
 async function copy(text, status, what) {
   try {
     await navigator.clipboard.writeText(text);
-    status.textContent = `${what} copied to the clipboard.`;
+    status.textContent = t('share.copied', { what });
   } catch {
-    status.textContent = `${what}: the browser refused clipboard access; select the text and copy it.`;
+    status.textContent = t('share.copy_refused', { what });
   }
 }
 
@@ -67,11 +74,11 @@ async function loadFile(app, file) {
   try {
     text = await file.text();
   } catch (error) {
-    showMessage(`the file ${file.name} could not be read: ${messageOf(error)}`);
+    showMessage(t('share.file_unreadable', { name: file.name, reason: messageOf(error) }));
     return false;
   }
   const result = app.load(text);
-  if (!result.ok) showMessage(`the file ${file.name} was not loaded: ${messageOf(result.error)}. The previous scene keeps running.`);
+  if (!result.ok) showMessage(t('share.file_refused', { name: file.name, reason: messageOf(result.error) }));
   return result.ok;
 }
 
@@ -85,7 +92,7 @@ export function setupShare(app) {
     if (!result.ok) return null;
     const s = snippets(result.value, { autoplay: autoplay.checked, classroom: lock.options() });
     $('share-link').value = s.link;
-    $('share-link-size').textContent = `(${s.link.length} characters)`;
+    $('share-link-size').textContent = t('share.link_size', { n: s.link.length });
     $('share-iframe').value = s.iframe;
     $('share-component').value = s.component;
     return result.value;
@@ -102,15 +109,15 @@ export function setupShare(app) {
   app.addEventListener('scene', () => {
     if (dialog.open) fill();
   });
-  $('copy-link').addEventListener('click', () => copy($('share-link').value, status, 'Link'));
-  $('copy-iframe').addEventListener('click', () => copy($('share-iframe').value, status, 'Iframe snippet'));
-  $('copy-component').addEventListener('click', () => copy($('share-component').value, status, 'Web-component snippet'));
+  $('copy-link').addEventListener('click', () => copy($('share-link').value, status, t('share.what_link')));
+  $('copy-iframe').addEventListener('click', () => copy($('share-iframe').value, status, t('share.what_iframe')));
+  $('copy-component').addEventListener('click', () => copy($('share-component').value, status, t('share.what_component')));
   $('download-scene').addEventListener('click', () => {
     const result = app.guard((sim) => sim.scene_json());
     if (!result.ok) return;
     const name = `${fileStem(app.scene)}.json`;
     download(name, `${result.value}\n`, 'application/json');
-    status.textContent = `Downloading ${name}.`;
+    status.textContent = t('share.downloading', { name });
   });
   // The activity form (prompt, prediction, goal), above the status line.
   setupShareActivity(app);
@@ -120,7 +127,7 @@ export function setupShare(app) {
     const file = picker.files?.[0];
     picker.value = '';
     if (file && (await loadFile(app, file))) {
-      status.textContent = `Loaded ${file.name}.`;
+      status.textContent = t('share.loaded', { name: file.name });
       dialog.close();
     }
   });

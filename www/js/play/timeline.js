@@ -2,6 +2,8 @@
 // restores the nearest checkpoint and re-simulates, bit-identical to the original run); playing
 // goes on from the step shown. The recording's budget and any thinning are stated under it.
 
+import { formatNumber, language, onLanguageChange, setAttr, setText, t } from '../core/i18n.js';
+
 /** How often the slider follows a playing run (ms, display only). */
 const REFRESH_MS = 100;
 
@@ -37,6 +39,29 @@ export function seekTo(app, step, options = {}) {
   return result;
 }
 
+/**
+ * The timeline's note (thinned positions or checkpoints, a replay that differed): the core's
+ * words on English pages, else composed from the same numbers in the page's language.
+ */
+function noteText(app, info) {
+  if (info.note === null || language() === 'en') return info.note;
+  const agents = (app.scene.groups ?? []).reduce((sum, g) => sum + (g.count ?? 0), 0);
+  const parts = [];
+  if (info.frames_thinned > 0) {
+    parts.push(t('timeline.note_frames', {
+      every: info.frame_every,
+      mb: Math.floor(info.frame_budget_bytes / 1e6),
+      capacity: info.capacity_steps,
+      agents,
+    }));
+  }
+  if (info.checkpoints_thinned > 0) {
+    parts.push(t('timeline.note_checkpoints', { every: info.checkpoint_every, resimulated: info.checkpoint_every - 1 }));
+  }
+  if (info.diverged > 0) parts.push(t('timeline.note_diverged', { n: info.diverged }));
+  return parts.length ? t('timeline.note', { text: parts.join(t('list.semicolon')) }) : info.note;
+}
+
 export function setupTimeline(app) {
   const style = document.createElement('style');
   style.textContent = STYLE;
@@ -45,8 +70,8 @@ export function setupTimeline(app) {
   const bar = document.createElement('div');
   bar.className = 'timeline';
   bar.setAttribute('role', 'group');
-  bar.setAttribute('aria-label', 'Timeline');
-  const label = Object.assign(document.createElement('label'), { htmlFor: 'timeline', textContent: 'Timeline' });
+  setAttr(bar, 'aria-label', 'timeline.label');
+  const label = setText(Object.assign(document.createElement('label'), { htmlFor: 'timeline' }), 'timeline.label');
   const slider = Object.assign(document.createElement('input'), {
     id: 'timeline',
     type: 'range',
@@ -54,8 +79,8 @@ export function setupTimeline(app) {
     max: '0',
     step: '1',
     value: '0',
-    title: 'Drag to go back and forth in the run; Play goes on from the step shown',
   });
+  setAttr(slider, 'title', 'timeline.title');
   const readout = Object.assign(document.createElement('output'), { id: 'timeline-step' });
   readout.setAttribute('for', 'timeline');
   const note = Object.assign(document.createElement('p'), { id: 'timeline-note', className: 'timeline-note', hidden: true });
@@ -77,16 +102,21 @@ export function setupTimeline(app) {
     set(slider, 'min', String(info.first_step));
     set(slider, 'max', String(info.end_step));
     if (!dragging) set(slider, 'value', String(info.step));
-    set(readout, 'textContent', `step ${info.step.toLocaleString('en-US')} of ${info.end_step.toLocaleString('en-US')}`);
+    set(readout, 'textContent', t('timeline.step_of', { step: formatNumber(info.step), end: formatNumber(info.end_step) }));
     set(
       readout,
       'title',
-      `Positions: ${(info.frame_bytes / 1e6).toFixed(1)} of ${(info.frame_budget_bytes / 1e6).toFixed(0)} MB ` +
-        `(${info.capacity_steps.toLocaleString('en-US')} steps of this run at every step); ` +
-        `${info.checkpoints} checkpoints every ${info.checkpoint_every} steps`,
+      t('timeline.memory', {
+        used: (info.frame_bytes / 1e6).toFixed(1),
+        budget: (info.frame_budget_bytes / 1e6).toFixed(0),
+        capacity: formatNumber(info.capacity_steps),
+        checkpoints: info.checkpoints,
+        every: info.checkpoint_every,
+      }),
     );
     note.hidden = info.note === null;
-    if (info.note !== null && note.textContent !== info.note) note.textContent = info.note;
+    const text = noteText(app, info);
+    if (text !== null && note.textContent !== text) note.textContent = text;
   };
 
   // Jumps are coalesced to one per animation frame: a fast drag asks for many.
@@ -120,4 +150,5 @@ export function setupTimeline(app) {
     if (app.playing && !app.crashed && !document.hidden) show();
   }, REFRESH_MS);
   show();
+  onLanguageChange(show);
 }

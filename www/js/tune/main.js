@@ -12,11 +12,13 @@ import { isPanic, messageOf, showMessage, showPanic } from '../core/errors.js';
 import { FitnessPlot } from './plot.js';
 import { Preview } from './preview.js';
 import { sceneFromLocation, shareUrl } from '../core/url.js';
+import { formatNumber, onLanguageChange, setText, t } from '../core/i18n.js';
 
 const $ = (id) => document.getElementById(id);
 const FIELDS = ['behaviour', 'environment', 'seed', 'population', 'generations', 'frames'];
-const WEIGHTS = ['s1 separation', 's2 alignment', 's3 cohesion', 's4 following', 's5 collision'];
-const MEASURES = [['gm', 'Gm spacing'], ['gg', 'Gg goal'], ['gc', 'Gc no collision'], ['ga', 'Ga orientation'], ['gd', 'Gd distance']];
+/** The five weights' labels: the virtual-force planner's own parameters (keys in the tables). */
+const WEIGHTS = ['separation_weight', 'alignment_weight', 'cohesion_weight', 'following_weight', 'collision_weight'].map((k) => `param.forces.${k}`);
+const MEASURES = [['gm', 'tune.gm'], ['gg', 'tune.gg'], ['gc', 'tune.gc'], ['ga', 'tune.ga'], ['gd', 'tune.gd']];
 const CURRENT_SCENE = 'scene';
 
 /** Everything the page knows about the run; a copy is published for tests and scripts. */
@@ -62,8 +64,8 @@ function setRunning(running) {
   for (const id of FIELDS) $(id).disabled = running;
 }
 
-function status(text) {
-  $('status').textContent = text;
+function status(key, vars) {
+  setText($('status'), key, vars);
 }
 
 function showBest(best) {
@@ -72,22 +74,22 @@ function showBest(best) {
   if (!best) return;
   const row = (label, value) => {
     const dt = document.createElement('dt');
-    dt.textContent = label;
+    setText(dt, label);
     const dd = document.createElement('dd');
     dd.textContent = value;
     list.append(dt, dd);
   };
   best.weights.forEach((w, i) => row(WEIGHTS[i], w.toFixed(3)));
   for (const [key, label] of MEASURES) row(label, best.measures[key].toFixed(3));
-  row('Gsum', best.gsum.toFixed(2));
+  row('metrics.col.gsum', best.gsum.toFixed(2));
 }
 
-function showPreview(sceneString, label) {
+function showPreview(sceneString, label, vars) {
   try {
     preview.show(sceneString, state.frames || undefined);
-    $('preview-label').textContent = label;
+    setText($('preview-label'), label, vars);
   } catch (error) {
-    showMessage(`The preview could not start: ${messageOf(error)}`);
+    showMessage(t('tune.preview_failed', { reason: messageOf(error) }));
   }
 }
 
@@ -95,7 +97,7 @@ function fail(message, panic) {
   state.error = message;
   stopWorker();
   setRunning(false);
-  status(`Stopped: ${message}`);
+  status('tune.stopped', { message });
   if (panic) showPanic(message);
   else showMessage(message);
 }
@@ -111,9 +113,8 @@ function onWorkerMessage(event) {
     fail(message.message, message.panic);
   } else if (message.type === 'started') {
     Object.assign(state, { population: message.population, agents: message.agents, frames: message.frames });
-    status(`Generation 0 of up to ${state.setup.generations}: scoring ${message.population} weight sets ` +
-      `(${message.agents} agents × ${message.frames} frames each)…`);
-    showPreview(message.scene, 'Preview: the scene before tuning');
+    status('tune.started', { generations: state.setup.generations, population: message.population, agents: message.agents, frames: message.frames });
+    showPreview(message.scene, 'tune.preview_before');
     worker.postMessage({ type: 'next' });
   } else if (message.type === 'generation') {
     const stats = message.stats;
@@ -129,22 +130,21 @@ function onWorkerMessage(event) {
     const total = state.setup.generations;
     $('progress').max = total;
     $('progress').value = stats.finished ? total : stats.generation + 1;
-    $('generation').textContent = `${stats.generation + 1} of ≤ ${total}`;
+    $('generation').textContent = t('tune.generation_of', { n: stats.generation + 1, total });
     $('best-gsum').textContent = stats.best.gsum.toFixed(2);
     $('evaluations').textContent = stats.evaluations.toLocaleString('en-US');
     $('rate').textContent = message.ms > 0 ? `${((1000 * newEvaluations) / message.ms).toFixed(0)} /s` : '–';
     showBest(stats.best);
     $('apply').disabled = false;
-    if (improved) showPreview(message.scene, `Preview: best weights of generation ${stats.generation} (Gsum ${stats.best.gsum.toFixed(2)})`);
+    if (improved) showPreview(message.scene, 'tune.preview_best', { generation: stats.generation, gsum: stats.best.gsum.toFixed(2) });
     if (stats.finished) {
       state.finished = true;
       setRunning(false);
       stopWorker();
-      const why = stats.generation + 1 >= total ? 'generation limit' : `best unchanged for ${stats.unchanged} generations`;
-      status(`Done after ${stats.generation + 1} generations (${why}), ${stats.evaluations} evaluations in ` +
-        `${(state.workerMs / 1000).toFixed(1)} s.`);
+      const why = stats.generation + 1 >= total ? t('tune.why_limit') : t('tune.why_unchanged', { n: stats.unchanged });
+      status('tune.done', { n: stats.generation + 1, why, evaluations: stats.evaluations, seconds: (state.workerMs / 1000).toFixed(1) });
     } else {
-      status(`Generation ${stats.generation + 1} of up to ${total}…`);
+      status('tune.generation_running', { n: stats.generation + 1, total });
       worker.postMessage({ type: 'next' });
     }
   }
@@ -163,7 +163,7 @@ function start(linkedScene) {
   showBest(null);
   $('apply').disabled = true;
   setRunning(true);
-  status('Starting the worker…');
+  status('tune.starting');
   worker = new Worker(new URL('./worker.js', import.meta.url), { type: 'module' });
   worker.addEventListener('message', onWorkerMessage);
   worker.addEventListener('error', (event) => fail(event.message || 'the tuning worker failed to load', false));
@@ -176,7 +176,7 @@ function cancel() {
   state.cancelled = true;
   setRunning(false);
   const done = state.history.length;
-  status(done ? `Cancelled after ${done} generation${done === 1 ? '' : 's'}; the best so far can still be applied.` : 'Cancelled.');
+  status(done === 0 ? 'tune.cancelled' : done === 1 ? 'tune.cancelled_one' : 'tune.cancelled_after', { n: done });
 }
 
 function apply() {
@@ -192,7 +192,7 @@ function readQuery(linkedScene) {
     if (value === null) continue;
     const field = $(id);
     if (field.tagName === 'SELECT' && ![...field.options].some((o) => o.value === value)) {
-      showMessage(`Unknown ${id} “${value}” in the address; keeping ${field.value}.`);
+      showMessage(t('tune.unknown_field', { field: id, value, kept: field.value }));
       continue;
     }
     field.value = value;
@@ -201,7 +201,7 @@ function readQuery(linkedScene) {
   return query.get('autostart') === '1';
 }
 
-bootPage('the Tune page', ({ module, wasm }) => {
+bootPage(t('boot.what_tune'), ({ module, wasm }) => {
 
   const linkedScene = sceneFromLocation();
   if (linkedScene !== null) {
@@ -209,11 +209,11 @@ bootPage('the Tune page', ({ module, wasm }) => {
       module.scene_from_text(linkedScene);
       const option = document.createElement('option');
       option.value = CURRENT_SCENE;
-      option.textContent = 'The playground’s scene';
+      setText(option, 'tune.playground_scene');
       $('environment').append(option);
       $('playground-link').href = shareUrl(linkedScene, new URL('index.html', location.href).href);
     } catch (error) {
-      showMessage(`The scene in the link could not be loaded: ${messageOf(error)}. Pick an environment instead.`);
+      showMessage(t('tune.link_failed', { reason: messageOf(error) }));
     }
   }
   const autostart = readQuery(linkedScene);
@@ -221,7 +221,7 @@ bootPage('the Tune page', ({ module, wasm }) => {
   preview = new Preview(module, wasm, $('preview-canvas'));
   preview.onError = (error) => {
     if (isPanic(error)) showPanic(messageOf(error));
-    else showMessage(`The preview stopped: ${messageOf(error)}`);
+    else showMessage(t('tune.preview_stopped', { reason: messageOf(error) }));
   };
   plot = new FitnessPlot($('plot'));
   plot.reset(Number.parseInt($('generations').value, 10) || 1);
@@ -235,7 +235,7 @@ bootPage('the Tune page', ({ module, wasm }) => {
       const frames = run.frames();
       run.free();
       state.frames = frames;
-      showPreview(scene, 'Preview: the scene before tuning');
+      showPreview(scene, 'tune.preview_before');
     } catch (error) {
       showMessage(messageOf(error));
     }

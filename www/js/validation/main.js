@@ -5,6 +5,7 @@
 
 import { messageOf, setupBanner, showMessage } from '../core/errors.js';
 import { drawPlot } from '../core/plot.js';
+import { onLanguageChange, t, tOr } from '../core/i18n.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -36,7 +37,11 @@ async function boot() {
   const module = await import('../../pkg/flockpath.js');
   await module.default();
   const options = JSON.parse(module.validation_options_json());
-  const titles = new Map(options.tests.map((t) => [t.id, t.title]));
+  // The tests' titles and criteria in the page's language (keys by test id; the core's words otherwise).
+  const titleOf = (test) => tOr(`validation.test.${test.id}`, test.title);
+  const criterionOf = (test) => tOr(`validation.test.${test.id}.criterion`, test.criterion);
+  const titles = new Map(options.tests.map((test) => [test.id, titleOf(test)]));
+  const criteria = new Map(options.tests.map((test) => [test.id, [test.criterion, criterionOf(test)]]));
   const colorOf = new Map(options.planners.map((p, i) => [p.name, COLORS[i % COLORS.length]]));
 
   const picks = (box, items, checked) => {
@@ -49,8 +54,8 @@ async function boot() {
       box.append(label);
     }
   };
-  picks($('val-planners'), options.planners.map((p) => ({ value: p.name, label: p.name, title: p.label })), () => true);
-  picks($('val-tests'), options.tests.map((t) => ({ value: t.id, label: t.id, title: `${t.title} — ${t.criterion}` })), (id) => DEFAULT_TESTS.has(id));
+  picks($('val-planners'), options.planners.map((p) => ({ value: p.name, label: p.name, title: tOr(`planner.${p.name}`, p.label) })), () => true);
+  picks($('val-tests'), options.tests.map((test) => ({ value: test.id, label: test.id, title: `${titleOf(test)} — ${criterionOf(test)}` })), (id) => DEFAULT_TESTS.has(id));
   const checked = (box) => [...$(box).querySelectorAll('input:checked')].map((i) => i.value);
 
   const state = { worker: null, curves: [], rows: 0, passed: 0 };
@@ -64,10 +69,12 @@ async function boot() {
     const link = Object.assign(document.createElement('a'), { textContent: titles.get(row.test) ?? row.test, target: '_blank' });
     if (row.scene) link.href = `index.html#s=${row.scene}`;
     link.className = 'scene-link';
-    link.title = 'Open this test\'s scene with this planner in the playground';
+    link.title = t('validation.open_title');
     test.append(link);
-    const cells = [row.planner, row.measured, row.criterion].map((text) => Object.assign(document.createElement('td'), { textContent: text }));
-    const result = Object.assign(document.createElement('td'), { textContent: row.pass ? 'pass' : 'fail', className: row.pass ? 'pass' : 'fail' });
+    const [coreCriterion, criterion] = criteria.get(row.test) ?? [];
+    const shown = row.criterion === coreCriterion ? criterion : row.criterion;
+    const cells = [row.planner, row.measured, shown].map((text) => Object.assign(document.createElement('td'), { textContent: text }));
+    const result = Object.assign(document.createElement('td'), { textContent: row.pass ? t('validation.pass') : t('validation.fail'), className: row.pass ? 'pass' : 'fail' });
     tr.append(test, ...cells, result);
     tbody.append(tr);
     state.rows += 1;
@@ -88,25 +95,27 @@ async function boot() {
       span.style.color = colorOf.get(c.planner) ?? '#888';
       legend.append(span);
     }
-    plotOver($('val-plot'), densities, lines, 'speed (m/s) against density (persons/m²)', 'no data yet');
+    plotOver($('val-plot'), densities, lines, t('validation.fd_axes'), t('plots.empty'));
   };
 
   const drawSweep = () => {
     const sweeps = state.curves.filter((c) => c.test === 't8-speed-sweep');
     if (sweeps.length === 0) {
-      plotOver($('val-sweep'), [0.8, 1.6], [], 'evacuation time (s) against desired speed (m/s)', 'no data yet');
+      plotOver($('val-sweep'), [0.8, 1.6], [], t('validation.sweep_axes'), t('plots.empty'));
       return;
     }
     const speeds = sweeps[0].rows.map((r) => r[0]);
     // Column 1 is the evacuation time (s), null when someone was still inside after 60 s.
     const lines = sweeps.map((c) => ({ ys: c.rows.map((r) => (r[1] === null ? NaN : r[1])), color: colorOf.get(c.planner) ?? '#888', name: c.planner }));
     const legend = $('val-sweep-legend');
+    // The planners' legend replaces the hint: a language switch must not write the hint back.
+    delete legend.dataset.i18n;
     legend.replaceChildren(...sweeps.map((c) => {
       const span = Object.assign(document.createElement('span'), { textContent: `━ ${c.planner}` });
       span.style.color = colorOf.get(c.planner) ?? '#888';
       return span;
     }));
-    plotOver($('val-sweep'), speeds, lines, 'evacuation time (s) against desired speed (m/s)', 'no data yet');
+    plotOver($('val-sweep'), speeds, lines, t('validation.sweep_axes'), t('plots.empty'));
   };
 
   const finish = (text) => {
@@ -121,7 +130,7 @@ async function boot() {
     const planners = checked('val-planners');
     const tests = checked('val-tests');
     if (planners.length === 0 || tests.length === 0) {
-      showMessage('Pick at least one planner and one test.');
+      showMessage(t('validation.pick'));
       return;
     }
     tbody.replaceChildren();
@@ -138,7 +147,7 @@ async function boot() {
     worker.onmessage = ({ data }) => {
       if (data.type === 'progress') {
         $('val-progress').value = data.done / data.total;
-        $('val-progress-text').textContent = `${data.done}/${data.total}: ${data.test} with ${data.planner}…`;
+        $('val-progress-text').textContent = t('validation.progress', { done: data.done, total: data.total, test: data.test, planner: data.planner });
       } else if (data.type === 'outcome') {
         $('val-progress').value = data.done / data.total;
         for (const row of data.outcome.rows) addRow(row);
@@ -147,23 +156,28 @@ async function boot() {
         drawSweep();
       } else if (data.type === 'done') {
         $('val-progress').value = 1;
-        $('val-summary').textContent = `${state.passed} of ${state.rows} passed in ${data.seconds.toFixed(1)} s.`;
-        finish('done');
+        $('val-summary').textContent = t('validation.summary', { passed: state.passed, rows: state.rows, seconds: data.seconds.toFixed(1) });
+        finish(t('validation.done'));
       } else if (data.type === 'error') {
         showMessage(data.message);
-        finish('stopped by an error');
+        finish(t('validation.stopped'));
       }
     };
     worker.onerror = (e) => {
       showMessage(messageOf(e));
-      finish('stopped by an error');
+      finish(t('validation.stopped'));
     };
     worker.postMessage({ tests, planners });
   });
 
-  $('val-cancel').addEventListener('click', () => finish('cancelled'));
+  $('val-cancel').addEventListener('click', () => finish(t('lab.cancelled')));
   drawDiagram();
   drawSweep();
+  // The plots' axes and empty notes are drawn on canvases: draw them again in a new language.
+  onLanguageChange(() => {
+    drawDiagram();
+    drawSweep();
+  });
   window.flockpathValidation = { rows: () => state.rows, running: () => state.worker !== null };
 }
 

@@ -1,0 +1,415 @@
+// Languages (issue #15 item 7): every user-visible string of the pages comes from one table per
+// language (www/js/core/strings/*.js). Checked here:
+// - the tables: same keys in every shipped language, no empty value, the same `{placeholders}`,
+//   no key written twice; the core's tables (planners, parameters, choices, presets, metric
+//   series, from the wasm module) all have their keys, in English with the core's own words;
+// - the pages' HTML: no visible literal text outside `data-i18n` (a static scan, no browser);
+// - in Chromium: `?lang=zh` shows Chinese on every page and leaves no English words in the header
+//   and the panels; a browser whose language is zh-CN picks Chinese without `?lang`; switching
+//   language keeps the scene and the run; a refused input is worded in Chinese.
+
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import { readFile, readdir, mkdtemp, rm } from 'node:fs/promises';
+import { tmpdir } from 'node:os';
+import path from 'node:path';
+import { chromium } from 'playwright-core';
+import { CHROMIUM_ARGS, WWW, assertNoUnexpectedErrors, simpleScene, startServer } from './helpers.mjs';
+
+const STRINGS = path.join(WWW, 'js', 'core', 'strings');
+const SHIPPED = ['en', 'zh'];
+
+async function table(code) {
+  return (await import(path.join(STRINGS, `${code}.js`))).default;
+}
+
+const placeholders = (text) => [...text.matchAll(/\{(\w+)\}/g)].map((m) => m[1]).sort();
+
+test('every shipped table has the same keys, no empty value and the same placeholders', async () => {
+  const en = await table('en');
+  assert.ok(Object.keys(en).length > 300, 'the English table holds the pages’ words');
+  for (const code of SHIPPED) {
+    const other = await table(code);
+    const missing = Object.keys(en).filter((k) => !Object.hasOwn(other, k));
+    const extra = Object.keys(other).filter((k) => !Object.hasOwn(en, k));
+    assert.deepEqual(missing, [], `${code} lacks keys of en`);
+    assert.deepEqual(extra, [], `${code} has keys en lacks`);
+    for (const [key, value] of Object.entries(other)) {
+      assert.equal(typeof value, 'string', `${code} ${key} is text`);
+      assert.ok(value.trim().length > 0, `${code} ${key} is not empty`);
+      assert.deepEqual(placeholders(value), placeholders(en[key]), `${code} ${key}: the same {placeholders} as en`);
+    }
+  }
+});
+
+test('no table writes a key twice (a later duplicate would silently win)', async () => {
+  for (const code of SHIPPED) {
+    const source = await readFile(path.join(STRINGS, `${code}.js`), 'utf8');
+    const keys = [...source.matchAll(/^\s*(['"])((?:(?!\1).)+)\1\s*:/gm)].map((m) => m[2]);
+    const seen = new Set();
+    const twice = keys.filter((k) => (seen.has(k) ? true : (seen.add(k), false)));
+    assert.deepEqual(twice, [], `${code}.js writes these keys twice`);
+  }
+});
+
+test('the Chinese table is Chinese: most values hold CJK characters', async () => {
+  const zh = await table('zh');
+  const values = Object.values(zh);
+  const cjk = values.filter((v) => /[\u4e00-\u9fff]/.test(v)).length;
+  assert.ok(cjk / values.length > 0.85, `only ${cjk} of ${values.length} zh values hold Chinese`);
+});
+
+test('the core’s planners, parameters, choices, units, presets, series and validation tests all have their keys', async () => {
+  const pkg = path.join(WWW, 'pkg');
+  const m = await import(path.join(pkg, 'flockpath.js'));
+  m.initSync({ module: await readFile(path.join(pkg, 'flockpath_bg.wasm')) });
+  const en = await table('en');
+  const zh = await table('zh');
+  const expect = new Map();
+  const planners = JSON.parse(m.planners_json());
+  for (const p of planners) {
+    expect.set(`planner.${p.name}`, p.label);
+    for (const s of p.params) {
+      expect.set(`param.${p.name}.${s.key}`, s.label);
+      expect.set(`param.${p.name}.${s.key}.help`, s.help);
+      for (const c of s.choices ?? []) expect.set(`choice.${c}`, c);
+    }
+  }
+  for (const p of JSON.parse(m.presets_json())) {
+    expect.set(`preset.${p.name}`, p.name);
+    expect.set(`preset.${p.name}.description`, p.description);
+  }
+  const sim = new m.Sim(m.preset_scene_json('open-field'), 200, 150);
+  for (const s of JSON.parse(sim.history_json()).series) expect.set(`series.${s.key}`, s.label);
+  sim.free();
+  for (const test of JSON.parse(m.validation_options_json()).tests) {
+    expect.set(`validation.test.${test.id}`, test.title);
+    expect.set(`validation.test.${test.id}.criterion`, test.criterion);
+  }
+  assert.ok(expect.size > 250, `${expect.size} core words`);
+  for (const [key, words] of expect) {
+    assert.equal(en[key], words, `en ${key} is the core’s own words`);
+    assert.ok(Object.hasOwn(zh, key), `zh has ${key}`);
+  }
+  // Every unit a parameter shows in px terms is translated (international units are shown as is).
+  for (const p of planners) {
+    for (const s of p.params) {
+      if (/px|step|body/.test(s.unit)) assert.ok(Object.hasOwn(zh, `unit.${s.unit}`), `zh has unit.${s.unit}`);
+    }
+  }
+});
+
+test('the core’s refusals are worded in Chinese (real errors from the wasm module, no browser)', async () => {
+  const pkg = path.join(WWW, 'pkg');
+  const m = await import(path.join(pkg, 'flockpath.js'));
+  m.initSync({ module: await readFile(path.join(pkg, 'flockpath_bg.wasm')) });
+  const i18n = await import(path.join(WWW, 'js', 'core', 'i18n.js'));
+  const { refusalText } = await import(path.join(WWW, 'js', 'core', 'refusals.js'));
+  const refused = (fn) => {
+    try {
+      fn();
+    } catch (error) {
+      return error;
+    }
+    throw new Error('not refused');
+  };
+  const base = JSON.parse(m.preset_scene_json('open-field'));
+  const dense = structuredClone(base);
+  Object.assign(dense.groups[0], { count: 5000, spawn: { min: [10, 10], max: [60, 60] } });
+  const costly = structuredClone(base);
+  Object.assign(costly.groups[0], { count: 200000, agent_radius: 0.5, spawn: { min: [0, 0], max: [base.width, base.height] } });
+  const sim = new m.Sim(m.preset_scene_json('open-field'), 200, 100);
+  const cases = {
+    density: refused(() => new m.Sim(JSON.stringify(dense), 100, 100)),
+    cost: refused(() => new m.Sim(JSON.stringify(costly), 100, 100)),
+    planner: refused(() => sim.set_group_planner(0, 'teleport')),
+    preset: refused(() => m.preset_scene_json('no-such-preset')),
+    range: refused(() => sim.set_group_param(0, 'max_speed', '1000000')),
+    type: refused(() => sim.set_group_param(0, 'max_speed', '"fast"')),
+    base64: refused(() => sim.load('2.!!!')),
+    damaged: refused(() => sim.load('2.AAAA')),
+    version: refused(() => sim.load('7.abc')),
+    field: refused(() => sim.edit(JSON.stringify({ op: 'set_group', index: 0, group: { ...base.groups[0], agent_radius: 500 } }))),
+    negative: refused(() => sim.edit(JSON.stringify({ op: 'set_group', index: 0, group: { ...base.groups[0], count: -5 } }))),
+  };
+  sim.free();
+  // Identifiers the messages quote (preset and planner names) are no language.
+  const names = new Set(JSON.parse(m.presets_json()).map((p) => p.name));
+  try {
+    assert.equal(refusalText(cases.density), null, 'English pages show the core’s words');
+    i18n.setLanguage('zh', null);
+    const zh = Object.fromEntries(Object.entries(cases).map(([k, e]) => [k, refusalText(e)]));
+    for (const [k, text] of Object.entries(zh)) {
+      assert.equal(typeof cases[k].code, 'string', `${k} carries a code`);
+      assert.ok(text && /[\u4e00-\u9fff]/.test(text), `${k} in Chinese: ${text} (core: ${cases[k].message})`);
+      const english = (text.match(/[A-Za-z][\w'-]{3,}/g) ?? []).filter((w) => !names.has(w) && !['flock', 'boids', 'teleport', 'firefly', 'forces', 'igsa', 'orca', 'social_force', 'fast', 'string', 'flockpath', 'pillars', 'open', 'field', 'groups', 'agent_radius', 'max_speed', 'count', 'preset', 'such', 'base64'].includes(w) && !/^[a-z]+(-[a-z0-9]+)+$/.test(w));
+      assert.deepEqual(english, [], `${k}: no English words left in ${text}`);
+    }
+    assert.equal(zh.density, '群组 1（flock）：5000 个半径 4 像素的个体放不进其出生区域（50×50 像素）：在彼此、障碍物和其他群组之间保持间隔时最多只能放 49 个（密度上限）');
+    assert.match(zh.cost, /^群组 1（flock）：200000 个 boids 个体会使每步在浏览器中耗时约 \d+ 毫秒，超过 \d+ 毫秒的上限/);
+    assert.equal(zh.range, '最大速度（max_speed）的值为 1000000；允许：0.1…20 像素/步 之间的数');
+    assert.equal(zh.version, '无法读取场景：未知的场景格式版本“7”；此 flockpath 能读取的版本为 1 和 2');
+    assert.equal(zh.field, 'groups[0].agent_radius 的值为 500；允许：0.5…100 像素 之间的数');
+    assert.equal(zh.negative, '无法读取编辑操作：无效的值：整数 -5，应为 u32');
+  } finally {
+    i18n.setLanguage('en', null);
+  }
+});
+
+// ---- static scan of the pages' HTML ----
+
+/** Pages a student meets; bench.html is a developer benchmark (not linked from any page). */
+const PAGES = ['index.html', 'embed.html', 'compare.html', 'tune.html', 'lab.html', 'validation.html'];
+
+/** Words that are no language: units, proper names, file formats, key names. */
+const NEUTRAL_WORDS = new Set(['fps', 'px', 'flock', 'path', 'flockpath', 'Ctrl', 'Esc', 'Del', 'Space', 'Enter', 'Boids', 'PSO',
+  'IGSA', 'GSA', 'ORCA', 'Gsum', 'Weidmann', 'Jülich', 'RiMEA', 'REC', 'MEL', 'CSV', 'JSON', 'SVG', 'PNG', 'WebM', 'Maya',
+  'Blender', 'Python']);
+
+/** Whether a text is no language: numbers, symbols, single letters and neutral words only. */
+const neutral = (text) => (text.match(/[A-Za-zÀ-ÿ][A-Za-zÀ-ÿ’'-]*/g) ?? []).every((w) => w.length === 1 || NEUTRAL_WORDS.has(w));
+
+/**
+ * The visible text nodes of an HTML page outside a `data-i18n` element (a tokenizer good enough
+ * for the pages' own HTML): `<script>`, `<style>`, comments and `<code>` (commands) are skipped.
+ */
+function literalTexts(html) {
+  const found = [];
+  const stack = [];
+  const VOID = new Set(['meta', 'link', 'input', 'br', 'img', 'hr', 'source', 'col', 'wbr', 'path']);
+  const re = /<!--[\s\S]*?-->|<![^>]*>|<(script|style)\b[\s\S]*?<\/\1>|<\/?([a-zA-Z][\w-]*)([^>]*)>|([^<]+)/g;
+  for (const m of html.matchAll(re)) {
+    if (m[2]) {
+      const tag = m[2].toLowerCase();
+      if (m[0].startsWith('</')) {
+        while (stack.length && stack.pop().tag !== tag);
+      } else if (!VOID.has(tag) && !m[0].endsWith('/>')) {
+        const marked = /\sdata-i18n(?:-html)?=/.test(m[3]);
+        stack.push({ tag, marked });
+      }
+    } else if (m[4] !== undefined) {
+      const text = m[4].replace(/&[a-z]+;|&#\d+;/g, ' ').trim();
+      if (!text) continue;
+      if (stack.some((s) => s.marked || s.tag === 'code' || s.tag === 'kbd' || s.tag === 'svg')) continue;
+      if (neutral(text)) continue;
+      found.push(text);
+    }
+  }
+  return found;
+}
+
+test('static: no page holds visible literal text outside data-i18n', async () => {
+  for (const page of PAGES) {
+    const html = await readFile(path.join(WWW, page), 'utf8');
+    assert.deepEqual(literalTexts(html), [], `${page}: text not from the tables`);
+    assert.match(html, /js\/core\/language-menu\.js/, `${page} loads the language module`);
+    // Attributes a reader meets (title, aria-label, placeholder, alt) carry their key too.
+    for (const m of html.matchAll(/<[a-z][^>]*\s(title|aria-label|placeholder|alt)="([^"]*[A-Za-z]{3}[^"]*)"[^>]*>/g)) {
+      const attribute = m[1];
+      assert.ok(m[0].includes(`data-i18n-${attribute}=`), `${page}: ${attribute}="${m[2]}" has no data-i18n-${attribute}`);
+    }
+  }
+  // The scanner does see literal text (a check that could fail).
+  assert.deepEqual(literalTexts('<p>Hello <b data-i18n="x">World</b> 42 px</p>'), ['Hello']);
+});
+
+test('static: the course notes’ element fallbacks come from the tables', async () => {
+  const html = await readFile(path.join(WWW, 'examples', 'course-notes.html'), 'utf8');
+  const body = html.replace(/<!--[\s\S]*?-->/g, '');
+  const fallbacks = [...body.matchAll(/<flock-path\s[^>]*>([\s\S]*?)<\/flock-path>/g)].map((m) => m[1]);
+  assert.ok(fallbacks.length >= 2);
+  for (const inner of fallbacks) assert.deepEqual(literalTexts(inner), [], 'fallback text of <flock-path>');
+});
+
+// ---- in Chromium ----
+
+async function openBrowser({ locale } = {}) {
+  const server = await startServer();
+  const profile = await mkdtemp(path.join(tmpdir(), 'flockpath-i18n-'));
+  const context = await chromium.launchPersistentContext(profile, {
+    executablePath: '/usr/bin/chromium',
+    headless: true,
+    args: [...CHROMIUM_ARGS, ...(locale ? [`--lang=${locale}`] : [])],
+    viewport: { width: 1280, height: 900 },
+    serviceWorkers: 'block',
+    ...(locale ? { locale } : {}),
+  });
+  const page = context.pages()[0] ?? (await context.newPage());
+  const errors = [];
+  page.on('console', (msg) => {
+    if (msg.type() === 'error') errors.push(`console: ${msg.text()}`);
+  });
+  page.on('pageerror', (error) => errors.push(`page error: ${error.message}`));
+  const close = async () => {
+    await context.close().catch(() => {});
+    await server.close();
+    await rm(profile, { recursive: true, force: true });
+  };
+  return { page, errors, close, url: server.url };
+}
+
+/** Words of visible text nodes under `selector` that look English (3+ Latin letters, not allowed). */
+async function englishLeftovers(page, selector) {
+  return page.evaluate(
+    ({ selector, allowed }) => {
+      const ok = new Set(allowed);
+      const words = [];
+      for (const root of document.querySelectorAll(selector)) {
+        const walker = document.createTreeWalker(root, NodeFilter.SHOW_TEXT);
+        for (let node = walker.nextNode(); node; node = walker.nextNode()) {
+          const el = node.parentElement;
+          if (!el || el.closest('script, style, code, kbd, #lang-select, [hidden]')) continue;
+          if (el.getClientRects().length === 0) continue;
+          const style = getComputedStyle(el);
+          if (style.visibility === 'hidden' || style.display === 'none') continue;
+          for (const word of node.textContent.match(/[A-Za-z][A-Za-z’'-]{2,}/g) ?? []) {
+            if (!ok.has(word)) words.push(word);
+          }
+        }
+      }
+      return words;
+    },
+    { selector, allowed: ALLOWED_WORDS },
+  );
+}
+
+/** Proper names, units and file formats shown as they are in every language. */
+const ALLOWED_WORDS = ['flock', 'path', 'flockpath', 'Boids', 'PSO', 'IGSA', 'GSA', 'ORCA', 'Gsum', 'Ctrl', 'Esc', 'Del', 'Tab', 'Shift', 'Enter',
+  'Space', 'fps', 'CSV', 'JSON', 'SVG', 'PNG', 'WebM', 'MEL', 'Maya', 'Blender', 'Python', 'Chen', 'Lin', 'Zhang', 'Liu',
+  'Helbing', 'Molnár', 'van', 'den', 'Berg', 'RiMEA', 'Jülich', 'Weidmann', 'Web', 'Worker', 'MiB', 'KiB', 'iframe', 'LMS',
+  'Markdown', 'rastrigin', 'sphere', 'ackley', 'griewank', 'igsa', 'pso', 'firefly', 'boids', 'forces', 'orca', 'social_force',
+  'Gm', 'Gg', 'Gc', 'Ga', 'Gd', 'Vmax', 'max', 'r_safe', 'c_obs', 'v_pref'];
+
+/** Each page with `?lang=zh`: what must be Chinese, and where no English may be left. */
+const ZH_PAGES = [
+  { page: 'index.html', ready: () => window.flockpath !== undefined, chinese: { '#play': '暂停', '#metrics-title > span[data-i18n]': '指标', '#planner-title': '规划器', '#groups-title': '群组' }, scan: 'header, .toolbar, .timeline, .panel' },
+  { page: 'compare.html', ready: () => window.flockpathCompare !== undefined, chinese: { '#play': '暂停', '#table-title': '指标', '#add-pane': '添加窗格' }, scan: 'header, .toolbar, .compare-side, .pane-head' },
+  { page: 'tune.html', ready: () => document.getElementById('loading').hidden, chinese: { '#tune': '调优', '#setup-title': '设置', '#status': '尚未开始。' }, scan: 'header, .panel' },
+  { page: 'lab.html', ready: () => window.flockpathLab !== undefined || document.querySelector('#lab-function option') !== null, chinese: { '#lab-play': '播放', '#lab-plot-title': '收敛曲线（目前最优，对数坐标）' }, scan: 'header, .lab-toolbar' },
+  { page: 'validation.html', ready: () => document.querySelector('#val-planners input') !== null, chinese: { '#val-run': '运行', '#val-table-title': '结果' }, scan: 'header, #val-run-title, fieldset legend, .row-buttons' },
+  { page: 'embed.html#s=open-field', ready: () => document.getElementById('embedded')?.host !== undefined && document.getElementById('embedded').host !== null, chinese: { '#open-full': '在 flockpath 中打开 ↗' }, scan: 'body' },
+];
+
+test('?lang=zh: every page speaks Chinese and leaves no English UI words in its header and panels', async () => {
+  const { page, errors, close, url } = await openBrowser();
+  try {
+    for (const { page: name, ready, chinese, scan } of ZH_PAGES) {
+      const [file, hash] = name.split('#');
+      await page.goto(`${url}${file}?lang=zh${hash ? `#${hash}` : ''}`);
+      await page.waitForFunction(ready, null, { timeout: 30_000 });
+      assert.equal(await page.evaluate(() => document.documentElement.lang), 'zh-Hans', `${file}: <html lang>`);
+      for (const [selector, text] of Object.entries(chinese)) {
+        assert.equal((await page.textContent(selector)).trim(), text, `${file} ${selector}`);
+      }
+      const left = await englishLeftovers(page, scan);
+      assert.deepEqual(left, [], `${file}: English words left in ${scan}`);
+      if (file !== 'embed.html') {
+        assert.equal(await page.inputValue('#lang-select'), 'zh', `${file}: the language menu shows zh`);
+      }
+    }
+    // The element on the embed page words its own controls in Chinese too.
+    assert.equal(await page.evaluate(() => document.getElementById('embedded').shadowRoot.querySelector('.reset').textContent), '重置');
+    assertNoUnexpectedErrors(errors);
+  } finally {
+    await close();
+  }
+});
+
+test('a browser whose language is zh-CN gets Chinese without ?lang; ?lang=en still wins', async () => {
+  const { page, errors, close, url } = await openBrowser({ locale: 'zh-CN' });
+  try {
+    assert.equal(await page.evaluate(() => navigator.language), 'zh-CN');
+    await page.goto(`${url}index.html`);
+    await page.waitForFunction(() => window.flockpath !== undefined);
+    assert.equal((await page.textContent('#planner-title')).trim(), '规划器');
+    assert.equal((await page.textContent('#step')).trim(), '单步');
+    await page.goto(`${url}index.html?lang=en`);
+    await page.waitForFunction(() => window.flockpath !== undefined);
+    assert.equal((await page.textContent('#planner-title')).trim(), 'Planner');
+    assert.equal(await page.evaluate(() => document.documentElement.lang), 'en');
+    assertNoUnexpectedErrors(errors);
+  } finally {
+    await close();
+  }
+});
+
+test('switching language in the menu keeps the scene and the run, and is remembered', async () => {
+  const { page, errors, close, url } = await openBrowser();
+  try {
+    await page.goto(`${url}index.html`);
+    await page.waitForFunction(() => window.flockpath !== undefined);
+    await page.evaluate((scene) => window.flockpath.load(scene), simpleScene({ seed: 7 }));
+    await page.evaluate(() => {
+      window.flockpath.pause();
+      window.flockpath.step(40);
+    });
+    const before = await page.evaluate(() => ({ scene: window.flockpath.sceneString(), digest: window.flockpath.digest(), steps: window.flockpath.metrics().steps }));
+    assert.equal((await page.textContent('#play')).trim(), 'Play');
+    assert.ok((await englishLeftovers(page, 'header, .toolbar, .timeline, .panel')).length > 50, 'the scan sees English words');
+    await page.waitForFunction((s) => location.hash.includes(s.slice(0, 20)), before.scene);
+
+    await page.selectOption('#lang-select', 'zh');
+    assert.equal((await page.textContent('#play')).trim(), '播放', 'the paused Play button in Chinese');
+    assert.equal((await page.textContent('#planner-title')).trim(), '规划器');
+    assert.equal(await page.evaluate(() => document.documentElement.lang), 'zh-Hans');
+    // Generated controls follow: the parameter labels, the metric names, the planner menu.
+    assert.equal(await page.evaluate(() => document.querySelector('#params .param label').textContent), '感知半径');
+    assert.equal(await page.evaluate(() => document.querySelector('#metrics dt').textContent), '步数');
+    assert.equal(await page.evaluate(() => document.querySelector('#planner option[value="firefly"]').textContent), '萤火虫算法人群（Zhang 等 2017）');
+    const after = await page.evaluate(() => ({ scene: window.flockpath.sceneString(), digest: window.flockpath.digest(), steps: window.flockpath.metrics().steps }));
+    assert.deepEqual(after, before, 'same scene, same state, same step');
+    const location = await page.evaluate(() => ({ search: location.search, hash: location.hash }));
+    assert.equal(location.search, '?lang=zh');
+    assert.ok(location.hash.includes(before.scene), 'the scene stays in the fragment');
+    assert.deepEqual(await englishLeftovers(page, 'header, .toolbar, .timeline, .panel'), [], 'no English left after the switch');
+    // The inspector words the core's explanation (state, forces) in Chinese too.
+    await page.evaluate(() => window.flockpath.inspect(0));
+    await page.waitForSelector('#inspector:not([hidden])');
+    assert.equal(await page.textContent('#inspector-facts dt'), '速度');
+    assert.match(await page.textContent('#inspector-facts dd:nth-of-type(2)'), /[\u4e00-\u9fff]/, 'the state in Chinese');
+    assert.deepEqual(await englishLeftovers(page, '#inspector'), [], 'no English in the inspector');
+
+    // Remembered: another page opened without ?lang speaks Chinese.
+    await page.goto(`${url}compare.html`);
+    await page.waitForFunction(() => window.flockpathCompare !== undefined);
+    assert.equal((await page.textContent('#add-pane')).trim(), '添加窗格');
+    await page.selectOption('#lang-select', 'en');
+    assert.equal((await page.textContent('#add-pane')).trim(), 'Add pane');
+    assertNoUnexpectedErrors(errors);
+  } finally {
+    await close();
+  }
+});
+
+test('refused input is worded in Chinese: a field out of range, an unknown scene version, a preset name', async () => {
+  const { page, errors, close, url } = await openBrowser();
+  try {
+    await page.goto(`${url}index.html?lang=zh#s=9.abcdef`);
+    await page.waitForFunction(() => window.flockpath !== undefined);
+    const banner = () => page.textContent('#banner-text');
+    assert.match(await banner(), /^无法加载链接中的场景：无法读取场景：未知的场景格式版本“9”；此 flockpath 能读取的版本为 1 和 2。改为显示默认场景“立柱”。$/);
+
+    // The group editor's Radius field: 500 px is over the limit.
+    await page.fill('#group-editor input[name="agent_radius"]', '500');
+    await page.$eval('#group-editor input[name="agent_radius"]', (input) => input.dispatchEvent(new Event('change')));
+    await page.waitForFunction(() => !document.getElementById('banner').hidden && document.getElementById('banner-text').textContent.includes('agent_radius'));
+    assert.equal(await banner(), 'groups[0].agent_radius 的值为 500；允许：0.5…100 像素 之间的数');
+
+    // A parameter through the page API keeps the English message on the Error for scripts, and the
+    // banner words it in Chinese.
+    const thrown = await page.evaluate(() => {
+      try {
+        window.flockpath.load('no-such-preset');
+        return null;
+      } catch (error) {
+        return { message: error.message, code: error.code };
+      }
+    });
+    assert.equal(thrown.code, 'unknown_preset');
+    assert.match(thrown.message, /^unknown preset 'no-such-preset'/);
+    assert.match(await banner(), /^未知的预设场景“no-such-preset”（可用的有：pillars, /);
+    assertNoUnexpectedErrors(errors);
+  } finally {
+    await close();
+  }
+});
