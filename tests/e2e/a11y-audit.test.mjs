@@ -2,8 +2,8 @@
 // serious or critical violation on the playground (also with the Share and Export dialogs open
 // and the keyboard cursor showing), the embed page, compare, tune, the optimizer lab and the
 // course-notes example. The scene canvases are in the accessibility tree with a role and a name,
-// and the playground's and every <flock-path>'s live description is polite, visually hidden and
-// says what the scene and the run hold.
+// and the playground's, compare's and every <flock-path>'s live description is polite, visually
+// hidden and says what the scene and the run hold (compare: each pane's planner and metrics).
 
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
@@ -112,6 +112,63 @@ test('the description speaks the page language (?lang=zh)', async () => {
     assertNoUnexpectedErrors(errors);
   } finally {
     await close();
+  }
+});
+
+test('compare: a polite, visually hidden description names each pane and matches its metrics', async () => {
+  const ready = () => window.flockpathCompare !== undefined && document.querySelectorAll('.pane canvas').length === 2;
+  for (const lang of ['en', 'zh']) {
+    const { page, errors, close } = await openPath(`compare.html?lang=${lang}`, { ready });
+    try {
+      await page.evaluate(() => {
+        window.flockpathCompare.pause();
+        window.flockpathCompare.reset();
+        window.flockpathCompare.step(90);
+      });
+      const steps = await page.evaluate(() => window.flockpathCompare.steps());
+      assert.deepEqual([...new Set(steps)], [90]);
+      // Rewritten at most every few seconds: wait for the words of step 90.
+      const stepWords = lang === 'en' ? 'Step 90, paused.' : '第 90 步，已暂停。';
+      await page.waitForFunction((words) => {
+        const ps = [...document.querySelectorAll('#compare-description p[data-pane]')];
+        return ps.length === 2 && ps.every((p) => p.textContent.includes(words));
+      }, stepWords, { timeout: 20_000 });
+      const facts = await page.evaluate(() => {
+        const el = document.getElementById('compare-description');
+        const box = el.getBoundingClientRect();
+        return {
+          live: el.getAttribute('aria-live'),
+          box: [box.width, box.height],
+          scene: el.querySelector('p:not([data-pane])').textContent,
+          paragraphs: [...el.querySelectorAll('p[data-pane]')].map((p) => ({ pane: p.dataset.pane, text: p.textContent })),
+          panes: window.flockpathCompare.panes(),
+          metrics: window.flockpathCompare.metrics(),
+          planners: [...document.querySelectorAll('.pane .pane-label')].map((n) => n.textContent),
+        };
+      });
+      assert.equal(facts.live, 'polite');
+      assert.ok(facts.box[0] <= 1 && facts.box[1] <= 1, `visually hidden: ${facts.box}`);
+      assert.match(facts.scene, lang === 'en' ? /^2 panes run this scene side by side/ : /^2 个窗格并排运行此场景/, facts.scene);
+      assert.equal(facts.paragraphs.length, facts.panes.length);
+      assert.notEqual(facts.planners[0], facts.planners[1], 'the two panes differ in planner');
+      facts.paragraphs.forEach((p, i) => {
+        const n = (key) => facts.metrics[i][key].toLocaleString('en-US');
+        const m = facts.metrics[i];
+        const percent = `${Math.round(m.arrived_share * 100)}%`;
+        assert.equal(p.pane, facts.panes[i].pane);
+        // The pane's name and its planner (the label the pane's header shows, in the page's language).
+        const head = lang === 'en' ? `Pane ${p.pane}, ${facts.planners[i]}:` : `窗格 ${p.pane}，${facts.planners[i]}：`;
+        assert.ok(p.text.startsWith(head), `${head} | ${p.text}`);
+        const expected = lang === 'en'
+          ? [`${percent} of ${n('agents')} agent`, `${n('collisions_last_step')} pair`, `${n('collisions_agent_agent')} in all`,
+            `${n('penetrations_agent_obstacle')} obstacle penetration`, m.stuck_agents === 0 ? 'No agent stuck.' : `${n('stuck_agents')} agent`]
+          : [percent, n('agents'), n('collisions_agent_agent')];
+        for (const words of expected) assert.ok(p.text.includes(words), `pane ${p.pane} says “${words}”: ${p.text}`);
+      });
+      assertNoUnexpectedErrors(errors);
+    } finally {
+      await close();
+    }
   }
 });
 

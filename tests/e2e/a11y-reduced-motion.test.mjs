@@ -1,6 +1,6 @@
 // prefers-reduced-motion (issue #15 item 1): a reader who asked the system for less motion gets
-// a playground, a compare page and embeds (embed.html with autoplay, <flock-path autoplay> in the
-// course notes) that start paused; Play still plays. Without the preference they play as before.
+// a playground, a compare page, the tune page's preview and embeds (embed.html with autoplay,
+// <flock-path autoplay> in the course notes) that start paused; Play still plays. Without the preference they play as before.
 
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
@@ -40,6 +40,33 @@ test('reduced motion: the playground and compare start paused; Play plays', asyn
     assert.deepEqual(await page.evaluate(() => [...new Set(window.flockpathCompare.steps())]), [0]);
     await page.click('#play');
     await page.waitForFunction(() => window.flockpathCompare.steps()[0] > 0);
+    assertNoUnexpectedErrors(opened.errors);
+  } finally {
+    await opened.close();
+  }
+});
+
+test('reduced motion: the tune preview shows its first frame and waits; its Play plays', async () => {
+  const opened = await openReduced('tune.html', () => window.flocktune !== undefined);
+  try {
+    const { page } = opened;
+    await page.waitForFunction(() => window.flocktune.state().previewFrames > 0);
+    const before = await page.evaluate(() => window.flocktune.state());
+    await frames(page, 20);
+    const after = await page.evaluate(() => window.flocktune.state());
+    assert.equal(after.previewPlaying, false, 'the preview starts paused');
+    assert.equal(after.previewSteps, 0, 'no preview step ran');
+    assert.equal(after.previewFrames, before.previewFrames, 'a paused preview is not repainted every frame');
+    assert.equal(await page.textContent('#preview-play'), 'Play');
+    assert.equal(await page.getAttribute('#preview-play', 'aria-pressed'), 'false');
+    await page.click('#preview-play');
+    await page.waitForFunction(() => window.flocktune.state().previewSteps > 0);
+    assert.equal(await page.textContent('#preview-play'), 'Pause');
+    assert.equal(await page.getAttribute('#preview-play', 'aria-pressed'), 'true');
+    await page.click('#preview-play');
+    const paused = await page.evaluate(() => window.flocktune.state().previewSteps);
+    await frames(page, 10);
+    assert.equal(await page.evaluate(() => window.flocktune.state().previewSteps), paused, 'Pause stops it again');
     assertNoUnexpectedErrors(opened.errors);
   } finally {
     await opened.close();

@@ -13,6 +13,7 @@ import { buildPanes, blitPanes, measurePane } from './panes.js';
 import { drawPlots, drawTable } from './plots.js';
 import { download } from '../core/download.js';
 import { setupActivity } from './activity.js';
+import { setupCompareDescription } from './describe.js';
 import { onLanguageChange, setText, t, tOr } from '../core/i18n.js';
 
 const $ = (id) => document.getElementById(id);
@@ -206,6 +207,8 @@ bootPage(t('boot.what_compare'), ({ module, wasm }) => {
   setupControls(app);
   keepLocationInSync(app);
   setupActivity(app);
+  // The panes in words for screen readers (core/describe.js's words), after the panes.
+  setupCompareDescription(app, $('panes'));
   startLoop(app, canvases);
   $('loading').hidden = true;
   if (problems.length) showMessage(problems.join(' '));

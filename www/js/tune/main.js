@@ -13,6 +13,7 @@ import { FitnessPlot } from './plot.js';
 import { Preview } from './preview.js';
 import { sceneFromLocation, shareUrl } from '../core/url.js';
 import { formatNumber, onLanguageChange, setText, t } from '../core/i18n.js';
+import { prefersReducedMotion } from '../core/motion.js';
 
 const $ = (id) => document.getElementById(id);
 const FIELDS = ['behaviour', 'environment', 'seed', 'population', 'generations', 'frames'];
@@ -223,6 +224,14 @@ bootPage(t('boot.what_tune'), ({ module, wasm }) => {
     if (isPanic(error)) showPanic(messageOf(error));
     else showMessage(t('tune.preview_stopped', { reason: messageOf(error) }));
   };
+  // The preview's Play/Pause; a reader who asked for less motion starts paused (Play plays).
+  const playPreview = (playing) => {
+    preview.setPlaying(playing);
+    setText($('preview-play'), playing ? 'playback.pause' : 'playback.play');
+    $('preview-play').setAttribute('aria-pressed', String(playing));
+  };
+  playPreview(!prefersReducedMotion());
+  $('preview-play').addEventListener('click', () => playPreview(!preview.playing));
   plot = new FitnessPlot($('plot'));
   plot.reset(Number.parseInt($('generations').value, 10) || 1);
 
@@ -250,7 +259,7 @@ bootPage(t('boot.what_tune'), ({ module, wasm }) => {
 
   window.flocktune = {
     /** A copy of the run's state: {running, finished, cancelled, error, setup, history, best, …}. */
-    state: () => structuredClone({ ...state, previewFrames: preview.painted, previewSteps: preview.steps() }),
+    state: () => structuredClone({ ...state, previewFrames: preview.painted, previewSteps: preview.steps(), previewPlaying: preview.playing }),
     /** Starts a run with the fields' values (like pressing Tune). */
     start: () => start(linkedScene),
     /** Cancels the run (like pressing Cancel). */

@@ -1,6 +1,8 @@
 // The Tune page's preview: a `Sim` on the page's own wasm instance runs the scene with the best
 // weights so far and replays it from the start after the evaluation's frame count. It counts
-// painted frames so tests can see the page keeps animating while the worker computes.
+// painted frames so tests can see the page keeps animating while the worker computes. Paused
+// (`playing` false: a reader who asked for less motion starts so), it paints each new scene's
+// first frame once and does not step.
 
 import { blitSim } from '../core/blit.js';
 import { backingSize } from '../core/view.js';
@@ -22,6 +24,9 @@ export class Preview {
     this.sim = null;
     this.sceneString = null;
     this.frames = 400;
+    /** Whether the replay advances; when false only a new scene or a resize repaints. */
+    this.playing = true;
+    this.stale = true;
     /** Animation frames painted so far. */
     this.painted = 0;
     this.resize();
@@ -48,6 +53,12 @@ export class Preview {
     this.sim?.free();
     this.sim = sim;
     this.sceneString = sceneString;
+    this.stale = true;
+  }
+
+  /** Plays or pauses the replay. */
+  setPlaying(playing) {
+    this.playing = playing;
   }
 
   resize() {
@@ -57,12 +68,16 @@ export class Preview {
     this.canvas.width = width;
     this.canvas.height = height;
     this.sim?.resize(width, height);
+    this.stale = true;
   }
 
   tick() {
-    if (this.sim === null) return;
-    if (this.sim.steps() >= this.frames) this.sim.reset();
-    this.sim.step(STEPS_PER_FRAME);
+    if (this.sim === null || (!this.playing && !this.stale)) return;
+    this.stale = false;
+    if (this.playing) {
+      if (this.sim.steps() >= this.frames) this.sim.reset();
+      this.sim.step(STEPS_PER_FRAME);
+    }
     this.sim.render();
     blitSim(this.ctx, this.wasm, this.sim);
     this.painted += 1;

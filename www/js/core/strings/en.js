@@ -1089,4 +1089,9 @@ export default {
   'classroom.panel.timeline': 'Timeline',
   'classroom.panel.groups': 'Groups',
   'classroom.panel.keys': 'Keys',
+  // — motion (reduced motion on tune, compare's live description) —
+  'tune.preview_play_title': 'Play or pause the preview',
+  'compare.describe.intro.one': '1 pane runs this scene.',
+  'compare.describe.intro.other': '{n} panes run this scene side by side, each with its own planner.',
+  'compare.describe.pane': 'Pane {pane}, {label}:',
 };

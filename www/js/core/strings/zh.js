@@ -1089,4 +1089,9 @@ export default {
   'classroom.panel.timeline': '时间轴',
   'classroom.panel.groups': '群组',
   'classroom.panel.keys': '快捷键',
+  // — motion (reduced motion on tune, compare's live description) —
+  'tune.preview_play_title': '播放或暂停预览',
+  'compare.describe.intro.one': '1 个窗格运行此场景。',
+  'compare.describe.intro.other': '{n} 个窗格并排运行此场景，各用自己的规划器。',
+  'compare.describe.pane': '窗格 {pane}，{label}：',
 };
