@@ -123,12 +123,12 @@ test('compare: a polite, visually hidden description names each pane and matches
       await page.evaluate(() => {
         window.flockpathCompare.pause();
         window.flockpathCompare.reset();
-        window.flockpathCompare.step(90);
+        window.flockpathCompare.step(600);
       });
       const steps = await page.evaluate(() => window.flockpathCompare.steps());
-      assert.deepEqual([...new Set(steps)], [90]);
-      // Rewritten at most every few seconds: wait for the words of step 90.
-      const stepWords = lang === 'en' ? 'Step 90, paused.' : '第 90 步，已暂停。';
+      assert.deepEqual([...new Set(steps)], [600]);
+      // Rewritten at most every few seconds: wait for the words of step 600 (arrivals and collisions by then).
+      const stepWords = lang === 'en' ? 'Step 600, paused.' : '第 600 步，已暂停。';
       await page.waitForFunction((words) => {
         const ps = [...document.querySelectorAll('#compare-description p[data-pane]')];
         return ps.length === 2 && ps.every((p) => p.textContent.includes(words));
@@ -151,6 +151,7 @@ test('compare: a polite, visually hidden description names each pane and matches
       assert.match(facts.scene, lang === 'en' ? /^2 panes run this scene side by side/ : /^2 个窗格并排运行此场景/, facts.scene);
       assert.equal(facts.paragraphs.length, facts.panes.length);
       assert.notEqual(facts.planners[0], facts.planners[1], 'the two panes differ in planner');
+      assert.ok(facts.metrics.some((m) => m.arrived_share > 0 || m.collisions_agent_agent > 0), 'figures worth matching');
       facts.paragraphs.forEach((p, i) => {
         const n = (key) => facts.metrics[i][key].toLocaleString('en-US');
         const m = facts.metrics[i];
