@@ -9,6 +9,8 @@ import { assertNoUnexpectedErrors, frames, openPath } from './helpers.mjs';
 /** Opens `file`, then reloads it with `prefers-reduced-motion: reduce` emulated. */
 async function openReduced(file, ready) {
   const opened = await openPath(file, { ready });
+  // Let the first load's fetches finish: a reload would abort them (a "request failed" error).
+  await opened.page.waitForLoadState('networkidle');
   await opened.page.emulateMedia({ reducedMotion: 'reduce' });
   await opened.page.reload();
   await opened.page.waitForFunction(ready, null, { timeout: 30_000 });
