@@ -88,7 +88,9 @@ function setupPaceReadout(app) {
       if (since === null) since = now;
       if (now - since < PACE_REFRESH_MS) return;
       const run = done / frames;
-      const limited = done < wanted;
+      // Limited only when the figure shown is below what Speed asks: a rare short frame (input
+      // waiting) must not say "→ 2.0× (frame budget)" under a Speed of 2×.
+      const limited = Number(run.toFixed(1)) < wanted / frames;
       app.pace = { wanted: asked, run, limited };
       show(
         limited,
