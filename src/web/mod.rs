@@ -81,6 +81,36 @@ impl Refusal for Unreadable {
     }
 }
 
+/// An error the core words alone, coded by the page concern it arose in (`compare`, `lab`,
+/// `tune`, `validation`, `export`) with its English words as the one argument `message`: the
+/// page words the ones it knows in the reader's language (`www/js/core/refusals.js`, matched by
+/// their English words) and shows any other as given.
+struct Worded {
+    code: &'static str,
+    message: String,
+}
+
+impl Display for Worded {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.message)
+    }
+}
+
+impl Refusal for Worded {
+    fn code(&self) -> &'static str {
+        self.code
+    }
+
+    fn args(&self) -> Vec<(&'static str, String)> {
+        vec![("message", self.message.clone())]
+    }
+}
+
+/// For `map_err`: the error as a JS `Error` with the core's message, coded `code` ([`Worded`]).
+fn worded<E: Display>(code: &'static str) -> impl Fn(E) -> JsValue {
+    move |e| refusal(Worded { code, message: e.to_string() })
+}
+
 /// A coded refusal ([`coded`]) as a JS value, for `map_err`.
 fn refusal(e: impl Refusal) -> JsValue {
     coded(&e).into()
@@ -345,14 +375,14 @@ impl Sim {
     }
 
     /// A Maya MEL script keyframing one locator per agent at `fps`, scene px × `scale`.
-    pub fn export_maya_mel(&self, fps: f32, scale: f32) -> Result<String, JsError> {
-        let options = ExportOptions::checked(fps, scale).map_err(js_error)?;
+    pub fn export_maya_mel(&self, fps: f32, scale: f32) -> Result<String, JsValue> {
+        let options = ExportOptions::checked(fps, scale).map_err(worded("export"))?;
         Ok(export::maya_mel(self.run.world().scene(), self.run.recording(), options))
     }
 
     /// A Blender Python script keyframing one empty per agent at `fps`, scene px × `scale`.
-    pub fn export_blender_py(&self, fps: f32, scale: f32) -> Result<String, JsError> {
-        let options = ExportOptions::checked(fps, scale).map_err(js_error)?;
+    pub fn export_blender_py(&self, fps: f32, scale: f32) -> Result<String, JsValue> {
+        let options = ExportOptions::checked(fps, scale).map_err(worded("export"))?;
         Ok(export::blender_py(self.run.world().scene(), self.run.recording(), options))
     }
 
