@@ -333,10 +333,10 @@ impl Sim {
 
     /// Draws in the render theme `name` ("standard" or "projector") from the next frame on: a
     /// page option, not part of the scene (links and runs do not change). Throws on another name.
-    pub fn set_theme(&mut self, name: &str) -> Result<(), JsError> {
+    pub fn set_theme(&mut self, name: &str) -> Result<(), JsValue> {
         let theme = Theme::from_name(name).ok_or_else(|| {
             let known: Vec<&str> = Theme::ALL.iter().map(|t| t.name()).collect();
-            JsError::new(&format!("unknown theme {name:?}; known: {}", known.join(", ")))
+            worded("theme")(format!("unknown theme {name:?}; known: {}", known.join(", ")))
         })?;
         self.renderer.set_theme(theme);
         Ok(())
