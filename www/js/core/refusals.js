@@ -132,14 +132,57 @@ const ALLOWED = [
 const REASONS = [
   [/^invalid value: integer `(?<value>[^`]+)`, expected (?<type>\w+)$/, 'reason.invalid_value'],
   [/^invalid type: (?<found>.+), expected (?<type>[\w ]+)$/, 'reason.invalid_type'],
+  [/^invalid value: (?<found>.+), expected (?<type>.+)$/, 'reason.invalid_value_of'],
   [/^Invalid symbol (?<symbol>\d+), offset (?<offset>\d+)\.$/, 'reason.base64_symbol'],
   [/^Invalid last symbol (?<symbol>\d+), offset (?<offset>\d+)\.$/, 'reason.base64_symbol'],
   [/^Invalid input length\.?$/, 'reason.base64_length'],
+  [/^unknown variant `(?<name>[^`]*)`, expected (?:one of )?(?<known>.+)$/, 'reason.unknown_variant'],
+  [/^unknown field `(?<name>[^`]*)`, expected (?:one of )?(?<known>.+)$/, 'reason.unknown_field'],
+  [/^unknown field `(?<name>[^`]*)`, there are no fields$/, 'reason.no_fields'],
+  [/^missing field `(?<name>[^`]*)`$/, 'reason.missing_field'],
+  [/^expected value$/, 'reason.expected_value'],
+  [/^trailing characters$/, 'reason.trailing'],
+  [/^EOF while parsing (?:a |an )?(?<what>.+)$/, 'reason.eof'],
+  [/^EOF while parsing$/, 'reason.eof_bare'],
+  [/^key must be a string$/, 'reason.key_string'],
+  [/^expected `(?<char>[^`]+)` or `(?<other>[^`]+)`$/, 'reason.expected_either'],
+  [/^expected `(?<char>[^`]+)`$/, 'reason.expected_char'],
+  [/^invalid number$/, 'reason.invalid_number'],
+  [/^number out of range$/, 'reason.number_range'],
+];
+
+/** serde's words for a kind of value (what it found, what it expected): [regex, table key]. */
+const KINDS = [
+  [/^string "(?<value>.*)"$/, 'reason.kind.string_value'],
+  [/^integer `(?<value>[^`]*)`$/, 'reason.kind.integer_value'],
+  [/^floating point `(?<value>[^`]*)`$/, 'reason.kind.float_value'],
+  [/^boolean `(?<value>[^`]*)`$/, 'reason.kind.boolean_value'],
+  [/^a string$/, 'reason.kind.string'],
+  [/^a boolean$/, 'reason.kind.boolean'],
+  [/^a sequence$/, 'reason.kind.sequence'],
+  [/^(?:a )?map$/, 'reason.kind.map'],
+  [/^unit value$/, 'reason.kind.unit'],
+  [/^struct (?<name>\w+)$/, 'reason.kind.object'],
 ];
 
 /** A JSON reader's reason in the reader's language, or its own words. */
 function reasonText(text) {
-  return typeof text === 'string' ? match(REASONS, text) ?? text : text;
+  if (typeof text !== 'string') return text;
+  // `… at line 1 column 17`: the position in the reader's words.
+  const at = / at line (?<line>\d+) column (?<column>\d+)$/.exec(text);
+  const body = at ? text.slice(0, at.index) : text;
+  const worded = match(REASONS, body);
+  if (worded === null) return text;
+  return at ? `${worded}${t('reason.at', { ...at.groups })}` : worded;
+}
+
+/** A kind of value in serde's words (`string "x"`, `a sequence`), in the reader's language. */
+function kindText(text) {
+  for (const [re, key] of KINDS) {
+    const m = re.exec(text);
+    if (m) return t(key, { ...m.groups });
+  }
+  return text;
 }
 
 /** Values the core writes in words. */
@@ -172,6 +215,10 @@ function match(list, text) {
     // `1 and 2`: the core's list joined in the reader's language.
     if (groups.readable) groups.readable = groups.readable.split(' and ').join(` ${t('list.and')} `);
     if (groups.reason) groups.reason = reasonText(groups.reason);
+    if (groups.found) groups.found = kindText(groups.found);
+    if (groups.what) groups.what = tOr(`reason.what.${groups.what}`, groups.what);
+    if (groups.type) groups.type = kindText(groups.type);
+    if (groups.known) groups.known = groups.known.replace(/`/g, '"');
     if (groups.item) groups.item = tOr(`item.${groups.item}`, groups.item);
     if (groups.items) groups.items = tOr(`items.${groups.items}`, groups.items);
     if (groups.side) groups.side = t(`allowed.side_${groups.side}`);
