@@ -82,7 +82,7 @@ impl Refusal for Unreadable {
 }
 
 /// An error the core words alone, coded by the page concern it arose in (`compare`, `lab`,
-/// `tune`, `validation`, `export`) with its English words as the one argument `message`: the
+/// `tune`, `validation`, `export`, `theme`, `play`) with its English words as the one argument `message`: the
 /// page words the ones it knows in the reader's language (`www/js/core/refusals.js`, matched by
 /// their English words) and shows any other as given.
 struct Worded {
@@ -125,6 +125,15 @@ fn scene_error(e: crate::model::scene::SceneError) -> JsValue {
         let _ = js_sys::Reflect::set(&error, &JsValue::from_str("details"), &JsValue::from_str(detail));
     }
     error.into()
+}
+
+/// "there is no group n" (`group` counts from 0, the message from 1), coded like the core's
+/// other missing items (`bad_reference`).
+fn no_group(group: u32) -> JsValue {
+    scene_error(crate::model::scene::SceneError::BadReference(format!(
+        "there is no group {}",
+        u64::from(group) + 1
+    )))
 }
 
 fn to_json<T: serde::Serialize>(value: &T) -> Result<String, JsError> {
@@ -273,14 +282,14 @@ impl Sim {
     /// Sets one planner parameter of a group (0-based) from a JSON value, live, without a reset.
     pub fn set_group_param(&mut self, group: u32, key: &str, value_json: &str) -> Result<(), JsValue> {
         let value: serde_json::Value = serde_json::from_str(value_json)
-            .map_err(|e| js_error(format!("the value for {key:?} is not JSON: {e}")))?;
+            .map_err(|e| worded("play")(format!("the value for {key:?} is not JSON: {e}")))?;
         let mut config = self
             .run
             .world()
             .scene()
             .groups
             .get(group as usize)
-            .ok_or_else(|| js_error(format!("there is no group {}", u64::from(group) + 1)))?
+            .ok_or_else(|| no_group(group))?
             .planner
             .clone();
         config.set_param(key, value).map_err(refusal)?;

@@ -206,6 +206,10 @@ test('every other refusal is worded in Chinese too: scene fields, items, compare
       sim.edit(JSON.stringify({ op: 'add_path', points: [[10, 10], [90, 90]], group: 0 }));
     }),
     trailing: refused(() => sim.load(`${m.preset_scene_json('open-field')} }`)),
+    no_group: refused(() => sim.set_group_param(9, 'max_speed', '1')),
+    not_json: refused(() => sim.set_group_param(0, 'max_speed', '{')),
+    waypoints: refused(() => sim.set_group_waypoints(0, '[1]')),
+    not_igsa: refused(() => sim.set_group_waypoints(0, '[]')),
     // The compare page's spec (`c=`) and panes.
     spec_planner: refused(() => m.compare_spec_check('1.zz')),
     spec_version: refused(() => m.compare_spec_check('7.scene')),

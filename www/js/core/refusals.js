@@ -5,7 +5,7 @@
 // (`parse`, `blocked`, `too_costly`, …: one `message` argument) are matched against the few
 // patterns below (unknown scene version, the density and cost limits, a missing item, …); any
 // other keeps the core's English words. Errors of the other pages come coded by where they arose
-// (`compare`, `lab`, `tune`, `validation`, `export`, `theme`: src/web/mod.rs `worded`) with the
+// (`compare`, `lab`, `tune`, `validation`, `export`, `theme`, `play`: src/web/mod.rs `worded`) with the
 // core's words as `message`, matched against that code's patterns here the same way.
 
 import { en, language, t, tOr } from './i18n.js';
@@ -52,6 +52,8 @@ const PATTERNS = [
   [/^(?<label>.+) \((?<planner>\w+)\) must be one of \[(?<choices>.*)\], not (?<value>".*")$/, 'error.pane_param_choice'],
   [/^this pane runs the scene's own planners: pick a planner for it first$/, 'error.pane_scene_param'],
   [/^the value for (?<key>".*") is not JSON: (?<reason>.*)$/, 'error.value_not_json'],
+  [/^the waypoints are not a list of \[x, y\] points: (?<reason>.*)$/, 'error.waypoints_not_list'],
+  [/^group (?<group>\d+) does not follow a planned path \(its planner is not igsa\)$/, 'error.not_igsa'],
   [/^unknown planner "(?<name>[^"]*)"; known: (?<known>.+)$/, 'error.unknown_planner'],
   [/^unknown algorithm "(?<name>[^"]*)"; known: (?<known>.+)$/, 'error.unknown_algorithm'],
   [/^unknown function "(?<name>[^"]*)"; known: (?<known>.+)$/, 'error.unknown_function'],
@@ -74,7 +76,7 @@ const PATTERNS = [
 ];
 
 /** Codes of errors worded by the core alone, with the frame each puts around the matched words. */
-const WORDED = { compare: 'error.compare', lab: null, tune: null, validation: null, export: null, theme: null };
+const WORDED = { compare: 'error.compare', lab: null, tune: null, validation: null, export: null, theme: null, play: null };
 
 /** What a field allows, in the reader's language: [regex over the core's words, table key]. */
 const ALLOWED = [
@@ -132,6 +134,7 @@ const ALLOWED = [
 const REASONS = [
   [/^invalid value: integer `(?<value>[^`]+)`, expected (?<type>\w+)$/, 'reason.invalid_value'],
   [/^invalid type: (?<found>.+), expected (?<type>[\w ]+)$/, 'reason.invalid_type'],
+  [/^invalid length (?<n>\d+), expected (?<type>.+)$/, 'reason.invalid_length'],
   [/^invalid value: (?<found>.+), expected (?<type>.+)$/, 'reason.invalid_value_of'],
   [/^Invalid symbol (?<symbol>\d+), offset (?<offset>\d+)\.$/, 'reason.base64_symbol'],
   [/^Invalid last symbol (?<symbol>\d+), offset (?<offset>\d+)\.$/, 'reason.base64_symbol'],
@@ -163,6 +166,7 @@ const KINDS = [
   [/^(?:a )?map$/, 'reason.kind.map'],
   [/^unit value$/, 'reason.kind.unit'],
   [/^struct (?<name>\w+)$/, 'reason.kind.object'],
+  [/^an array of length (?<n>\d+)$/, 'reason.kind.array_of'],
 ];
 
 /** A JSON reader's reason in the reader's language, or its own words. */

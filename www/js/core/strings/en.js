@@ -1270,4 +1270,8 @@ export default {
   "reason.what.object": "object",
   "reason.what.string": "string",
   "reason.what.list": "list",
+  "error.waypoints_not_list": "the waypoints are not a list of [x, y] points: {reason}",
+  "error.not_igsa": "group {group} does not follow a planned path (its planner is not igsa)",
+  "reason.kind.array_of": "an array of length {n}",
+  "reason.invalid_length": "invalid length {n}, expected {type}",
 };

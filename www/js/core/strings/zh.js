@@ -1270,4 +1270,8 @@ export default {
   "reason.what.object": "对象",
   "reason.what.string": "字符串",
   "reason.what.list": "列表",
+  "error.waypoints_not_list": "路径点不是由 [x, y] 点组成的列表：{reason}",
+  "error.not_igsa": "群组 {group} 不沿规划的路径行进（其规划器不是 IGSA）",
+  "reason.kind.array_of": "长度为 {n} 的数组",
+  "reason.invalid_length": "长度 {n} 无效，应为 {type}",
 };
