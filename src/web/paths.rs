@@ -31,15 +31,8 @@ impl Sim {
         let points: Vec<[f32; 2]> = serde_json::from_str(points_json)
             .map_err(|e| worded("play")(format!("the waypoints are not a list of [x, y] points: {e}")))?;
         let g = group as usize;
-        let mut config = self
-            .run
-            .world()
-            .scene()
-            .groups
-            .get(g)
-            .ok_or_else(|| no_group(group))?
-            .planner
-            .clone();
+        let mut config =
+            self.run.world().scene().groups.get(g).ok_or_else(|| no_group(group))?.planner.clone();
         let PlannerConfig::Igsa(params) = &mut config else {
             return Err(worded("play")(format!(
                 "group {} does not follow a planned path (its planner is not igsa)",

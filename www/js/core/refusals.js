@@ -68,6 +68,7 @@ const PATTERNS = [
   [/^the scene has no agents to tune$/, 'error.tune_no_agents'],
   [/^the run evaluated nothing$/, 'error.tune_nothing'],
   [/^unknown test "(?<name>[^"]*)"$/, 'error.unknown_test'],
+  [/^(?<planner>.+) has no speed parameter to set$/, 'error.no_speed_param'],
   [/^unknown planner "(?<name>[^"]*)"$/, 'error.unknown_planner_bare'],
   [/^unknown reference curve "(?<name>[^"]*)"; known: (?<known>.+)$/, 'error.unknown_curve'],
   [/^the frame rate must be 1…240 fps, not (?<value>.+)$/, 'error.export_fps'],
@@ -325,7 +326,7 @@ export function refusalText(error) {
         const worded = match(PATTERNS, why) ?? sceneWords(why);
         return worded === null ? null : t(WORDED[code], { message: worded });
       }
-      return match(PATTERNS, a.message);
+      return match(PATTERNS, a.message) ?? sceneWords(a.message);
     }
   }
 }

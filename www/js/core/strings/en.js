@@ -1274,4 +1274,5 @@ export default {
   "error.not_igsa": "group {group} does not follow a planned path (its planner is not igsa)",
   "reason.kind.array_of": "an array of length {n}",
   "reason.invalid_length": "invalid length {n}, expected {type}",
+  "error.no_speed_param": "{planner} has no speed parameter to set",
 };

@@ -1274,4 +1274,5 @@ export default {
   "error.not_igsa": "群组 {group} 不沿规划的路径行进（其规划器不是 IGSA）",
   "reason.kind.array_of": "长度为 {n} 的数组",
   "reason.invalid_length": "长度 {n} 无效，应为 {type}",
+  "error.no_speed_param": "{planner} 没有可设置的速度参数",
 };
