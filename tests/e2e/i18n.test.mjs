@@ -561,6 +561,11 @@ test('in Chinese: a per-group compare pane’s label, the Chinese web app manife
     const label = await page.textContent('.pane[data-pane="B"] .pane-label');
     assert.match(label, /^flock：PSO 粒子群人群；右侧：类鸟群/, `pane B's label: ${label}`);
     assert.deepEqual(await englishLeftovers(page, '.pane-head'), [], 'no English in the pane heads');
+    // A refused comparison in the link: the banner words the compare spec's refusal in Chinese.
+    await page.goto('about:blank');
+    await page.goto(`${url}compare.html?lang=zh#s=open-field&c=1.scene~zz`);
+    await page.waitForFunction(() => window.flockpathCompare !== undefined && !document.getElementById('banner').hidden);
+    assert.match(await page.textContent('#banner-text'), /比较：未知的规划器“zz”；可用的有：scene, boids/);
     const manifest = await page.evaluate(async () => {
       const link = document.querySelector('link[rel="manifest"]');
       return link ? { href: link.getAttribute('href'), json: await (await fetch(link.href)).json() } : null;
