@@ -550,7 +550,7 @@ test('refused input is worded in Chinese: a field out of range, an unknown scene
   }
 });
 
-test('in Chinese: a per-group compare pane’s label, the Chinese web app manifest, a tune worker’s refusal', async () => {
+test('in Chinese: a per-group compare pane’s label, a refused comparison and polygon, the web app manifest, a tune worker’s refusal', async () => {
   const { page, errors, close, url } = await openBrowser();
   try {
     // Two groups, each with its own planner in pane B: the label names both in Chinese.
@@ -583,6 +583,19 @@ test('in Chinese: a per-group compare pane’s label, the Chinese web app manife
     assert.equal(play.href, 'manifest.zh.webmanifest', 'the playground links the Chinese manifest');
     assert.match(play.json.name, /群体规划器/);
     assert.match(await page.getAttribute('meta[name="description"]', 'content'), /[\u4e00-\u9fff]/);
+    // A scene refused by the geometry checks (a polygon whose edges cross), through the page API:
+    // the script gets the English message, the banner the Chinese words.
+    const crossing = simpleScene({ obstacles: [{ shape: 'polygon', points: [[100, 100], [300, 300], [300, 100], [100, 300]] }] });
+    const thrown = await page.evaluate((scene) => {
+      try {
+        window.flockpath.load(scene);
+        return null;
+      } catch (error) {
+        return error.message;
+      }
+    }, crossing);
+    assert.match(thrown, /^obstacles\[0\]\.points is a polygon whose edges 0→1 and 2→3 cross or touch; allowed: a simple polygon/);
+    assert.equal(await page.textContent('#banner-text'), 'obstacles[0].points 的值为 边 0→1 与 2→3 相交或接触的多边形；允许：简单多边形：边只在共同的角点相交，面积不为零');
     await page.selectOption('#lang-select', 'en');
     assert.equal(await page.getAttribute('link[rel="manifest"]', 'href'), 'manifest.webmanifest', 'English again');
     await page.selectOption('#lang-select', 'zh');
