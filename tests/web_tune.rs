@@ -9,16 +9,20 @@ mod support;
 
 use flockpath::web::tune::TuneRun;
 use support::{fingerprint, stored};
-use wasm_bindgen::{JsCast, JsError, JsValue};
+use wasm_bindgen::{JsCast, JsValue};
 use wasm_bindgen_test::{wasm_bindgen_test, wasm_bindgen_test_configure};
 
 wasm_bindgen_test_configure!(run_in_browser);
 
 /// The message of the JS `Error` a call threw.
-fn message(e: JsError) -> String {
-    let value = JsValue::from(e);
-    let error: &js_sys::Error = value.dyn_ref().expect("a JS Error");
+fn message(e: JsValue) -> String {
+    let error: &js_sys::Error = e.dyn_ref().expect("a JS Error");
     String::from(error.message())
+}
+
+/// The `code` a refusal carries for the page to word it in the reader's language.
+fn code(e: &JsValue) -> String {
+    js_sys::Reflect::get(e, &JsValue::from_str("code")).ok().and_then(|c| c.as_string()).unwrap_or_default()
 }
 
 #[wasm_bindgen_test]
@@ -57,11 +61,15 @@ fn the_page_handle_runs_the_same_tuning() {
 
 #[wasm_bindgen_test]
 fn bad_settings_throw_readable_errors() {
-    let unknown = TuneRun::new(r#"{"behaviour": "b9"}"#).err().map(message).unwrap_or_default();
+    let refused = TuneRun::new(r#"{"behaviour": "b9"}"#).err();
+    assert_eq!(refused.as_ref().map(code).as_deref(), Some("tune"), "coded for the page's words");
+    let unknown = refused.map(message).unwrap_or_default();
     assert!(unknown.contains("unknown behaviour"), "{unknown}");
     let population = TuneRun::new(r#"{"population": 1}"#).err().map(message).unwrap_or_default();
     assert!(population.contains("population"), "{population}");
-    let scene = TuneRun::new(r#"{"scene": "2.not-a-scene"}"#).err().map(message).unwrap_or_default();
+    let refused = TuneRun::new(r#"{"scene": "2.not-a-scene"}"#).err();
+    assert_eq!(refused.as_ref().map(code).as_deref(), Some("parse"), "a refused scene keeps its own code");
+    let scene = refused.map(message).unwrap_or_default();
     assert!(scene.contains("scene"), "{scene}");
     let typo = TuneRun::new(r#"{"populaton": 20}"#).err().map(message).unwrap_or_default();
     assert!(typo.contains("populaton"), "{typo}");

@@ -1,7 +1,7 @@
 //! The compare page's bindings: an opaque handle over `crate::sim::compare::Comparison` with one
 //! renderer per pane. Conversion and errors only; the panes, series and summary are the core's.
 
-use super::{js_error, refusal, scene_error, to_json};
+use super::{js_error, refusal, scene_error, to_json, worded};
 use crate::model::codec;
 use crate::model::params::PlannerKind;
 use crate::render::Renderer;
@@ -40,9 +40,9 @@ impl CompareSim {
         let spec = if spec_text.trim().is_empty() {
             ComparisonSpec::default_for(&scene)
         } else {
-            ComparisonSpec::parse(spec_text).map_err(js_error)?
+            ComparisonSpec::parse(spec_text).map_err(worded("compare"))?
         };
-        let comparison = Comparison::new(scene, spec).map_err(js_error)?;
+        let comparison = Comparison::new(scene, spec).map_err(worded("compare"))?;
         let activity = ActivityWatch::new(Page::Compare);
         let mut sim = CompareSim { comparison, renderers: Vec::new(), width, height, activity };
         sim.fit_renderers();
@@ -98,8 +98,8 @@ impl CompareSim {
     }
 
     /// Restarts every pane from step 0.
-    pub fn reset(&mut self) -> Result<(), JsError> {
-        self.comparison.reset().map_err(js_error)?;
+    pub fn reset(&mut self) -> Result<(), JsValue> {
+        self.comparison.reset().map_err(worded("compare"))?;
         self.fit_renderers();
         Ok(())
     }
@@ -107,15 +107,15 @@ impl CompareSim {
     /// Replaces the scene, keeping the panes' planners; on error nothing changes.
     pub fn load(&mut self, scene_text: &str) -> Result<(), JsValue> {
         let scene = codec::scene_from_any(scene_text).map_err(scene_error)?;
-        self.comparison.set_scene(scene).map_err(js_error)?;
+        self.comparison.set_scene(scene).map_err(worded("compare"))?;
         self.fit_renderers();
         Ok(())
     }
 
     /// Replaces the panes by a spec string (restarts); on error nothing changes.
-    pub fn set_spec(&mut self, spec_text: &str) -> Result<(), JsError> {
-        let spec = ComparisonSpec::parse(spec_text).map_err(js_error)?;
-        self.comparison.set_spec(spec).map_err(js_error)?;
+    pub fn set_spec(&mut self, spec_text: &str) -> Result<(), JsValue> {
+        let spec = ComparisonSpec::parse(spec_text).map_err(worded("compare"))?;
+        self.comparison.set_spec(spec).map_err(worded("compare"))?;
         self.fit_renderers();
         Ok(())
     }
@@ -124,16 +124,16 @@ impl CompareSim {
     /// that planner's defaults; restarts every pane.
     pub fn set_pane_planner(&mut self, pane: u32, planner_name: &str) -> Result<(), JsValue> {
         let kind = pane_planner(planner_name)?;
-        self.comparison.set_pane_planner(pane as usize, kind).map_err(js_error)?;
+        self.comparison.set_pane_planner(pane as usize, kind).map_err(worded("compare"))?;
         self.fit_renderers();
         Ok(())
     }
 
     /// Sets one parameter of pane `pane`'s every-group planner from a JSON value; restarts.
-    pub fn set_pane_param(&mut self, pane: u32, key: &str, value_json: &str) -> Result<(), JsError> {
+    pub fn set_pane_param(&mut self, pane: u32, key: &str, value_json: &str) -> Result<(), JsValue> {
         let value: serde_json::Value = serde_json::from_str(value_json)
-            .map_err(|e| js_error(format!("the value for {key:?} is not JSON: {e}")))?;
-        self.comparison.set_pane_param(pane as usize, key, value).map_err(js_error)?;
+            .map_err(|e| worded("compare")(format!("the value for {key:?} is not JSON: {e}")))?;
+        self.comparison.set_pane_param(pane as usize, key, value).map_err(worded("compare"))?;
         self.fit_renderers();
         Ok(())
     }
@@ -141,14 +141,14 @@ impl CompareSim {
     /// Adds a pane running `planner_name` (or `"scene"`); restarts. Throws past the limit.
     pub fn add_pane(&mut self, planner_name: &str) -> Result<(), JsValue> {
         let kind = pane_planner(planner_name)?;
-        self.comparison.add_pane(kind).map_err(js_error)?;
+        self.comparison.add_pane(kind).map_err(worded("compare"))?;
         self.fit_renderers();
         Ok(())
     }
 
     /// Removes pane `pane`; restarts. Throws for the last pane.
-    pub fn remove_pane(&mut self, pane: u32) -> Result<(), JsError> {
-        self.comparison.remove_pane(pane as usize).map_err(js_error)?;
+    pub fn remove_pane(&mut self, pane: u32) -> Result<(), JsValue> {
+        self.comparison.remove_pane(pane as usize).map_err(worded("compare"))?;
         self.fit_renderers();
         Ok(())
     }
@@ -191,8 +191,9 @@ impl CompareSim {
         self.renderers.first().map_or(self.height, Renderer::height)
     }
 
-    /// The panes as JSON `[{pane, label, color, planner, params, spec}]`: `planner` is the
-    /// every-group planner's name or `"scene"`, `params` its parameters (or null), `spec` the
+    /// The panes as JSON `[{pane, label, color, planner, per_group, groups, params, spec}]`:
+    /// `planner` is the every-group planner's name or `"scene"`, `params` its parameters (or
+    /// null), `groups` every group's `{name, planner, params}` as the pane runs it, `spec` the
     /// pane's part of the spec string.
     pub fn panes_json(&self) -> Result<String, JsError> {
         let list: Vec<serde_json::Value> = self
@@ -206,12 +207,28 @@ impl CompareSim {
                     None => ("scene", serde_json::Value::Null),
                 };
                 let one = ComparisonSpec { panes: vec![p.spec().clone()] }.to_spec_string();
+                // Every group's planner as this pane runs it, for the page to word a per-group
+                // pane's label in the reader's language.
+                let groups: Vec<serde_json::Value> = p
+                    .world()
+                    .scene()
+                    .groups
+                    .iter()
+                    .map(|g| {
+                        serde_json::json!({
+                            "name": g.name,
+                            "planner": g.planner.kind().name(),
+                            "params": serde_json::Value::Object(g.planner.params_json()),
+                        })
+                    })
+                    .collect();
                 serde_json::json!({
                     "pane": PANE_NAMES.get(i).copied().unwrap_or_default(),
                     "label": p.label(),
                     "color": PANE_COLORS.get(i).copied().unwrap_or_default(),
                     "planner": planner,
                     "per_group": !p.spec().groups.is_empty(),
+                    "groups": groups,
                     "params": params,
                     "spec": one.split_once('.').map(|(_, body)| body).unwrap_or_default(),
                 })
@@ -288,6 +305,6 @@ impl CompareSim {
 /// Checks a comparison spec string; returns it in canonical form (every value written) or
 /// throws with the reason.
 #[wasm_bindgen]
-pub fn compare_spec_check(spec_text: &str) -> Result<String, JsError> {
-    ComparisonSpec::parse(spec_text).map(|s| s.to_spec_string()).map_err(js_error)
+pub fn compare_spec_check(spec_text: &str) -> Result<String, JsValue> {
+    ComparisonSpec::parse(spec_text).map(|s| s.to_spec_string()).map_err(worded("compare"))
 }

@@ -2,26 +2,26 @@
 //! opaque handle, its 2-D picture as a pointer into wasm memory, and single seeded runs for the
 //! page's worker. Conversion only; the runs and the pixels are `crate::optim::lab`.
 
-use super::{js_error, to_json};
+use super::{to_json, worded};
 use crate::experiments::tables::Summary;
 use crate::optim::lab::{self, LabRun};
 use crate::optim::{Algorithm, Function, Settings};
 use wasm_bindgen::prelude::*;
 
-fn algorithm(name: &str) -> Result<Algorithm, JsError> {
-    Algorithm::parse(name).map_err(js_error)
+fn algorithm(name: &str) -> Result<Algorithm, JsValue> {
+    Algorithm::parse(name).map_err(worded("lab"))
 }
 
-fn function(name: &str) -> Result<Function, JsError> {
-    Function::parse(name).map_err(js_error)
+fn function(name: &str) -> Result<Function, JsValue> {
+    Function::parse(name).map_err(worded("lab"))
 }
 
-fn settings(dim: u32, population: u32, iterations: u32) -> Result<Settings, JsError> {
+fn settings(dim: u32, population: u32, iterations: u32) -> Result<Settings, JsValue> {
     use crate::sim::limits::{
         PAGE_LAB_DIMENSION as DIM, PAGE_LAB_ITERATIONS as ITERS, PAGE_LAB_POPULATION as POP,
     };
     if !(1..=DIM).contains(&dim) || !(2..=POP).contains(&population) || !(1..=ITERS).contains(&iterations) {
-        return Err(js_error(format!(
+        return Err(worded("lab")(format!(
             "dimension {dim}, population {population}, iterations {iterations}: allowed 1…{DIM}, 2…{POP}, 1…{ITERS}"
         )));
     }
@@ -45,7 +45,7 @@ impl Lab {
         population: u32,
         iterations: u32,
         seed: u32,
-    ) -> Result<Lab, JsError> {
+    ) -> Result<Lab, JsValue> {
         console_error_panic_hook::set_once();
         let settings = settings(dim, population, iterations)?;
         let run =
@@ -135,7 +135,7 @@ pub fn lab_best_of_run(
     iterations: u32,
     seed: u32,
     run: u32,
-) -> Result<f64, JsError> {
+) -> Result<f64, JsValue> {
     let settings = settings(dim, population, iterations)?;
     Ok(lab::best_of_run(
         algorithm(algorithm_name)?,

@@ -81,6 +81,36 @@ impl Refusal for Unreadable {
     }
 }
 
+/// An error the core words alone, coded by the page concern it arose in (`compare`, `lab`,
+/// `tune`, `validation`, `export`, `theme`, `play`) with its English words as the one argument `message`: the
+/// page words the ones it knows in the reader's language (`www/js/core/refusals.js`, matched by
+/// their English words) and shows any other as given.
+struct Worded {
+    code: &'static str,
+    message: String,
+}
+
+impl Display for Worded {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.message)
+    }
+}
+
+impl Refusal for Worded {
+    fn code(&self) -> &'static str {
+        self.code
+    }
+
+    fn args(&self) -> Vec<(&'static str, String)> {
+        vec![("message", self.message.clone())]
+    }
+}
+
+/// For `map_err`: the error as a JS `Error` with the core's message, coded `code` ([`Worded`]).
+fn worded<E: Display>(code: &'static str) -> impl Fn(E) -> JsValue {
+    move |e| refusal(Worded { code, message: e.to_string() })
+}
+
 /// A coded refusal ([`coded`]) as a JS value, for `map_err`.
 fn refusal(e: impl Refusal) -> JsValue {
     coded(&e).into()
@@ -95,6 +125,15 @@ fn scene_error(e: crate::model::scene::SceneError) -> JsValue {
         let _ = js_sys::Reflect::set(&error, &JsValue::from_str("details"), &JsValue::from_str(detail));
     }
     error.into()
+}
+
+/// "there is no group n" (`group` counts from 0, the message from 1), coded like the core's
+/// other missing items (`bad_reference`).
+fn no_group(group: u32) -> JsValue {
+    scene_error(crate::model::scene::SceneError::BadReference(format!(
+        "there is no group {}",
+        u64::from(group) + 1
+    )))
 }
 
 fn to_json<T: serde::Serialize>(value: &T) -> Result<String, JsError> {
@@ -243,14 +282,14 @@ impl Sim {
     /// Sets one planner parameter of a group (0-based) from a JSON value, live, without a reset.
     pub fn set_group_param(&mut self, group: u32, key: &str, value_json: &str) -> Result<(), JsValue> {
         let value: serde_json::Value = serde_json::from_str(value_json)
-            .map_err(|e| js_error(format!("the value for {key:?} is not JSON: {e}")))?;
+            .map_err(|e| worded("play")(format!("the value for {key:?} is not JSON: {e}")))?;
         let mut config = self
             .run
             .world()
             .scene()
             .groups
             .get(group as usize)
-            .ok_or_else(|| js_error(format!("there is no group {}", u64::from(group) + 1)))?
+            .ok_or_else(|| no_group(group))?
             .planner
             .clone();
         config.set_param(key, value).map_err(refusal)?;
@@ -303,10 +342,10 @@ impl Sim {
 
     /// Draws in the render theme `name` ("standard" or "projector") from the next frame on: a
     /// page option, not part of the scene (links and runs do not change). Throws on another name.
-    pub fn set_theme(&mut self, name: &str) -> Result<(), JsError> {
+    pub fn set_theme(&mut self, name: &str) -> Result<(), JsValue> {
         let theme = Theme::from_name(name).ok_or_else(|| {
             let known: Vec<&str> = Theme::ALL.iter().map(|t| t.name()).collect();
-            JsError::new(&format!("unknown theme {name:?}; known: {}", known.join(", ")))
+            worded("theme")(format!("unknown theme {name:?}; known: {}", known.join(", ")))
         })?;
         self.renderer.set_theme(theme);
         Ok(())
@@ -345,14 +384,14 @@ impl Sim {
     }
 
     /// A Maya MEL script keyframing one locator per agent at `fps`, scene px × `scale`.
-    pub fn export_maya_mel(&self, fps: f32, scale: f32) -> Result<String, JsError> {
-        let options = ExportOptions::checked(fps, scale).map_err(js_error)?;
+    pub fn export_maya_mel(&self, fps: f32, scale: f32) -> Result<String, JsValue> {
+        let options = ExportOptions::checked(fps, scale).map_err(worded("export"))?;
         Ok(export::maya_mel(self.run.world().scene(), self.run.recording(), options))
     }
 
     /// A Blender Python script keyframing one empty per agent at `fps`, scene px × `scale`.
-    pub fn export_blender_py(&self, fps: f32, scale: f32) -> Result<String, JsError> {
-        let options = ExportOptions::checked(fps, scale).map_err(js_error)?;
+    pub fn export_blender_py(&self, fps: f32, scale: f32) -> Result<String, JsValue> {
+        let options = ExportOptions::checked(fps, scale).map_err(worded("export"))?;
         Ok(export::blender_py(self.run.world().scene(), self.run.recording(), options))
     }
 

@@ -1,7 +1,7 @@
 //! The playground's path-editing bindings: an IGSA group's planned path, picking and moving its
 //! waypoints. Conversion only; the core plans, validates and flags crossings.
 
-use super::{js_error, to_json, Sim};
+use super::{no_group, scene_error, to_json, worded, Sim};
 use crate::model::params::PlannerConfig;
 use glam::Vec2;
 use wasm_bindgen::prelude::*;
@@ -27,27 +27,20 @@ impl Sim {
     /// lets the group follow the new path without restarting the run. A path that crosses an
     /// obstacle is accepted; the returned path JSON flags the crossing segments (`"null"` after
     /// `[]`: the path is planned in slices, see [`Sim::advance_planning`]).
-    pub fn set_group_waypoints(&mut self, group: u32, points_json: &str) -> Result<String, JsError> {
+    pub fn set_group_waypoints(&mut self, group: u32, points_json: &str) -> Result<String, JsValue> {
         let points: Vec<[f32; 2]> = serde_json::from_str(points_json)
-            .map_err(|e| js_error(format!("the waypoints are not a list of [x, y] points: {e}")))?;
+            .map_err(|e| worded("play")(format!("the waypoints are not a list of [x, y] points: {e}")))?;
         let g = group as usize;
-        let mut config = self
-            .run
-            .world()
-            .scene()
-            .groups
-            .get(g)
-            .ok_or_else(|| js_error(format!("there is no group {}", u64::from(group) + 1)))?
-            .planner
-            .clone();
+        let mut config =
+            self.run.world().scene().groups.get(g).ok_or_else(|| no_group(group))?.planner.clone();
         let PlannerConfig::Igsa(params) = &mut config else {
-            return Err(js_error(format!(
+            return Err(worded("play")(format!(
                 "group {} does not follow a planned path (its planner is not igsa)",
                 u64::from(group) + 1
             )));
         };
         params.waypoints = points;
-        self.run.set_group_planner(g, config).map_err(js_error)?;
-        self.group_path_json(group)
+        self.run.set_group_planner(g, config).map_err(scene_error)?;
+        Ok(self.group_path_json(group)?)
     }
 }

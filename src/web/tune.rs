@@ -2,10 +2,19 @@
 //! Worker advances one generation per call, so the page never waits on it. Converts and calls
 //! the core's [`Tuner`]; no tuning logic lives here.
 
-use super::{js_error, to_json};
+use super::{scene_error, to_json, worded};
 use crate::model::codec;
-use crate::tune::{TuneSetup, Tuner};
+use crate::tune::{TuneError, TuneSetup, Tuner};
 use wasm_bindgen::prelude::*;
+
+/// A refused setup as a JS `Error`: a refused scene with its own code, anything else coded
+/// `tune` ([`worded`]).
+fn tune_error(e: TuneError) -> JsValue {
+    match e {
+        TuneError::Scene(e) => scene_error(e),
+        other => worded("tune")(other),
+    }
+}
 
 /// A tuning run, built from a [`TuneSetup`] in JSON.
 #[wasm_bindgen]
@@ -19,10 +28,10 @@ impl TuneRun {
     /// frames}` (every field optional; the paper's settings by default). Throws with the reason
     /// for an unknown behaviour or environment, a bad scene or out-of-range settings.
     #[wasm_bindgen(constructor)]
-    pub fn new(setup_json: &str) -> Result<TuneRun, JsError> {
+    pub fn new(setup_json: &str) -> Result<TuneRun, JsValue> {
         console_error_panic_hook::set_once();
-        let setup = TuneSetup::from_json(setup_json).map_err(js_error)?;
-        Ok(TuneRun { tuner: setup.tuner().map_err(js_error)? })
+        let setup = TuneSetup::from_json(setup_json).map_err(tune_error)?;
+        Ok(TuneRun { tuner: setup.tuner().map_err(tune_error)? })
     }
 
     /// Evaluates one generation and breeds the next: JSON of `GenerationStats` (`generation`,

@@ -3,7 +3,7 @@
 //! the reference curves for the fundamental-diagram plot. Conversion only; the suite is
 //! `crate::experiments::validation`.
 
-use super::{js_error, to_json};
+use super::{to_json, worded};
 use crate::experiments::validation::measure::{seyfried_speed, weidmann_speed};
 use crate::experiments::validation::{find_test, TESTS};
 use crate::model::params::PlannerKind;
@@ -41,22 +41,27 @@ pub fn validation_options_json() -> Result<String, JsError> {
 /// Runs test `test_id` with planner `planner` (by name): `{rows: [...], curves: [...]}` as
 /// `flockpath validate --json` writes them.
 #[wasm_bindgen]
-pub fn validation_run_json(test_id: &str, planner: &str) -> Result<String, JsError> {
+pub fn validation_run_json(test_id: &str, planner: &str) -> Result<String, JsValue> {
     console_error_panic_hook::set_once();
-    let test = find_test(test_id).ok_or_else(|| js_error(format!("unknown test {test_id:?}")))?;
+    let refused = worded("validation");
+    let test = find_test(test_id).ok_or_else(|| refused(format!("unknown test {test_id:?}")))?;
     let kind =
-        PlannerKind::from_name(planner).ok_or_else(|| js_error(format!("unknown planner {planner:?}")))?;
-    to_json(&test.run(kind))
+        PlannerKind::from_name(planner).ok_or_else(|| refused(format!("unknown planner {planner:?}")))?;
+    Ok(to_json(&test.run(kind))?)
 }
 
 /// The reference speed (m/s) at each density of `densities`: Weidmann (1993) for `"weidmann"`
 /// (persons/m²), Seyfried et al. (2005) for `"seyfried"` (persons/m, single file).
 #[wasm_bindgen]
-pub fn validation_reference_speeds(curve: &str, densities: &[f64]) -> Result<Vec<f64>, JsError> {
+pub fn validation_reference_speeds(curve: &str, densities: &[f64]) -> Result<Vec<f64>, JsValue> {
     let f: fn(f64) -> f64 = match curve {
         "weidmann" => weidmann_speed,
         "seyfried" => seyfried_speed,
-        _ => return Err(js_error(format!("unknown reference curve {curve:?}; known: weidmann, seyfried"))),
+        _ => {
+            return Err(worded("validation")(format!(
+                "unknown reference curve {curve:?}; known: weidmann, seyfried"
+            )))
+        }
     };
     Ok(densities.iter().map(|&d| f(d)).collect())
 }

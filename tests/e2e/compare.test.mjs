@@ -24,6 +24,15 @@ test('a comparison URL opens both panes, which animate in lockstep with one tabl
   const { page, errors, close } = await openPath(`compare.html#s=${scene}&c=1.scene~pso`, { ready });
   try {
     assert.equal(await page.$$eval('.pane', (p) => p.length), 2);
+    // Each pane's canvas points to its live description: the scene's paragraph and its pane's.
+    await page.waitForFunction(() => document.querySelectorAll('#compare-description p[data-pane]').length === 2);
+    const described = await page.$$eval('.pane canvas', (canvases) => canvases.map((c) =>
+      (c.getAttribute('aria-describedby') ?? '').split(/\s+/).map((id) => document.getElementById(id)?.textContent ?? `missing #${id}`)));
+    assert.equal(described.length, 2);
+    for (const [i, [sceneWords, paneWords]] of described.entries()) {
+      assert.match(sceneWords, /pane/i, `pane ${i}: the scene's paragraph (${sceneWords})`);
+      assert.match(paneWords, new RegExp(`^Pane ${'AB'[i]}\\b`), `pane ${i}: its own paragraph (${paneWords})`);
+    }
     const panes = await page.evaluate(() => window.flockpathCompare.panes());
     assert.deepEqual(panes.map((p) => p.planner), ['scene', 'pso']);
     await page.waitForFunction(() => window.flockpathCompare.steps()[0] > 20);

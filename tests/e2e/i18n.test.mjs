@@ -156,6 +156,140 @@ test('the core’s refusals are worded in Chinese (real errors from the wasm mod
   }
 });
 
+/** Words of `text` that look English (4+ Latin letters), leaving out identifiers in `names`. */
+function englishWords(text, names) {
+  return (text.match(/[A-Za-z][\w'-]{3,}/g) ?? []).filter((w) => !names.has(w) && !/^[a-z]+(-[a-z0-9.]+)+$/.test(w) && !/^[a-z]+(_[a-z]+)+$/.test(w));
+}
+
+test('every other refusal is worded in Chinese too: scene fields, items, compare specs, lab, tune, validation, export, theme (real errors from the wasm module)', async () => {
+  const pkg = path.join(WWW, 'pkg');
+  const m = await import(path.join(pkg, 'flockpath.js'));
+  m.initSync({ module: await readFile(path.join(pkg, 'flockpath_bg.wasm')) });
+  const i18n = await import(path.join(WWW, 'js', 'core', 'i18n.js'));
+  const { refusalText } = await import(path.join(WWW, 'js', 'core', 'refusals.js'));
+  const en = await table('en');
+  const zhTable = await table('zh');
+  const refused = (fn) => {
+    try {
+      fn();
+    } catch (error) {
+      return error;
+    }
+    throw new Error('not refused');
+  };
+  const base = JSON.parse(m.preset_scene_json('open-field'));
+  const scene = (change) => {
+    const s = structuredClone(base);
+    change(s);
+    return JSON.stringify(s);
+  };
+  const load = (text) => refused(() => new m.Sim(text, 100, 100));
+  const sim = new m.Sim(m.preset_scene_json('open-field'), 200, 100);
+  const group = base.groups[0];
+  const cases = {
+    // The scene's own checks (src/model/scene.rs): what each field allows, in words.
+    inside_world: load(scene((s) => { s.groups[0].spawn.min = [-5, 10]; })),
+    near_world: load(scene((s) => { s.obstacles.push({ shape: 'circle', center: [1e6, 10], radius: 5 }); })),
+    rect_area: load(scene((s) => { s.obstacles.push({ shape: 'rect', min: [50, 50], max: [40, 60] }); })),
+    polygon: load(scene((s) => { s.obstacles.push({ shape: 'polygon', points: [[10, 10], [60, 60], [60, 10], [10, 60]] }); })),
+    spawn_order: load(scene((s) => { s.groups[0].spawn = { min: [300, 100], max: [200, 200] }; })),
+    goal_index: load(scene((s) => { s.groups[0].goal = 9; })),
+    path_number: load(scene((s) => { s.groups[0].planner = { kind: 'boids', params: { path: 3 } }; })),
+    scale: load(scene((s) => { s.px_per_metre = 1e6; })),
+    unknown_key: load(scene((s) => { s.groups[0].colour = '#ff0000'; })),
+    missing_key: load(scene((s) => { delete s.width; })),
+    list_of: load(scene((s) => { s.paths = [{ points: [[10, 10]], radius: 10 }]; })),
+    // Items and edits.
+    no_item: refused(() => sim.edit(JSON.stringify({ op: 'delete', item: { kind: 'obstacle', index: 99 } }))),
+    path_boids: refused(() => {
+      sim.set_group_planner(0, 'pso');
+      sim.edit(JSON.stringify({ op: 'add_path', points: [[10, 10], [90, 90]], group: 0 }));
+    }),
+    trailing: refused(() => sim.load(`${m.preset_scene_json('open-field')} }`)),
+    no_group: refused(() => sim.set_group_param(9, 'max_speed', '1')),
+    not_json: refused(() => sim.set_group_param(0, 'max_speed', '{')),
+    waypoints: refused(() => sim.set_group_waypoints(0, '[1]')),
+    not_igsa: refused(() => sim.set_group_waypoints(0, '[]')),
+    // The compare page's spec (`c=`) and panes.
+    spec_planner: refused(() => m.compare_spec_check('1.zz')),
+    spec_version: refused(() => m.compare_spec_check('7.scene')),
+    spec_empty_pane: refused(() => m.compare_spec_check('1.scene~')),
+    spec_count: refused(() => m.compare_spec_check(`1.pso(${Array(40).fill(1).join(',')})`)),
+    spec_number: refused(() => m.compare_spec_check('1.boids(x)')),
+    spec_range: refused(() => m.compare_spec_check('1.boids(1e9)')),
+    spec_group_zero: refused(() => m.compare_spec_check('1.0=pso')),
+    spec_panes: refused(() => m.compare_spec_check('1.scene~scene~scene~scene~scene')),
+    spec_group_missing: refused(() => new m.CompareSim(m.preset_scene_json('open-field'), '1.5=pso', 100, 100)),
+    spec_scene: refused(() => new m.CompareSim(JSON.stringify({ ...base, groups: [{ ...group, count: 5000, spawn: { min: [10, 10], max: [60, 60] } }] }), '', 100, 100)),
+    // The lab, the tune page, the validation suite, the exports, the theme.
+    lab_algorithm: refused(() => new m.Lab('zz', 'sphere', 2, 10, 10, 1)),
+    lab_function: refused(() => new m.Lab('pso', 'zz', 2, 10, 10, 1)),
+    lab_settings: refused(() => m.lab_best_of_run('pso', 'sphere', 2, 1, 10, 1, 0)),
+    tune_settings: refused(() => new m.TuneRun('{"frames": "many"}')),
+    tune_frames: refused(() => new m.TuneRun('{"frames": 0}')),
+    tune_behaviour: refused(() => new m.TuneRun('{"behaviour": "b9"}')),
+    tune_scene: refused(() => new m.TuneRun(JSON.stringify({ scene: '7.abc' }))),
+    validation_test: refused(() => m.validation_run_json('zz', 'boids')),
+    validation_curve: refused(() => m.validation_reference_speeds('zz', Float64Array.from([1]))),
+    export_fps: refused(() => sim.export_maya_mel(0, 1)),
+    export_scale: refused(() => sim.export_blender_py(30, -1)),
+    theme: refused(() => sim.set_theme('zz')),
+  };
+  sim.free();
+  // Identifiers the messages quote: preset, planner, algorithm, function, theme and field names.
+  const options = JSON.parse(m.lab_options_json());
+  const names = new Set([...JSON.parse(m.presets_json()).map((p) => p.name), ...JSON.parse(m.planners_json()).map((p) => p.name),
+    ...options.algorithms.map((a) => a.name), ...options.functions.map((f) => f.name), 'standard', 'projector', 'weidmann', 'seyfried',
+    'scene', 'null', 'true', 'false', 'flockpath', 'groups', 'spawn', 'goal', 'goals', 'obstacles', 'points', 'path', 'params', 'planner',
+    'width', 'height', 'colour', 'color', 'kind', 'shape', 'center', 'radius', 'agent_radius', 'px_per_metre', 'name', 'count',
+    'paths', 'hills', 'view', 'seed', 'activity', 'base64', 'JSON', 'many', ...ALLOWED_WORDS, 'Reynolds']);
+  // Each key a case's Chinese text comes from has its pair in both tables.
+  for (const key of Object.keys(zhTable).filter((k) => /^(error|allowed|value|item|items|validation\.measured)\./.test(k))) {
+    assert.ok(Object.hasOwn(en, key), `en has ${key}`);
+  }
+  try {
+    for (const [k, e] of Object.entries(cases)) assert.equal(typeof e.code, 'string', `${k} carries a code (${e.message})`);
+    assert.equal(refusalText(cases.spec_planner), null, 'English pages show the core’s words');
+    assert.match(cases.spec_planner.message, /^comparison: unknown planner "zz"/, 'the English message is unchanged');
+    i18n.setLanguage('zh', null);
+    const zh = Object.fromEntries(Object.entries(cases).map(([k, e]) => [k, refusalText(e)]));
+    for (const [k, text] of Object.entries(zh)) {
+      assert.ok(text && /[\u4e00-\u9fff]/.test(text), `${k} in Chinese: ${text} (core: ${cases[k].message})`);
+      assert.deepEqual(englishWords(text, names), [], `${k}: no English words left in ${text} (core: ${cases[k].message})`);
+      if (process.env.I18N_SHOW) console.log(`${k} | ${text}`);
+    }
+    assert.equal(zh.no_item, '不存在障碍物 100');
+    assert.match(zh.spec_planner, /^比较：未知的规划器“zz”；可用的有：/);
+    assert.match(zh.polygon, /^obstacles\[\d+\]\.points 的值为 边 \d+→\d+ 与 \d+→\d+ 相交或接触的多边形；允许：简单多边形/);
+    assert.match(zh.tune_scene, /^无法读取场景：未知的场景格式版本“7”/, 'a tuning scene keeps its own code');
+  } finally {
+    i18n.setLanguage('en', null);
+  }
+});
+
+test('the validation suite’s "measured" words are Chinese for every test (real rows from the wasm module)', async () => {
+  const pkg = path.join(WWW, 'pkg');
+  const m = await import(path.join(pkg, 'flockpath.js'));
+  m.initSync({ module: await readFile(path.join(pkg, 'flockpath_bg.wasm')) });
+  const i18n = await import(path.join(WWW, 'js', 'core', 'i18n.js'));
+  const { measuredText } = await import(path.join(WWW, 'js', 'validation', 'measured.js'));
+  const rows = [];
+  for (const test of JSON.parse(m.validation_options_json()).tests) {
+    rows.push(...JSON.parse(m.validation_run_json(test.id, 'forces')).rows);
+  }
+  try {
+    assert.equal(measuredText(rows[0].measured), rows[0].measured, 'English pages show the core’s words');
+    i18n.setLanguage('zh', null);
+    for (const row of rows) {
+      const text = measuredText(row.measured);
+      assert.match(text, /[\u4e00-\u9fff]/, `${row.test}: ${text}`);
+      assert.deepEqual(englishWords(text, new Set()), [], `${row.test}: no English words left in ${text} (core: ${row.measured})`);
+    }
+  } finally {
+    i18n.setLanguage('en', null);
+  }
+});
+
 // ---- static scan of the pages' HTML ----
 
 /** Pages a student meets; bench.html is a developer benchmark (not linked from any page). */
@@ -303,6 +437,8 @@ test('?lang=zh: every page speaks Chinese and leaves no English UI words in its 
       }
       const left = await englishLeftovers(page, scan);
       assert.deepEqual(left, [], `${file}: English words left in ${scan}`);
+      const description = await page.evaluate(() => document.querySelector('meta[name="description"]')?.content ?? null);
+      if (description !== null) assert.match(description, /[\u4e00-\u9fff]/, `${file}: the meta description in Chinese`);
       if (file !== 'embed.html') {
         assert.equal(await page.inputValue('#lang-select'), 'zh', `${file}: the language menu shows zh`);
       }
@@ -408,6 +544,71 @@ test('refused input is worded in Chinese: a field out of range, an unknown scene
     assert.equal(thrown.code, 'unknown_preset');
     assert.match(thrown.message, /^unknown preset 'no-such-preset'/);
     assert.match(await banner(), /^未知的预设场景“no-such-preset”（可用的有：pillars, /);
+    assertNoUnexpectedErrors(errors);
+  } finally {
+    await close();
+  }
+});
+
+test('in Chinese: a per-group compare pane’s label, a refused comparison and polygon, the web app manifest, a tune worker’s refusal', async () => {
+  const { page, errors, close, url } = await openBrowser();
+  try {
+    // Two groups, each with its own planner in pane B: the label names both in Chinese.
+    const scene = simpleScene();
+    scene.groups.push({ ...scene.groups[0], name: '右侧', spawn: { min: [500, 100], max: [560, 160] } });
+    await page.goto(`${url}compare.html?lang=zh#s=${encodeURIComponent(JSON.stringify(scene))}&c=1.scene~1=pso;2=boids`);
+    await page.waitForFunction(() => window.flockpathCompare !== undefined);
+    const label = await page.textContent('.pane[data-pane="B"] .pane-label');
+    assert.match(label, /^flock：PSO 粒子群人群；右侧：类鸟群/, `pane B's label: ${label}`);
+    assert.deepEqual(await englishLeftovers(page, '.pane-head'), [], 'no English in the pane heads');
+    // A refused comparison in the link: the banner words the compare spec's refusal in Chinese.
+    await page.goto('about:blank');
+    await page.goto(`${url}compare.html?lang=zh#s=open-field&c=1.scene~zz`);
+    await page.waitForFunction(() => window.flockpathCompare !== undefined && !document.getElementById('banner').hidden);
+    assert.match(await page.textContent('#banner-text'), /比较：未知的规划器“zz”；可用的有：scene, boids/);
+    const manifest = await page.evaluate(async () => {
+      const link = document.querySelector('link[rel="manifest"]');
+      return link ? { href: link.getAttribute('href'), json: await (await fetch(link.href)).json() } : null;
+    });
+    if (manifest) {
+      assert.equal(manifest.href, 'manifest.zh.webmanifest');
+      assert.match(manifest.json.description, /[\u4e00-\u9fff]/);
+    }
+    await page.goto(`${url}index.html?lang=zh`);
+    await page.waitForFunction(() => window.flockpath !== undefined);
+    const play = await page.evaluate(async () => {
+      const link = document.querySelector('link[rel="manifest"]');
+      return { href: link.getAttribute('href'), json: await (await fetch(link.href)).json() };
+    });
+    assert.equal(play.href, 'manifest.zh.webmanifest', 'the playground links the Chinese manifest');
+    assert.match(play.json.name, /群体规划器/);
+    assert.match(await page.getAttribute('meta[name="description"]', 'content'), /[\u4e00-\u9fff]/);
+    // A scene refused by the geometry checks (a polygon whose edges cross), through the page API:
+    // the script gets the English message, the banner the Chinese words.
+    const crossing = simpleScene({ obstacles: [{ shape: 'polygon', points: [[100, 100], [300, 300], [300, 100], [100, 300]] }] });
+    const thrown = await page.evaluate((scene) => {
+      try {
+        window.flockpath.load(scene);
+        return null;
+      } catch (error) {
+        return error.message;
+      }
+    }, crossing);
+    assert.match(thrown, /^obstacles\[0\]\.points is a polygon whose edges 0→1 and 2→3 cross or touch; allowed: a simple polygon/);
+    assert.equal(await page.textContent('#banner-text'), 'obstacles[0].points 的值为 边 0→1 与 2→3 相交或接触的多边形；允许：简单多边形：边只在共同的角点相交，面积不为零');
+    await page.selectOption('#lang-select', 'en');
+    assert.equal(await page.getAttribute('link[rel="manifest"]', 'href'), 'manifest.webmanifest', 'English again');
+    await page.selectOption('#lang-select', 'zh');
+
+    // The tune worker's refusal comes back with its code and is worded in the page's language.
+    await page.goto(`${url}tune.html?lang=zh`);
+    await page.waitForFunction(() => window.flocktune !== undefined && document.getElementById('loading').hidden);
+    await page.evaluate(() => {
+      document.getElementById('frames').value = '0';
+      window.flocktune.start();
+    });
+    await page.waitForFunction(() => window.flocktune.state().error !== null, null, { timeout: 30_000 });
+    assert.match(await page.textContent('#banner-text'), /^帧数 0 超出 1…\d+ 的范围$/);
     assertNoUnexpectedErrors(errors);
   } finally {
     await close();

@@ -134,6 +134,16 @@ test('keys of controls not given do nothing; those given still work', async () =
     assert.equal(await steps(), start + 2, 'S steps');
     await page.keyboard.press('r');
     assert.equal(await steps(), start + 2, 'R does not reset');
+
+    // The Keys card lists only the shortcuts that work: S (step), the tools, Esc; not Space, R
+    // or Ctrl+Z, whose controls the link does not give.
+    const listed = () => page.$$eval('#keys-list > span', (spans) => spans.filter((s) => s.getClientRects().length > 0).map((s) => s.textContent.trim()));
+    assert.deepEqual(await listed(), ['S step', '1–7 tools', 'Del delete', 'Esc cancel']);
+    const dots = await page.$$eval('#keys-list > span', (spans) => spans.filter((s) => s.getClientRects().length > 0).map((s) => getComputedStyle(s, '::before').content));
+    assert.deepEqual(dots, ['none', '" · "', '" · "', '" · "'], 'a dot between the shown ones only');
+    // All controls again (an old link): every shortcut is listed.
+    await reopen(page, server.url, `#s=${fragment}`);
+    assert.equal((await listed()).length, 7, 'every shortcut without a lock');
     assertNoUnexpectedErrors(errors);
   } finally {
     await close();

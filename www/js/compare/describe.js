@@ -15,6 +15,8 @@ export function setupCompareDescription(app, anchor, every = DESCRIBE_EVERY_MS) 
   element.className = 'visually-hidden scene-description';
   element.setAttribute('aria-live', 'polite');
   const sceneText = document.createElement('p');
+  // Each pane's canvas points here (`aria-describedby`, panes.js): the scene, then its pane.
+  sceneText.id = 'compare-description-scene';
   element.append(sceneText);
   anchor.after(element);
 
@@ -40,6 +42,7 @@ export function setupCompareDescription(app, anchor, every = DESCRIBE_EVERY_MS) 
       let p = paragraphs[i];
       if (!p) element.append((p = document.createElement('p')));
       p.dataset.pane = pane.pane;
+      p.id = `compare-description-${pane.pane}`;
       const head = t('compare.describe.pane', { pane: pane.pane, label: paneLabel(app, pane) });
       put(p, `${head} ${describeRun(metrics[i], app.playing)}`);
     });

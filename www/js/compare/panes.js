@@ -57,20 +57,22 @@ function paramForm(app, index, pane) {
 
 /**
  * A pane's label in the page's language: the core's words (its planner and up to two parameters
- * that differ from their defaults) on English pages; elsewhere the same composed from the
- * translated planner name and parameter labels (per-group panes keep the core's words).
+ * that differ from their defaults, or per group `group: planner, …`) on English pages; elsewhere
+ * the same composed from the translated planner names and parameter labels (group names are the
+ * scene's own).
  */
 export function paneLabel(app, pane) {
-  if (pane.per_group || language() === 'en') return pane.label;
-  if (pane.planner === 'scene') {
-    // The scene's own planners: described like a pane's when every group has the same one.
-    const scene = app.guard((sim) => JSON.parse(sim.scene_json()));
-    const configs = (scene.ok ? scene.value.groups ?? [] : []).map((g) => JSON.stringify(g.planner));
-    if (configs.length === 0 || configs.some((c) => c !== configs[0])) return pane.label;
-    const config = JSON.parse(configs[0]);
-    return describe(app, config.kind, config.params) ?? pane.label;
-  }
-  return describe(app, pane.planner, pane.params) ?? pane.label;
+  if (language() === 'en') return pane.label;
+  // Every group's planner as the pane runs it (the scene's, the pane's for all, or per group).
+  const groups = pane.groups ?? [];
+  if (groups.length === 0) return t('compare.no_groups');
+  const configs = groups.map((g) => JSON.stringify([g.planner, g.params]));
+  if (configs.every((c) => c === configs[0])) return describe(app, groups[0].planner, groups[0].params) ?? pane.label;
+  const parts = groups.map((g) => {
+    const planner = describe(app, g.planner, g.params);
+    return planner === null ? null : t('compare.label_group', { group: g.name, planner });
+  });
+  return parts.includes(null) ? pane.label : parts.join(t('list.semicolon'));
 }
 
 /** `planner, label value, label value` in the page's language (null for an unknown planner). */
@@ -98,6 +100,8 @@ function paneElement(app, index, pane, count) {
   const canvas = el('canvas', { className: 'pane-canvas' });
   canvas.setAttribute('role', 'img');
   canvas.setAttribute('aria-label', t('compare.pane_label', { pane: pane.pane, label }));
+  // The live description in words (describe.js): the scene's paragraph and this pane's.
+  canvas.setAttribute('aria-describedby', `compare-description-scene compare-description-${pane.pane}`);
   const picker = el('select', { title: t('compare.pane_planner_title') });
   picker.setAttribute('aria-label', t('compare.pane_planner_label', { pane: pane.pane }));
   picker.append(el('option', { value: 'scene', textContent: t('compare.scene_planners'), selected: pane.planner === 'scene' }));

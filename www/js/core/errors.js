@@ -33,6 +33,27 @@ function readableText(error) {
 }
 
 /**
+ * What a worker posts for an error it caught: the message and, for a refusal of the core, its
+ * `code` and `args`, so the page words it in the page's language (a worker does not know the
+ * page's `?lang=`). `errorFromData` makes it an `Error` for `messageOf` again.
+ */
+export function errorData(error) {
+  if (!(error instanceof Error)) return { message: typeof error === 'string' ? error : String(error) };
+  const data = { message: error.message };
+  if (typeof error.code === 'string' && error.args && typeof error.args === 'object') Object.assign(data, { code: error.code, args: { ...error.args } });
+  if (typeof error.details === 'string') data.details = error.details;
+  return data;
+}
+
+/** The `Error` a worker's `errorData` stands for. */
+export function errorFromData(data) {
+  const error = new Error(typeof data?.message === 'string' ? data.message : String(data));
+  if (typeof data?.code === 'string') Object.assign(error, { code: data.code, args: data.args });
+  if (typeof data?.details === 'string') error.details = data.details;
+  return error;
+}
+
+/**
  * Whether an error means the wasm instance is dead: a Rust panic ends in `unreachable`, and after
  * that the module's memory may be inconsistent, so it must not be called again.
  */

@@ -6,7 +6,8 @@
 //   t('play.pause')                       → "Pause"
 //   t('limit.agents', { count: 5, max: 4 }) → "… 5 … 4 …" (`{name}` is replaced, text only)
 //   translatePage(document)               → fills [data-i18n], [data-i18n-html], [data-i18n-title],
-//                                           [data-i18n-aria-label], [data-i18n-placeholder], [data-i18n-alt]
+//                                           [data-i18n-aria-label], [data-i18n-placeholder], [data-i18n-alt],
+//                                           [data-i18n-content] (the meta description)
 //   setText(el, key, vars)                → el's text now, and again after every language switch
 //
 // Keys are dotted: `<page or concern>.<thing>`. A key missing from a shipped table fails
@@ -151,7 +152,7 @@ export function setAttr(el, name, key, vars = undefined) {
   return el;
 }
 
-const ATTRIBUTES = ['title', 'aria-label', 'placeholder', 'alt'];
+const ATTRIBUTES = ['title', 'aria-label', 'placeholder', 'alt', 'content'];
 
 /** Elements a `data-i18n-html` text may hold; any other markup is shown as its text. */
 const INLINE = new Set(['KBD', 'CODE', 'STRONG', 'EM', 'B', 'I', 'SPAN']);
@@ -191,13 +192,22 @@ function setInlineHtml(el, text) {
 /**
  * Fills every marked element under `root` in the current language: `data-i18n="key"` sets the
  * text (the element must hold text only), `data-i18n-html="key"` text with inline markup,
- * `data-i18n-title="key"` etc. set that attribute; `data-i18n-vars` (JSON) fills `{name}`s.
- * On a document it also sets `<html lang>` (unless it carries `data-i18n-keep-lang`).
+ * `data-i18n-title="key"` etc. set that attribute (`data-i18n-content` a meta description's);
+ * `data-i18n-vars` (JSON) fills `{name}`s. On a document it also sets `<html lang>` (unless it
+ * carries `data-i18n-keep-lang`) and points the manifest link at the language's manifest.
  */
 export function translatePage(root = document) {
   // A page whose content is written in one language (course notes) keeps its own `lang`.
   const html = root.documentElement;
   if (html && !html.hasAttribute('data-i18n-keep-lang')) html.lang = htmlLang();
+  // The web app manifest (name and description an installed app shows): one per language,
+  // `manifest.webmanifest` in English, `manifest.<code>.webmanifest` for the others.
+  const manifest = root.querySelector?.('link[rel="manifest"]');
+  if (manifest) {
+    const href = manifest.getAttribute('href') ?? '';
+    const wanted = href.replace(/manifest(?:\.\w+)?\.webmanifest$/, current === 'en' ? 'manifest.webmanifest' : `manifest.${current}.webmanifest`);
+    if (wanted !== href) manifest.setAttribute('href', wanted);
+  }
   for (const el of root.querySelectorAll('[data-i18n]')) {
     const text = t(el.dataset.i18n, varsOf(el, 'data-i18n-vars'));
     if (el.textContent !== text) el.textContent = text;

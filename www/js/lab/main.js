@@ -5,7 +5,7 @@
 
 import { blit } from '../core/blit.js';
 import { bootPage } from '../core/boot.js';
-import { messageOf, showMessage } from '../core/errors.js';
+import { errorFromData, messageOf, showMessage } from '../core/errors.js';
 import { drawPlot } from '../core/plot.js';
 import { onPage } from '../core/keys.js';
 import { setText, t } from '../core/i18n.js';
@@ -202,7 +202,7 @@ bootPage(t('boot.what_lab'), ({ module, wasm }) => {
         state.lastTableSeconds = data.seconds;
       } else if (data.type === 'error') {
         finishTable('');
-        showMessage(data.message);
+        showMessage(messageOf(errorFromData(data.error)));
       }
     };
     worker.onerror = (e) => {

@@ -4,7 +4,7 @@
 // for a flag.
 
 import { loadWasm } from '../core/boot.js';
-import { messageOf } from '../core/errors.js';
+import { errorData } from '../core/errors.js';
 
 self.onmessage = async ({ data }) => {
   const { algorithms, fn, dim, population, iterations, seed, runs } = data;
@@ -26,6 +26,7 @@ self.onmessage = async ({ data }) => {
     }
     self.postMessage({ type: 'done', seconds: (performance.now() - started) / 1000 });
   } catch (error) {
-    self.postMessage({ type: 'error', message: messageOf(error) });
+    // The page words it in its language (errorFromData): a worker does not know the page's.
+    self.postMessage({ type: 'error', error: errorData(error) });
   }
 };

@@ -90,7 +90,13 @@ export function setupLock(app, editor) {
       hide([button], locked);
       button.disabled = locked;
     }
-    hide([$('tools')], tools.every((b) => b.dataset.tool === 'select' || b.disabled));
+    const noTools = tools.every((b) => b.dataset.tool === 'select' || b.disabled);
+    hide([$('tools')], noTools);
+    // The Keys card lists only the shortcuts of controls the page shows.
+    for (const item of document.querySelectorAll('#keys-list [data-keys-for]')) {
+      const control = item.dataset.keysFor;
+      hide([item], control === 'tools' ? noTools : !view.controls.includes(control));
+    }
     if (view.locked_tools.includes(editor.tool)) editor.setTool('select');
     readOnlyGroups();
     app.dispatchEvent(new Event('classroom'));

@@ -8,7 +8,7 @@
 // &generations=5&frames=120&autostart=1. The state is readable as `window.flocktune.state()`.
 
 import { bootPage } from '../core/boot.js';
-import { isPanic, messageOf, showMessage, showPanic } from '../core/errors.js';
+import { errorFromData, isPanic, messageOf, showMessage, showPanic } from '../core/errors.js';
 import { FitnessPlot } from './plot.js';
 import { Preview } from './preview.js';
 import { sceneFromLocation, shareUrl } from '../core/url.js';
@@ -111,7 +111,7 @@ function stopWorker() {
 function onWorkerMessage(event) {
   const message = event.data;
   if (message.type === 'error') {
-    fail(message.message, message.panic);
+    fail(messageOf(errorFromData(message.error)), message.panic);
   } else if (message.type === 'started') {
     Object.assign(state, { population: message.population, agents: message.agents, frames: message.frames });
     status('tune.started', { generations: state.setup.generations, population: message.population, agents: message.agents, frames: message.frames });
@@ -167,7 +167,7 @@ function start(linkedScene) {
   status('tune.starting');
   worker = new Worker(new URL('./worker.js', import.meta.url), { type: 'module' });
   worker.addEventListener('message', onWorkerMessage);
-  worker.addEventListener('error', (event) => fail(event.message || 'the tuning worker failed to load', false));
+  worker.addEventListener('error', (event) => fail(event.message || t('tune.worker_failed'), false));
   worker.postMessage({ type: 'start', setup });
 }
 

@@ -5,10 +5,10 @@
 // Messages in:  {type: 'start', setup}  {type: 'next'}
 // Messages out: {type: 'started', population, frames, agents, scene}
 //               {type: 'generation', stats, scene, ms}
-//               {type: 'error', message, panic}
+//               {type: 'error', error: errorData(…), panic}: the page words it in its language
 
 import { loadWasm } from '../core/boot.js';
-import { isPanic, messageOf } from '../core/errors.js';
+import { errorData, isPanic } from '../core/errors.js';
 
 let run = null;
 
@@ -35,6 +35,6 @@ self.addEventListener('message', async (event) => {
       self.postMessage({ type: 'generation', stats, scene: run.best_scene_string(), ms });
     }
   } catch (error) {
-    self.postMessage({ type: 'error', message: messageOf(error), panic: isPanic(error) });
+    self.postMessage({ type: 'error', error: errorData(error), panic: isPanic(error) });
   }
 });

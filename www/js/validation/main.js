@@ -3,9 +3,10 @@
 // fundamental diagram of T4 per planner against Weidmann's curve and the T8 sweep. Every number comes from
 // the wasm core; this module only lays them out.
 
-import { messageOf, setupBanner, showMessage } from '../core/errors.js';
+import { errorFromData, messageOf, setupBanner, showMessage } from '../core/errors.js';
 import { drawPlot } from '../core/plot.js';
 import { onLanguageChange, t, tOr } from '../core/i18n.js';
+import { measuredText } from './measured.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -73,7 +74,9 @@ async function boot() {
     test.append(link);
     const [coreCriterion, criterion] = criteria.get(row.test) ?? [];
     const shown = row.criterion === coreCriterion ? criterion : row.criterion;
-    const cells = [row.planner, row.measured, shown].map((text) => Object.assign(document.createElement('td'), { textContent: text }));
+    const cells = [row.planner, measuredText(row.measured), shown].map((text) => Object.assign(document.createElement('td'), { textContent: text }));
+    // The core's words, to word the cell again after a language switch.
+    cells[1].dataset.measured = row.measured;
     const result = Object.assign(document.createElement('td'), { textContent: row.pass ? t('validation.pass') : t('validation.fail'), className: row.pass ? 'pass' : 'fail' });
     tr.append(test, ...cells, result);
     tbody.append(tr);
@@ -159,7 +162,7 @@ async function boot() {
         $('val-summary').textContent = t('validation.summary', { passed: state.passed, rows: state.rows, seconds: data.seconds.toFixed(1) });
         finish(t('validation.done'));
       } else if (data.type === 'error') {
-        showMessage(data.message);
+        showMessage(messageOf(errorFromData(data.error)));
         finish(t('validation.stopped'));
       }
     };
@@ -177,6 +180,7 @@ async function boot() {
   onLanguageChange(() => {
     drawDiagram();
     drawSweep();
+    for (const cell of tbody.querySelectorAll('td[data-measured]')) cell.textContent = measuredText(cell.dataset.measured);
   });
   window.flockpathValidation = { rows: () => state.rows, running: () => state.worker !== null };
 }

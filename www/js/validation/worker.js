@@ -3,6 +3,7 @@
 // and curves, computed in Rust) after it. The page cancels by terminating the worker.
 
 import init, { validation_run_json } from '../../pkg/flockpath.js';
+import { errorData } from '../core/errors.js';
 
 const ready = init();
 
@@ -23,6 +24,7 @@ self.onmessage = async ({ data }) => {
     }
     self.postMessage({ type: 'done', seconds: (performance.now() - started) / 1000 });
   } catch (error) {
-    self.postMessage({ type: 'error', message: String(error?.message ?? error) });
+    // The page words it in its language (errorFromData): a worker does not know the page's.
+    self.postMessage({ type: 'error', error: errorData(error) });
   }
 };
