@@ -4,6 +4,7 @@
 use super::{js_error, refusal, scene_error, to_json, worded};
 use crate::model::codec;
 use crate::model::params::PlannerKind;
+use crate::model::scene::Scene;
 use crate::render::Renderer;
 use crate::sim::activity_check::{ActivityWatch, Page};
 use crate::sim::compare::{Comparison, ComparisonSpec, MAX_PANES, PANE_COLORS, PANE_NAMES, SERIES_KEYS};
@@ -18,6 +19,16 @@ pub struct CompareSim {
     height: u32,
     /// The scene activity's check over the panes, fed after every step.
     activity: ActivityWatch,
+}
+
+/// The spec a link's `c=` value asks for: empty for the default (the scene's planners against
+/// another).
+fn spec_for(scene: &Scene, spec_text: &str) -> Result<ComparisonSpec, JsValue> {
+    if spec_text.trim().is_empty() {
+        Ok(ComparisonSpec::default_for(scene))
+    } else {
+        ComparisonSpec::parse(spec_text).map_err(worded("compare"))
+    }
 }
 
 /// A pane's planner by name: `None` for `"scene"` (the scene's own planners).
@@ -37,11 +48,7 @@ impl CompareSim {
     pub fn new(scene_text: &str, spec_text: &str, width: u32, height: u32) -> Result<CompareSim, JsValue> {
         console_error_panic_hook::set_once();
         let scene = codec::scene_from_any(scene_text).map_err(scene_error)?;
-        let spec = if spec_text.trim().is_empty() {
-            ComparisonSpec::default_for(&scene)
-        } else {
-            ComparisonSpec::parse(spec_text).map_err(worded("compare"))?
-        };
+        let spec = spec_for(&scene, spec_text)?;
         let comparison = Comparison::new(scene, spec).map_err(worded("compare"))?;
         let activity = ActivityWatch::new(Page::Compare);
         let mut sim = CompareSim { comparison, renderers: Vec::new(), width, height, activity };
@@ -108,6 +115,17 @@ impl CompareSim {
     pub fn load(&mut self, scene_text: &str) -> Result<(), JsValue> {
         let scene = codec::scene_from_any(scene_text).map_err(scene_error)?;
         self.comparison.set_scene(scene).map_err(worded("compare"))?;
+        self.fit_renderers();
+        Ok(())
+    }
+
+    /// Replaces the scene and the panes together (a link that changes both): each is checked
+    /// against the other, not against the one it replaces, so a one-group scene may replace a
+    /// two-group one whose spec set group 2. On error nothing changes.
+    pub fn load_with_spec(&mut self, scene_text: &str, spec_text: &str) -> Result<(), JsValue> {
+        let scene = codec::scene_from_any(scene_text).map_err(scene_error)?;
+        let spec = spec_for(&scene, spec_text)?;
+        self.comparison = Comparison::new(scene, spec).map_err(worded("compare"))?;
         self.fit_renderers();
         Ok(())
     }

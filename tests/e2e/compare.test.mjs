@@ -136,6 +136,28 @@ test('pane A equals the playground run; panes can be added, changed and removed'
   }
 });
 
+test('a link that changes the scene and the spec together applies both (one group → two)', async () => {
+  const { page, errors, close } = await openPath(`compare.html#s=${encodeURIComponent(JSON.stringify(simpleScene()))}&c=1.scene~firefly`, { ready });
+  try {
+    assert.deepEqual(await page.evaluate(() => window.flockpathCompare.panes().map((p) => [p.planner, p.groups.length])), [['scene', 1], ['firefly', 1]]);
+    // The new spec sets group 2: checked against the old one-group scene alone it is refused,
+    // and the new scene alone would keep the old spec. Only both together are the link.
+    const two = simpleScene({ seed: 9 });
+    two.groups.push({ ...two.groups[0], name: 'right', spawn: { min: [500, 100], max: [560, 160] } });
+    await page.evaluate((scene) => {
+      location.hash = `s=${encodeURIComponent(JSON.stringify(scene))}&c=1.scene~1=pso;2=boids`;
+    }, two);
+    await page.waitForFunction(() => window.flockpathCompare.panes()[0]?.groups.length === 2);
+    const panes = await page.evaluate(() => window.flockpathCompare.panes());
+    assert.deepEqual(panes.map((p) => p.per_group), [false, true]);
+    assert.deepEqual(panes[1].groups.map((g) => g.planner), ['pso', 'boids']);
+    assert.equal(await page.evaluate(() => document.getElementById('banner').hidden), true, 'no refusal shown');
+    assertNoUnexpectedErrors(errors);
+  } finally {
+    await close();
+  }
+});
+
 test('a bad comparison in the link gives a message and the default comparison', async () => {
   const { page, errors, close } = await openPath('compare.html#c=1.boids~teleport', { ready });
   try {

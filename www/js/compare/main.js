@@ -215,8 +215,12 @@ bootPage(t('boot.what_compare'), ({ module, wasm }) => {
 
   addEventListener('hashchange', () => {
     const next = parseHash();
-    if (next.c !== null && next.c !== app.guard((s) => s.spec_string()).value) app.change((s) => s.set_spec(next.c));
-    if (next.s !== null && next.s !== app.guard((s) => s.scene_string()).value) app.change((s) => s.load(next.s));
+    const specChanged = next.c !== null && next.c !== app.guard((s) => s.spec_string()).value;
+    const sceneChanged = next.s !== null && next.s !== app.guard((s) => s.scene_string()).value;
+    // Both at once: each is checked against the other, not against the one it replaces.
+    if (specChanged && sceneChanged) app.change((s) => s.load_with_spec(next.s, next.c));
+    else if (specChanged) app.change((s) => s.set_spec(next.c));
+    else if (sceneChanged) app.change((s) => s.load(next.s));
   });
 
   window.flockpathCompare = Object.freeze({
