@@ -324,9 +324,12 @@ impl SpatialGrid {
     }
 
     /// The storage ranges of the cells a query of `radius` round `p` scans, one per row of
-    /// cells (the cells of a row are contiguous in storage), top row first.
+    /// cells (the cells of a row are contiguous in storage), top row first: indexes into
+    /// [`Self::columns`]. The cells of a query are those of every query whose box
+    /// `[p − radius, p + radius]` it contains (cell coordinates grow with position), so a
+    /// caller can bound the candidates of many nearby queries by one wider query.
     #[inline]
-    fn query_rows(&self, p: Vec2, radius: f32) -> impl Iterator<Item = Range<usize>> + '_ {
+    pub fn query_rows(&self, p: Vec2, radius: f32) -> impl Iterator<Item = Range<usize>> + '_ {
         let x0 = self.cell_coord(p.x - radius, self.cols);
         let x1 = self.cell_coord(p.x + radius, self.cols);
         let y0 = self.cell_coord(p.y - radius, self.rows);
