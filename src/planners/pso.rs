@@ -313,7 +313,12 @@ impl Pso {
         let reach = self.reach(p);
         let reach2 = reach * reach;
         let columns = grid.columns();
-        let (mut here, mut best, mut within, mut candidates) = (f32::INFINITY, f32::INFINITY, 0usize, 0usize);
+        // Running minima and counts per lane: independent chains (a minimum is the same in
+        // any order). A NaN distance never passes `<`, as `min` ignores it.
+        const LANES: usize = 4;
+        let mut here = [f32::INFINITY; LANES];
+        let mut best = [f32::INFINITY; LANES];
+        let (mut within, mut candidates) = ([0u32; LANES], 0usize);
         for Range { start, end } in grid.query_rows(p, reach) {
             candidates += end - start;
             if candidates > NEIGHBOUR_CAP.candidates {
@@ -324,16 +329,30 @@ impl Pso {
             else {
                 return None;
             };
-            for ((&x, &y), &id) in xs.iter().zip(ys).zip(ids) {
+            let mut lane = |lane: usize, x: f32, y: f32, id: u32| {
                 let q = Vec2::new(x, y);
                 let (d2, b2) = (p.distance_squared(q), pbest.distance_squared(q));
-                within += usize::from(d2 <= reach2);
+                within[lane] += u32::from(d2 <= reach2);
                 let other = id != me;
-                here = if other { here.min(d2) } else { here };
-                best = if other { best.min(b2) } else { best };
+                let d2 = if other { d2 } else { f32::INFINITY };
+                let b2 = if other { b2 } else { f32::INFINITY };
+                here[lane] = if d2 < here[lane] { d2 } else { here[lane] };
+                best[lane] = if b2 < best[lane] { b2 } else { best[lane] };
+            };
+            let (xs4, ys4, ids4) = (xs.chunks_exact(LANES), ys.chunks_exact(LANES), ids.chunks_exact(LANES));
+            let rest = xs4.remainder().iter().zip(ys4.remainder()).zip(ids4.remainder());
+            for ((xs, ys), ids) in xs4.zip(ys4).zip(ids4) {
+                for k in 0..LANES {
+                    lane(k, xs[k], ys[k], ids[k]);
+                }
+            }
+            for (k, ((&x, &y), &id)) in rest.enumerate() {
+                lane(k, x, y, id);
             }
         }
-        (within <= NEIGHBOUR_CAP.neighbours).then_some((here, best))
+        let min = |lanes: [f32; LANES]| lanes.iter().fold(f32::INFINITY, |m, &v| m.min(v));
+        let within: u32 = within.iter().sum();
+        (within as usize <= NEIGHBOUR_CAP.neighbours).then_some((min(here), min(best)))
     }
 
     /// Where the candidate moves of agent `me` (index `k`) at `p`, all within `speed` ≤
