@@ -388,12 +388,20 @@ impl Pso {
                 list.clear();
                 return Near::Grid;
             };
-            for ((&x, &y), &id) in xs.iter().zip(ys).zip(ids) {
-                let q = Vec2::new(x, y);
-                if id != me && p.distance_squared(q) <= t2 {
-                    list.push(q);
+            // Every candidate is written, and kept (the end advanced past it) when it is in:
+            // no branch whose outcome the CPU could not predict.
+            let mut kept = list.len();
+            list.resize(kept + xs.len(), Vec2::ZERO);
+            if let Some(out) = list.get_mut(kept..) {
+                let mut n = 0;
+                for ((&x, &y), &id) in xs.iter().zip(ys).zip(ids) {
+                    let q = Vec2::new(x, y);
+                    out[n] = q;
+                    n += usize::from((id != me) & (p.distance_squared(q) <= t2));
                 }
+                kept += n;
             }
+            list.truncate(kept);
         }
         Near::Local(list)
     }
