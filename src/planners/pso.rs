@@ -195,7 +195,7 @@ impl Pso {
 
     /// The new direction and velocity of agent `id` (index `k` in the group); `near` is
     /// scratch for its [`Near::Local`] list.
-    #[allow(clippy::too_many_arguments)]
+    #[allow(clippy::too_many_arguments, reason = "the plain inputs of a per-agent step, and its scratch")]
     fn move_agent(
         &self,
         ctx: &StepContext,
@@ -375,7 +375,7 @@ impl Pso {
         list.clear();
         let Some(here) = self.around.get(k).copied().flatten() else { return Near::Grid };
         let reach = self.reach(p);
-        if !(here <= reach * reach) {
+        if here.partial_cmp(&(reach * reach)).is_none_or(|o| o == std::cmp::Ordering::Greater) {
             return Near::Local(list);
         }
         let t = here.sqrt() + 2.0 * speed + slack(p, reach);
