@@ -55,8 +55,9 @@ use crate::model::params::PsoParams;
 use crate::model::scene::ground_height;
 use crate::planners::explain::{Explanation, NamedPoint, NamedVector};
 use crate::rng::Rng;
-use crate::spatial::QueryCap;
+use crate::spatial::{QueryCap, SpatialGrid};
 use glam::Vec2;
+use std::ops::Range;
 
 /// Scaled distance beyond which a cost is treated as zero (`exp(−9)` ≈ 1.2·10⁻⁴).
 const CUTOFF_SCALED: f32 = 3.0;
@@ -83,6 +84,11 @@ pub struct Pso {
     here_cost: Vec<f32>,
     /// Scratch: smallest σ-scaled distance² at each agent's current position this step.
     here_scaled2: Vec<f32>,
+    /// Scratch: per agent, what phase 1's scan round it found ([`Around`]), `None` where the
+    /// query caps could bind and phase 2 asks the grid.
+    around: Vec<Option<f32>>,
+    /// Scratch: the positions of one agent's [`Near::Local`] list.
+    near: Vec<Vec2>,
 }
 
 /// What one position costs an agent.
@@ -108,7 +114,15 @@ impl Pso {
             pbest_cost: Vec::new(),
             here_cost: Vec::new(),
             here_scaled2: Vec::new(),
+            around: Vec::new(),
+            near: Vec::new(),
         }
+    }
+
+    /// The radius and squared radius of the agent–agent cost's neighbour query.
+    fn cutoff(&self) -> (f32, f32) {
+        let radius = CUTOFF_SCALED * (2.0 * self.params.agent_sigma);
+        (radius, radius * radius)
     }
 
     /// The obstacle cost `max_{o∈O} C(p, o)` for a smallest σ-scaled distance².
@@ -122,6 +136,21 @@ impl Pso {
 
     /// F at `p` on the landscape of agent `me`.
     fn evaluate(&self, ctx: &StepContext, me: u32, p: Vec2, goal: Option<Vec2>) -> Evaluation {
+        let (radius, _) = self.cutoff();
+        let nearest2 = ctx.grid.nearest_d2_within_capped(p, radius, NEIGHBOUR_CAP, me);
+        self.evaluate_with(ctx, p, nearest2, goal)
+    }
+
+    /// F at `p` given the squared distance to the nearest other agent within the cutoff
+    /// (`∞` if none): the agents' part of [`Self::evaluate`], found by the caller.
+    fn evaluate_with(&self, ctx: &StepContext, p: Vec2, nearest2: f32, goal: Option<Vec2>) -> Evaluation {
+        let scaled2 = self.scaled2_with(ctx, p, nearest2);
+        Evaluation { scaled2, objective: self.objective(ctx, p, scaled2, goal) }
+    }
+
+    /// The smallest σ-scaled distance² at `p` over obstacles, other agents (the nearest at
+    /// squared distance `nearest2`) and hills.
+    fn scaled2_with(&self, ctx: &StepContext, p: Vec2, nearest2: f32) -> f32 {
         let sigma = self.params.agent_sigma;
         let mut scaled2 = f32::INFINITY;
         if !ctx.obstacles.is_empty() {
@@ -134,7 +163,6 @@ impl Pso {
         }
         // Agent–agent: σp + σq = 2σ in both axes, so the scaled distance is |p − q| / 2σ.
         let pair = 2.0 * sigma;
-        let nearest2 = ctx.grid.nearest_d2_within_capped(p, CUTOFF_SCALED * pair, NEIGHBOUR_CAP, me);
         scaled2 = scaled2.min(nearest2 / (pair * pair));
         if !ctx.scene.hills.is_empty() {
             // Hills join the uniform model as one more object: cost `e^{−k} · h / climb_limit`,
@@ -146,6 +174,12 @@ impl Pso {
                 scaled2 = scaled2.min(s2.max(0.0));
             }
         }
+        scaled2
+    }
+
+    /// The objective F at `p` with smallest σ-scaled distance² `scaled2`.
+    fn objective(&self, ctx: &StepContext, p: Vec2, scaled2: f32, goal: Option<Vec2>) -> f32 {
+        let sigma = self.params.agent_sigma;
         let target = match goal {
             // 1/C(p, g) with the target's σ = the whole search area.
             Some(g) => {
@@ -156,10 +190,12 @@ impl Pso {
             }
             None => 1.0,
         };
-        Evaluation { scaled2, objective: self.params.obstacle_weight * Self::obstacle_cost(scaled2) + target }
+        self.params.obstacle_weight * Self::obstacle_cost(scaled2) + target
     }
 
-    /// The new direction and velocity of agent `id` (index `k` in the group).
+    /// The new direction and velocity of agent `id` (index `k` in the group); `near` is
+    /// scratch for its [`Near::Local`] list.
+    #[allow(clippy::too_many_arguments, reason = "the plain inputs of a per-agent step, and its scratch")]
     fn move_agent(
         &self,
         ctx: &StepContext,
@@ -167,6 +203,7 @@ impl Pso {
         id: u32,
         gbest: Vec2,
         goal: Option<Vec2>,
+        near: &mut Vec<Vec2>,
         rng: &mut Rng,
     ) -> (Vec2, Vec2) {
         let prm = &self.params;
@@ -179,7 +216,11 @@ impl Pso {
             + unit_or(gbest - p, Vec2::ZERO) * (prm.social * r2);
         let direction = unit_or(pull, old);
         let speed = prm.max_speed / self.here_cost[k].max(1.0);
-        if !prm.acceptance || self.try_move(ctx, id, p + direction * speed, here2, goal, rng).0 {
+        if !prm.acceptance {
+            return (direction, direction * speed);
+        }
+        let near = self.near_list(ctx.grid, k, id, p, speed, near);
+        if self.try_move(ctx, id, p + direction * speed, here2, &near, rng).0 {
             return (direction, direction * speed);
         }
         let max_angle = prm.retry_angle_deg.to_radians();
@@ -187,13 +228,16 @@ impl Pso {
         let mut least_bad = (f32::NEG_INFINITY, direction);
         for _ in 0..prm.retries {
             let d = Vec2::from_angle(rng.range(-max_angle, max_angle)).rotate(direction);
-            let (accepted, e) = self.try_move(ctx, id, p + d * speed, here2, goal, rng);
+            let candidate = p + d * speed;
+            let (accepted, scaled2) = self.try_move(ctx, id, candidate, here2, &near, rng);
             if accepted {
-                if best_accepted.is_none_or(|(c, _)| e.objective < c) {
-                    best_accepted = Some((e.objective, d));
+                // The objective only ranks accepted candidates: refused ones skip its exps.
+                let objective = self.objective(ctx, candidate, scaled2, goal);
+                if best_accepted.is_none_or(|(c, _)| objective < c) {
+                    best_accepted = Some((objective, d));
                 }
-            } else if e.scaled2 > least_bad.0 {
-                least_bad = (e.scaled2, d);
+            } else if scaled2 > least_bad.0 {
+                least_bad = (scaled2, d);
             }
         }
         match best_accepted {
@@ -202,26 +246,164 @@ impl Pso {
         }
     }
 
-    /// The acceptance test of a candidate position: (accepted, its evaluation). Positions
-    /// outside the scene (less the body radius) are refused; inside a no-go zone (`here2 ≤ k`),
-    /// moves outwards are always accepted.
+    /// The acceptance test of a candidate position: (accepted, its smallest σ-scaled
+    /// distance²). Positions outside the scene (less the body radius) are refused; inside a
+    /// no-go zone (`here2 ≤ k`), moves outwards are always accepted.
     fn try_move(
         &self,
         ctx: &StepContext,
         id: u32,
         candidate: Vec2,
         here2: f32,
-        goal: Option<Vec2>,
+        near: &Near,
         rng: &mut Rng,
-    ) -> (bool, Evaluation) {
-        let e = self.evaluate(ctx, id, candidate, goal);
+    ) -> (bool, f32) {
+        let scaled2 = self.scaled2_with(ctx, candidate, self.nearest2(ctx.grid, id, candidate, near));
         let r = Vec2::splat(ctx.radii[id as usize]);
         let inside = candidate.cmpge(r).all() && candidate.cmple(ctx.bounds - r).all();
         // Draw even for refused positions so the random stream does not depend on geometry edge cases.
         let draw = rng.unit();
-        let escaping = here2 <= self.params.k && e.scaled2 > here2;
+        let escaping = here2 <= self.params.k && scaled2 > here2;
         let climbs = self.climbs_over_limit(ctx, ctx.positions[id as usize], candidate);
-        (inside && !climbs && (escaping || draw < self.acceptance_probability(e.scaled2)), e)
+        (inside && !climbs && (escaping || draw < self.acceptance_probability(scaled2)), scaled2)
+    }
+
+    /// The squared distance from `c` to the nearest agent other than `me` within the cutoff
+    /// (`∞` if none), as [`Self::evaluate`] finds it, looked up in `near`.
+    fn nearest2(&self, grid: &SpatialGrid, me: u32, c: Vec2, near: &Near) -> f32 {
+        let (radius, r2) = self.cutoff();
+        match near {
+            Near::Grid => grid.nearest_d2_within_capped(c, radius, NEIGHBOUR_CAP, me),
+            Near::Local(list) => {
+                // The grid's answer is the smallest squared distance to any other agent when
+                // that is within the cutoff: `list` holds the agent that gives it (see
+                // `near_list`), and `min` is exact in any order.
+                let m = list.iter().fold(f32::INFINITY, |m, q| m.min(c.distance_squared(*q)));
+                if m <= r2 {
+                    m
+                } else {
+                    f32::INFINITY
+                }
+            }
+        }
+    }
+
+    /// How far round agent `me` at `p` phase 1 scans: the cutoff, plus the farthest a point
+    /// looked up with that scan lies from `p` (its pbest, a candidate move: `max_speed`), plus
+    /// [`slack`].
+    fn reach(&self, p: Vec2) -> f32 {
+        let (radius, _) = self.cutoff();
+        let reach = radius + self.params.max_speed;
+        reach + slack(p, reach)
+    }
+
+    /// Scans the cells within [`Self::reach`] of `p` once: the smallest squared distance from
+    /// `p` and from `pbest` to an agent other than `me` among those cells' agents, or `None`
+    /// when the neighbour query of some point within `max_speed` of `p` could reach a cap of
+    /// [`NEIGHBOUR_CAP`] (then the grid must answer each one).
+    ///
+    /// Why this is the grid's answer: for a point `c` within `max_speed` of `p`, every agent
+    /// within the cutoff of `c` lies within `reach` of `p`, and `c`'s query scans a subset of
+    /// the cells scanned here (cell coordinates grow with position). With at most
+    /// `NEIGHBOUR_CAP.neighbours` agents within `reach` and `NEIGHBOUR_CAP.candidates` in the
+    /// cells, no cap binds for `c`, and the grid returns the smallest squared distance to the
+    /// other agents within the cutoff: the smallest over any superset of them, when that is
+    /// within the cutoff (else ∞).
+    fn scan_round(&self, grid: &SpatialGrid, p: Vec2, pbest: Vec2, me: u32) -> Option<(f32, f32)> {
+        let reach = self.reach(p);
+        let reach2 = reach * reach;
+        let columns = grid.columns();
+        // Running minima and counts per lane: independent chains (a minimum is the same in
+        // any order). A NaN distance never passes `<`, as `min` ignores it.
+        const LANES: usize = 4;
+        let mut here = [f32::INFINITY; LANES];
+        let mut best = [f32::INFINITY; LANES];
+        let (mut within, mut candidates) = ([0u32; LANES], 0usize);
+        for Range { start, end } in grid.query_rows(p, reach) {
+            candidates += end - start;
+            if candidates > NEIGHBOUR_CAP.candidates {
+                return None;
+            }
+            let (Some(xs), Some(ys), Some(ids)) =
+                (columns.x.get(start..end), columns.y.get(start..end), columns.ids.get(start..end))
+            else {
+                return None;
+            };
+            let mut lane = |lane: usize, x: f32, y: f32, id: u32| {
+                let q = Vec2::new(x, y);
+                let (d2, b2) = (p.distance_squared(q), pbest.distance_squared(q));
+                within[lane] += u32::from(d2 <= reach2);
+                let other = id != me;
+                let d2 = if other { d2 } else { f32::INFINITY };
+                let b2 = if other { b2 } else { f32::INFINITY };
+                here[lane] = if d2 < here[lane] { d2 } else { here[lane] };
+                best[lane] = if b2 < best[lane] { b2 } else { best[lane] };
+            };
+            let (xs4, ys4, ids4) = (xs.chunks_exact(LANES), ys.chunks_exact(LANES), ids.chunks_exact(LANES));
+            let rest = xs4.remainder().iter().zip(ys4.remainder()).zip(ids4.remainder());
+            for ((xs, ys), ids) in xs4.zip(ys4).zip(ids4) {
+                for k in 0..LANES {
+                    lane(k, xs[k], ys[k], ids[k]);
+                }
+            }
+            for (k, ((&x, &y), &id)) in rest.enumerate() {
+                lane(k, x, y, id);
+            }
+        }
+        let min = |lanes: [f32; LANES]| lanes.iter().fold(f32::INFINITY, |m, &v| m.min(v));
+        let within: u32 = within.iter().sum();
+        (within as usize <= NEIGHBOUR_CAP.neighbours).then_some((min(here), min(best)))
+    }
+
+    /// Where the candidate moves of agent `me` (index `k`) at `p`, all within `speed` ≤
+    /// `max_speed` of `p`, find their nearest other agent: the agents within
+    /// `T = √here + 2·speed + slack` of `p`, `here` being phase 1's smallest squared distance
+    /// from `p` ([`Self::scan_round`]). That agent is within `√here + speed` of a candidate,
+    /// and any agent farther than `T` from `p` is farther than `√here + speed + slack` from
+    /// it, so the list holds the nearest other agent of every candidate (a handful in a jam,
+    /// instead of the whole cutoff disc for every retry). If no other agent lies within
+    /// `reach` of `p`, none is within the cutoff of a candidate: an empty list.
+    fn near_list<'a>(
+        &self,
+        grid: &SpatialGrid,
+        k: usize,
+        me: u32,
+        p: Vec2,
+        speed: f32,
+        list: &'a mut Vec<Vec2>,
+    ) -> Near<'a> {
+        list.clear();
+        let Some(here) = self.around.get(k).copied().flatten() else { return Near::Grid };
+        let reach = self.reach(p);
+        if here.partial_cmp(&(reach * reach)).is_none_or(|o| o == std::cmp::Ordering::Greater) {
+            return Near::Local(list);
+        }
+        let t = here.sqrt() + 2.0 * speed + slack(p, reach);
+        let t2 = t * t;
+        let columns = grid.columns();
+        for Range { start, end } in grid.query_rows(p, t) {
+            let (Some(xs), Some(ys), Some(ids)) =
+                (columns.x.get(start..end), columns.y.get(start..end), columns.ids.get(start..end))
+            else {
+                list.clear();
+                return Near::Grid;
+            };
+            // Every candidate is written, and kept (the end advanced past it) when it is in:
+            // no branch whose outcome the CPU could not predict.
+            let mut kept = list.len();
+            list.resize(kept + xs.len(), Vec2::ZERO);
+            if let Some(out) = list.get_mut(kept..) {
+                let mut n = 0;
+                for ((&x, &y), &id) in xs.iter().zip(ys).zip(ids) {
+                    let q = Vec2::new(x, y);
+                    out[n] = q;
+                    n += usize::from((id != me) & (p.distance_squared(q) <= t2));
+                }
+                kept += n;
+            }
+            list.truncate(kept);
+        }
+        Near::Local(list)
     }
 
     /// Whether moving from `from` to `candidate` climbs to ground at or above the climb limit.
@@ -241,8 +423,27 @@ impl Pso {
         if !scaled2.is_finite() {
             return 1.0;
         }
+        if scaled2 <= self.params.k {
+            // exp(k − s²) ≥ 1 clamps to 0: skip the exp (most retries in a jam end here).
+            return 0.0;
+        }
         (1.0 - libm::expf(self.params.k - scaled2)).clamp(0.0, 1.0)
     }
+}
+
+/// Extra distance (px) the local neighbour lists reach past what they must cover: far more
+/// than the rounding of the positions, candidate points and squared distances involved
+/// (relative 10⁻⁶ of the coordinates and distances), so no agent is missed by a rounding.
+fn slack(p: Vec2, distance: f32) -> f32 {
+    0.25 + 1e-4 * (p.abs().max_element() + distance)
+}
+
+/// Where the nearest-agent lookups of one agent's candidate moves go ([`Pso::near_list`]).
+enum Near<'a> {
+    /// The grid, as [`Pso::evaluate`] asks it.
+    Grid,
+    /// A list of other agents' positions that holds the nearest one to every candidate.
+    Local(&'a [Vec2]),
 }
 
 /// Agent `k`'s bests re-evaluated on the current landscape (phase 1 of a step).
@@ -255,6 +456,9 @@ struct Reevaluated {
     pbest_cost: f32,
     /// Its sight point towards the target and that point's cost, a gbest candidate.
     sight: Option<(f32, Vec2)>,
+    /// [`Pso::scan_round`]'s smallest squared distance from the agent's position, if no
+    /// query cap can bind round it.
+    around: Option<f32>,
 }
 
 /// Makes `(cost, p)` the best if it is cheaper (ties keep the earlier one).
@@ -268,16 +472,27 @@ impl Pso {
     /// Phase 1 for one agent: the cost here, the updated pbest and the sight point.
     fn reevaluate(&self, ctx: &StepContext, k: usize, id: u32, goal: Option<Vec2>) -> Reevaluated {
         let p = ctx.positions[id as usize];
-        let here = self.evaluate(ctx, id, p, goal);
         let old_best = self.pbest.get(k).copied().unwrap_or(p);
-        let best = self.evaluate(ctx, id, old_best, goal).objective;
+        // Both points' nearest agents from one scan where it gives the grid's answer.
+        let (radius, r2) = self.cutoff();
+        let grid = |c: Vec2| ctx.grid.nearest_d2_within_capped(c, radius, NEIGHBOUR_CAP, id);
+        let cut = |m: f32| if m <= r2 { m } else { f32::INFINITY };
+        let max_speed = self.params.max_speed;
+        let around = self.scan_round(ctx.grid, p, old_best, id);
+        let (here_near, best_near) = match around {
+            Some((h, b)) if p.distance_squared(old_best) <= max_speed * max_speed => (cut(h), cut(b)),
+            Some((h, _)) => (cut(h), grid(old_best)),
+            None => (grid(p), grid(old_best)),
+        };
+        let here = self.evaluate_with(ctx, p, here_near, goal);
+        let best = self.evaluate_with(ctx, old_best, best_near, goal).objective;
         let (pbest, pbest_cost) = if here.objective <= best { (p, here.objective) } else { (old_best, best) };
         let sight = goal.filter(|_| self.params.sight > 0.0).map(|g| {
             let to = g - p;
             let sight = p + to * (self.params.sight / to.length().max(self.params.sight));
             (self.evaluate(ctx, id, sight, goal).objective, sight)
         });
-        Reevaluated { here, pbest, pbest_cost, sight }
+        Reevaluated { here, pbest, pbest_cost, sight, around: around.map(|(h, _)| h) }
     }
 }
 
@@ -423,6 +638,7 @@ impl Planner for Pso {
             self.pbest_cost = vec![0.0; n];
             self.here_cost = vec![0.0; n];
             self.here_scaled2 = vec![0.0; n];
+            self.around = vec![None; n];
         }
 
         // Phase 1: re-evaluate every pbest on the current landscape; the group's best is gbest.
@@ -432,6 +648,7 @@ impl Planner for Pso {
             let r = self.reevaluate(ctx, k, id, goal);
             self.here_cost[k] = r.here.objective;
             self.here_scaled2[k] = r.here.scaled2;
+            self.around[k] = r.around;
             self.pbest[k] = r.pbest;
             self.pbest_cost[k] = r.pbest_cost;
             offer_best(&mut gbest, r.pbest_cost, r.pbest);
@@ -442,11 +659,13 @@ impl Planner for Pso {
         let Some((_, gbest)) = gbest else { return };
 
         // Phase 2: direction, speed, acceptance.
+        let mut near = std::mem::take(&mut self.near);
         for (k, out) in new_velocities.iter_mut().enumerate().take(n) {
             let id = start + k as u32;
-            let (direction, velocity) = self.move_agent(ctx, k, id, gbest, goal, rng);
+            let (direction, velocity) = self.move_agent(ctx, k, id, gbest, goal, &mut near, rng);
             self.direction[k] = direction;
             *out = velocity;
         }
+        self.near = near;
     }
 }

@@ -324,9 +324,12 @@ impl SpatialGrid {
     }
 
     /// The storage ranges of the cells a query of `radius` round `p` scans, one per row of
-    /// cells (the cells of a row are contiguous in storage), top row first.
+    /// cells (the cells of a row are contiguous in storage), top row first: indexes into
+    /// [`Self::columns`]. The cells of a query are those of every query whose box
+    /// `[p − radius, p + radius]` it contains (cell coordinates grow with position), so a
+    /// caller can bound the candidates of many nearby queries by one wider query.
     #[inline]
-    fn query_rows(&self, p: Vec2, radius: f32) -> impl Iterator<Item = Range<usize>> + '_ {
+    pub fn query_rows(&self, p: Vec2, radius: f32) -> impl Iterator<Item = Range<usize>> + '_ {
         let x0 = self.cell_coord(p.x - radius, self.cols);
         let x1 = self.cell_coord(p.x + radius, self.cols);
         let y0 = self.cell_coord(p.y - radius, self.rows);
@@ -380,7 +383,12 @@ impl SpatialGrid {
     pub fn nearest_d2_within_capped(&self, p: Vec2, radius: f32, cap: QueryCap, exclude: u32) -> f32 {
         let r2 = radius * radius;
         let [xs, ys, _, _] = &self.columns;
-        let (mut best, mut within, mut candidates) = (f32::INFINITY, 0usize, 0usize);
+        // The minimum over every other agent of the cells is the answer when it is within
+        // `radius` (else none is): no branch on the distance test, whose outcome the CPU could
+        // not predict. One running minimum and count per lane: independent chains, and the
+        // minimum of a set is the same in any order.
+        let (mut best, mut within, mut candidates) =
+            ([f32::INFINITY; CANDIDATE_LANES], [0u32; CANDIDATE_LANES], 0usize);
         for Range { start, end } in self.query_rows(p, radius) {
             candidates += end - start;
             if candidates > cap.candidates {
@@ -389,16 +397,33 @@ impl SpatialGrid {
             if let (Some(xs), Some(ys), Some(ids)) =
                 (xs.get(start..end), ys.get(start..end), self.ids.get(start..end))
             {
-                for ((&x, &y), &id) in xs.iter().zip(ys).zip(ids) {
+                let mut lane = |lane: usize, x: f32, y: f32, id: u32| {
                     let d2 = p.distance_squared(Vec2::new(x, y));
-                    let inside = d2 <= r2;
-                    within += usize::from(inside);
-                    best = if inside & (id != exclude) { best.min(d2) } else { best };
+                    within[lane] += u32::from(d2 <= r2);
+                    let d2 = if id != exclude { d2 } else { f32::INFINITY };
+                    // `<` is `min` here: a NaN distance (never within reach) is ignored by both.
+                    best[lane] = if d2 < best[lane] { d2 } else { best[lane] };
+                };
+                let (xs4, ys4, ids4) = (
+                    xs.chunks_exact(CANDIDATE_LANES),
+                    ys.chunks_exact(CANDIDATE_LANES),
+                    ids.chunks_exact(CANDIDATE_LANES),
+                );
+                let rest = xs4.remainder().iter().zip(ys4.remainder()).zip(ids4.remainder());
+                for ((xs, ys), ids) in xs4.zip(ys4).zip(ids4) {
+                    for k in 0..CANDIDATE_LANES {
+                        lane(k, xs[k], ys[k], ids[k]);
+                    }
+                }
+                for (k, ((&x, &y), &id)) in rest.enumerate() {
+                    lane(k, x, y, id);
                 }
             }
         }
+        let within: usize = within.iter().map(|&w| w as usize).sum();
+        let best = best.iter().fold(f32::INFINITY, |m, &b| m.min(b));
         if candidates <= cap.candidates && within <= cap.neighbours {
-            return best;
+            return if best <= r2 { best } else { f32::INFINITY };
         }
         let mut nearest = f32::INFINITY;
         self.for_each_within_capped(p, radius, cap, |n| {
