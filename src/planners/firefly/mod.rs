@@ -99,6 +99,9 @@ use crate::planners::explain::{Explanation, NamedPoint, NamedVector};
 use crate::rng::Rng;
 use crate::spatial::QueryCap;
 use glam::Vec2;
+use near::NearIndex;
+
+mod near;
 
 /// The firefly planner for one group. Per-agent state (mass) is indexed by the agent's position
 /// within its group.
@@ -119,6 +122,11 @@ struct Scratch {
     slots: Vec<u32>,
     /// The largest body radius of any agent (px): how far a touching body's centre can lie.
     widest_body: f32,
+    /// This step's fine index of the agents, when the group is a large share of them (see
+    /// [`Firefly::plan`]); without it every survey queries the world grid.
+    index: Option<NearIndex>,
+    /// The bodies within reach found in the index: `(world-grid slot, index entry)`.
+    close: Vec<(u32, u32)>,
 }
 
 impl Scratch {
@@ -313,7 +321,7 @@ impl Firefly {
         target: Option<Vec2>,
         scratch: &mut Scratch,
     ) -> Survey {
-        let Scratch { contacts, slots, widest_body } = scratch;
+        let Scratch { contacts, slots, widest_body, index, close } = scratch;
         let widest_body = *widest_body;
         let prm = &self.params;
         let i = id as usize;
@@ -353,92 +361,133 @@ impl Firefly {
                 contacts.push(Contact { towards, allowed });
             }
         }
-        // One branch-free pass finds the agents within the feeler's reach (the contacts and the
-        // blocker lie there, and usually the nearest brighter firefly); the rest of the view is
-        // searched only when none of them is brighter.
+        // The agents within the feeler's reach hold the contacts and the blocker, and usually
+        // the nearest brighter firefly; the rest of the view is searched only when none of
+        // them is brighter.
         let columns = ctx.grid.columns();
         let contact_reach = my_radius + widest_body + CONTACT_MARGIN + 2.0 * prm.max_velocity;
         let near_radius = (prm.feeler_length + prm.safe_distance).max(contact_reach);
         let near_radius = near_radius.min(self.interaction_radius());
-        ctx.grid.gather_within(p, near_radius, NEIGHBOUR_CAP, slots);
         let is_own = |other: u32| other.wrapping_sub(group.agents.start) < group.agents.len() as u32;
-        let (bodies_before, mut bodies) = (contacts.len(), 0usize);
-        // The largest allowed speed among the bodies kept (the farthest of them).
-        let mut farthest = f32::NEG_INFINITY;
+        let toucher = Toucher { id, p, my_radius, max_velocity: prm.max_velocity, heading, on_the_way };
+        let mut list =
+            ContactList { before: contacts.len(), contacts, bodies: 0, farthest: f32::NEG_INFINITY };
         // No body lies within reach of a contact unless within this (the widest body's reach).
         let widest_reach2 = contact_reach * contact_reach;
-        // The nearest brighter firefly and the blocker as keys `(squared distance bits, id)`:
-        // squared distances are finite and non-negative, so their bits order like them, and
-        // the smallest key is the smallest `(squared distance, id)`. Computed for every
-        // neighbour without branching on brightness (half of a crowd is brighter, in no order
-        // a CPU could predict); `u64::MAX` when not a candidate.
-        let key = |d2: f32, other: u32, candidate: bool| {
-            if candidate {
-                (u64::from(d2.to_bits()) << 32) | u64::from(other)
-            } else {
-                u64::MAX
-            }
-        };
-        let (mut nearest, mut nearest_slot) = (u64::MAX, 0usize);
-        let (mut blocker, mut blocker_slot) = (u64::MAX, 0usize);
+        let near2 = near_radius * near_radius;
+        let (mut nearest, mut blocker) = (None, None);
         let t = target.unwrap_or(p);
-        for &k in slots.iter() {
-            let k = k as usize;
-            let (other, pos) = (columns.ids[k], Vec2::new(columns.x[k], columns.y[k]));
-            let d2 = p.distance_squared(pos);
-            if d2 < widest_reach2 && other != id {
-                let their_radius = ctx.radii.get(other as usize).copied().unwrap_or(0.0);
-                // Each of the two moves at most half the gap (less a margin) towards the other
-                // per step, whatever the other does, so together they cannot close it in one
-                // step. The limit binds only within 2 × max_velocity of touching: the square
-                // root only then.
-                let reach = my_radius + their_radius + CONTACT_MARGIN + 2.0 * prm.max_velocity;
-                if d2 < reach * reach {
-                    let allowed = 0.5 * (d2.sqrt() - my_radius - their_radius - CONTACT_MARGIN);
-                    // Coincident bodies part along x, the lower id to the left.
-                    let apart = if other < id { Vec2::NEG_X } else { Vec2::X };
-                    let contact = Contact { towards: unit_or(pos - p, apart), allowed };
-                    if bodies < MAX_CONTACT_BODIES {
-                        contacts.push(contact);
-                        bodies += 1;
-                        farthest = farthest.max(allowed);
-                    } else if allowed < farthest {
-                        // Only a nearer body than the farthest kept changes the list (a pile).
-                        let kept = contacts.get_mut(bodies_before..).unwrap_or_default();
-                        keep_nearest(kept, contact);
-                        farthest = kept.iter().fold(f32::NEG_INFINITY, |m, c| m.max(c.allowed));
+        if let Some(ix) = index.as_ref().filter(|ix| index_answers(ctx, ix, p, near_radius)) {
+            // The fine index holds the same agents as the world grid's query of `near_radius`
+            // (its caps do not bind, see `index_answers`): three small discs answer what that
+            // query's ~600 neighbours in a packed crowd do. First the bodies within reach
+            // (listed in the world grid's order, which the contact list depends on) and the
+            // nearest brighter firefly if it lies among them: none nearer can lie farther out.
+            let reach = contact_reach.min(near_radius);
+            let reach2 = reach * reach;
+            let (mut best, mut best_e) = (u64::MAX, 0usize);
+            close.clear();
+            for r in ix.rows(p, reach) {
+                let (others, xs, ys, bright) =
+                    (&ix.id[r.clone()], &ix.x[r.clone()], &ix.y[r.clone()], &ix.bright2[r.clone()]);
+                for (e, (((&other, &x), &y), &b2)) in r.zip(others.iter().zip(xs).zip(ys).zip(bright)) {
+                    let d2 = p.distance_squared(Vec2::new(x, y));
+                    if d2 < widest_reach2 && d2 <= near2 && other != id {
+                        close.push((ix.slot[e], e as u32));
                     }
-                    if on_the_way
-                        && heading.dot(pos - p) > 0.0
-                        && target.is_some_and(|t| is_own(other) && pos.distance_squared(t) < my2)
-                    {
-                        survey.brighter_in_contact_ahead = true;
+                    let brighter = (other != id) & (b2 < my2);
+                    let n = key(d2, other, brighter & (d2 <= view2) & (d2 <= near2) & (d2 <= reach2));
+                    if n < best {
+                        (best, best_e) = (n, e);
                     }
                 }
             }
-            // Brighter: of the group, nearer the target (no target: none is brighter).
-            let brighter = target.is_some() & (other != id) & is_own(other) & (pos.distance_squared(t) < my2);
-            let at_tip = pos.distance_squared(tip);
-            let b = key(at_tip, other, brighter & (at_tip < safe2));
-            if b < blocker {
-                (blocker, blocker_slot) = (b, k);
+            // World-grid slots are unique: the order is that of the grid's scan.
+            close.sort_unstable();
+            for &(_, e) in close.iter() {
+                let e = e as usize;
+                let (other, pos) = (ix.id[e], Vec2::new(ix.x[e], ix.y[e]));
+                let their_radius = ctx.radii.get(other as usize).copied().unwrap_or(0.0);
+                let d2 = p.distance_squared(pos);
+                if toucher.touch(&mut list, their_radius, other, pos, d2, || ix.bright2[e] < my2) {
+                    survey.brighter_in_contact_ahead = true;
+                }
             }
-            let n = key(d2, other, brighter & (d2 <= view2));
-            if n < nearest {
-                (nearest, nearest_slot) = (n, k);
+            if target.is_some() {
+                if best == u64::MAX {
+                    // None within reach: the nearest brighter one in the rest of `near_radius`.
+                    for r in ix.rows(p, near_radius) {
+                        let (others, xs, ys, bright) =
+                            (&ix.id[r.clone()], &ix.x[r.clone()], &ix.y[r.clone()], &ix.bright2[r.clone()]);
+                        for (e, (((&other, &x), &y), &b2)) in r.zip(others.iter().zip(xs).zip(ys).zip(bright))
+                        {
+                            let d2 = p.distance_squared(Vec2::new(x, y));
+                            let brighter = (other != id) & (b2 < my2);
+                            let n = key(d2, other, brighter & (d2 <= view2) & (d2 <= near2));
+                            if n < best {
+                                (best, best_e) = (n, e);
+                            }
+                        }
+                    }
+                }
+                nearest = found(best, Vec2::new(ix.x[best_e], ix.y[best_e]));
+                // The blocker: the brighter firefly nearest the tip, within r_safe of it.
+                let (mut best, mut best_e) = (u64::MAX, 0usize);
+                for r in ix.rows(tip, prm.safe_distance.abs()) {
+                    let (others, xs, ys, bright) =
+                        (&ix.id[r.clone()], &ix.x[r.clone()], &ix.y[r.clone()], &ix.bright2[r.clone()]);
+                    for (e, (((&other, &x), &y), &b2)) in r.zip(others.iter().zip(xs).zip(ys).zip(bright)) {
+                        let pos = Vec2::new(x, y);
+                        let d2 = p.distance_squared(pos);
+                        let at_tip = pos.distance_squared(tip);
+                        let brighter = (other != id) & (b2 < my2);
+                        let b = key(at_tip, other, brighter & (at_tip < safe2) & (d2 <= near2));
+                        if b < best {
+                            (best, best_e) = (b, e);
+                        }
+                    }
+                }
+                blocker = found(best, Vec2::new(ix.x[best_e], ix.y[best_e]));
             }
+        } else {
+            // One branch-free pass over the world grid's query.
+            ctx.grid.gather_within(p, near_radius, NEIGHBOUR_CAP, slots);
+            let (mut nearest_key, mut nearest_slot) = (u64::MAX, 0usize);
+            let (mut blocker_key, mut blocker_slot) = (u64::MAX, 0usize);
+            for &k in slots.iter() {
+                let k = k as usize;
+                let (other, pos) = (columns.ids[k], Vec2::new(columns.x[k], columns.y[k]));
+                let d2 = p.distance_squared(pos);
+                if d2 < widest_reach2 && other != id {
+                    let their_radius = ctx.radii.get(other as usize).copied().unwrap_or(0.0);
+                    let brighter = || target.is_some_and(|t| is_own(other) && pos.distance_squared(t) < my2);
+                    if toucher.touch(&mut list, their_radius, other, pos, d2, brighter) {
+                        survey.brighter_in_contact_ahead = true;
+                    }
+                }
+                // Brighter: of the group, nearer the target (no target: none is brighter).
+                let brighter =
+                    target.is_some() & (other != id) & is_own(other) & (pos.distance_squared(t) < my2);
+                let at_tip = pos.distance_squared(tip);
+                let b = key(at_tip, other, brighter & (at_tip < safe2));
+                if b < blocker_key {
+                    (blocker_key, blocker_slot) = (b, k);
+                }
+                let n = key(d2, other, brighter & (d2 <= view2));
+                if n < nearest_key {
+                    (nearest_key, nearest_slot) = (n, k);
+                }
+            }
+            let at = |k: usize| Vec2::new(columns.x[k], columns.y[k]);
+            blocker = found(blocker_key, at(blocker_slot));
+            nearest = found(nearest_key, at(nearest_slot));
         }
-        let found = |key: u64, k: usize| {
-            (key != u64::MAX).then(|| {
-                (f32::from_bits((key >> 32) as u32), key as u32, Vec2::new(columns.x[k], columns.y[k]))
-            })
-        };
-        survey.blocker = found(blocker, blocker_slot);
-        survey.nearest = found(nearest, nearest_slot);
+        survey.blocker = blocker;
+        survey.nearest = nearest;
         let Some(target) = target else { return survey };
         if survey.nearest.is_none() && near_radius < prm.view_radius {
             // No brighter firefly within the feeler's reach: the nearest one farther off.
-            let near2 = near_radius * near_radius;
+            let (mut nearest, mut nearest_slot) = (u64::MAX, 0usize);
             ctx.grid.gather_within(p, prm.view_radius, NEIGHBOUR_CAP, slots);
             for &k in slots.iter() {
                 let k = k as usize;
@@ -451,9 +500,109 @@ impl Firefly {
                     (nearest, nearest_slot) = (n, k);
                 }
             }
-            survey.nearest = found(nearest, nearest_slot);
+            survey.nearest = found(nearest, Vec2::new(columns.x[nearest_slot], columns.y[nearest_slot]));
         }
         survey
+    }
+}
+
+/// The nearest brighter firefly and the blocker are found as keys `(squared distance bits,
+/// id)`: squared distances are finite and non-negative, so their bits order like them, and the
+/// smallest key is the smallest `(squared distance, id)`, whatever order the candidates come
+/// in. Computed for every candidate without branching on brightness (half of a crowd is
+/// brighter, in no order a CPU could predict); `u64::MAX` when not a candidate.
+#[inline(always)]
+fn key(d2: f32, other: u32, candidate: bool) -> u64 {
+    if candidate {
+        (u64::from(d2.to_bits()) << 32) | u64::from(other)
+    } else {
+        u64::MAX
+    }
+}
+
+/// The `(squared distance, id, position)` a key found, if any.
+fn found(key: u64, pos: Vec2) -> Option<(f32, u32, Vec2)> {
+    (key != u64::MAX).then(|| (f32::from_bits((key >> 32) as u32), key as u32, pos))
+}
+
+/// Whether `index` answers the survey exactly as the world grid's capped query of
+/// `near_radius` round `p` would: neither cap binds (the scanned cells hold no more candidates
+/// than its cap, the fine cells round the disc no more agents than its neighbour cap), and the
+/// disc, widened by [`near::slack`], lies inside the cells that query scans, so every agent
+/// within `near_radius` is one it lists.
+fn index_answers(ctx: &StepContext, index: &NearIndex, p: Vec2, near_radius: f32) -> bool {
+    p.is_finite()
+        && ctx.grid.query_candidates(p, near_radius) <= NEIGHBOUR_CAP.candidates
+        && ctx.grid.query_cells(p, near_radius + near::slack(p, near_radius))
+            == ctx.grid.query_cells(p, near_radius)
+        && index.count(p, near_radius) <= NEIGHBOUR_CAP.neighbours
+}
+
+/// The surveying firefly, as the contact rule sees it.
+struct Toucher {
+    id: u32,
+    p: Vec2,
+    my_radius: f32,
+    max_velocity: f32,
+    heading: Vec2,
+    on_the_way: bool,
+}
+
+impl Toucher {
+    /// Offers `other` (radius `their_radius`, at `pos`, `d2` away, within the widest body's
+    /// reach) to the contact list if its body is within reach; returns whether it is a
+    /// brighter firefly of the group ahead that the firefly, on its way, falls in behind
+    /// (`brighter` is asked only then).
+    #[inline]
+    fn touch(
+        &self,
+        list: &mut ContactList,
+        their_radius: f32,
+        other: u32,
+        pos: Vec2,
+        d2: f32,
+        brighter: impl FnOnce() -> bool,
+    ) -> bool {
+        let (p, my_radius) = (self.p, self.my_radius);
+        // Each of the two moves at most half the gap (less a margin) towards the other per
+        // step, whatever the other does, so together they cannot close it in one step. The
+        // limit binds only within 2 × max_velocity of touching: the square root only then.
+        let reach = my_radius + their_radius + CONTACT_MARGIN + 2.0 * self.max_velocity;
+        if d2 >= reach * reach {
+            return false;
+        }
+        let allowed = 0.5 * (d2.sqrt() - my_radius - their_radius - CONTACT_MARGIN);
+        // Coincident bodies part along x, the lower id to the left.
+        let apart = if other < self.id { Vec2::NEG_X } else { Vec2::X };
+        list.offer(Contact { towards: unit_or(pos - p, apart), allowed });
+        self.on_the_way && self.heading.dot(pos - p) > 0.0 && brighter()
+    }
+}
+
+/// The contact list of one survey while its neighbours are visited in the world grid's scan
+/// order: the bodies after the obstacles' and borders' surfaces, at most
+/// [`MAX_CONTACT_BODIES`] of them, the nearest.
+struct ContactList<'a> {
+    contacts: &'a mut Vec<Contact>,
+    /// Surfaces listed before the bodies.
+    before: usize,
+    bodies: usize,
+    /// The largest allowed speed among the bodies kept (the farthest of them).
+    farthest: f32,
+}
+
+impl ContactList<'_> {
+    fn offer(&mut self, contact: Contact) {
+        if self.bodies < MAX_CONTACT_BODIES {
+            self.contacts.push(contact);
+            self.bodies += 1;
+            self.farthest = self.farthest.max(contact.allowed);
+        } else if contact.allowed < self.farthest {
+            // Only a nearer body than the farthest kept changes the list (a pile).
+            let kept = self.contacts.get_mut(self.before..).unwrap_or_default();
+            keep_nearest(kept, contact);
+            self.farthest = kept.iter().fold(f32::NEG_INFINITY, |m, c| m.max(c.allowed));
+        }
     }
 }
 
@@ -550,6 +699,20 @@ impl Planner for Firefly {
         let target = group.goal.map(|(t, _)| t);
         let mut scratch = std::mem::take(&mut self.scratch);
         scratch.widest_body = ctx.radii.iter().copied().fold(0.0, f32::max);
+        // The fine index costs a pass over every agent of the world: worth it when the group is
+        // a fair share of them (it answers exactly as the world grid does, only faster).
+        if n * 4 >= ctx.positions.len() && n > 0 {
+            let cell = 2.0 * scratch.widest_body + CONTACT_MARGIN + 2.0 * prm.max_velocity;
+            scratch.index.get_or_insert_with(NearIndex::default).rebuild(
+                ctx.grid,
+                ctx.bounds,
+                cell,
+                &group.agents,
+                target,
+            );
+        } else {
+            scratch.index = None;
+        }
         for (k, id) in group.agents.clone().enumerate() {
             let i = id as usize;
             let p = ctx.positions[i];
