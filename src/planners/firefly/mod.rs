@@ -99,7 +99,7 @@ use crate::planners::explain::{Explanation, NamedPoint, NamedVector};
 use crate::rng::Rng;
 use crate::spatial::QueryCap;
 use glam::Vec2;
-use near::NearIndex;
+use near::{key, NearIndex};
 
 mod near;
 
@@ -268,7 +268,9 @@ fn keep_apart(v: Vec2, contacts: &[Contact]) -> Vec2 {
     let mut best: Option<(f32, Vec2)> = None;
     let mut consider = |w: Vec2| {
         let d2 = w.distance_squared(v);
-        if feasible(w) && best.is_none_or(|(best_d2, _)| d2 < best_d2) {
+        // The cheap test first: only a nearer candidate than the best is checked against
+        // every contact (both tests are pure, so the choice is the same either way round).
+        if best.is_none_or(|(best_d2, _)| d2 < best_d2) && feasible(w) {
             best = Some((d2, w));
         }
     };
@@ -379,26 +381,17 @@ impl Firefly {
         let t = target.unwrap_or(p);
         if let Some(ix) = index.as_ref().filter(|ix| index_answers(ctx, ix, p, near_radius)) {
             // The fine index holds the same agents as the world grid's query of `near_radius`
-            // (its caps do not bind, see `index_answers`): three small discs answer what that
+            // (its caps do not bind, see `index_answers`): a few small discs answer what that
             // query's ~600 neighbours in a packed crowd do. First the bodies within reach
             // (listed in the world grid's order, which the contact list depends on) and the
             // nearest brighter firefly if it lies among them: none nearer can lie farther out.
             let reach = contact_reach.min(near_radius);
-            let reach2 = reach * reach;
-            let (mut best, mut best_e) = (u64::MAX, 0usize);
             close.clear();
             for r in ix.rows(p, reach) {
-                let (others, xs, ys, bright) =
-                    (&ix.id[r.clone()], &ix.x[r.clone()], &ix.y[r.clone()], &ix.bright2[r.clone()]);
-                for (e, (((&other, &x), &y), &b2)) in r.zip(others.iter().zip(xs).zip(ys).zip(bright)) {
-                    let d2 = p.distance_squared(Vec2::new(x, y));
-                    if d2 < widest_reach2 && d2 <= near2 && other != id {
+                for e in r {
+                    let d2 = p.distance_squared(ix.pos(e));
+                    if d2 < widest_reach2 && d2 <= near2 && ix.id[e] != id {
                         close.push((ix.slot[e], e as u32));
-                    }
-                    let brighter = (other != id) & (b2 < my2);
-                    let n = key(d2, other, brighter & (d2 <= view2) & (d2 <= near2) & (d2 <= reach2));
-                    if n < best {
-                        (best, best_e) = (n, e);
                     }
                 }
             }
@@ -406,7 +399,7 @@ impl Firefly {
             close.sort_unstable();
             for &(_, e) in close.iter() {
                 let e = e as usize;
-                let (other, pos) = (ix.id[e], Vec2::new(ix.x[e], ix.y[e]));
+                let (other, pos) = (ix.id[e], ix.pos(e));
                 let their_radius = ctx.radii.get(other as usize).copied().unwrap_or(0.0);
                 let d2 = p.distance_squared(pos);
                 if toucher.touch(&mut list, their_radius, other, pos, d2, || ix.bright2[e] < my2) {
@@ -414,40 +407,37 @@ impl Firefly {
                 }
             }
             if target.is_some() {
-                if best == u64::MAX {
-                    // None within reach: the nearest brighter one in the rest of `near_radius`.
-                    for r in ix.rows(p, near_radius) {
-                        let (others, xs, ys, bright) =
-                            (&ix.id[r.clone()], &ix.x[r.clone()], &ix.y[r.clone()], &ix.bright2[r.clone()]);
-                        for (e, (((&other, &x), &y), &b2)) in r.zip(others.iter().zip(xs).zip(ys).zip(bright))
-                        {
-                            let d2 = p.distance_squared(Vec2::new(x, y));
-                            let brighter = (other != id) & (b2 < my2);
-                            let n = key(d2, other, brighter & (d2 <= view2) & (d2 <= near2));
-                            if n < best {
-                                (best, best_e) = (n, e);
-                            }
-                        }
-                    }
-                }
-                nearest = found(best, Vec2::new(ix.x[best_e], ix.y[best_e]));
-                // The blocker: the brighter firefly nearest the tip, within r_safe of it.
-                let (mut best, mut best_e) = (u64::MAX, 0usize);
-                for r in ix.rows(tip, prm.safe_distance.abs()) {
-                    let (others, xs, ys, bright) =
-                        (&ix.id[r.clone()], &ix.x[r.clone()], &ix.y[r.clone()], &ix.bright2[r.clone()]);
-                    for (e, (((&other, &x), &y), &b2)) in r.zip(others.iter().zip(xs).zip(ys).zip(bright)) {
-                        let pos = Vec2::new(x, y);
+                // The nearest brighter firefly in view: within a contact's reach (in a packed
+                // crowd one is there), else within four (in a spread one), else anywhere within
+                // `near_radius`. One found within a radius is the nearest: every one nearer
+                // lies within that radius too.
+                let mut best = (u64::MAX, 0usize);
+                for radius in [reach, (4.0 * reach).min(near_radius), near_radius] {
+                    let radius2 = radius * radius;
+                    best = ix.min_key(p, radius, id, my2, |pos| {
                         let d2 = p.distance_squared(pos);
-                        let at_tip = pos.distance_squared(tip);
-                        let brighter = (other != id) & (b2 < my2);
-                        let b = key(at_tip, other, brighter & (at_tip < safe2) & (d2 <= near2));
-                        if b < best {
-                            (best, best_e) = (b, e);
-                        }
+                        (d2, (d2 <= view2) & (d2 <= near2) & (d2 <= radius2))
+                    });
+                    if best.0 != u64::MAX {
+                        break;
                     }
                 }
-                blocker = found(best, Vec2::new(ix.x[best_e], ix.y[best_e]));
+                nearest = found(best.0, ix.pos(best.1));
+                // The blocker: the brighter firefly nearest the tip, within r_safe of it; first
+                // within a contact's reach of the tip (in a crowd the tip lies among brighter
+                // ones), as above.
+                let safe = prm.safe_distance.abs();
+                for radius in [reach.min(safe), safe] {
+                    let radius2 = radius * radius;
+                    best = ix.min_key(tip, radius, id, my2, |pos| {
+                        let at_tip = pos.distance_squared(tip);
+                        (at_tip, (at_tip < safe2) & (at_tip <= radius2) & (p.distance_squared(pos) <= near2))
+                    });
+                    if best.0 != u64::MAX {
+                        break;
+                    }
+                }
+                blocker = found(best.0, ix.pos(best.1));
             }
         } else {
             // One branch-free pass over the world grid's query.
@@ -506,20 +496,6 @@ impl Firefly {
     }
 }
 
-/// The nearest brighter firefly and the blocker are found as keys `(squared distance bits,
-/// id)`: squared distances are finite and non-negative, so their bits order like them, and the
-/// smallest key is the smallest `(squared distance, id)`, whatever order the candidates come
-/// in. Computed for every candidate without branching on brightness (half of a crowd is
-/// brighter, in no order a CPU could predict); `u64::MAX` when not a candidate.
-#[inline(always)]
-fn key(d2: f32, other: u32, candidate: bool) -> u64 {
-    if candidate {
-        (u64::from(d2.to_bits()) << 32) | u64::from(other)
-    } else {
-        u64::MAX
-    }
-}
-
 /// The `(squared distance, id, position)` a key found, if any.
 fn found(key: u64, pos: Vec2) -> Option<(f32, u32, Vec2)> {
     (key != u64::MAX).then(|| (f32::from_bits((key >> 32) as u32), key as u32, pos))
@@ -532,10 +508,14 @@ fn found(key: u64, pos: Vec2) -> Option<(f32, u32, Vec2)> {
 /// within `near_radius` is one it lists.
 fn index_answers(ctx: &StepContext, index: &NearIndex, p: Vec2, near_radius: f32) -> bool {
     p.is_finite()
-        && ctx.grid.query_candidates(p, near_radius) <= NEIGHBOUR_CAP.candidates
         && ctx.grid.query_cells(p, near_radius + near::slack(p, near_radius))
             == ctx.grid.query_cells(p, near_radius)
-        && index.count(p, near_radius) <= NEIGHBOUR_CAP.neighbours
+        && match ctx.grid.query_candidates(p, near_radius) {
+            n if n > NEIGHBOUR_CAP.candidates => false,
+            // No more agents within the radius than candidates.
+            n if n <= NEIGHBOUR_CAP.neighbours => true,
+            _ => index.count(p, near_radius) <= NEIGHBOUR_CAP.neighbours,
+        }
 }
 
 /// The surveying firefly, as the contact rule sees it.
@@ -743,5 +723,118 @@ impl Planner for Firefly {
             new_velocities[k] = limit(keep_apart(free, contacts), prm.max_velocity);
         }
         self.scratch = scratch;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::params::{PlannerConfig, PlannerKind};
+    use crate::{presets, Goal, Region, Scene, World};
+
+    /// A square crowd of `n` bodies of `radius` packed `spacing` apart (in body diameters),
+    /// heading for a goal at its centre, as `examples/step_cost.rs` builds its worst case.
+    fn packed(n: u32, radius: f32, spacing: f32) -> Scene {
+        let side = (f64::from(n).sqrt().ceil() as f32) * 2.0 * radius * spacing;
+        let world = side + 200.0;
+        let mut s = Scene::empty(world, world);
+        let (lo, hi) = (100.0 + radius, 100.0 + side - radius);
+        s.goals.push(Goal::fixed([0.5 * world, 0.5 * world], 20.0));
+        let mut g = presets::constant_density(1, 1.0).groups.remove(0);
+        g.count = n;
+        g.spawn = Region { min: [lo, lo], max: [hi, hi] };
+        g.goal = Some(0);
+        g.agent_radius = radius;
+        g.planner = PlannerKind::Firefly.default_config();
+        s.groups.push(g);
+        s
+    }
+
+    /// Surveys every firefly of `world` with the fine index and through the world grid alone:
+    /// the two must agree bit for bit (the index is only a faster way to the same answers).
+    /// Returns how many surveys the index answered.
+    fn check_surveys_agree(world: &World) -> usize {
+        let ctx = world.step_context();
+        let mut answered = 0;
+        for (g, group) in world.scene().groups.iter().enumerate() {
+            let PlannerConfig::Firefly(params) = &group.planner else { continue };
+            let ff = Firefly::new(params.clone());
+            let Some(view) = world.group_view(g) else { continue };
+            let target = view.goal.map(|(t, _)| t);
+            let mut plain = Scratch::new(&ctx);
+            let mut indexed = Scratch::new(&ctx);
+            let mut index = NearIndex::default();
+            let cell = 2.0 * indexed.widest_body + CONTACT_MARGIN + 2.0 * params.max_velocity;
+            index.rebuild(ctx.grid, ctx.bounds, cell, &view.agents, target);
+            indexed.index = Some(index);
+            for id in view.agents.clone() {
+                let a = ff.survey(&ctx, &view, id, target, &mut plain);
+                let b = ff.survey(&ctx, &view, id, target, &mut indexed);
+                let bits = |s: &Survey| {
+                    let f = |o: Option<(f32, u32, Vec2)>| {
+                        o.map(|(d, i, q)| (d.to_bits(), i, q.x.to_bits(), q.y.to_bits()))
+                    };
+                    (f(s.nearest), f(s.blocker), s.brighter_in_contact_ahead)
+                };
+                assert_eq!(bits(&a), bits(&b), "agent {id}");
+                let cbits = |c: &[Contact]| {
+                    c.iter()
+                        .map(|c| (c.towards.x.to_bits(), c.towards.y.to_bits(), c.allowed.to_bits()))
+                        .collect::<Vec<_>>()
+                };
+                assert_eq!(cbits(&plain.contacts), cbits(&indexed.contacts), "agent {id}");
+                let p = ctx.positions[id as usize];
+                let ix = indexed.index.as_ref().expect("index");
+                let contact_reach =
+                    ctx.radii[id as usize] + indexed.widest_body + CONTACT_MARGIN + 2.0 * params.max_velocity;
+                let near_radius = (params.feeler_length + params.safe_distance)
+                    .max(contact_reach)
+                    .min(ff.interaction_radius());
+                answered += usize::from(index_answers(&ctx, ix, p, near_radius));
+            }
+        }
+        answered
+    }
+
+    fn run_and_check(scene: Scene, steps: &[u32]) -> usize {
+        let mut world = World::new_beyond_cost_limit(scene).expect("valid scene");
+        let mut answered = 0;
+        let mut done = 0;
+        for &s in steps {
+            world.step_n(s - done);
+            done = s;
+            answered += check_surveys_agree(&world);
+        }
+        answered
+    }
+
+    #[test]
+    fn the_fine_index_answers_the_survey_as_the_world_grid_does() {
+        // A packed crowd (the worst case), a spread one, the paper's preset with obstacles,
+        // fireflies among another planner's agents, and bodies spawned overlapping in a pile
+        // (caps bind: the world grid answers those).
+        let answered = run_and_check(packed(1600, 4.0, 1.0), &[0, 1, 25]);
+        assert!(answered > 3 * 1500, "the index answered {answered} surveys");
+        let mut spread = presets::constant_density_to_centre(1500, 9.0, 20.0);
+        spread.groups[0].planner = PlannerKind::Firefly.default_config();
+        assert!(run_and_check(spread, &[0, 30]) > 2 * 1400);
+        for seed in 1..=3 {
+            assert!(run_and_check(presets::firefly_migration_with_seed(seed), &[0, 50, 200]) > 0);
+        }
+        let mut mixed = packed(1600, 4.0, 2.0);
+        let mut other = mixed.groups[0].clone();
+        other.planner = PlannerKind::Boids.default_config();
+        other.count = 800;
+        mixed.groups.push(other);
+        mixed.groups[0].count = 800;
+        assert!(run_and_check(mixed, &[0, 20]) > 0);
+        // Bodies of 1 px radius at the density limit: thousands within the feeler's reach,
+        // the caps bind and the world grid answers.
+        let pile = packed(6400, 1.0, 1.0);
+        let answered = run_and_check(pile, &[0, 5]);
+        assert!(answered < 2 * 6400, "the index answered {answered} surveys");
+        let mut drifting = packed(900, 4.0, 1.2);
+        drifting.groups[0].goal = None;
+        run_and_check(drifting, &[0, 10]);
     }
 }

@@ -125,6 +125,40 @@ impl NearIndex {
         })
     }
 
+    /// Position of entry `e`.
+    #[inline]
+    pub(super) fn pos(&self, e: usize) -> Vec2 {
+        Vec2::new(self.x[e], self.y[e])
+    }
+
+    /// The smallest [`key`] over the brighter fireflies than `id` (at `my2` from the target)
+    /// among the entries [`Self::rows`] gives for `radius` round `c`, `test` giving each one's
+    /// rank (squared distance) and whether it is a candidate; with its entry. Without a branch
+    /// on brightness or `test`.
+    #[inline(always)]
+    pub(super) fn min_key(
+        &self,
+        c: Vec2,
+        radius: f32,
+        id: u32,
+        my2: f32,
+        test: impl Fn(Vec2) -> (f32, bool),
+    ) -> (u64, usize) {
+        let mut best = (u64::MAX, 0usize);
+        for r in self.rows(c, radius) {
+            let (ids, xs, ys, bright) =
+                (&self.id[r.clone()], &self.x[r.clone()], &self.y[r.clone()], &self.bright2[r.clone()]);
+            for (e, (((&other, &x), &y), &b2)) in r.zip(ids.iter().zip(xs).zip(ys).zip(bright)) {
+                let (rank, candidate) = test(Vec2::new(x, y));
+                let k = key(rank, other, candidate & (other != id) & (b2 < my2));
+                if k < best.0 {
+                    best = (k, e);
+                }
+            }
+        }
+        best
+    }
+
     /// How many entries [`Self::rows`] holds: at least the agents within `radius` of `c`.
     pub(super) fn count(&self, c: Vec2, radius: f32) -> usize {
         self.rows(c, radius).map(|r| r.len()).sum()
@@ -136,4 +170,18 @@ impl NearIndex {
 /// the box's bounds is a few units in the last place of `c` and `radius`, far below this.
 pub(super) fn slack(c: Vec2, radius: f32) -> f32 {
     1.0 + 1e-5 * (c.x.abs().max(c.y.abs()) + radius.abs())
+}
+
+/// The nearest brighter firefly and the blocker are found as keys `(squared distance bits,
+/// id)`: squared distances are finite and non-negative, so their bits order like them, and the
+/// smallest key is the smallest `(squared distance, id)`, whatever order the candidates come
+/// in. Computed for every candidate without branching on brightness (half of a crowd is
+/// brighter, in no order a CPU could predict); `u64::MAX` when not a candidate.
+#[inline(always)]
+pub(super) fn key(d2: f32, other: u32, candidate: bool) -> u64 {
+    if candidate {
+        (u64::from(d2.to_bits()) << 32) | u64::from(other)
+    } else {
+        u64::MAX
+    }
 }
