@@ -281,7 +281,8 @@ fn a_region_that_just_holds_its_count_is_filled() {
 
 #[test]
 fn switching_a_big_crowd_to_a_costlier_planner_is_refused_and_the_run_goes_on() {
-    // 20,000 Boids wander in a 4000×4000 world: within the limits; as fireflies they are not.
+    // 20,000 Boids wander in a 4000×4000 world: within the limits; as social-force pedestrians
+    // they are not.
     let mut scene = presets::open_field();
     (scene.width, scene.height) = (4000.0, 4000.0);
     scene.groups[0].count = 20_000;
@@ -289,8 +290,9 @@ fn switching_a_big_crowd_to_a_costlier_planner_is_refused_and_the_run_goes_on() 
     scene.groups[0].spawn = Region { min: [0.0, 0.0], max: [4000.0, 4000.0] };
     let mut world = World::new(scene).expect("20,000 Boids fit the limits");
     world.step();
-    let e = world.set_group_planner(0, PlannerKind::Firefly.default_config()).expect_err("too costly");
-    let limit = format!("at most {} firefly agents", flockpath::sim::cost::max_agents(PlannerKind::Firefly));
+    let costly = PlannerKind::SocialForce;
+    let e = world.set_group_planner(0, costly.default_config()).expect_err("too costly");
+    let limit = format!("at most {} {} agents", flockpath::sim::cost::max_agents(costly), costly.name());
     assert!(matches!(e, SceneError::TooCostly(_)) && e.to_string().contains(&limit), "{e}");
     assert_eq!(world.scene().groups[0].planner.kind(), PlannerKind::Boids, "the run keeps its planner");
     world.step();

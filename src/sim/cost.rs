@@ -46,7 +46,7 @@ pub fn wasm_factor(kind: PlannerKind) -> f64 {
 ///
 /// Measured with `examples/step_cost.rs` (`taskset -c 0`, the worst 10-step window of steps
 /// 0–100 and 300–400, at 2,000 and at 10,000 agents), rounded up: pso 4,146 (spread 580–840),
-/// firefly 11,965 (spread 1,110–1,220), forces 13,750 (spread 820–1,250), igsa 1,132 (spread
+/// forces 13,750 (spread 820–1,250), igsa 1,132 (spread
 /// 210–280) on a quiet machine; orca 11,287 (spread 5,250–6,410) and social_force 88,465
 /// (spread 5,910–9,060), 2026-11-25 on the shared machine under load 6–14 (the social force sums
 /// every neighbour within 5 m, up to its cap of 512, so a packed crowd costs it 10× a spread
@@ -61,7 +61,18 @@ pub fn wasm_factor(kind: PlannerKind) -> f64 {
 /// 9–12; the same runs of the code before gave 1,670–1,867, against 1,505 on a quiet machine,
 /// so load inflates these figures if anything); spread 180–200. In the browser 1,200 × 1.5 =
 /// 1,800 ns, so 180 ms hold 180e6 / 1,800 = 100,000 Boids agents (before: 1,600 × 1.5 = 2,400
-/// ns, 75,000). The step that also takes the fitness measures (one in
+/// ns, 75,000).
+///
+/// Firefly: 1,400. Since its survey searches a fine per-step index of the agents (cells one
+/// contact reach wide) instead of the 200 px world-grid cells, and its contact cut learnt
+/// which limit fails first, the worst window measures 1,179–1,330 on-CPU ns (two runs each at
+/// 2,000 and 10,000 agents, steps 0–100 and 300–400, 2026-11-26, the 2-core machine shared
+/// with other builds, load 8–10; the code before gave 3,400–4,243 in the same runs: the former
+/// 12,000 predates its branch-free search); spread 477–528. In the browser 1,400 × 1.25 =
+/// 1,750 ns, so 180 ms hold about 102,000 fireflies (before: 12,000). Bodies much smaller
+/// than the default 4 px packed at the density limit are dearer: with more than 2,048 within
+/// the feeler's reach (radius below about 2.2 px) the survey's caps bind and it takes the world
+/// grid's query, as before this change. The step that also takes the fitness measures (one in
 /// [`crate::sim::metrics::FITNESS_SAMPLE_EVERY`]) is dearer in a jam; the limit is set from the
 /// worst 10-step window (every second one holds such a step), as for every planner. Re-measure when a
 /// planner's cost changes.
@@ -69,7 +80,7 @@ pub fn native_ns_per_agent_step(kind: PlannerKind) -> f64 {
     match kind {
         PlannerKind::Boids => 1_200.0,
         PlannerKind::Pso => 4_200.0,
-        PlannerKind::Firefly => 12_000.0,
+        PlannerKind::Firefly => 1_400.0,
         PlannerKind::Forces => 14_000.0,
         PlannerKind::Igsa => 1_200.0,
         PlannerKind::Orca => 11_500.0,

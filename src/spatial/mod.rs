@@ -340,6 +340,24 @@ impl SpatialGrid {
         })
     }
 
+    /// The cells `[x0, y0, x1, y1]` (inclusive) a query of `radius` round `p` scans: every agent
+    /// it can visit lies in them. A caller comparing them with a slightly wider query's tells
+    /// whether the query's disc, with that margin, lies inside the scanned cells.
+    pub fn query_cells(&self, p: Vec2, radius: f32) -> [u32; 4] {
+        [
+            self.cell_coord(p.x - radius, self.cols),
+            self.cell_coord(p.y - radius, self.rows),
+            self.cell_coord(p.x + radius, self.cols),
+            self.cell_coord(p.y + radius, self.rows),
+        ]
+    }
+
+    /// How many agents the cells a query of `radius` round `p` scans hold: no more than
+    /// `cap.candidates` means the candidate cap of a capped query cannot cut it short.
+    pub fn query_candidates(&self, p: Vec2, radius: f32) -> usize {
+        self.query_rows(p, radius).map(|r| r.len()).sum()
+    }
+
     /// [`Self::for_each_within`] that stops after visiting `cap.neighbours` agents within
     /// `radius` or testing `cap.candidates` agents of the cells it scans, whichever comes first:
     /// the first ones in its scan order (rows of cells, by id within a cell), so the result is

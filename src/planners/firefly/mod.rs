@@ -99,6 +99,9 @@ use crate::planners::explain::{Explanation, NamedPoint, NamedVector};
 use crate::rng::Rng;
 use crate::spatial::QueryCap;
 use glam::Vec2;
+use near::{key, NearIndex};
+
+mod near;
 
 /// The firefly planner for one group. Per-agent state (mass) is indexed by the agent's position
 /// within its group.
@@ -119,6 +122,11 @@ struct Scratch {
     slots: Vec<u32>,
     /// The largest body radius of any agent (px): how far a touching body's centre can lie.
     widest_body: f32,
+    /// This step's fine index of the agents, when the group is a large share of them (see
+    /// [`Firefly::plan`]); without it every survey queries the world grid.
+    index: Option<NearIndex>,
+    /// The bodies within reach found in the index: `(world-grid slot, index entry)`.
+    close: Vec<(u32, u32)>,
 }
 
 impl Scratch {
@@ -253,14 +261,32 @@ const FALLBACK_PASSES: usize = 10;
 /// candidate meets every limit (bodies already inside the margin on opposite sides), projection
 /// passes and then a uniform scale make sure no body is approached any further.
 fn keep_apart(v: Vec2, contacts: &[Contact]) -> Vec2 {
-    let feasible = |w: Vec2| contacts.iter().all(|c| w.dot(c.towards) <= c.allowed + FEASIBLE_SLACK);
+    let meets = |w: Vec2, c: &Contact| w.dot(c.towards) <= c.allowed + FEASIBLE_SLACK;
+    // Whether `w` meets every limit. The contact that failed the last check is tried first: in
+    // a jam no candidate is feasible and most fail on the same body, so a check costs one or
+    // two products instead of a pass over the list (the answer does not depend on the order).
+    let mut last_failed = 0usize;
+    let mut feasible = |w: Vec2| {
+        if contacts.get(last_failed).is_some_and(|c| !meets(w, c)) {
+            return false;
+        }
+        match contacts.iter().position(|c| !meets(w, c)) {
+            Some(k) => {
+                last_failed = k;
+                false
+            }
+            None => true,
+        }
+    };
     if feasible(v) {
         return v;
     }
     let mut best: Option<(f32, Vec2)> = None;
     let mut consider = |w: Vec2| {
         let d2 = w.distance_squared(v);
-        if feasible(w) && best.is_none_or(|(best_d2, _)| d2 < best_d2) {
+        // The cheap test first: only a nearer candidate than the best is checked against
+        // every contact (both tests are pure, so the choice is the same either way round).
+        if best.is_none_or(|(best_d2, _)| d2 < best_d2) && feasible(w) {
             best = Some((d2, w));
         }
     };
@@ -282,11 +308,16 @@ fn keep_apart(v: Vec2, contacts: &[Contact]) -> Vec2 {
     }
     let mut w = v;
     for _ in 0..FALLBACK_PASSES {
+        let before = w;
         for c in contacts {
             let along = w.dot(c.towards);
             if along > c.allowed {
                 w -= c.towards * (along - c.allowed);
             }
+        }
+        if (w.x.to_bits(), w.y.to_bits()) == (before.x.to_bits(), before.y.to_bits()) {
+            // A pass that left `w` as it was, bit for bit: the ones left would repeat it.
+            break;
         }
     }
     // Zero speed meets every limit clamped at zero: bodies inside the margin are not approached.
@@ -313,7 +344,7 @@ impl Firefly {
         target: Option<Vec2>,
         scratch: &mut Scratch,
     ) -> Survey {
-        let Scratch { contacts, slots, widest_body } = scratch;
+        let Scratch { contacts, slots, widest_body, index, close } = scratch;
         let widest_body = *widest_body;
         let prm = &self.params;
         let i = id as usize;
@@ -353,92 +384,121 @@ impl Firefly {
                 contacts.push(Contact { towards, allowed });
             }
         }
-        // One branch-free pass finds the agents within the feeler's reach (the contacts and the
-        // blocker lie there, and usually the nearest brighter firefly); the rest of the view is
-        // searched only when none of them is brighter.
+        // The agents within the feeler's reach hold the contacts and the blocker, and usually
+        // the nearest brighter firefly; the rest of the view is searched only when none of
+        // them is brighter.
         let columns = ctx.grid.columns();
         let contact_reach = my_radius + widest_body + CONTACT_MARGIN + 2.0 * prm.max_velocity;
         let near_radius = (prm.feeler_length + prm.safe_distance).max(contact_reach);
         let near_radius = near_radius.min(self.interaction_radius());
-        ctx.grid.gather_within(p, near_radius, NEIGHBOUR_CAP, slots);
         let is_own = |other: u32| other.wrapping_sub(group.agents.start) < group.agents.len() as u32;
-        let (bodies_before, mut bodies) = (contacts.len(), 0usize);
-        // The largest allowed speed among the bodies kept (the farthest of them).
-        let mut farthest = f32::NEG_INFINITY;
+        let toucher = Toucher { id, p, my_radius, max_velocity: prm.max_velocity, heading, on_the_way };
+        let mut list =
+            ContactList { before: contacts.len(), contacts, bodies: 0, farthest: f32::NEG_INFINITY };
         // No body lies within reach of a contact unless within this (the widest body's reach).
         let widest_reach2 = contact_reach * contact_reach;
-        // The nearest brighter firefly and the blocker as keys `(squared distance bits, id)`:
-        // squared distances are finite and non-negative, so their bits order like them, and
-        // the smallest key is the smallest `(squared distance, id)`. Computed for every
-        // neighbour without branching on brightness (half of a crowd is brighter, in no order
-        // a CPU could predict); `u64::MAX` when not a candidate.
-        let key = |d2: f32, other: u32, candidate: bool| {
-            if candidate {
-                (u64::from(d2.to_bits()) << 32) | u64::from(other)
-            } else {
-                u64::MAX
-            }
-        };
-        let (mut nearest, mut nearest_slot) = (u64::MAX, 0usize);
-        let (mut blocker, mut blocker_slot) = (u64::MAX, 0usize);
+        let near2 = near_radius * near_radius;
+        let (mut nearest, mut blocker) = (None, None);
         let t = target.unwrap_or(p);
-        for &k in slots.iter() {
-            let k = k as usize;
-            let (other, pos) = (columns.ids[k], Vec2::new(columns.x[k], columns.y[k]));
-            let d2 = p.distance_squared(pos);
-            if d2 < widest_reach2 && other != id {
-                let their_radius = ctx.radii.get(other as usize).copied().unwrap_or(0.0);
-                // Each of the two moves at most half the gap (less a margin) towards the other
-                // per step, whatever the other does, so together they cannot close it in one
-                // step. The limit binds only within 2 × max_velocity of touching: the square
-                // root only then.
-                let reach = my_radius + their_radius + CONTACT_MARGIN + 2.0 * prm.max_velocity;
-                if d2 < reach * reach {
-                    let allowed = 0.5 * (d2.sqrt() - my_radius - their_radius - CONTACT_MARGIN);
-                    // Coincident bodies part along x, the lower id to the left.
-                    let apart = if other < id { Vec2::NEG_X } else { Vec2::X };
-                    let contact = Contact { towards: unit_or(pos - p, apart), allowed };
-                    if bodies < MAX_CONTACT_BODIES {
-                        contacts.push(contact);
-                        bodies += 1;
-                        farthest = farthest.max(allowed);
-                    } else if allowed < farthest {
-                        // Only a nearer body than the farthest kept changes the list (a pile).
-                        let kept = contacts.get_mut(bodies_before..).unwrap_or_default();
-                        keep_nearest(kept, contact);
-                        farthest = kept.iter().fold(f32::NEG_INFINITY, |m, c| m.max(c.allowed));
-                    }
-                    if on_the_way
-                        && heading.dot(pos - p) > 0.0
-                        && target.is_some_and(|t| is_own(other) && pos.distance_squared(t) < my2)
-                    {
-                        survey.brighter_in_contact_ahead = true;
+        if let Some(ix) = index.as_ref().filter(|ix| index_answers(ctx, ix, p, near_radius)) {
+            // The fine index holds the same agents as the world grid's query of `near_radius`
+            // (its caps do not bind, see `index_answers`): a few small discs answer what that
+            // query's ~600 neighbours in a packed crowd do. First the bodies within reach
+            // (listed in the world grid's order, which the contact list depends on) and the
+            // nearest brighter firefly if it lies among them: none nearer can lie farther out.
+            let reach = contact_reach.min(near_radius);
+            close.clear();
+            for r in ix.rows(p, reach) {
+                for e in r {
+                    let d2 = p.distance_squared(ix.pos(e));
+                    if d2 < widest_reach2 && d2 <= near2 && ix.id[e] != id {
+                        close.push((ix.slot[e], e as u32));
                     }
                 }
             }
-            // Brighter: of the group, nearer the target (no target: none is brighter).
-            let brighter = target.is_some() & (other != id) & is_own(other) & (pos.distance_squared(t) < my2);
-            let at_tip = pos.distance_squared(tip);
-            let b = key(at_tip, other, brighter & (at_tip < safe2));
-            if b < blocker {
-                (blocker, blocker_slot) = (b, k);
+            // World-grid slots are unique: the order is that of the grid's scan.
+            close.sort_unstable();
+            for &(_, e) in close.iter() {
+                let e = e as usize;
+                let (other, pos) = (ix.id[e], ix.pos(e));
+                let their_radius = ctx.radii.get(other as usize).copied().unwrap_or(0.0);
+                let d2 = p.distance_squared(pos);
+                if toucher.touch(&mut list, their_radius, other, pos, d2, || ix.bright2[e] < my2) {
+                    survey.brighter_in_contact_ahead = true;
+                }
             }
-            let n = key(d2, other, brighter & (d2 <= view2));
-            if n < nearest {
-                (nearest, nearest_slot) = (n, k);
+            if target.is_some() {
+                // The nearest brighter firefly in view: within a contact's reach (in a packed
+                // crowd one is there), else within four (in a spread one), else anywhere within
+                // `near_radius`. One found within a radius is the nearest: every one nearer
+                // lies within that radius too.
+                let mut best = (u64::MAX, 0usize);
+                for radius in [reach, (4.0 * reach).min(near_radius), near_radius] {
+                    let radius2 = radius * radius;
+                    best = ix.min_key(p, radius, id, my2, |pos| {
+                        let d2 = p.distance_squared(pos);
+                        (d2, (d2 <= view2) & (d2 <= near2) & (d2 <= radius2))
+                    });
+                    if best.0 != u64::MAX {
+                        break;
+                    }
+                }
+                nearest = found(best.0, ix.pos(best.1));
+                // The blocker: the brighter firefly nearest the tip, within r_safe of it; first
+                // within a contact's reach of the tip (in a crowd the tip lies among brighter
+                // ones), as above.
+                let safe = prm.safe_distance.abs();
+                for radius in [reach.min(safe), safe] {
+                    let radius2 = radius * radius;
+                    best = ix.min_key(tip, radius, id, my2, |pos| {
+                        let at_tip = pos.distance_squared(tip);
+                        (at_tip, (at_tip < safe2) & (at_tip <= radius2) & (p.distance_squared(pos) <= near2))
+                    });
+                    if best.0 != u64::MAX {
+                        break;
+                    }
+                }
+                blocker = found(best.0, ix.pos(best.1));
             }
+        } else {
+            // One branch-free pass over the world grid's query.
+            ctx.grid.gather_within(p, near_radius, NEIGHBOUR_CAP, slots);
+            let (mut nearest_key, mut nearest_slot) = (u64::MAX, 0usize);
+            let (mut blocker_key, mut blocker_slot) = (u64::MAX, 0usize);
+            for &k in slots.iter() {
+                let k = k as usize;
+                let (other, pos) = (columns.ids[k], Vec2::new(columns.x[k], columns.y[k]));
+                let d2 = p.distance_squared(pos);
+                if d2 < widest_reach2 && other != id {
+                    let their_radius = ctx.radii.get(other as usize).copied().unwrap_or(0.0);
+                    let brighter = || target.is_some_and(|t| is_own(other) && pos.distance_squared(t) < my2);
+                    if toucher.touch(&mut list, their_radius, other, pos, d2, brighter) {
+                        survey.brighter_in_contact_ahead = true;
+                    }
+                }
+                // Brighter: of the group, nearer the target (no target: none is brighter).
+                let brighter =
+                    target.is_some() & (other != id) & is_own(other) & (pos.distance_squared(t) < my2);
+                let at_tip = pos.distance_squared(tip);
+                let b = key(at_tip, other, brighter & (at_tip < safe2));
+                if b < blocker_key {
+                    (blocker_key, blocker_slot) = (b, k);
+                }
+                let n = key(d2, other, brighter & (d2 <= view2));
+                if n < nearest_key {
+                    (nearest_key, nearest_slot) = (n, k);
+                }
+            }
+            let at = |k: usize| Vec2::new(columns.x[k], columns.y[k]);
+            blocker = found(blocker_key, at(blocker_slot));
+            nearest = found(nearest_key, at(nearest_slot));
         }
-        let found = |key: u64, k: usize| {
-            (key != u64::MAX).then(|| {
-                (f32::from_bits((key >> 32) as u32), key as u32, Vec2::new(columns.x[k], columns.y[k]))
-            })
-        };
-        survey.blocker = found(blocker, blocker_slot);
-        survey.nearest = found(nearest, nearest_slot);
+        survey.blocker = blocker;
+        survey.nearest = nearest;
         let Some(target) = target else { return survey };
         if survey.nearest.is_none() && near_radius < prm.view_radius {
             // No brighter firefly within the feeler's reach: the nearest one farther off.
-            let near2 = near_radius * near_radius;
+            let (mut nearest, mut nearest_slot) = (u64::MAX, 0usize);
             ctx.grid.gather_within(p, prm.view_radius, NEIGHBOUR_CAP, slots);
             for &k in slots.iter() {
                 let k = k as usize;
@@ -451,9 +511,99 @@ impl Firefly {
                     (nearest, nearest_slot) = (n, k);
                 }
             }
-            survey.nearest = found(nearest, nearest_slot);
+            survey.nearest = found(nearest, Vec2::new(columns.x[nearest_slot], columns.y[nearest_slot]));
         }
         survey
+    }
+}
+
+/// The `(squared distance, id, position)` a key found, if any.
+fn found(key: u64, pos: Vec2) -> Option<(f32, u32, Vec2)> {
+    (key != u64::MAX).then(|| (f32::from_bits((key >> 32) as u32), key as u32, pos))
+}
+
+/// Whether `index` answers the survey exactly as the world grid's capped query of
+/// `near_radius` round `p` would: neither cap binds (the scanned cells hold no more candidates
+/// than its cap, the fine cells round the disc no more agents than its neighbour cap), and the
+/// disc, widened by [`near::slack`], lies inside the cells that query scans, so every agent
+/// within `near_radius` is one it lists.
+fn index_answers(ctx: &StepContext, index: &NearIndex, p: Vec2, near_radius: f32) -> bool {
+    p.is_finite()
+        && ctx.grid.query_cells(p, near_radius + near::slack(p, near_radius))
+            == ctx.grid.query_cells(p, near_radius)
+        && match ctx.grid.query_candidates(p, near_radius) {
+            n if n > NEIGHBOUR_CAP.candidates => false,
+            // No more agents within the radius than candidates.
+            n if n <= NEIGHBOUR_CAP.neighbours => true,
+            _ => index.count(p, near_radius) <= NEIGHBOUR_CAP.neighbours,
+        }
+}
+
+/// The surveying firefly, as the contact rule sees it.
+struct Toucher {
+    id: u32,
+    p: Vec2,
+    my_radius: f32,
+    max_velocity: f32,
+    heading: Vec2,
+    on_the_way: bool,
+}
+
+impl Toucher {
+    /// Offers `other` (radius `their_radius`, at `pos`, `d2` away, within the widest body's
+    /// reach) to the contact list if its body is within reach; returns whether it is a
+    /// brighter firefly of the group ahead that the firefly, on its way, falls in behind
+    /// (`brighter` is asked only then).
+    #[inline]
+    fn touch(
+        &self,
+        list: &mut ContactList,
+        their_radius: f32,
+        other: u32,
+        pos: Vec2,
+        d2: f32,
+        brighter: impl FnOnce() -> bool,
+    ) -> bool {
+        let (p, my_radius) = (self.p, self.my_radius);
+        // Each of the two moves at most half the gap (less a margin) towards the other per
+        // step, whatever the other does, so together they cannot close it in one step. The
+        // limit binds only within 2 × max_velocity of touching: the square root only then.
+        let reach = my_radius + their_radius + CONTACT_MARGIN + 2.0 * self.max_velocity;
+        if d2 >= reach * reach {
+            return false;
+        }
+        let allowed = 0.5 * (d2.sqrt() - my_radius - their_radius - CONTACT_MARGIN);
+        // Coincident bodies part along x, the lower id to the left.
+        let apart = if other < self.id { Vec2::NEG_X } else { Vec2::X };
+        list.offer(Contact { towards: unit_or(pos - p, apart), allowed });
+        self.on_the_way && self.heading.dot(pos - p) > 0.0 && brighter()
+    }
+}
+
+/// The contact list of one survey while its neighbours are visited in the world grid's scan
+/// order: the bodies after the obstacles' and borders' surfaces, at most
+/// [`MAX_CONTACT_BODIES`] of them, the nearest.
+struct ContactList<'a> {
+    contacts: &'a mut Vec<Contact>,
+    /// Surfaces listed before the bodies.
+    before: usize,
+    bodies: usize,
+    /// The largest allowed speed among the bodies kept (the farthest of them).
+    farthest: f32,
+}
+
+impl ContactList<'_> {
+    fn offer(&mut self, contact: Contact) {
+        if self.bodies < MAX_CONTACT_BODIES {
+            self.contacts.push(contact);
+            self.bodies += 1;
+            self.farthest = self.farthest.max(contact.allowed);
+        } else if contact.allowed < self.farthest {
+            // Only a nearer body than the farthest kept changes the list (a pile).
+            let kept = self.contacts.get_mut(self.before..).unwrap_or_default();
+            keep_nearest(kept, contact);
+            self.farthest = kept.iter().fold(f32::NEG_INFINITY, |m, c| m.max(c.allowed));
+        }
     }
 }
 
@@ -550,6 +700,20 @@ impl Planner for Firefly {
         let target = group.goal.map(|(t, _)| t);
         let mut scratch = std::mem::take(&mut self.scratch);
         scratch.widest_body = ctx.radii.iter().copied().fold(0.0, f32::max);
+        // The fine index costs a pass over every agent of the world: worth it when the group is
+        // a fair share of them (it answers exactly as the world grid does, only faster).
+        if n * 4 >= ctx.positions.len() && n > 0 {
+            let cell = 2.0 * scratch.widest_body + CONTACT_MARGIN + 2.0 * prm.max_velocity;
+            scratch.index.get_or_insert_with(NearIndex::default).rebuild(
+                ctx.grid,
+                ctx.bounds,
+                cell,
+                &group.agents,
+                target,
+            );
+        } else {
+            scratch.index = None;
+        }
         for (k, id) in group.agents.clone().enumerate() {
             let i = id as usize;
             let p = ctx.positions[i];
@@ -580,5 +744,194 @@ impl Planner for Firefly {
             new_velocities[k] = limit(keep_apart(free, contacts), prm.max_velocity);
         }
         self.scratch = scratch;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::params::{PlannerConfig, PlannerKind};
+    use crate::{presets, Goal, Region, Scene, World};
+
+    /// A square crowd of `n` bodies of `radius` packed `spacing` apart (in body diameters),
+    /// heading for a goal at its centre, as `examples/step_cost.rs` builds its worst case.
+    fn packed(n: u32, radius: f32, spacing: f32) -> Scene {
+        let side = (f64::from(n).sqrt().ceil() as f32) * 2.0 * radius * spacing;
+        let world = side + 200.0;
+        let mut s = Scene::empty(world, world);
+        let (lo, hi) = (100.0 + radius, 100.0 + side - radius);
+        s.goals.push(Goal::fixed([0.5 * world, 0.5 * world], 20.0));
+        let mut g = presets::constant_density(1, 1.0).groups.remove(0);
+        g.count = n;
+        g.spawn = Region { min: [lo, lo], max: [hi, hi] };
+        g.goal = Some(0);
+        g.agent_radius = radius;
+        g.planner = PlannerKind::Firefly.default_config();
+        s.groups.push(g);
+        s
+    }
+
+    /// Surveys every firefly of `world` with the fine index and through the world grid alone:
+    /// the two must agree bit for bit (the index is only a faster way to the same answers).
+    /// Returns how many surveys the index answered.
+    fn check_surveys_agree(world: &World) -> usize {
+        let ctx = world.step_context();
+        let mut answered = 0;
+        for (g, group) in world.scene().groups.iter().enumerate() {
+            let PlannerConfig::Firefly(params) = &group.planner else { continue };
+            let ff = Firefly::new(params.clone());
+            let Some(view) = world.group_view(g) else { continue };
+            let target = view.goal.map(|(t, _)| t);
+            let mut plain = Scratch::new(&ctx);
+            let mut indexed = Scratch::new(&ctx);
+            let mut index = NearIndex::default();
+            let cell = 2.0 * indexed.widest_body + CONTACT_MARGIN + 2.0 * params.max_velocity;
+            index.rebuild(ctx.grid, ctx.bounds, cell, &view.agents, target);
+            indexed.index = Some(index);
+            for id in view.agents.clone() {
+                let a = ff.survey(&ctx, &view, id, target, &mut plain);
+                let b = ff.survey(&ctx, &view, id, target, &mut indexed);
+                let bits = |s: &Survey| {
+                    let f = |o: Option<(f32, u32, Vec2)>| {
+                        o.map(|(d, i, q)| (d.to_bits(), i, q.x.to_bits(), q.y.to_bits()))
+                    };
+                    (f(s.nearest), f(s.blocker), s.brighter_in_contact_ahead)
+                };
+                assert_eq!(bits(&a), bits(&b), "agent {id}");
+                let cbits = |c: &[Contact]| {
+                    c.iter()
+                        .map(|c| (c.towards.x.to_bits(), c.towards.y.to_bits(), c.allowed.to_bits()))
+                        .collect::<Vec<_>>()
+                };
+                assert_eq!(cbits(&plain.contacts), cbits(&indexed.contacts), "agent {id}");
+                let p = ctx.positions[id as usize];
+                let ix = indexed.index.as_ref().expect("index");
+                let contact_reach =
+                    ctx.radii[id as usize] + indexed.widest_body + CONTACT_MARGIN + 2.0 * params.max_velocity;
+                let near_radius = (params.feeler_length + params.safe_distance)
+                    .max(contact_reach)
+                    .min(ff.interaction_radius());
+                answered += usize::from(index_answers(&ctx, ix, p, near_radius));
+            }
+        }
+        answered
+    }
+
+    fn run_and_check(scene: Scene, steps: &[u32]) -> usize {
+        let mut world = World::new_beyond_cost_limit(scene).expect("valid scene");
+        let mut answered = 0;
+        let mut done = 0;
+        for &s in steps {
+            world.step_n(s - done);
+            done = s;
+            answered += check_surveys_agree(&world);
+        }
+        answered
+    }
+
+    #[test]
+    fn the_fine_index_answers_the_survey_as_the_world_grid_does() {
+        // A packed crowd (the worst case), a spread one, the paper's preset with obstacles,
+        // fireflies among another planner's agents, and bodies spawned overlapping in a pile
+        // (caps bind: the world grid answers those).
+        let answered = run_and_check(packed(1600, 4.0, 1.0), &[0, 1, 25]);
+        assert!(answered > 3 * 1500, "the index answered {answered} surveys");
+        let mut spread = presets::constant_density_to_centre(1500, 9.0, 20.0);
+        spread.groups[0].planner = PlannerKind::Firefly.default_config();
+        assert!(run_and_check(spread, &[0, 30]) > 2 * 1400);
+        for seed in 1..=3 {
+            assert!(run_and_check(presets::firefly_migration_with_seed(seed), &[0, 50, 200]) > 0);
+        }
+        let mut mixed = packed(1600, 4.0, 2.0);
+        let mut other = mixed.groups[0].clone();
+        other.planner = PlannerKind::Boids.default_config();
+        other.count = 800;
+        mixed.groups.push(other);
+        mixed.groups[0].count = 800;
+        assert!(run_and_check(mixed, &[0, 20]) > 0);
+        // Bodies of 1 px radius at the density limit: thousands within the feeler's reach,
+        // the caps bind and the world grid answers.
+        let pile = packed(6400, 1.0, 1.0);
+        let answered = run_and_check(pile, &[0, 5]);
+        assert!(answered < 2 * 6400, "the index answered {answered} surveys");
+        let mut drifting = packed(900, 4.0, 1.2);
+        drifting.groups[0].goal = None;
+        run_and_check(drifting, &[0, 10]);
+    }
+
+    /// `keep_apart` as it was before its feasibility check learnt which contact fails and its
+    /// fallback stopped at a fixed point: the reference the faster one must match bit for bit.
+    fn keep_apart_reference(v: Vec2, contacts: &[Contact]) -> Vec2 {
+        let feasible = |w: Vec2| contacts.iter().all(|c| w.dot(c.towards) <= c.allowed + FEASIBLE_SLACK);
+        if feasible(v) {
+            return v;
+        }
+        let mut best: Option<(f32, Vec2)> = None;
+        let mut consider = |w: Vec2| {
+            let d2 = w.distance_squared(v);
+            if feasible(w) && best.is_none_or(|(best_d2, _)| d2 < best_d2) {
+                best = Some((d2, w));
+            }
+        };
+        for (k, a) in contacts.iter().enumerate() {
+            consider(v - a.towards * (v.dot(a.towards) - a.allowed));
+            for b in &contacts[k + 1..] {
+                let det = a.towards.perp_dot(b.towards);
+                if det.abs() > 1e-6 {
+                    consider(Vec2::new(
+                        (a.allowed * b.towards.y - b.allowed * a.towards.y) / det,
+                        (a.towards.x * b.allowed - b.towards.x * a.allowed) / det,
+                    ));
+                }
+            }
+        }
+        if let Some((_, w)) = best {
+            return w;
+        }
+        let mut w = v;
+        for _ in 0..FALLBACK_PASSES {
+            for c in contacts {
+                let along = w.dot(c.towards);
+                if along > c.allowed {
+                    w -= c.towards * (along - c.allowed);
+                }
+            }
+        }
+        let mut scale = 1.0f32;
+        for c in contacts {
+            let allowed = c.allowed.max(0.0);
+            let along = w.dot(c.towards);
+            if along > allowed {
+                scale = scale.min(allowed / along);
+            }
+        }
+        w * scale
+    }
+
+    #[test]
+    fn keep_apart_matches_its_reference_bit_for_bit() {
+        let mut rng = Rng::new(7, 0);
+        let (mut fallbacks, mut projected) = (0, 0);
+        for case in 0..20_000 {
+            let n = 1 + case % MAX_CONTACT_BODIES;
+            let contacts: Vec<Contact> = (0..n)
+                .map(|_| {
+                    let angle = rng.range(0.0, std::f32::consts::TAU);
+                    // Lattice directions (exact opposites) as in a packed crowd, or any.
+                    let angle = if rng.unit() < 0.5 {
+                        (angle / std::f32::consts::FRAC_PI_4).round() * std::f32::consts::FRAC_PI_4
+                    } else {
+                        angle
+                    };
+                    Contact { towards: Vec2::new(angle.cos(), angle.sin()), allowed: rng.range(-0.5, 2.5) }
+                })
+                .collect();
+            let v = Vec2::new(rng.range(-2.0, 2.0), rng.range(-2.0, 2.0));
+            let (a, b) = (keep_apart(v, &contacts), keep_apart_reference(v, &contacts));
+            assert_eq!((a.x.to_bits(), a.y.to_bits()), (b.x.to_bits(), b.y.to_bits()), "case {case}");
+            fallbacks += usize::from(a.length() < 1e-3);
+            projected += usize::from(a != v);
+        }
+        assert!(fallbacks > 100 && projected > 1000, "{fallbacks} near-stops, {projected} cut");
     }
 }
