@@ -827,31 +827,54 @@ fn flock_sums(
     // The flocking count as floats (exact up to 2^24): a lane add, where a population count
     // is a dozen instructions on the x86-64 baseline.
     let mut flocking = Vec4::ZERO;
+    // Adds the block of four candidates from storage slot `at` on (positions and velocities
+    // `x`, `y`, `vx`, `vy`) whose lanes `in_run` belong to the run.
+    let mut add = |at: usize, [x, y, vx, vy]: [Vec4; 4], in_run: BVec4A| {
+        let (dx, dy) = (px - x, py - y);
+        let d2 = dx * dx + dy * dy;
+        let within = d2.cmple(reach2) & d2.cmpgt(Vec4::ZERO) & in_run;
+        let close = within & d2.cmplt(sep2);
+        let own = if everyone_is_own {
+            within
+        } else {
+            let is_own = |j: usize| columns.ids.get(at + j).is_some_and(|id| own_group.contains(id));
+            within & BVec4A::new(is_own(0), is_own(1), is_own(2), is_own(3))
+        };
+        // One division for both axes (division is the slowest lane operation).
+        let inv_d2 = d2.recip();
+        sep_x += Vec4::select(close, dx * inv_d2, Vec4::ZERO);
+        sep_y += Vec4::select(close, dy * inv_d2, Vec4::ZERO);
+        vel_x += Vec4::select(own, vx, Vec4::ZERO);
+        vel_y += Vec4::select(own, vy, Vec4::ZERO);
+        pos_x += Vec4::select(own, x, Vec4::ZERO);
+        pos_y += Vec4::select(own, y, Vec4::ZERO);
+        flocking += Vec4::select(own, Vec4::ONE, Vec4::ZERO);
+    };
     for run in runs {
-        for at in run.clone().step_by(LANES) {
+        // The run's whole blocks of four as exact chunks (no bounds test, no mask per block),
+        // then its last, partial block, masked: the same blocks in the same order as reading
+        // four at a time from the run's start, so the same lanes add the same terms.
+        let whole = run.start..run.start + run.len() / LANES * LANES;
+        let [x, y, vx, vy] =
+            [columns.x, columns.y, columns.vx, columns.vy].map(|s| s.get(whole.clone()).unwrap_or_default());
+        let blocks = x
+            .chunks_exact(LANES)
+            .zip(y.chunks_exact(LANES))
+            .zip(vx.chunks_exact(LANES))
+            .zip(vy.chunks_exact(LANES));
+        let mut done = whole.start;
+        for (((x, y), vx), vy) in blocks {
+            let lanes = [x, y, vx, vy].map(Vec4::from_slice);
+            add(done, lanes, RUN_MASKS[LANES]);
+            done += LANES;
+        }
+        // A column shorter than the run (never: the grid pads them) falls back to reading
+        // block by block, NaN past the end (no lane within reach).
+        for at in (done..run.end).step_by(LANES) {
             let load = |s: &[f32]| s.get(at..at + LANES).map_or(Vec4::NAN, Vec4::from_slice);
-            let (x, y) = (load(columns.x), load(columns.y));
-            let (dx, dy) = (px - x, py - y);
-            let d2 = dx * dx + dy * dy;
+            let lanes = [columns.x, columns.y, columns.vx, columns.vy].map(load);
             // Lanes past the run's end hold the next cells' agents or padding.
-            let in_run = RUN_MASKS[(run.end - at).min(LANES)];
-            let within = d2.cmple(reach2) & d2.cmpgt(Vec4::ZERO) & in_run;
-            let close = within & d2.cmplt(sep2);
-            let own = if everyone_is_own {
-                within
-            } else {
-                let is_own = |j: usize| columns.ids.get(at + j).is_some_and(|id| own_group.contains(id));
-                within & BVec4A::new(is_own(0), is_own(1), is_own(2), is_own(3))
-            };
-            // One division for both axes (division is the slowest lane operation).
-            let inv_d2 = d2.recip();
-            sep_x += Vec4::select(close, dx * inv_d2, Vec4::ZERO);
-            sep_y += Vec4::select(close, dy * inv_d2, Vec4::ZERO);
-            vel_x += Vec4::select(own, load(columns.vx), Vec4::ZERO);
-            vel_y += Vec4::select(own, load(columns.vy), Vec4::ZERO);
-            pos_x += Vec4::select(own, x, Vec4::ZERO);
-            pos_y += Vec4::select(own, y, Vec4::ZERO);
-            flocking += Vec4::select(own, Vec4::ONE, Vec4::ZERO);
+            add(at, lanes, RUN_MASKS[(run.end - at).min(LANES)]);
         }
     }
     let total = |l: Vec4| (l.x + l.y) + (l.z + l.w);

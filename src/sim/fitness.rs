@@ -147,15 +147,36 @@ pub fn k_nearest_from(
     start: f32,
     out: &mut Vec<(f32, u32)>,
 ) {
+    k_nearest_gathered(grid, p, k, radius, exclude, start, &mut Vec::new(), out);
+}
+
+/// [`k_nearest_from`] with a reused buffer `slots` for the grid's storage slots: each disc is
+/// gathered by [`SpatialGrid::gather_within`] (the agents
+/// [`SpatialGrid::for_each_within_capped`] visits, in its order, under the same caps, found
+/// without a branch per candidate), then its distances are those the query computes.
+#[allow(clippy::too_many_arguments, reason = "k_nearest_from's arguments and its scratch buffer")]
+fn k_nearest_gathered(
+    grid: &SpatialGrid,
+    p: Vec2,
+    k: usize,
+    radius: f32,
+    exclude: u32,
+    start: f32,
+    slots: &mut Vec<u32>,
+    out: &mut Vec<(f32, u32)>,
+) {
+    let columns = grid.columns();
     let mut reach = start.max(1.0);
     loop {
         let disc = reach.min(radius);
         out.clear();
-        let capped = grid.for_each_within_capped(p, disc, FITNESS_QUERY_CAP, |n| {
-            if n.id != exclude {
-                out.push((n.d2, n.id));
-            }
-        });
+        let capped = grid.gather_within(p, disc, FITNESS_QUERY_CAP, slots);
+        out.extend(slots.iter().filter_map(|&slot| {
+            let slot = slot as usize;
+            let id = *columns.ids.get(slot)?;
+            let q = Vec2::new(*columns.x.get(slot)?, *columns.y.get(slot)?);
+            (id != exclude).then(|| (p.distance_squared(q), id))
+        }));
         if out.len() >= k || disc >= radius || capped {
             break;
         }
@@ -198,6 +219,8 @@ pub struct FitnessRecorder {
     goal_frames: u64,
     frames: u64,
     near: Vec<(f32, u32)>,
+    /// Scratch: the grid slots of a neighbour query.
+    slots: Vec<u32>,
     /// Per-group sums over frames, filled by [`FitnessRecorder::record`].
     groups: Vec<GroupSums>,
     /// This frame's per-group sums over agents (reused buffer).
@@ -243,6 +266,7 @@ impl FitnessRecorder {
             goal_frames: 0,
             frames: 0,
             near: Vec::new(),
+            slots: Vec::new(),
             groups: Vec::new(),
             frame_groups: Vec::new(),
         }
@@ -290,13 +314,14 @@ impl FitnessRecorder {
             let r = radius.get(j).copied().unwrap_or(0.0);
             // The k nearest within the radius; an agent alone scores 0 on Gm, Ga and Gd.
             // The previous agent's k-th distance is a good first disc in an even crowd.
-            k_nearest_from(
+            k_nearest_gathered(
                 &self.grid,
                 p,
                 prm.k as usize,
                 prm.neighbour_radius,
                 j as u32,
                 reach,
+                &mut self.slots,
                 &mut self.near,
             );
             reach = self.near.last().map_or(reach, |(d2, _)| d2.sqrt() * 1.05);

@@ -73,6 +73,9 @@ pub struct World {
     max_step: f32,
     /// Positions at the start of the step (reused buffer of the parking pass).
     previous: Vec<Vec2>,
+    /// Scratch of the parking pass: per grid cell, the parked agents the grid holds in it
+    /// ([`World::for_each_parked_near`] skips queries of cells without one).
+    parked_in_cell: Vec<u32>,
     /// A periodic band `[start, end)` of x (px): an agent whose centre leaves it at one end
     /// re-enters at the other ([`World::set_periodic_x`]).
     periodic_x: Option<(f32, f32)>,
@@ -175,6 +178,7 @@ impl World {
             max_radius,
             max_step: 0.0,
             previous: Vec::new(),
+            parked_in_cell: Vec::new(),
             periodic_x: None,
             parking: true,
         };
@@ -582,6 +586,18 @@ impl World {
         // Agents placed far from where the grid holds them in this pass (few, usually none; in
         // a jam many).
         let mut jumped = Jumped::new(slack + self.max_radius);
+        // The parked agents per cell where the grid holds them, kept up to date as agents park
+        // below: most moving agents have none in the cells their queries scan.
+        let mut parked_in_cell = std::mem::take(&mut self.parked_in_cell);
+        parked_in_cell.clear();
+        parked_in_cell.resize(self.grid.cell_count(), 0);
+        if any_parked {
+            for (i, _) in self.parked.iter().enumerate().filter(|(_, &parked)| parked) {
+                if let Some(count) = self.grid.cell_of_agent(i).and_then(|c| parked_in_cell.get_mut(c)) {
+                    *count += 1;
+                }
+            }
+        }
         for i in 0..self.pos.len() {
             if self.parked[i] {
                 continue;
@@ -600,7 +616,7 @@ impl World {
                     let mut push = Vec2::ZERO;
                     let mut overlapping = false;
                     let (pos, radius) = (&self.pos, &self.radius);
-                    self.for_each_parked_near(p, r + slack, &jumped, |j| {
+                    self.for_each_parked_near(p, r + slack, &jumped, &parked_in_cell, |j| {
                         let reach = r + radius[j];
                         let d = p.distance(pos[j]);
                         if d < reach {
@@ -654,7 +670,7 @@ impl World {
             if any_parked || touches {
                 let (pos, radius, group_of) = (&self.pos, &self.radius, &self.group_of);
                 let park_goal = &self.park_goal;
-                self.for_each_parked_near(p, r + slack, &jumped, |j| {
+                self.for_each_parked_near(p, r + slack, &jumped, &parked_in_cell, |j| {
                     let d = p.distance(pos[j]);
                     overlaps |= d < r + radius[j];
                     let same_goal = park_goal
@@ -667,23 +683,42 @@ impl World {
             }
             if touches && !overlaps {
                 self.parked[i] = true;
+                if let Some(count) = self.grid.cell_of_agent(i).and_then(|c| parked_in_cell.get_mut(c)) {
+                    *count += 1;
+                }
                 self.vel[i] = Vec2::ZERO;
                 self.recorder.arrive(i, self.step);
             }
         }
+        self.parked_in_cell = parked_in_cell;
     }
 
     /// Visits each parked agent the grid holds within `reach` of `p` (plus the step's slack the
     /// caller adds), bounded by [`PARK_NEIGHBOUR_CAP`], and each parked one of `jumped` (agents
     /// the grid holds at an old place) within `reach` of `p`, in the order they jumped (every
     /// caller ignores parked bodies farther than `reach`).
-    fn for_each_parked_near(&self, p: Vec2, reach: f32, jumped: &Jumped, mut visit: impl FnMut(usize)) {
-        self.grid.for_each_within_capped(p, reach, PARK_NEIGHBOUR_CAP, |n| {
-            let j = n.id as usize;
-            if self.parked[j] && !jumped.contains(j) {
-                visit(j);
-            }
-        });
+    ///
+    /// `parked_in_cell` counts the parked agents per grid cell where the grid holds them: when
+    /// the cells the query would scan hold none, the query would visit none (its caps only ever
+    /// drop agents), so it is skipped. Far from the goals, that is every moving agent.
+    fn for_each_parked_near(
+        &self,
+        p: Vec2,
+        reach: f32,
+        jumped: &Jumped,
+        parked_in_cell: &[u32],
+        mut visit: impl FnMut(usize),
+    ) {
+        let holds_parked =
+            |cells: Range<usize>| parked_in_cell.get(cells).is_none_or(|c| c.iter().any(|&n| n > 0));
+        if self.grid.query_cell_ranges(p, reach).any(holds_parked) {
+            self.grid.for_each_within_capped(p, reach, PARK_NEIGHBOUR_CAP, |n| {
+                let j = n.id as usize;
+                if self.parked[j] && !jumped.contains(j) {
+                    visit(j);
+                }
+            });
+        }
         jumped.for_each_near(p, reach, |j| {
             if self.parked[j] {
                 visit(j);

@@ -24,6 +24,7 @@ pub struct SpatialGrid {
     len: usize,
     /// Agent ids in storage order (padding: `u32::MAX`).
     ids: Vec<u32>,
+    /// The cell of each agent (by id) at the last rebuild ([`Self::cell_of_agent`]).
     scratch_cell: Vec<u32>,
     /// Scratch: the next free slot of each cell while scattering.
     scratch_next: Vec<u32>,
@@ -356,6 +357,32 @@ impl SpatialGrid {
     /// `cap.candidates` means the candidate cap of a capped query cannot cut it short.
     pub fn query_candidates(&self, p: Vec2, radius: f32) -> usize {
         self.query_rows(p, radius).map(|r| r.len()).sum()
+    }
+
+    /// How many cells the grid has; cells are numbered row by row ([`Self::cell_of_agent`]).
+    pub fn cell_count(&self) -> usize {
+        (self.cols * self.rows) as usize
+    }
+
+    /// The cell agent `i` was stored in at the last rebuild (where the queries find it).
+    pub fn cell_of_agent(&self, i: usize) -> Option<usize> {
+        self.scratch_cell.get(i).map(|&c| c as usize)
+    }
+
+    /// The cells a query of `radius` round `p` scans ([`Self::for_each_within`],
+    /// [`Self::for_each_within_capped`]), one range of cell numbers per row of cells: a caller
+    /// that keeps a count per cell of the agents it looks for can skip a query that would find
+    /// none.
+    #[inline]
+    pub fn query_cell_ranges(&self, p: Vec2, radius: f32) -> impl Iterator<Item = Range<usize>> + '_ {
+        let x0 = self.cell_coord(p.x - radius, self.cols);
+        let x1 = self.cell_coord(p.x + radius, self.cols);
+        let y0 = self.cell_coord(p.y - radius, self.rows);
+        let y1 = self.cell_coord(p.y + radius, self.rows);
+        (y0..=y1).map(move |cy| {
+            let row = cy * self.cols;
+            (row + x0) as usize..(row + x1 + 1) as usize
+        })
     }
 
     /// [`Self::for_each_within`] that stops after visiting `cap.neighbours` agents within
