@@ -295,6 +295,11 @@ impl Forces {
         let s = &*scratch;
         let (mut sep, mut sum_vel, mut sum_pos, mut n_flock) = (Vec2::ZERO, Vec2::ZERO, Vec2::ZERO, 0u32);
         let flock = group.agents.clone();
+        // Columns of one length and slots clamped to it (a no-op: they index the grid), so the
+        // loads need no bounds check.
+        let len = columns.ids.len().min(columns.vx.len()).min(columns.vy.len());
+        let (ids, vxs, vys) = (&columns.ids[..len], &columns.vx[..len], &columns.vy[..len]);
+        let last = len.saturating_sub(1);
         let terms = s.slots[..n]
             .iter()
             .zip(&s.x[..n])
@@ -303,16 +308,14 @@ impl Forces {
             .zip(&s.sep_y[..n])
             .zip(&s.seen[..n]);
         for (((((&k, &x), &y), &sx), &sy), &seen_it) in terms {
-            let k = k as usize;
-            let other = columns.ids.get(k).copied().unwrap_or(u32::MAX);
-            let v = Vec2::new(
-                columns.vx.get(k).copied().unwrap_or(0.0),
-                columns.vy.get(k).copied().unwrap_or(0.0),
-            );
+            let k = (k as usize).min(last);
+            let counts = seen_it & flock.contains(&ids[k]);
+            // All ones when it counts, else zero: the terms become +0 without a branch.
+            let mask = u32::from(counts).wrapping_neg();
+            let keep = |v: f32| f32::from_bits(v.to_bits() & mask);
             sep += Vec2::new(sx, sy);
-            let counts = seen_it & flock.contains(&other);
-            sum_vel += if counts { v } else { Vec2::ZERO };
-            sum_pos += if counts { Vec2::new(x, y) } else { Vec2::ZERO };
+            sum_vel += Vec2::new(keep(vxs[k]), keep(vys[k]));
+            sum_pos += Vec2::new(keep(x), keep(y));
             n_flock += u32::from(counts);
         }
         for (&k, &seen_it) in s.slots[..n].iter().zip(&s.seen[..n]) {
