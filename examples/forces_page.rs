@@ -1,4 +1,8 @@
-//! Scratch: the page benchmark's packed open-field scene (scripts/bench-page.mjs), natively.
+//! The page benchmark's scene (`scripts/bench-page.mjs`: the `open-field` preset scaled to N
+//! agents, spawned spread or packed at 1.5 bodies per agent) with the virtual-forces planner,
+//! natively: on-CPU ns per agent-step over the first steps (the page's few seconds) and a
+//! digest of the positions (bit for bit: compare two builds).
+//! `taskset -c 0 cargo run --release --example forces_page [N] [STEPS] [packed|spread]`
 use flockpath::{presets, PlannerKind, Region, World};
 use std::time::Instant;
 
@@ -38,9 +42,11 @@ fn main() {
         (Some(a), Some(b)) => (b - a) as f64,
         _ => t0.elapsed().as_nanos() as f64,
     };
-    let digest: f64 = world.positions().iter().map(|p| f64::from(p.x) * 1.000_1 + f64::from(p.y)).sum();
+    let digest = world.positions().iter().chain(world.velocities()).fold(0u64, |h, v| {
+        (h ^ (u64::from(v.x.to_bits()) << 32 | u64::from(v.y.to_bits()))).wrapping_mul(0x100_0000_01b3)
+    });
     println!(
-        "{layout} {n}: {:.0} ns per agent-step over {steps} steps; digest {digest:.6}",
+        "{layout} {n}: {:.0} ns per agent-step over {steps} steps; digest {digest:016x}",
         spent / (f64::from(n) * f64::from(steps))
     );
 }

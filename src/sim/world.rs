@@ -743,10 +743,7 @@ impl World {
             let directions = 8 * ring.max(2);
             let step = std::f32::consts::TAU / directions as f32;
             places.clear();
-            places.extend((0..directions).map(|k| {
-                let angle = k as f32 * step;
-                p + Vec2::new(libm::cosf(angle), libm::sinf(angle)) * distance
-            }));
+            places.extend(ring_directions(ring).iter().map(|&u| p + u * distance));
             let place = |k: u32| places[k as usize];
             blocked.clear();
             blocked.resize(directions as usize, false);
@@ -888,6 +885,29 @@ impl Jumped {
             visit(j as usize);
         }
     }
+}
+
+/// The unit directions of the places on ring `ring` of [`World::free_place_near`]
+/// (`8 × max(ring, 2)` of them, the `k`-th at `k · τ / count` rad), computed once: a jam asks
+/// for them for many bodies every step, and the sines and cosines were most of that cost. The
+/// same `libm` calls on the same angles, so the same floats.
+fn ring_directions(ring: u32) -> &'static [Vec2] {
+    static TABLE: std::sync::OnceLock<Vec<Vec<Vec2>>> = std::sync::OnceLock::new();
+    let table = TABLE.get_or_init(|| {
+        (0..=PARK_SEARCH_RINGS)
+            .map(|ring| {
+                let directions = 8 * ring.max(2);
+                let step = std::f32::consts::TAU / directions as f32;
+                (0..directions)
+                    .map(|k| {
+                        let angle = k as f32 * step;
+                        Vec2::new(libm::cosf(angle), libm::sinf(angle))
+                    })
+                    .collect()
+            })
+            .collect()
+    });
+    table.get(ring as usize).map_or(&[], Vec::as_slice)
 }
 
 /// Pushes a disc of `radius` at `p` out of any obstacle it overlaps and removes the velocity
