@@ -11,7 +11,7 @@ use crate::model::geometry::{unit_or, Aabb, Obstacle};
 use crate::model::params::ForcesParams;
 use crate::planners::explain::{Explanation, NamedVector};
 use crate::rng::Rng;
-use crate::spatial::QueryCap;
+use crate::spatial::{Columns, QueryCap};
 use glam::Vec2;
 
 /// Steps between two samples of the goal's trace.
@@ -38,8 +38,24 @@ pub struct Forces {
     max_turn: Vec2,
     /// Cosine of half the view angle.
     view_cos: f32,
-    /// Scratch: grid slots of one agent's neighbours, reused across agents.
+    /// Scratch of one agent's neighbour pass, reused across agents.
+    scratch: NeighbourScratch,
+}
+
+/// One agent's neighbours as columns (see [`Forces::agent_forces`]): the grid slots found, their
+/// positions copied contiguously in the same order, then each one's separation term.
+#[derive(Clone, Debug, Default)]
+struct NeighbourScratch {
+    /// Grid slots of the agents within range, in the grid's scan order.
     slots: Vec<u32>,
+    /// Their positions.
+    x: Vec<f32>,
+    y: Vec<f32>,
+    /// Each one's separation term (zero when it is not seen).
+    sep_x: Vec<f32>,
+    sep_y: Vec<f32>,
+    /// Whether it is seen.
+    seen: Vec<bool>,
 }
 
 impl Forces {
@@ -52,7 +68,7 @@ impl Forces {
             view_cos: libm::cosf(half_view),
             params,
             trace: Vec::with_capacity(TRACE_LEN),
-            slots: Vec::new(),
+            scratch: NeighbourScratch::default(),
         }
     }
 
@@ -217,7 +233,8 @@ impl Planner for Forces {
             return e;
         }
         let mut neighbours = Vec::new();
-        let forces = self.agent_forces(ctx, group, agent, &mut Vec::new(), |id| neighbours.push(id));
+        let forces =
+            self.agent_forces(ctx, group, agent, &mut NeighbourScratch::default(), |id| neighbours.push(id));
         for ((name, f), s) in FORCE_NAMES.iter().zip(forces).zip(prm.weights()) {
             e.vectors.push(NamedVector::new(name, f * (s * prm.max_force)));
         }
@@ -231,15 +248,15 @@ impl Planner for Forces {
         if let Some((goal, _)) = group.goal {
             self.record_trace(ctx.step, goal);
         }
-        let mut slots = std::mem::take(&mut self.slots);
+        let mut scratch = std::mem::take(&mut self.scratch);
         for (k, id) in group.agents.clone().enumerate() {
-            let forces = self.agent_forces(ctx, &group, id, &mut slots, |_| {});
+            let forces = self.agent_forces(ctx, &group, id, &mut scratch, |_| {});
             let vel = ctx.velocities[id as usize];
             let force: Vec2 = forces.iter().zip(self.params.weights()).map(|(f, s)| *f * s).sum();
             let next = self.limit_turn(vel, vel + force * self.params.max_force);
             new_velocities[k] = limit(next, self.params.max_speed);
         }
-        self.slots = slots;
+        self.scratch = scratch;
     }
 }
 
@@ -255,7 +272,7 @@ impl Forces {
         ctx: &StepContext,
         group: &GroupView,
         id: u32,
-        slots: &mut Vec<u32>,
+        scratch: &mut NeighbourScratch,
         mut seen: impl FnMut(u32),
     ) -> [Vec2; 5] {
         let prm = &self.params;
@@ -268,31 +285,42 @@ impl Forces {
         let speed = vel.length();
         let heading = if speed > MIN_HEADING_SPEED { Some(vel / speed) } else { None };
 
-        let mut sep = Vec2::ZERO;
-        let (mut sum_vel, mut sum_pos, mut n_flock) = (Vec2::ZERO, Vec2::ZERO, 0u32);
-        let view_cos = self.view_cos;
-        // First the agents in range (a branch-free pass), then their forces in the same order.
-        ctx.grid.gather_within(p, range, NEIGHBOUR_CAP, slots);
+        // The agents in range (a branch-free pass), in the grid's scan order.
+        ctx.grid.gather_within(p, range, NEIGHBOUR_CAP, &mut scratch.slots);
         let columns = ctx.grid.columns();
-        for &k in slots.iter() {
-            let k = k as usize;
-            let (other, pos) = (columns.ids[k], Vec2::new(columns.x[k], columns.y[k]));
-            let d2 = p.distance_squared(pos);
-            if other == id || d2 <= 0.0 {
-                continue;
-            }
-            let d = d2.sqrt();
-            let away = (p - pos) / d;
-            if heading.is_some_and(|h| -away.dot(h) < view_cos) {
-                continue;
-            }
-            // A neighbour at contact pushes with 1, at two body sizes with ½, …
-            seen(other);
-            sep += away * (size / d);
-            if group.agents.contains(&other) {
-                sum_vel += Vec2::new(columns.vx[k], columns.vy[k]);
-                sum_pos += pos;
-                n_flock += 1;
+        let n = scratch.terms(columns, p, size, heading, self.view_cos);
+        // The sums in scan order, as one loop adding only the neighbours seen would: one not
+        // seen (or not in the group) adds +0, which leaves a sum of +0 and nonzero values
+        // unchanged (such a sum is never −0), so they are bit for bit the same.
+        let s = &*scratch;
+        let (mut sep, mut sum_vel, mut sum_pos, mut n_flock) = (Vec2::ZERO, Vec2::ZERO, Vec2::ZERO, 0u32);
+        let flock = group.agents.clone();
+        // Columns of one length and slots clamped to it (a no-op: they index the grid), so the
+        // loads need no bounds check.
+        let len = columns.ids.len().min(columns.vx.len()).min(columns.vy.len());
+        let (ids, vxs, vys) = (&columns.ids[..len], &columns.vx[..len], &columns.vy[..len]);
+        let last = len.saturating_sub(1);
+        let terms = s.slots[..n]
+            .iter()
+            .zip(&s.x[..n])
+            .zip(&s.y[..n])
+            .zip(&s.sep_x[..n])
+            .zip(&s.sep_y[..n])
+            .zip(&s.seen[..n]);
+        for (((((&k, &x), &y), &sx), &sy), &seen_it) in terms {
+            let k = (k as usize).min(last);
+            let counts = seen_it & flock.contains(&ids[k]);
+            // All ones when it counts, else zero: the terms become +0 without a branch.
+            let mask = u32::from(counts).wrapping_neg();
+            let keep = |v: f32| f32::from_bits(v.to_bits() & mask);
+            sep += Vec2::new(sx, sy);
+            sum_vel += Vec2::new(keep(vxs[k]), keep(vys[k]));
+            sum_pos += Vec2::new(keep(x), keep(y));
+            n_flock += u32::from(counts);
+        }
+        for (&k, &seen_it) in s.slots[..n].iter().zip(&s.seen[..n]) {
+            if seen_it {
+                seen(columns.ids.get(k as usize).copied().unwrap_or(u32::MAX));
             }
         }
         let separation = limit(sep, 1.0);
@@ -310,6 +338,61 @@ impl Forces {
         let collision = self.collision(ctx, p, vel, radius, towards);
 
         [separation, alignment, cohesion, following, collision]
+    }
+}
+
+impl NeighbourScratch {
+    /// Copies the positions of the gathered slots, then computes each neighbour's separation
+    /// term for an agent at `p` (body size `size`, unit `heading` if it moves): `away · size / d`
+    /// for a neighbour seen (in the view cone and not at `p`, as the agent itself is), else 0;
+    /// returns how many neighbours there are. The float operations per neighbour of one loop
+    /// over them, without a branch: the square roots and divisions vectorise.
+    fn terms(
+        &mut self,
+        columns: Columns<'_>,
+        p: Vec2,
+        size: f32,
+        heading: Option<Vec2>,
+        view_cos: f32,
+    ) -> usize {
+        let n = self.slots.len();
+        // Every entry up to `n` is written below: the buffers only grow.
+        for c in [&mut self.x, &mut self.y, &mut self.sep_x, &mut self.sep_y] {
+            if c.len() < n {
+                c.resize(n, 0.0);
+            }
+        }
+        if self.seen.len() < n {
+            self.seen.resize(n, false);
+        }
+        // Columns of one length and slots clamped to it (a no-op: they index the grid), so the
+        // loads need no bounds check.
+        let len = columns.x.len().min(columns.y.len());
+        if len == 0 {
+            return 0;
+        }
+        let (xs, ys) = (&columns.x[..len], &columns.y[..len]);
+        for ((&k, x), y) in self.slots.iter().zip(&mut self.x[..n]).zip(&mut self.y[..n]) {
+            let k = (k as usize).min(len - 1);
+            (*x, *y) = (xs[k], ys[k]);
+        }
+        let (cone, h) = (heading.is_some(), heading.unwrap_or(Vec2::ZERO));
+        let outputs = self.sep_x[..n].iter_mut().zip(&mut self.sep_y[..n]).zip(&mut self.seen[..n]);
+        for ((&x, &y), ((sx, sy), seen)) in self.x[..n].iter().zip(&self.y[..n]).zip(outputs) {
+            let pos = Vec2::new(x, y);
+            let d2 = p.distance_squared(pos);
+            let d = d2.sqrt();
+            let away = (p - pos) / d;
+            // Outside the view cone: more than 165° off the heading (330° view).
+            let hidden = cone & (-away.dot(h) < view_cos);
+            let visible = (d2 > 0.0) & !hidden;
+            // A neighbour at contact pushes with 1, at two body sizes with ½, …
+            let push = away * (size / d);
+            *sx = if visible { push.x } else { 0.0 };
+            *sy = if visible { push.y } else { 0.0 };
+            *seen = visible;
+        }
+        n
     }
 }
 

@@ -740,7 +740,10 @@ impl World {
     /// (found from its bearing); the places are the same points, tested with the same
     /// expressions, so the answer is the same as testing every place against every body,
     /// except that no per-place cap applies ([`PARK_NEIGHBOUR_CAP`] bounded the old queries;
-    /// non-overlapping bodies never reach it).
+    /// non-overlapping bodies never reach it). Each body's distance and bearing are computed
+    /// once, and the bodies sorted by distance, so a ring tests only those of its band (a place
+    /// is blocked by any body, in whatever order they are tested): in a frozen jam of 10,000
+    /// (`step_cost` packed) a step fell from 6.9 to 4.5 s per 60 steps natively, same digests.
     fn free_place_near(
         &self,
         p: Vec2,
@@ -751,8 +754,9 @@ impl World {
         placeable: &impl Fn(Vec2) -> bool,
     ) -> Option<Vec2> {
         let query = r + slack;
-        // Parked bodies that can block a place: (position, grid position or none if jumped).
-        let mut bodies: Vec<(Vec2, Option<Vec2>, f32)> = Vec::new();
+        // Parked bodies that can block a place, nearest to `p` first.
+        let mut bodies: Vec<NearBody> = Vec::new();
+        let mut widest = 0.0f32;
         let mut gathered_to = 0u32;
         let (mut blocked, mut places): (Vec<bool>, Vec<Vec2>) = (Vec::new(), Vec::new());
         for ring in 1..=PARK_SEARCH_RINGS {
@@ -766,29 +770,35 @@ impl World {
                 self.grid.for_each_within(p, reach, |n| {
                     let j = n.id as usize;
                     if self.parked[j] && !jumped.contains(j) {
-                        bodies.push((self.pos[j], Some(n.pos), self.radius[j]));
+                        bodies.push(NearBody::new(p, self.pos[j], Some(n.pos), self.radius[j]));
                     }
                 });
                 jumped.for_each_near(p, reach, |j| {
                     if self.parked[j] {
-                        bodies.push((self.pos[j], None, self.radius[j]));
+                        bodies.push(NearBody::new(p, self.pos[j], None, self.radius[j]));
                     }
                 });
+                // A place is blocked if any body blocks it, in whatever order they are
+                // tested: sorted by distance, each ring tests only the bodies of its band.
+                bodies.sort_unstable_by(|a, b| a.d.total_cmp(&b.d));
+                widest = bodies.iter().map(|b| b.radius).fold(0.0, f32::max);
             }
             let directions = 8 * ring.max(2);
             let step = std::f32::consts::TAU / directions as f32;
             places.clear();
-            places.extend((0..directions).map(|k| {
-                let angle = k as f32 * step;
-                p + Vec2::new(libm::cosf(angle), libm::sinf(angle)) * distance
-            }));
+            places.extend(ring_directions(ring).iter().map(|&u| p + u * distance));
             let place = |k: u32| places[k as usize];
             blocked.clear();
             blocked.resize(directions as usize, false);
-            for &(at, held, radius) in &bodies {
+            // Every body the test below keeps lies within `band` of the ring (1 px more than the
+            // widest reach, against rounding).
+            let band = r + widest + 1.01 + 1e-5 * distance;
+            let first = bodies.partition_point(|b| b.d < distance - band);
+            for &NearBody { at, held, radius, d, bearing } in &bodies[first..] {
+                if d > distance + band {
+                    break;
+                }
                 let reach = r + radius;
-                let w = at - p;
-                let d = w.length();
                 // |place − p| = distance (to rounding): a body off the ring by more than its
                 // reach blocks none of its places.
                 if (d - distance).abs() > reach + 0.01 + 1e-5 * distance {
@@ -811,7 +821,7 @@ impl World {
                         blocked[k as usize] = blocked[k as usize] || test(k);
                     }
                 } else {
-                    let centre = (libm::atan2f(w.y, w.x) / step).round() as i64;
+                    let centre = (bearing / step).round() as i64;
                     for t in centre - span..=centre + span {
                         let k = t.rem_euclid(i64::from(directions)) as u32;
                         blocked[k as usize] = blocked[k as usize] || test(k);
@@ -862,6 +872,29 @@ impl World {
             eat(v.y);
         }
         h
+    }
+}
+
+/// A parked body near a boxed-in one ([`World::free_place_near`]), with its distance and bearing
+/// from the boxed-in centre computed once for all rings.
+#[derive(Clone, Copy)]
+struct NearBody {
+    /// Where it is.
+    at: Vec2,
+    /// Where the grid holds it, or `None` if it jumped in this pass.
+    held: Option<Vec2>,
+    /// Its radius (px).
+    radius: f32,
+    /// Its distance from the boxed-in centre (px).
+    d: f32,
+    /// Its bearing from the boxed-in centre (rad, `atan2`).
+    bearing: f32,
+}
+
+impl NearBody {
+    fn new(p: Vec2, at: Vec2, held: Option<Vec2>, radius: f32) -> Self {
+        let w = at - p;
+        Self { at, held, radius, d: w.length(), bearing: libm::atan2f(w.y, w.x) }
     }
 }
 
@@ -923,6 +956,29 @@ impl Jumped {
             visit(j as usize);
         }
     }
+}
+
+/// The unit directions of the places on ring `ring` of [`World::free_place_near`]
+/// (`8 × max(ring, 2)` of them, the `k`-th at `k · τ / count` rad), computed once: a jam asks
+/// for them for many bodies every step, and the sines and cosines were most of that cost. The
+/// same `libm` calls on the same angles, so the same floats.
+fn ring_directions(ring: u32) -> &'static [Vec2] {
+    static TABLE: std::sync::OnceLock<Vec<Vec<Vec2>>> = std::sync::OnceLock::new();
+    let table = TABLE.get_or_init(|| {
+        (0..=PARK_SEARCH_RINGS)
+            .map(|ring| {
+                let directions = 8 * ring.max(2);
+                let step = std::f32::consts::TAU / directions as f32;
+                (0..directions)
+                    .map(|k| {
+                        let angle = k as f32 * step;
+                        Vec2::new(libm::cosf(angle), libm::sinf(angle))
+                    })
+                    .collect()
+            })
+            .collect()
+    });
+    table.get(ring as usize).map_or(&[], Vec::as_slice)
 }
 
 /// Pushes a disc of `radius` at `p` out of any obstacle it overlaps and removes the velocity

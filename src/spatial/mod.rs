@@ -518,8 +518,8 @@ impl SpatialGrid {
     /// `radius` of `p`, in [`Self::for_each_within`]'s order, capped like
     /// [`Self::for_each_within_capped`] (returns whether the cap cut the list short).
     ///
-    /// The distance test writes every candidate's slot and advances past it only when it is
-    /// within reach: no branch per candidate, whose outcome the CPU could not predict, so a
+    /// The distance tests run four candidates at a time and write their slots without a branch
+    /// per candidate, whose outcome the CPU could not predict (see `gather_run`), so a
     /// caller's loop over the slots then runs without mispredictions either.
     pub fn gather_within(&self, p: Vec2, radius: f32, cap: QueryCap, slots: &mut Vec<u32>) -> bool {
         slots.clear();
@@ -530,17 +530,13 @@ impl SpatialGrid {
             let scanned = end.min(start.saturating_add(candidates));
             candidates -= scanned - start;
             let base = slots.len();
-            slots.resize(base + (scanned - start), 0);
+            // Room for the last block's whole write past the agents found.
+            slots.resize(base + (scanned - start) + GATHER_BLOCK, 0);
             let mut found = base;
             if let (Some(out), Some(xs), Some(ys)) =
                 (slots.get_mut(base..), xs.get(start..scanned), ys.get(start..scanned))
             {
-                let mut n = 0;
-                for (k, (&x, &y)) in (start..scanned).zip(xs.iter().zip(ys)) {
-                    out[n] = k as u32;
-                    n += usize::from(p.distance_squared(Vec2::new(x, y)) <= r2);
-                }
-                found += n;
+                found += gather_run(p, r2, start as u32, xs, ys, out);
             }
             slots.truncate(found);
             if slots.len() > cap.neighbours {
@@ -721,6 +717,65 @@ impl SpatialGrid {
         }
         capped
     }
+}
+
+/// Candidates [`SpatialGrid::gather_within`] tests at once.
+const GATHER_BLOCK: usize = 4;
+
+/// `GATHER_ORDER[m]`: the lanes set in the 4-bit mask `m`, in increasing order, then zeros.
+const GATHER_ORDER: [[u32; GATHER_BLOCK]; 16] = {
+    let mut table = [[0u32; GATHER_BLOCK]; 16];
+    let mut m = 0;
+    while m < 16 {
+        let (mut lane, mut n) = (0, 0);
+        while lane < GATHER_BLOCK {
+            if m & (1 << lane) != 0 {
+                table[m][n] = lane as u32;
+                n += 1;
+            }
+            lane += 1;
+        }
+        m += 1;
+    }
+    table
+};
+
+/// `GATHER_COUNT[m]`: how many lanes the 4-bit mask `m` sets (a table: `count_ones` is no
+/// single instruction on the baseline x86-64 target).
+const GATHER_COUNT: [usize; 16] = [0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4];
+
+/// Writes to the front of `out` the slots (`first` + index) of the points of `xs`, `ys` within
+/// `√r2` of `p`, in order, and returns how many; `out` holds at least `xs.len()` +
+/// [`GATHER_BLOCK`] entries, and those past the count are scratch. Four points at a time: one
+/// mask of their four distance tests, then their slots written in one go and the count advanced
+/// by the mask's population, so no branch depends on where the points lie.
+fn gather_run(p: Vec2, r2: f32, first: u32, xs: &[f32], ys: &[f32], out: &mut [u32]) -> usize {
+    let mut n = 0;
+    let mut slot = first;
+    let (x_blocks, y_blocks) = (xs.chunks_exact(GATHER_BLOCK), ys.chunks_exact(GATHER_BLOCK));
+    let (x_rest, y_rest) = (x_blocks.remainder(), y_blocks.remainder());
+    for (x, y) in x_blocks.zip(y_blocks) {
+        let mut mask = 0usize;
+        for lane in 0..GATHER_BLOCK {
+            let inside = p.distance_squared(Vec2::new(x[lane], y[lane])) <= r2;
+            mask |= usize::from(inside) << lane;
+        }
+        if let Some(to) = out.get_mut(n..n + GATHER_BLOCK) {
+            for (o, &lane) in to.iter_mut().zip(&GATHER_ORDER[mask]) {
+                *o = slot + lane;
+            }
+        }
+        n += GATHER_COUNT[mask];
+        slot += GATHER_BLOCK as u32;
+    }
+    for (&x, &y) in x_rest.iter().zip(y_rest) {
+        if let Some(o) = out.get_mut(n) {
+            *o = slot;
+        }
+        n += usize::from(p.distance_squared(Vec2::new(x, y)) <= r2);
+        slot += 1;
+    }
+    n
 }
 
 /// Static obstacles bucketed into a coarse grid, so a query near a point only tests the
