@@ -45,8 +45,8 @@ pub fn wasm_factor(kind: PlannerKind) -> f64 {
 /// limit heading for a goal in its middle (a jam), world step with metrics (see the module docs).
 ///
 /// Measured with `examples/step_cost.rs` (`taskset -c 0`, the worst 10-step window of steps
-/// 0–100 and 300–400, at 2,000 and at 10,000 agents), rounded up: pso 4,146 (spread 580–840),
-/// forces 13,750 (spread 820–1,250), igsa 1,132 (spread
+/// 0–100 and 300–400, at 2,000 and at 10,000 agents), rounded up: pso 4,146 (spread 580–840)
+/// before its speed-up (below), forces 13,750 (spread 820–1,250), igsa 1,132 (spread
 /// 210–280) on a quiet machine; orca 11,287 (spread 5,250–6,410) and social_force 88,465
 /// (spread 5,910–9,060), 2026-11-25 on the shared machine under load 6–14 (the social force sums
 /// every neighbour within 5 m, up to its cap of 512, so a packed crowd costs it 10× a spread
@@ -76,6 +76,19 @@ pub fn wasm_factor(kind: PlannerKind) -> f64 {
 /// [`crate::sim::metrics::FITNESS_SAMPLE_EVERY`]) is dearer in a jam; the limit is set from the
 /// worst 10-step window (every second one holds such a step), as for every planner. Re-measure when a
 /// planner's cost changes.
+///
+/// PSO: kept at 4,200 though natively it now costs far less. Since phase 1 scans each agent's
+/// surroundings once for its position and its pbest, and the candidate moves of phase 2 look up
+/// a short list of possible nearest agents instead of the grid (the same floats:
+/// `tests/pso_golden.rs`), the worst window measures 684–703 on-CPU ns at 10,000 agents
+/// (packed, steps 0–100 and 300–400; three runs each) and 779–804 at 2,000 (two runs; that
+/// clock counts in steps of about 200 ns per window there), spread 405–601, 2026-11-26 on the
+/// 2-core machine shared with other builds (load 8.8–9.8); the code before, alternated with it
+/// in the same runs, gave 3,579–3,748 and 3,298–3,493. But the browser gains less: the page's
+/// packed 10,000 (`scripts/bench-page.mjs`: the open-field preset in a square with room for
+/// 1.5 bodies per agent, no denser than `step_cost`'s) steps in 16.9 ms
+/// of main-thread CPU, 1,690 ns per agent-step, which 900 × [`wasm_factor`] = 1,170 would not
+/// cover. Lower this once the wasm/native ratio of the new code is measured on the same scene.
 pub fn native_ns_per_agent_step(kind: PlannerKind) -> f64 {
     match kind {
         PlannerKind::Boids => 1_200.0,
