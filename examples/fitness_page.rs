@@ -1,0 +1,68 @@
+//! The fitness sample's cost at the page benchmark's 100,000-agent Boids scene (as
+//! `examples/page_cost.rs`): the world step with the fitness measures sampled every step less
+//! the step with them never sampled, wall-clock medians, alternating the two settings on clones
+//! of one world (so both step the same crowd).
+//!
+//! `taskset -c 1 cargo run --release --example fitness_page [planner] [agents] [spread|packed] [skip] [steps]`
+
+use flockpath::{presets, PlannerKind, World};
+use std::time::Instant;
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+/// The page benchmark's scene (as `examples/render_cost.rs` and `scripts/bench-page.mjs`).
+fn scene(planner: &str, n: u32, layout: &str) -> flockpath::Scene {
+    let mut scene = presets::open_field();
+    let density = 9.0 / (std::f32::consts::PI * 50.0 * 50.0);
+    let width = (n as f32 / density * 1.6).sqrt();
+    let height = width / 1.6;
+    let (sx, sy) = (width / scene.width, height / scene.height);
+    scene.width = width;
+    scene.height = height;
+    for goal in &mut scene.goals {
+        goal.position = [goal.position[0] * sx, goal.position[1] * sy];
+        goal.radius *= (sx * sy).sqrt();
+    }
+    let group = &mut scene.groups[0];
+    group.count = n;
+    group.planner = PlannerKind::parse(planner).expect("a planner name").default_config();
+    let side = (n as f32 * 1.5).sqrt() * 2.0 * group.agent_radius;
+    if layout == "spread" {
+        group.spawn.min = [10.0, 10.0];
+        group.spawn.max = [width - 10.0, height - 10.0];
+    } else {
+        group.spawn.min = [40.0, height / 2.0 - side / 2.0];
+        group.spawn.max = [40.0 + side, height / 2.0 + side / 2.0];
+    }
+    scene
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let planner = args.first().map_or("boids", String::as_str);
+    let n: u32 = args.get(1).and_then(|s| s.parse().ok()).unwrap_or(100_000);
+    let layout = args.get(2).map_or("packed", String::as_str);
+    let skip: u32 = args.get(3).and_then(|s| s.parse().ok()).unwrap_or(20);
+    let steps: u32 = args.get(4).and_then(|s| s.parse().ok()).unwrap_or(10);
+    let mut world = World::new(scene(planner, n, layout)).expect("valid scene");
+    world.step_n(skip);
+    let (mut with, mut without) = (Vec::new(), Vec::new());
+    for _ in 0..steps {
+        for (every, out) in [(1, &mut with), (0, &mut without)] {
+            let mut w = world.clone();
+            w.set_fitness_sample_every(every);
+            let t = Instant::now();
+            w.step();
+            out.push(t.elapsed().as_secs_f64() * 1e3);
+        }
+        world.step();
+    }
+    let (a, b) = (median(with), median(without));
+    println!(
+        "{planner} {n} {layout}: step with the fitness sample {a:.2} ms, without {b:.2} ms, sample {:.2} ms",
+        a - b
+    );
+}
