@@ -736,14 +736,17 @@ impl World {
     /// A place is blocked by a parked body within `r` + its radius, among the bodies the
     /// grid holds within `r + slack` of the place and the jumped ones. Instead of one grid query
     /// per place (up to 1,688 of them for a body that finds nothing), the parked bodies round
-    /// `p` are gathered once and each tests only the few places of a ring its disc can reach
-    /// (found from its bearing); the places are the same points, tested with the same
-    /// expressions, so the answer is the same as testing every place against every body,
-    /// except that no per-place cap applies ([`PARK_NEIGHBOUR_CAP`] bounded the old queries;
-    /// non-overlapping bodies never reach it). Each body's distance and bearing are computed
-    /// once, and the bodies sorted by distance, so a ring tests only those of its band (a place
-    /// is blocked by any body, in whatever order they are tested): in a frozen jam of 10,000
-    /// (`step_cost` packed) a step fell from 6.9 to 4.5 s per 60 steps natively, same digests.
+    /// `p` are gathered once and bucketed by offset ([`PlaceBuckets`]), and each place tests
+    /// the body that blocked the place before it on the ring (one body usually blocks several
+    /// in a row), then the bodies of its own and the eight neighbouring buckets, stopping at the
+    /// first that blocks it; the places are the same points, tested with the same expressions,
+    /// so the answer is the same as testing every place against every body (a place is blocked
+    /// by any body, in whatever order they are tested), except that no per-place cap applies
+    /// ([`PARK_NEIGHBOUR_CAP`] bounded the old queries; non-overlapping bodies never reach it).
+    /// In the frozen jam of `step_cost` packed (about 960 boxed-in bodies searching all 20
+    /// rings every step at 10,000 agents) the worst 10-step window fell from 7,706 to 4,306
+    /// ns per agent-step (a sort by distance and an `acosf` per body and ring before), same
+    /// digests.
     fn free_place_near(
         &self,
         p: Vec2,
