@@ -6,6 +6,10 @@
 //! agent-step ([`ns_per_agent_step`]). "Worst" is the densest crowd the spawn allows (bodies
 //! packed at the density limit of [`crate::sim::spawn`]) heading for a goal in its middle,
 //! measured natively (`cargo run --release --example step_cost`) and scaled by [`wasm_factor`].
+//! Boids, whose agents park at their goal, cost far more in that scene (a jam) than in any crowd
+//! that cannot jam, so a Boids group is charged the jam figure
+//! ([`jam_native_ns_per_agent_step`]) only when it can jam ([`can_jam`]: packed round or next to
+//! its own goal) and its other figure otherwise.
 //! The spawn itself is O(N) and refuses regions that cannot hold their count.
 //!
 //! IGSA plans its path once per group (and again on edits): population × iterations objective
@@ -54,7 +58,12 @@ pub fn wasm_factor(kind: PlannerKind) -> f64 {
 /// neighbours within its planner's reach (the per-agent caps of [`crate::spatial::NEIGHBOUR_CAP`]
 /// bound piles beyond that).
 ///
-/// Boids: 1,200. Since a pile's neighbour sums test an even sample of 384 candidates instead of
+/// Forces: re-measured 2026-11-26 after the parking pass's free-place search got cheaper,
+/// worst window 5,042 at 2,000 and 9,518 at 10,000 (load 4–6); the figure stays 14,000.
+///
+/// Boids: 1,200, for a crowd that cannot jam ([`can_jam`]; the jam has its own figure,
+/// [`jam_native_ns_per_agent_step`]), measured in the packed scene before Boids parked at
+/// goals. Since a pile's neighbour sums test an even sample of 384 candidates instead of
 /// the first 1,024 ([`crate::planners::boids::FLOCK_SAMPLE`]) and the fitness overlap test stops
 /// at the first overlap, the worst window measures 1,044–1,131 on-CPU ns (three runs each at
 /// 2,000 and 10,000 agents, 2026-11-25, on the 2-core machine shared with other builds, load
@@ -101,9 +110,76 @@ pub fn native_ns_per_agent_step(kind: PlannerKind) -> f64 {
     }
 }
 
+/// Worst native time per agent-step of a planner whose agents park at their goal, in a crowd
+/// that can jam (see [`can_jam`]): `step_cost`'s `packed` scene, a square crowd at the density
+/// limit round its own goal, where the parking pass searches every step for a free place for
+/// each agent boxed in by parked bodies ([`crate::sim::world`]). `None` for a planner whose
+/// [`native_ns_per_agent_step`] already is that figure (every planner that does not park, and
+/// virtual forces, measured in that scene).
+///
+/// Boids: 6,000. That scene freezes within about 10 steps into a jam (at 10,000 agents about
+/// 9,000 parked bodies and 960 boxed in by them, each searching for a free place every step),
+/// and its cost per agent grows with the crowd: worst 10-step window (steps 0–100 and
+/// 300–400) 1,861 on-CPU ns at 2,000 agents, 4,434 at 10,000 and 5,725 at 20,000
+/// (2026-11-26, `taskset -c 1` on the 2-core machine shared with other builds, load 4–7;
+/// before the free-place search tested places from buckets, 7,706 at 10,000 and about 19,600
+/// at 20,000). In the browser 6,000 × 1.5 = 9,000 ns, so 180 ms hold 20,000 Boids in a jam:
+/// the limit is the largest size measured, so the worst of the three sizes is the honest
+/// figure up to it (the 2,000 / 10,000 rule of the other planners would have let in a crowd
+/// dearer per agent than measured). Spread and open-field crowds (the page bench, whose goal lies far from
+/// the packed crowd) cannot jam and keep [`native_ns_per_agent_step`].
+pub fn jam_native_ns_per_agent_step(kind: PlannerKind) -> Option<f64> {
+    match kind {
+        PlannerKind::Boids => Some(6_000.0),
+        _ => None,
+    }
+}
+
+/// Least fill of a spawn region (bodies × (2r)² over the region's area including a body's
+/// margin, 1 at the density limit) at which a parking group round its goal is charged as a jam.
+/// A quarter of the density limit, well below the measured jam (1) and well above the page
+/// bench's 100,000 Boids spread over the field (about 0.07).
+pub const JAM_FILL: f64 = 0.25;
+
+/// How near its spawn region a group's goal must come for the group to be charged as a jam: the
+/// goal's disc within this many body diameters of the region (the parking pass's free-place
+/// search reaches 10).
+pub const JAM_REACH_DIAMETERS: f32 = 10.0;
+
+/// Whether group `g` of `scene` can freeze into the jam of [`jam_native_ns_per_agent_step`]: its
+/// planner parks at goals (Boids, virtual forces), its goal is fixed, its spawn region is
+/// filled to at least [`JAM_FILL`] of the density limit, and the goal's disc lies within
+/// [`JAM_REACH_DIAMETERS`] body diameters of the region (it contains or touches the goal).
+pub fn can_jam(scene: &Scene, g: &Group) -> bool {
+    if !matches!(g.planner.kind(), PlannerKind::Boids | PlannerKind::Forces) {
+        return false;
+    }
+    let Some(goal) = g.goal.and_then(|k| scene.goals.get(k as usize)) else {
+        return false;
+    };
+    if goal.motion.is_some() {
+        return false;
+    }
+    let (lo, hi) = (g.spawn.min, g.spawn.max);
+    let diameter = 2.0 * f64::from(g.agent_radius);
+    let area =
+        (f64::from(hi[0] - lo[0]).max(0.0) + diameter) * (f64::from(hi[1] - lo[1]).max(0.0) + diameter);
+    let fill = f64::from(g.count) * diameter * diameter / area.max(f64::MIN_POSITIVE);
+    let [x, y] = goal.position;
+    let dx = (lo[0] - x).max(x - hi[0]).max(0.0);
+    let dy = (lo[1] - y).max(y - hi[1]).max(0.0);
+    let reach = goal.radius + JAM_REACH_DIAMETERS * 2.0 * g.agent_radius;
+    fill >= JAM_FILL && f64::from(dx).hypot(f64::from(dy)) <= f64::from(reach)
+}
+
 /// Worst time per agent-step of each planner in the browser (ns).
 pub fn ns_per_agent_step(kind: PlannerKind) -> f64 {
     native_ns_per_agent_step(kind) * wasm_factor(kind)
+}
+
+/// Worst time per agent-step in the browser of a group of `kind` that can jam (ns).
+pub fn jam_ns_per_agent_step(kind: PlannerKind) -> f64 {
+    jam_native_ns_per_agent_step(kind).unwrap_or_else(|| native_ns_per_agent_step(kind)) * wasm_factor(kind)
 }
 
 /// The most agents of one planner a scene may hold alone under the step budget.
@@ -111,13 +187,28 @@ pub fn max_agents(kind: PlannerKind) -> u64 {
     (STEP_BUDGET_NS / ns_per_agent_step(kind)) as u64
 }
 
-fn group_step_ns(g: &Group) -> f64 {
-    f64::from(g.count) * ns_per_agent_step(g.planner.kind())
+/// The most agents of one planner a scene may hold alone under the step budget when they can
+/// jam ([`can_jam`]).
+pub fn max_jam_agents(kind: PlannerKind) -> u64 {
+    (STEP_BUDGET_NS / jam_ns_per_agent_step(kind)) as u64
+}
+
+/// Worst browser time per agent-step of group `g` of `scene` (ns).
+fn group_ns_per_agent_step(scene: &Scene, g: &Group) -> f64 {
+    if can_jam(scene, g) {
+        jam_ns_per_agent_step(g.planner.kind())
+    } else {
+        ns_per_agent_step(g.planner.kind())
+    }
+}
+
+fn group_step_ns(scene: &Scene, g: &Group) -> f64 {
+    f64::from(g.count) * group_ns_per_agent_step(scene, g)
 }
 
 /// Estimated time of one step of `scene` in the browser (ns).
 pub fn step_cost_ns(scene: &Scene) -> f64 {
-    scene.groups.iter().map(group_step_ns).sum()
+    scene.groups.iter().map(|g| group_step_ns(scene, g)).sum()
 }
 
 /// Segments group `g` checks while planning its path (0 unless it is an IGSA group that plans).
@@ -140,20 +231,24 @@ pub fn check(scene: &Scene) -> Result<(), SceneError> {
         scene.groups.iter().enumerate().max_by(|a, b| cost(a.1).total_cmp(&cost(b.1)))
     };
     if total > STEP_BUDGET_NS {
-        if let Some((i, g)) = costliest(&group_step_ns) {
+        if let Some((i, g)) = costliest(&|g| group_step_ns(scene, g)) {
             let kind = g.planner.kind().name();
-            let fit = ((STEP_BUDGET_NS - (total - group_step_ns(g))).max(0.0)
-                / ns_per_agent_step(g.planner.kind())) as u64;
+            let fit = ((STEP_BUDGET_NS - (total - group_step_ns(scene, g))).max(0.0)
+                / group_ns_per_agent_step(scene, g)) as u64;
+            let (jam, alone) = if can_jam(scene, g) {
+                (" packed round their own goal (the jam limit)", max_jam_agents(g.planner.kind()))
+            } else {
+                ("", max_agents(g.planner.kind()))
+            };
             return Err(SceneError::TooCostly(format!(
-                "group {} ({}): {} {kind} agents would make a step take about {:.0} ms in the \
-                 browser, over the {:.0} ms limit; at most {fit} {kind} agents fit beside the \
-                 other groups ({} alone)",
+                "group {} ({}): {} {kind} agents{jam} would make a step take about {:.0} ms in \
+                 the browser, over the {:.0} ms limit; at most {fit} {kind} agents fit beside \
+                 the other groups ({alone} alone)",
                 i + 1,
                 g.name,
                 g.count,
                 total / 1e6,
                 STEP_BUDGET_NS / 1e6,
-                max_agents(g.planner.kind()),
             )));
         }
     }
@@ -244,6 +339,79 @@ mod tests {
         assert_eq!(check(&s), Ok(()));
         s.groups[0].count += 1;
         assert!(matches!(check(&s), Err(SceneError::TooCostly(_))));
+    }
+
+    /// `examples/step_cost.rs`'s `packed` scene: `n` Boids at the density limit round their goal.
+    fn jam(n: u32) -> Scene {
+        let radius = 4.0;
+        let side = (f64::from(n).sqrt().ceil() as f32) * 2.0 * radius;
+        let world = side + 200.0;
+        let mut s = Scene::empty(world, world);
+        let (lo, hi) = (100.0 + radius, 100.0 + side - radius);
+        s.goals.push(crate::Goal::fixed([0.5 * world, 0.5 * world], 20.0));
+        let mut g = presets::constant_density(1, 1.0).groups.remove(0);
+        g.count = n;
+        g.spawn = crate::Region { min: [lo, lo], max: [hi, hi] };
+        g.goal = Some(0);
+        g.agent_radius = radius;
+        g.planner = PlannerKind::Boids.default_config();
+        s.groups.push(g);
+        s
+    }
+
+    /// The page bench's scene (scripts/bench-page.mjs `loadScene`): the `open-field` preset
+    /// scaled to `n` agents, spread over the field or packed in a square at its left.
+    fn bench(n: u32, packed: bool) -> Scene {
+        let mut s = presets::open_field();
+        let density = 9.0 / (std::f32::consts::PI * 50.0 * 50.0);
+        let width = (n as f32 / density * 1.6).sqrt();
+        let height = width / 1.6;
+        let (sx, sy) = (width / s.width, height / s.height);
+        (s.width, s.height) = (width, height);
+        for goal in &mut s.goals {
+            goal.position = [goal.position[0] * sx, goal.position[1] * sy];
+            goal.radius *= (sx * sy).sqrt();
+        }
+        let g = &mut s.groups[0];
+        g.count = n;
+        g.planner = PlannerKind::Boids.default_config();
+        let side = (n as f32 * 1.5).sqrt() * 2.0 * g.agent_radius;
+        g.spawn = if packed {
+            crate::Region {
+                min: [40.0, height / 2.0 - side / 2.0],
+                max: [40.0 + side, height / 2.0 + side / 2.0],
+            }
+        } else {
+            crate::Region { min: [10.0, 10.0], max: [width - 10.0, height - 10.0] }
+        };
+        s
+    }
+
+    #[test]
+    fn a_jam_of_boids_is_charged_its_own_figure_and_the_bench_crowds_are_not() {
+        let s = jam(100_000);
+        assert!(can_jam(&s, &s.groups[0]));
+        let text = check(&s).expect_err("100,000 Boids jammed round their goal are refused").to_string();
+        let alone = format!("({} alone)", max_jam_agents(PlannerKind::Boids));
+        for part in
+            ["group 1", "100000 boids agents packed round their own goal (the jam limit)", alone.as_str()]
+        {
+            assert!(text.contains(part), "{part:?} missing from {text:?}");
+        }
+        let limit = max_jam_agents(PlannerKind::Boids) as u32;
+        assert_eq!(check(&jam(limit)), Ok(()), "exactly the jam limit is accepted");
+        assert!(check(&jam(limit + 1)).is_err(), "one more is refused");
+        for packed in [false, true] {
+            let s = bench(100_000, packed);
+            assert!(!can_jam(&s, &s.groups[0]), "bench packed={packed} counted as a jam");
+            assert_eq!(work(&s).map(|_| ()), Ok(()), "bench packed={packed}");
+        }
+        // A crowd filled to the jam fill whose goal lies just outside its region still jams.
+        let mut s = jam(10_000);
+        s.goals[0].position = [s.groups[0].spawn.max[0] + 60.0, s.goals[0].position[1]];
+        assert!(can_jam(&s, &s.groups[0]));
+        s.goals[0].position[0] += 100.0;
+        assert!(!can_jam(&s, &s.groups[0]));
     }
 
     #[test]

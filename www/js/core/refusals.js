@@ -23,6 +23,7 @@ const PATTERNS = [
   [/^the text is not a scene object \((?<reason>.*)\)$/, 'error.not_scene'],
   [/^group (?<group>\d+) \((?<name>[^)]*)\): (?<count>\d+) agents of radius (?<radius>[\d.]+) px do not fit in its spawn region \((?<w>[\d.]+)×(?<h>[\d.]+) px\): it holds at most (?<max>\d+) apart from each other, the obstacles and the other groups \(the density limit\)$/, 'error.density'],
   [/^group (?<group>\d+) \((?<name>[^)]*)\): (?<count>\d+) (?<planner>\w+) agents would make a step take about (?<ms>\d+) ms in the browser, over the (?<limit>\d+) ms limit; at most (?<fit>\d+) \w+ agents fit beside the other groups \((?<alone>\d+) alone\)$/, 'error.step_cost'],
+  [/^group (?<group>\d+) \((?<name>[^)]*)\): (?<count>\d+) (?<planner>\w+) agents packed round their own goal \(the jam limit\) would make a step take about (?<ms>\d+) ms in the browser, over the (?<limit>\d+) ms limit; at most (?<fit>\d+) \w+ agents fit beside the other groups \((?<alone>\d+) alone\)$/, 'error.step_cost_jam'],
   [/^group (?<group>\d+) \((?<name>[^)]*)\): igsa path planning of all groups would check (?<checks>\d+) path segments .* over the limit of (?<limit>\d+): lower the population or the iterations$/, 'error.planning_cost'],
   [/^goals\[(?<goal>\d+)\] at \((?<x>[^,]+), (?<y>[^)]+)\) is inside obstacles\[(?<obstacle>\d+)\]; a goal must lie outside every obstacle$/, 'error.goal_in_obstacle'],
   [/^there is no (?<item>\w+) (?<n>\d+)$/, 'error.no_such_item'],

@@ -284,6 +284,7 @@ export default {
   'error.not_scene': 'the text is not a scene object ({reason})',
   'error.density': 'group {group} ({name}): {count} agents of radius {radius} px do not fit in its spawn region ({w}×{h} px): it holds at most {max} apart from each other, the obstacles and the other groups (the density limit)',
   'error.step_cost': 'group {group} ({name}): {count} {planner} agents would make a step take about {ms} ms in the browser, over the {limit} ms limit; at most {fit} {planner} agents fit beside the other groups ({alone} alone)',
+  'error.step_cost_jam': 'group {group} ({name}): {count} {planner} agents packed round their own goal (the jam limit) would make a step take about {ms} ms in the browser, over the {limit} ms limit; at most {fit} {planner} agents fit beside the other groups ({alone} alone)',
   'error.planning_cost': 'group {group} ({name}): igsa path planning of all groups would check {checks} path segments, over the limit of {limit}: lower the population or the iterations',
   'error.goal_in_obstacle': 'goals[{goal}] at ({x}, {y}) is inside obstacles[{obstacle}]; a goal must lie outside every obstacle',
   'allowed.number_in': 'a number in {min}…{max} {unit}',
