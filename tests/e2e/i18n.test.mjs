@@ -199,6 +199,12 @@ test('every other refusal is worded in Chinese too: scene fields, items, compare
     unknown_key: load(scene((s) => { s.groups[0].colour = '#ff0000'; })),
     missing_key: load(scene((s) => { delete s.width; })),
     list_of: load(scene((s) => { s.paths = [{ points: [[10, 10]], radius: 10 }]; })),
+    // src/sim/cost.rs: 30,000 Boids packed round their own goal, over the jam limit.
+    jam: load(scene((s) => {
+      Object.assign(s, { width: 2000, height: 2000, obstacles: [] });
+      s.goals[0].position = [900, 900];
+      Object.assign(s.groups[0], { goal: 0, count: 30000, spawn: { min: [100, 100], max: [1700, 1700] } });
+    })),
     // Items and edits.
     no_item: refused(() => sim.edit(JSON.stringify({ op: 'delete', item: { kind: 'obstacle', index: 99 } }))),
     path_boids: refused(() => {
@@ -258,6 +264,7 @@ test('every other refusal is worded in Chinese too: scene fields, items, compare
       assert.deepEqual(englishWords(text, names), [], `${k}: no English words left in ${text} (core: ${cases[k].message})`);
       if (process.env.I18N_SHOW) console.log(`${k} | ${text}`);
     }
+    assert.match(cases.jam.message, /agents packed round their own goal \(the jam limit\)/, 'the jam refusal names its limit');
     assert.equal(zh.no_item, '不存在障碍物 100');
     assert.match(zh.spec_planner, /^比较：未知的规划器“zz”；可用的有：/);
     assert.match(zh.polygon, /^obstacles\[\d+\]\.points 的值为 边 \d+→\d+ 与 \d+→\d+ 相交或接触的多边形；允许：简单多边形/);
