@@ -129,6 +129,8 @@ test('pane A equals the playground run; panes can be added, changed and removed'
     assert.match(await page.evaluate(() => window.flockpathCompare.specString()), /^1\.scene~pso\(.*\)~firefly\(/);
     await page.click('.pane[data-pane="B"] .pane-head button');
     await page.waitForFunction(() => document.querySelectorAll('.pane').length === 2);
+    // The table follows on the next metrics refresh, not with the panes.
+    await page.waitForFunction(() => document.querySelectorAll('#metrics-table thead th').length <= 3, null, { timeout: 10_000 });
     assert.equal(await page.$$eval('#metrics-table thead th', (t) => t.length), 3);
     assertNoUnexpectedErrors(errors);
   } finally {
