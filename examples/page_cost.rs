@@ -8,7 +8,6 @@
 
 use flockpath::render::Renderer;
 use flockpath::sim::run::{Run, RunOptions};
-use flockpath::{presets, PlannerKind};
 use std::time::Instant;
 
 fn median(mut v: Vec<f64>) -> f64 {
@@ -22,32 +21,9 @@ fn now_ns(start: Instant) -> f64 {
     start.elapsed().as_nanos() as f64
 }
 
-/// The page benchmark's scene (as `examples/render_cost.rs` and `scripts/bench-page.mjs`).
-fn scene(planner: &str, n: u32, layout: &str) -> flockpath::Scene {
-    let mut scene = presets::open_field();
-    let density = 9.0 / (std::f32::consts::PI * 50.0 * 50.0);
-    let width = (n as f32 / density * 1.6).sqrt();
-    let height = width / 1.6;
-    let (sx, sy) = (width / scene.width, height / scene.height);
-    scene.width = width;
-    scene.height = height;
-    for goal in &mut scene.goals {
-        goal.position = [goal.position[0] * sx, goal.position[1] * sy];
-        goal.radius *= (sx * sy).sqrt();
-    }
-    let group = &mut scene.groups[0];
-    group.count = n;
-    group.planner = PlannerKind::parse(planner).expect("a planner name").default_config();
-    let side = (n as f32 * 1.5).sqrt() * 2.0 * group.agent_radius;
-    if layout == "spread" {
-        group.spawn.min = [10.0, 10.0];
-        group.spawn.max = [width - 10.0, height - 10.0];
-    } else {
-        group.spawn.min = [40.0, height / 2.0 - side / 2.0];
-        group.spawn.max = [40.0 + side, height / 2.0 + side / 2.0];
-    }
-    scene
-}
+#[path = "support/page_scene.rs"]
+mod page_scene;
+use page_scene::scene;
 
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();

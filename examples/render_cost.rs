@@ -5,7 +5,7 @@
 //! `taskset -c 0 cargo run --release --example render_cost [planner] [agents] [spread|packed] [steps]`
 
 use flockpath::render::{Overlays, Renderer};
-use flockpath::{presets, PlannerKind, World};
+use flockpath::World;
 use std::time::Instant;
 
 fn median(mut v: Vec<f64>) -> f64 {
@@ -13,31 +13,9 @@ fn median(mut v: Vec<f64>) -> f64 {
     v[v.len() / 2]
 }
 
-fn scene(planner: &str, n: u32, layout: &str) -> flockpath::Scene {
-    let mut scene = presets::open_field();
-    let density = 9.0 / (std::f32::consts::PI * 50.0 * 50.0);
-    let width = (n as f32 / density * 1.6).sqrt();
-    let height = width / 1.6;
-    let (sx, sy) = (width / scene.width, height / scene.height);
-    scene.width = width;
-    scene.height = height;
-    for goal in &mut scene.goals {
-        goal.position = [goal.position[0] * sx, goal.position[1] * sy];
-        goal.radius *= (sx * sy).sqrt();
-    }
-    let group = &mut scene.groups[0];
-    group.count = n;
-    group.planner = PlannerKind::parse(planner).expect("a planner name").default_config();
-    let side = (n as f32 * 1.5).sqrt() * 2.0 * group.agent_radius;
-    if layout == "spread" {
-        group.spawn.min = [10.0, 10.0];
-        group.spawn.max = [width - 10.0, height - 10.0];
-    } else {
-        group.spawn.min = [40.0, height / 2.0 - side / 2.0];
-        group.spawn.max = [40.0 + side, height / 2.0 + side / 2.0];
-    }
-    scene
-}
+#[path = "support/page_scene.rs"]
+mod page_scene;
+use page_scene::scene;
 
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
