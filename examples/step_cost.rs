@@ -1,9 +1,10 @@
 //! Measures what the cost limits in `src/cost.rs` are set from: ns per agent-step of every
 //! planner in its worst valid scene (a square crowd packed at the spawn density limit, heading
 //! for a goal in its middle) against the constant-density scene of the benchmarks, natively.
-//! `taskset -c 0 cargo run --release --example step_cost [N] [PLANNER|all] [SCENES]`, SCENES a
-//! comma list of `spread`, `packed`, `late` (packed after 300 steps), all three by default; a
-//! scene not run prints `-`. Timing lives here, never
+//! `taskset -c 0 cargo run --release --example step_cost [N] [PLANNER|all] [SCENES] [RADIUS]`,
+//! SCENES a comma list of `spread`, `packed`, `late` (packed after 300 steps), `free` (packed
+//! without a goal: a crowd that cannot park, so it cannot jam), the first three by default; a scene not run prints `-`; RADIUS the packed bodies' radius in px (default 4: the
+//! smallest allowed, 0.5, packs the most bodies into a planner's reach). Timing lives here, never
 //! in the core. Figures are on-CPU time where the OS reports it (Linux `schedstat`): on a machine
 //! shared with other work, wall-clock time also counts the time other processes held the core.
 
@@ -12,8 +13,7 @@ use std::time::Instant;
 
 /// A square of `n` bodies packed at the density limit (one per 2r × 2r place) in a world with
 /// room around it, all heading for a goal at the square's centre.
-fn packed(n: u32, kind: PlannerKind) -> Scene {
-    let radius = 4.0;
+fn packed(n: u32, kind: PlannerKind, radius: f32) -> Scene {
     let side = (f64::from(n).sqrt().ceil() as f32) * 2.0 * radius;
     let world = side + 200.0;
     let mut s = Scene::empty(world, world);
@@ -26,6 +26,15 @@ fn packed(n: u32, kind: PlannerKind) -> Scene {
     g.agent_radius = radius;
     g.planner = kind.default_config();
     s.groups.push(g);
+    s
+}
+
+/// [`packed`] without a goal: nothing parks (a Boids crowd that cannot jam), but the bodies stay
+/// as crowded as the planner lets them.
+fn free(n: u32, kind: PlannerKind, radius: f32) -> Scene {
+    let mut s = packed(n, kind, radius);
+    s.groups[0].goal = None;
+    s.goals.clear();
     s
 }
 
@@ -83,11 +92,12 @@ fn main() {
          native release"
     );
     println!(
-        "{:>8}  {:>26}  {:>26}  {:>26}",
-        "planner", "spread (steps 0-100)", "packed (0-100)", "packed (300-400)"
+        "{:>8}  {:>26}  {:>26}  {:>26}  {:>26}",
+        "planner", "spread (steps 0-100)", "packed (0-100)", "packed (300-400)", "free (0-100)"
     );
     let only = std::env::args().nth(2).and_then(|name| PlannerKind::from_name(&name));
     let scenes = std::env::args().nth(3).unwrap_or_else(|| "spread,packed,late".into());
+    let radius: f32 = std::env::args().nth(4).and_then(|a| a.parse().ok()).unwrap_or(4.0);
     let wanted = |name: &str| scenes.split(',').any(|s| s.trim() == name);
     let cell = |run: bool, timed: &dyn Fn() -> (f64, f64, f64)| {
         if run {
@@ -99,11 +109,12 @@ fn main() {
     };
     for &kind in PlannerKind::ALL.iter().filter(|&&k| only.is_none_or(|o| o == k)) {
         println!(
-            "{:>8}  {:>26}  {:>26}  {:>26}",
+            "{:>8}  {:>26}  {:>26}  {:>26}  {:>26}",
             kind.name(),
             cell(wanted("spread"), &|| time(spread(n, kind), 0, 10, 10)),
-            cell(wanted("packed"), &|| time(packed(n, kind), 0, 10, 10)),
-            cell(wanted("late"), &|| time(packed(n, kind), 300, 10, 10)),
+            cell(wanted("packed"), &|| time(packed(n, kind, radius), 0, 10, 10)),
+            cell(wanted("late"), &|| time(packed(n, kind, radius), 300, 10, 10)),
+            cell(wanted("free"), &|| time(free(n, kind, radius), 0, 10, 10)),
         );
     }
 }

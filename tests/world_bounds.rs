@@ -292,7 +292,11 @@ fn switching_a_big_crowd_to_a_costlier_planner_is_refused_and_the_run_goes_on() 
     world.step();
     let costly = PlannerKind::SocialForce;
     let e = world.set_group_planner(0, costly.default_config()).expect_err("too costly");
-    let limit = format!("at most {} {} agents", flockpath::sim::cost::max_agents(costly), costly.name());
+    let limit = format!(
+        "at most {} {} agents",
+        flockpath::sim::cost::max_agents(costly, flockpath::sim::cost::DEFAULT_BODY_RADIUS),
+        costly.name()
+    );
     assert!(matches!(e, SceneError::TooCostly(_)) && e.to_string().contains(&limit), "{e}");
     assert_eq!(world.scene().groups[0].planner.kind(), PlannerKind::Boids, "the run keeps its planner");
     world.step();

@@ -10,6 +10,11 @@
 //! that cannot jam, so a Boids group is charged the jam figure
 //! ([`jam_native_ns_per_agent_step`]) only when it can jam ([`can_jam`]: packed round or next to
 //! its own goal) and its other figure otherwise.
+//!
+//! Smaller bodies pack more of them into each agent's reach (a planner's reach is in px, or
+//! its neighbour search scans grid cells sized in px), so every figure is measured at the
+//! body radii [`MEASURED_RADII`], down to the smallest a scene allows, and a group is charged
+//! the figure of its scene's [`crowd_radius`]: the bodies its agents can be packed among.
 //! The spawn itself is O(N) and refuses regions that cannot hold their count.
 //!
 //! IGSA plans its path once per group (and again on edits): population × iterations objective
@@ -98,8 +103,11 @@ pub fn wasm_factor(kind: PlannerKind) -> f64 {
 /// 1.5 bodies per agent, no denser than `step_cost`'s) steps in 16.9 ms
 /// of main-thread CPU, 1,690 ns per agent-step, which 900 × [`wasm_factor`] = 1,170 would not
 /// cover. Lower this once the wasm/native ratio of the new code is measured on the same scene.
-pub fn native_ns_per_agent_step(kind: PlannerKind) -> f64 {
-    match kind {
+///
+/// Smaller bodies: the same scenes with bodies of radius 0.5, 1, 2 and 3 px (`step_cost N PLANNER
+/// packed,late RADIUS`), see [`SMALL_BODY_FIGURES`]. The figures above are the last column.
+pub fn native_ns_per_agent_step(kind: PlannerKind, crowd_radius: f32) -> f64 {
+    let default_bodies = match kind {
         PlannerKind::Boids => 1_200.0,
         PlannerKind::Pso => 4_200.0,
         PlannerKind::Firefly => 1_400.0,
@@ -107,8 +115,89 @@ pub fn native_ns_per_agent_step(kind: PlannerKind) -> f64 {
         PlannerKind::Igsa => 1_200.0,
         PlannerKind::Orca => 11_500.0,
         PlannerKind::SocialForce => 90_000.0,
-    }
+    };
+    by_radius(kind, crowd_radius, default_bodies, false)
 }
+
+/// Body radii (px) at which the figures are measured, smallest first: the smallest a scene
+/// allows, 1, 2, 3 and the default 4 (the figures of [`native_ns_per_agent_step`] and
+/// [`jam_native_ns_per_agent_step`]). A crowd of radius r is charged the figure of the largest
+/// measured radius ≤ r: a step costs less as bodies grow (fewer fit in a planner's reach), so
+/// that figure bounds it.
+pub const MEASURED_RADII: [f32; 5] = [0.5, 1.0, 2.0, 3.0, 4.0];
+
+/// Worst native ns per agent-step of each planner in crowds of bodies smaller than the default,
+/// at the radii 0.5, 1, 2 and 3 px of [`MEASURED_RADII`]: (planner, jam figure?, figures). The
+/// jam row is Boids' [`jam_native_ns_per_agent_step`]. A planner without a row costs no more
+/// among small bodies than its default figure says.
+///
+/// Measured with `examples/step_cost.rs` like the default figures (`step_cost N PLANNER
+/// packed,late RADIUS`: the worst 10-step window of steps 0–100 and 300–400, at 2,000 and
+/// 10,000 agents and, where the limit this sets lies above 10,000, at about that limit too),
+/// `taskset -c 0`, 2026-11-26 on the 2-core machine shared with two builds (load 2–6), rounded
+/// up to 100 ns. At 0.5 px 10,000 bodies fill a 100 px square, so every agent has the whole
+/// crowd within its reach and the planners' neighbour caps bind; at 3 px every figure is back
+/// within a few percent of the default one. The worst windows, at 2,000 / 10,000 / more agents:
+/// - Boids jam: 0.5 px 7,487 / 11,630; 1 px 3,088 / 7,509 / 20,000: 10,695; 2 px 2,119 /
+///   5,458 / 20,000: 6,949; 3 px 1,743 / 4,766 / 20,000: 6,131 (the jam's cost per agent grows
+///   with the crowd at every radius; the default 6,000 is set at 20,000 too). A Boids crowd that cannot jam was
+///   measured packed without a goal (`step_cost`'s `free` scene, nothing parks): 400–605 at
+///   every radius, below the default 1,200, so it has no row.
+/// - PSO: 0.5 px 6,193 / 7,388 / 20,000: 7,684; 1 px 7,990 / 10,587 / 20,000: 11,394; 2 px
+///   6,592 / 8,077 / 20,000: 8,517; 3 px 800 / 867 / 20,000: 829. Between 3 and 2 px its short
+///   local candidate lists stop fitting the crowd and it falls back to the grid's queries.
+/// - Firefly: 0.5 px 9,725 / 14,346; 1 px 4,849 / 14,091; 2 px 2,221 / 8,099 / 20,000:
+///   11,640; 3 px 1,399 / 1,397 / 20,000: 1,416. Below about 2.2 px the survey's caps bind and
+///   it takes the world grid's query.
+/// - Virtual forces: 0.5 px 11,181 / 16,033; 1 px 5,996 / 13,211; 2 px 5,334 / 12,249; 3 px
+///   4,869 / 10,214 (the last three below the default 14,000).
+/// - IGSA: 0.5 px 3,916 / 4,067 / 35,000: 3,913; 1 px 3,683 / 3,770 / 35,000: 4,144; 2 px
+///   2,010 / 2,043 / 70,000: 2,428; 3 px 1,199 / 1,196 / 35,000: 1,220 (the default 1,200).
+/// - ORCA (0.5 px 4,798 / 5,783) and the social force (0.5 px 17,367 / 18,894; 2 px 20,046 at
+///   10,000) stay below their default figures at every radius: no row.
+pub const SMALL_BODY_FIGURES: &[(PlannerKind, bool, [f64; 4])] = &[
+    (PlannerKind::Boids, true, [11_700.0, 10_700.0, 7_000.0, 6_200.0]),
+    (PlannerKind::Pso, false, [7_700.0, 11_400.0, 8_600.0, 900.0]),
+    (PlannerKind::Firefly, false, [14_400.0, 14_100.0, 11_700.0, 1_500.0]),
+    (PlannerKind::Forces, false, [16_100.0, 13_300.0, 12_300.0, 10_300.0]),
+    (PlannerKind::Igsa, false, [4_100.0, 4_200.0, 2_500.0, 1_300.0]),
+];
+
+/// The figure of a crowd of `crowd_radius`: `default_bodies` from 4 px up, else the largest
+/// figure measured at the radii from the largest measured radius ≤ `crowd_radius` up (the
+/// [`SMALL_BODY_FIGURES`] row and `default_bodies`). The cost is not always monotone in the
+/// radius (PSO's worst is at 1 px, where the crowd still moves, not at 0.5 px, where it
+/// freezes), so a radius is never charged less than any larger one.
+fn by_radius(kind: PlannerKind, crowd_radius: f32, default_bodies: f64, jam: bool) -> f64 {
+    let class = MEASURED_RADII.iter().rposition(|&r| crowd_radius >= r).unwrap_or(0);
+    let small = SMALL_BODY_FIGURES.iter().find(|(k, j, _)| *k == kind && *j == jam);
+    let figures = small.map_or(&[][..], |(_, _, f)| &f[..]);
+    figures.iter().skip(class).fold(default_bodies, |worst, &f| worst.max(f))
+}
+
+/// Least number of agents whose bodies set a scene's [`crowd_radius`].
+pub const CROWDING_AGENTS: u32 = 100;
+
+/// The radius of the bodies a scene's agents can be packed among (px): the smallest radius r
+/// such that the groups of radius ≤ r hold at least [`CROWDING_AGENTS`] agents (a handful of
+/// small bodies adds only a handful of neighbours), or the smallest radius of a scene with
+/// fewer agents in all. Every group is charged for it, whatever its own radius: any crowd can
+/// end up packed among the smallest bodies.
+pub fn crowd_radius(scene: &Scene) -> f32 {
+    let mut groups: Vec<(f32, u32)> = scene.groups.iter().map(|g| (g.agent_radius, g.count)).collect();
+    groups.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let mut held = 0u32;
+    for &(radius, count) in &groups {
+        held = held.saturating_add(count);
+        if held >= CROWDING_AGENTS {
+            return radius;
+        }
+    }
+    groups.first().map_or(DEFAULT_BODY_RADIUS, |g| g.0)
+}
+
+/// The default body radius (px): the figures without a radius are measured with it.
+pub const DEFAULT_BODY_RADIUS: f32 = 4.0;
 
 /// Worst native time per agent-step of a planner whose agents park at their goal, in a crowd
 /// that can jam (see [`can_jam`]): `step_cost`'s `packed` scene, a square crowd at the density
@@ -128,9 +217,9 @@ pub fn native_ns_per_agent_step(kind: PlannerKind) -> f64 {
 /// figure up to it (the 2,000 / 10,000 rule of the other planners would have let in a crowd
 /// dearer per agent than measured). Spread and open-field crowds (the page bench, whose goal lies far from
 /// the packed crowd) cannot jam and keep [`native_ns_per_agent_step`].
-pub fn jam_native_ns_per_agent_step(kind: PlannerKind) -> Option<f64> {
+pub fn jam_native_ns_per_agent_step(kind: PlannerKind, crowd_radius: f32) -> Option<f64> {
     match kind {
-        PlannerKind::Boids => Some(6_000.0),
+        PlannerKind::Boids => Some(by_radius(kind, crowd_radius, 6_000.0, true)),
         _ => None,
     }
 }
@@ -172,43 +261,49 @@ pub fn can_jam(scene: &Scene, g: &Group) -> bool {
     fill >= JAM_FILL && f64::from(dx).hypot(f64::from(dy)) <= f64::from(reach)
 }
 
-/// Worst time per agent-step of each planner in the browser (ns).
-pub fn ns_per_agent_step(kind: PlannerKind) -> f64 {
-    native_ns_per_agent_step(kind) * wasm_factor(kind)
+/// Worst time per agent-step of each planner in the browser (ns), among bodies of
+/// `crowd_radius` (px).
+pub fn ns_per_agent_step(kind: PlannerKind, crowd_radius: f32) -> f64 {
+    native_ns_per_agent_step(kind, crowd_radius) * wasm_factor(kind)
 }
 
-/// Worst time per agent-step in the browser of a group of `kind` that can jam (ns).
-pub fn jam_ns_per_agent_step(kind: PlannerKind) -> f64 {
-    jam_native_ns_per_agent_step(kind).unwrap_or_else(|| native_ns_per_agent_step(kind)) * wasm_factor(kind)
+/// Worst time per agent-step in the browser of a group of `kind` that can jam (ns), among bodies
+/// of `crowd_radius` (px).
+pub fn jam_ns_per_agent_step(kind: PlannerKind, crowd_radius: f32) -> f64 {
+    jam_native_ns_per_agent_step(kind, crowd_radius)
+        .unwrap_or_else(|| native_ns_per_agent_step(kind, crowd_radius))
+        * wasm_factor(kind)
 }
 
-/// The most agents of one planner a scene may hold alone under the step budget.
-pub fn max_agents(kind: PlannerKind) -> u64 {
-    (STEP_BUDGET_NS / ns_per_agent_step(kind)) as u64
+/// The most agents of one planner a scene may hold alone under the step budget, among bodies of
+/// `crowd_radius` (px; [`DEFAULT_BODY_RADIUS`] for the default bodies).
+pub fn max_agents(kind: PlannerKind, crowd_radius: f32) -> u64 {
+    (STEP_BUDGET_NS / ns_per_agent_step(kind, crowd_radius)) as u64
 }
 
 /// The most agents of one planner a scene may hold alone under the step budget when they can
-/// jam ([`can_jam`]).
-pub fn max_jam_agents(kind: PlannerKind) -> u64 {
-    (STEP_BUDGET_NS / jam_ns_per_agent_step(kind)) as u64
+/// jam ([`can_jam`]), among bodies of `crowd_radius` (px).
+pub fn max_jam_agents(kind: PlannerKind, crowd_radius: f32) -> u64 {
+    (STEP_BUDGET_NS / jam_ns_per_agent_step(kind, crowd_radius)) as u64
 }
 
-/// Worst browser time per agent-step of group `g` of `scene` (ns).
-fn group_ns_per_agent_step(scene: &Scene, g: &Group) -> f64 {
+/// Worst browser time per agent-step of group `g` of `scene` among bodies of `crowd` px (ns).
+fn group_ns_per_agent_step(scene: &Scene, g: &Group, crowd: f32) -> f64 {
     if can_jam(scene, g) {
-        jam_ns_per_agent_step(g.planner.kind())
+        jam_ns_per_agent_step(g.planner.kind(), crowd)
     } else {
-        ns_per_agent_step(g.planner.kind())
+        ns_per_agent_step(g.planner.kind(), crowd)
     }
 }
 
-fn group_step_ns(scene: &Scene, g: &Group) -> f64 {
-    f64::from(g.count) * group_ns_per_agent_step(scene, g)
+fn group_step_ns(scene: &Scene, g: &Group, crowd: f32) -> f64 {
+    f64::from(g.count) * group_ns_per_agent_step(scene, g, crowd)
 }
 
 /// Estimated time of one step of `scene` in the browser (ns).
 pub fn step_cost_ns(scene: &Scene) -> f64 {
-    scene.groups.iter().map(|g| group_step_ns(scene, g)).sum()
+    let crowd = crowd_radius(scene);
+    scene.groups.iter().map(|g| group_step_ns(scene, g, crowd)).sum()
 }
 
 /// Segments group `g` checks while planning its path (0 unless it is an IGSA group that plans).
@@ -227,22 +322,32 @@ pub fn planning_segment_checks(g: &Group) -> u64 {
 /// others; planning over [`MAX_PLANNING_SEGMENT_CHECKS`] names the IGSA group that plans most.
 pub fn check(scene: &Scene) -> Result<(), SceneError> {
     let total = step_cost_ns(scene);
+    let crowd = crowd_radius(scene);
     let costliest = |cost: &dyn Fn(&Group) -> f64| {
         scene.groups.iter().enumerate().max_by(|a, b| cost(a.1).total_cmp(&cost(b.1)))
     };
     if total > STEP_BUDGET_NS {
-        if let Some((i, g)) = costliest(&|g| group_step_ns(scene, g)) {
+        if let Some((i, g)) = costliest(&|g| group_step_ns(scene, g, crowd)) {
             let kind = g.planner.kind().name();
-            let fit = ((STEP_BUDGET_NS - (total - group_step_ns(scene, g))).max(0.0)
-                / group_ns_per_agent_step(scene, g)) as u64;
+            let fit = ((STEP_BUDGET_NS - (total - group_step_ns(scene, g, crowd))).max(0.0)
+                / group_ns_per_agent_step(scene, g, crowd)) as u64;
             let (jam, alone) = if can_jam(scene, g) {
-                (" packed round their own goal (the jam limit)", max_jam_agents(g.planner.kind()))
+                (" packed round their own goal (the jam limit)", max_jam_agents(g.planner.kind(), crowd))
             } else {
-                ("", max_agents(g.planner.kind()))
+                ("", max_agents(g.planner.kind(), crowd))
+            };
+            // Named only when it costs more than the default bodies would.
+            let small = if crowd < DEFAULT_BODY_RADIUS
+                && group_ns_per_agent_step(scene, g, crowd)
+                    > group_ns_per_agent_step(scene, g, DEFAULT_BODY_RADIUS)
+            {
+                format!(" among bodies of radius {crowd} px (small bodies crowd into each agent's reach)")
+            } else {
+                String::new()
             };
             return Err(SceneError::TooCostly(format!(
-                "group {} ({}): {} {kind} agents{jam} would make a step take about {:.0} ms in \
-                 the browser, over the {:.0} ms limit; at most {fit} {kind} agents fit beside \
+                "group {} ({}): {} {kind} agents{jam}{small} would make a step take about {:.0} ms \
+                 in the browser, over the {:.0} ms limit; at most {fit} {kind} agents fit beside \
                  the other groups ({alone} alone)",
                 i + 1,
                 g.name,
@@ -313,7 +418,7 @@ mod tests {
         g.goal = None;
         g.spawn = crate::Region { min: [0.0, 0.0], max: [20_000.0, 20_000.0] };
         g.planner = PlannerKind::Firefly.default_config();
-        g.count = max_agents(PlannerKind::Firefly) as u32;
+        g.count = max_agents(PlannerKind::Firefly, DEFAULT_BODY_RADIUS) as u32;
         s.groups.push(g);
         assert_eq!(check(&s), Ok(()), "exactly the limit is accepted");
         s.groups[0].count += 1;
@@ -321,7 +426,8 @@ mod tests {
         let text = e.to_string();
         assert!(matches!(e, SceneError::TooCostly(_)));
         let count = format!("{} firefly agents", s.groups[0].count);
-        let limit = format!("at most {} firefly agents", max_agents(PlannerKind::Firefly));
+        let limit =
+            format!("at most {} firefly agents", max_agents(PlannerKind::Firefly, DEFAULT_BODY_RADIUS));
         for part in ["group 1 (flock)", count.as_str(), "180 ms limit", limit.as_str()] {
             assert!(text.contains(part), "{part:?} missing from {text:?}");
         }
@@ -329,7 +435,7 @@ mod tests {
 
     #[test]
     fn a_hundred_thousand_boids_fit_and_one_more_does_not() {
-        assert_eq!(max_agents(PlannerKind::Boids), 100_000);
+        assert_eq!(max_agents(PlannerKind::Boids, DEFAULT_BODY_RADIUS), 100_000);
         let mut s = Scene::empty(20_000.0, 20_000.0);
         let mut g = presets::open_field().groups.remove(0);
         g.spawn = crate::Region { min: [0.0, 0.0], max: [20_000.0, 20_000.0] };
@@ -392,13 +498,13 @@ mod tests {
         let s = jam(100_000);
         assert!(can_jam(&s, &s.groups[0]));
         let text = check(&s).expect_err("100,000 Boids jammed round their goal are refused").to_string();
-        let alone = format!("({} alone)", max_jam_agents(PlannerKind::Boids));
+        let alone = format!("({} alone)", max_jam_agents(PlannerKind::Boids, DEFAULT_BODY_RADIUS));
         for part in
             ["group 1", "100000 boids agents packed round their own goal (the jam limit)", alone.as_str()]
         {
             assert!(text.contains(part), "{part:?} missing from {text:?}");
         }
-        let limit = max_jam_agents(PlannerKind::Boids) as u32;
+        let limit = max_jam_agents(PlannerKind::Boids, DEFAULT_BODY_RADIUS) as u32;
         assert_eq!(check(&jam(limit)), Ok(()), "exactly the jam limit is accepted");
         assert!(check(&jam(limit + 1)).is_err(), "one more is refused");
         for packed in [false, true] {
@@ -412,6 +518,74 @@ mod tests {
         assert!(can_jam(&s, &s.groups[0]));
         s.goals[0].position[0] += 100.0;
         assert!(!can_jam(&s, &s.groups[0]));
+    }
+
+    #[test]
+    fn the_crowd_radius_is_set_by_a_hundred_agents_or_more() {
+        let mut s = jam(10_000);
+        assert_eq!(crowd_radius(&s), 4.0);
+        let mut dots = s.groups[0].clone();
+        (dots.agent_radius, dots.count) = (0.5, CROWDING_AGENTS - 1);
+        s.groups.push(dots);
+        assert_eq!(crowd_radius(&s), 4.0, "99 dots add only 99 neighbours");
+        s.groups[1].count = CROWDING_AGENTS;
+        assert_eq!(crowd_radius(&s), 0.5);
+        s.groups[0].count = 0;
+        s.groups[1].count = 3;
+        assert_eq!(crowd_radius(&s), 0.5, "a scene of a few agents: its smallest bodies");
+    }
+
+    #[test]
+    fn every_figure_grows_as_bodies_shrink() {
+        for &kind in PlannerKind::ALL.iter() {
+            let mut last = 0.0;
+            for &r in MEASURED_RADII.iter().rev() {
+                let figure = native_ns_per_agent_step(kind, r);
+                assert!(figure >= last && figure > 0.0, "{kind:?} at {r} px: {figure} < {last}");
+                last = figure;
+                if let Some(jam) = jam_native_ns_per_agent_step(kind, r) {
+                    assert!(jam >= figure, "{kind:?} jam at {r} px");
+                }
+            }
+            // Between the measured radii the smaller radius's figure is charged.
+            assert_eq!(native_ns_per_agent_step(kind, 0.7), native_ns_per_agent_step(kind, 0.5));
+            assert_eq!(native_ns_per_agent_step(kind, 3.9), native_ns_per_agent_step(kind, 3.0));
+            assert_eq!(native_ns_per_agent_step(kind, 40.0), native_ns_per_agent_step(kind, 4.0));
+        }
+        assert!(
+            native_ns_per_agent_step(PlannerKind::Firefly, 0.5)
+                > 5.0 * native_ns_per_agent_step(PlannerKind::Firefly, 4.0)
+        );
+    }
+
+    #[test]
+    fn small_fireflies_are_refused_at_their_own_limit_naming_the_body_size() {
+        let mut s = Scene::empty(20_000.0, 20_000.0);
+        let mut g = presets::open_field().groups.remove(0);
+        g.goal = None;
+        g.spawn = crate::Region { min: [0.0, 0.0], max: [20_000.0, 20_000.0] };
+        g.planner = PlannerKind::Firefly.default_config();
+        g.agent_radius = 0.5;
+        let limit = max_agents(PlannerKind::Firefly, 0.5);
+        assert!(limit * 5 < max_agents(PlannerKind::Firefly, DEFAULT_BODY_RADIUS));
+        g.count = limit as u32;
+        s.groups.push(g);
+        assert_eq!(check(&s), Ok(()), "exactly the limit is accepted");
+        s.groups[0].count += 1;
+        let text = check(&s).expect_err("one more is refused").to_string();
+        let alone = format!("({limit} alone)");
+        for part in ["firefly agents among bodies of radius 0.5 px", alone.as_str()] {
+            assert!(text.contains(part), "{part:?} missing from {text:?}");
+        }
+        // 100 small bodies among 4 px ones make every group pay for small bodies.
+        s.groups[0].agent_radius = 4.0;
+        s.groups[0].count = max_agents(PlannerKind::Firefly, DEFAULT_BODY_RADIUS) as u32;
+        assert_eq!(check(&s), Ok(()));
+        let mut dots = s.groups[0].clone();
+        (dots.agent_radius, dots.count, dots.planner) =
+            (1.0, CROWDING_AGENTS, PlannerKind::Orca.default_config());
+        s.groups.push(dots);
+        assert!(check(&s).is_err(), "the fireflies now crowd among 1 px bodies");
     }
 
     #[test]

@@ -119,10 +119,15 @@ test('the core’s refusals are worded in Chinese (real errors from the wasm mod
   const costly = structuredClone(base);
   // No goal: a crowd that cannot jam meets the ordinary limit (the jam limit has its own case).
   Object.assign(costly.groups[0], { count: 200000, agent_radius: 0.5, goal: null, spawn: { min: [0, 0], max: [base.width, base.height] } });
+  // The default bodies in a field large enough to hold them: the limit without small bodies.
+  const costlyDefault = structuredClone(base);
+  Object.assign(costlyDefault, { width: 20000, height: 20000, obstacles: [] });
+  Object.assign(costlyDefault.groups[0], { count: 200000, goal: null, spawn: { min: [0, 0], max: [20000, 20000] } });
   const sim = new m.Sim(m.preset_scene_json('open-field'), 200, 100);
   const cases = {
     density: refused(() => new m.Sim(JSON.stringify(dense), 100, 100)),
     cost: refused(() => new m.Sim(JSON.stringify(costly), 100, 100)),
+    cost_default: refused(() => new m.Sim(JSON.stringify(costlyDefault), 100, 100)),
     planner: refused(() => sim.set_group_planner(0, 'teleport')),
     preset: refused(() => m.preset_scene_json('no-such-preset')),
     range: refused(() => sim.set_group_param(0, 'max_speed', '1000000')),
@@ -266,6 +271,9 @@ test('every other refusal is worded in Chinese too: scene fields, items, compare
       if (process.env.I18N_SHOW) console.log(`${k} | ${text}`);
     }
     assert.match(cases.jam.message, /agents packed round their own goal \(the jam limit\)/, 'the jam refusal names its limit');
+    assert.match(cases.cost.message, /boids agents among bodies of radius 0\.5 px/, 'small bodies are named');
+    assert.doesNotMatch(cases.cost_default.message, /among bodies/, 'default bodies are not');
+    assert.match(zh.cost, /半径 0\.5 像素/, 'and worded');
     assert.equal(zh.no_item, '不存在障碍物 100');
     assert.match(zh.spec_planner, /^比较：未知的规划器“zz”；可用的有：/);
     assert.match(zh.polygon, /^obstacles\[\d+\]\.points 的值为 边 \d+→\d+ 与 \d+→\d+ 相交或接触的多边形；允许：简单多边形/);

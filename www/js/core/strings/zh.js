@@ -285,6 +285,8 @@ export default {
   'error.density': '群组 {group}（{name}）：{count} 个半径 {radius} 像素的个体放不进其出生区域（{w}×{h} 像素）：在彼此、障碍物和其他群组之间保持间隔时最多只能放 {max} 个（密度上限）',
   'error.step_cost': '群组 {group}（{name}）：{count} 个 {planner} 个体会使每步在浏览器中耗时约 {ms} 毫秒，超过 {limit} 毫秒的上限；与其他群组并存时最多容纳 {fit} 个 {planner} 个体（单独时 {alone} 个）',
   'error.step_cost_jam': '群组 {group}（{name}）：{count} 个挤在自身目标周围的 {planner} 个体（拥堵上限）会使每步在浏览器中耗时约 {ms} 毫秒，超过 {limit} 毫秒的上限；与其他群组并存时最多容纳 {fit} 个 {planner} 个体（单独时 {alone} 个）',
+  'error.step_cost_small': '群组 {group}（{name}）：半径 {radius} 像素的小个体中的 {count} 个 {planner} 个体（个体越小，每个个体感知范围内挤进的邻居越多）会使每步在浏览器中耗时约 {ms} 毫秒，超过 {limit} 毫秒的上限；与其他群组并存时最多容纳 {fit} 个 {planner} 个体（单独时 {alone} 个）',
+  'error.step_cost_jam_small': '群组 {group}（{name}）：半径 {radius} 像素的小个体中、挤在自身目标周围的 {count} 个 {planner} 个体（拥堵上限；个体越小，每个个体感知范围内挤进的邻居越多）会使每步在浏览器中耗时约 {ms} 毫秒，超过 {limit} 毫秒的上限；与其他群组并存时最多容纳 {fit} 个 {planner} 个体（单独时 {alone} 个）',
   'error.planning_cost': '群组 {group}（{name}）：所有群组的 IGSA 路径规划将检查 {checks} 条路径段，超过上限 {limit}：请减小种群规模或迭代次数',
   'error.goal_in_obstacle': 'goals[{goal}] 位于 ({x}, {y})，在 obstacles[{obstacle}] 内部；目标必须位于所有障碍物之外',
   'allowed.number_in': '{min}…{max} {unit} 之间的数',
