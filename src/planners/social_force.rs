@@ -107,6 +107,17 @@ pub struct Body {
 /// from pedestrian `b` (HM's repulsion with `w(e, f)`, HFV eq. 2): the social repulsion and the
 /// contact forces, per unit mass.
 pub fn agent_forces(p: &SocialForceParams, a: Body, e: Vec2, b: Body) -> (Vec2, Vec2) {
+    agent_forces_in_view(p, view_cos(p), a, e, b)
+}
+
+/// cos φ, φ half the field of view: the weight `w(e, f)` is 1 within it.
+fn view_cos(p: &SocialForceParams) -> f32 {
+    libm::cosf((0.5 * p.view_angle_deg).to_radians())
+}
+
+/// [`agent_forces`] with cos φ ([`view_cos`]) given: a step computes it once per agent, not
+/// once per pair (the same value: the same floats).
+fn agent_forces_in_view(p: &SocialForceParams, cos_phi: f32, a: Body, e: Vec2, b: Body) -> (Vec2, Vec2) {
     let (r_a, v_a, r_b, v_b) = (a.position, a.velocity, b.position, b.velocity);
     let r = r_a - r_b;
     let d = length(r);
@@ -125,7 +136,6 @@ pub fn agent_forces(p: &SocialForceParams, a: Body, e: Vec2, b: Body) -> (Vec2, 
             * (p.agent_strength / p.agent_range * libm::expf(-b / p.agent_range) * sum / (4.0 * b));
         // Field of view: full weight for a pedestrian ahead (the force points away from it).
         let f_len = length(f);
-        let cos_phi = libm::cosf((0.5 * p.view_angle_deg).to_radians());
         if e == Vec2::ZERO || e.dot(-f) >= f_len * cos_phi {
             f
         } else {
@@ -193,6 +203,7 @@ impl SocialForce {
 
         ctx.grid.gather_within(p_px, prm.interaction_range * self.scale, NEIGHBOUR_CAP, slots);
         let columns = ctx.grid.columns();
+        let cos_phi = view_cos(prm);
         for &k in slots.iter() {
             let k = k as usize;
             let other = columns.ids[k];
@@ -203,7 +214,8 @@ impl SocialForce {
             let w = Vec2::new(columns.vx[k], columns.vy[k]) * to_ms;
             let rb = ctx.radii[other as usize] * to_m;
             let me = Body { position: p, velocity: v, radius };
-            let (social, contact) = agent_forces(prm, me, e, Body { position: q, velocity: w, radius: rb });
+            let (social, contact) =
+                agent_forces_in_view(prm, cos_phi, me, e, Body { position: q, velocity: w, radius: rb });
             if social != Vec2::ZERO || contact != Vec2::ZERO {
                 seen(other);
             }
