@@ -44,7 +44,10 @@ pub fn wasm_factor(kind: PlannerKind) -> f64 {
         PlannerKind::Firefly => 1.25,
         PlannerKind::Forces => 1.25,
         PlannerKind::Igsa => 1.3,
-        // Not yet measured in the browser: the largest factor of the others.
+        // The largest factor of the others. On the page (`flockpath.step(1)` timed, Chromium
+        // on one core, 2026-11-26) a step of the packed crowd at the new limits took 125 ms
+        // median for 85,714 ORCA agents and 132 ms for 8,000 social-force ones: 1.07 and 1.1 ×
+        // the native worst windows.
         PlannerKind::Orca => 1.5,
         PlannerKind::SocialForce => 1.5,
     }
@@ -56,12 +59,16 @@ pub fn wasm_factor(kind: PlannerKind) -> f64 {
 /// Measured with `examples/step_cost.rs` (`taskset -c 0`, the worst 10-step window of steps
 /// 0–100 and 300–400, at 2,000 and at 10,000 agents), rounded up: pso 4,146 (spread 580–840)
 /// before its speed-up (below), forces 13,750 (spread 820–1,250), igsa 1,132 (spread
-/// 210–280) on a quiet machine; orca 11,287 (spread 5,250–6,410) and social_force 88,465
-/// (spread 5,910–9,060), 2026-11-25 on the shared machine under load 6–14 (the social force sums
-/// every neighbour within 5 m, up to its cap of 512, so a packed crowd costs it 10× a spread
-/// one). A jam costs 4–12× a spread crowd: every agent has many more
+/// 210–280) on a quiet machine. A jam costs 4–12× a spread crowd: every agent has many more
 /// neighbours within its planner's reach (the per-agent caps of [`crate::spatial::NEIGHBOUR_CAP`]
 /// bound piles beyond that).
+///
+/// ORCA: 1,400 and social force: 15,000 (were 11,500 and 90,000, measured 2026-11-25 under
+/// load 6–14, before the goal's flow field was kept between steps and the grid's neighbour
+/// gathering got cheaper). Re-measured 2026-11-26 (`taskset -c 0`, load 3–4): ORCA's worst
+/// window 1,319 at 10,000 and 1,368 at 85,000 (about its new limit; spread 1,192), the social
+/// force's 12,591 at 2,000 and 14,982 at 10,000 (spread 1,387: it sums every neighbour within
+/// 5 m, up to its cap of 512, so a packed crowd costs it 10× a spread one).
 ///
 /// Forces: re-measured 2026-11-26 after the parking pass's free-place search got cheaper,
 /// worst window 5,042 at 2,000 and 9,518 at 10,000 (load 4–6); the figure stays 14,000.
@@ -113,8 +120,8 @@ pub fn native_ns_per_agent_step(kind: PlannerKind, crowd_radius: f32) -> f64 {
         PlannerKind::Firefly => 1_400.0,
         PlannerKind::Forces => 14_000.0,
         PlannerKind::Igsa => 1_200.0,
-        PlannerKind::Orca => 11_500.0,
-        PlannerKind::SocialForce => 90_000.0,
+        PlannerKind::Orca => 1_400.0,
+        PlannerKind::SocialForce => 15_000.0,
     };
     by_radius(kind, crowd_radius, default_bodies, false)
 }
@@ -128,8 +135,8 @@ pub const MEASURED_RADII: [f32; 5] = [0.5, 1.0, 2.0, 3.0, 4.0];
 
 /// Worst native ns per agent-step of each planner in crowds of bodies smaller than the default,
 /// at the radii 0.5, 1, 2 and 3 px of [`MEASURED_RADII`]: (planner, jam figure?, figures). The
-/// jam row is Boids' [`jam_native_ns_per_agent_step`]. A planner without a row costs no more
-/// among small bodies than its default figure says.
+/// jam row is Boids' [`jam_native_ns_per_agent_step`]. A planner without a row (Boids that
+/// cannot jam) costs no more among small bodies than its default figure says.
 ///
 /// Measured with `examples/step_cost.rs` like the default figures (`step_cost N PLANNER
 /// packed,late RADIUS`: the worst 10-step window of steps 0–100 and 300–400, at 2,000 and
@@ -153,14 +160,18 @@ pub const MEASURED_RADII: [f32; 5] = [0.5, 1.0, 2.0, 3.0, 4.0];
 ///   4,869 / 10,214 (the last three below the default 14,000).
 /// - IGSA: 0.5 px 3,916 / 4,067 / 35,000: 3,913; 1 px 3,683 / 3,770 / 35,000: 4,144; 2 px
 ///   2,010 / 2,043 / 70,000: 2,428; 3 px 1,199 / 1,196 / 35,000: 1,220 (the default 1,200).
-/// - ORCA (0.5 px 4,798 / 5,783) and the social force (0.5 px 17,367 / 18,894; 2 px 20,046 at
-///   10,000) stay below their default figures at every radius: no row.
+/// - ORCA: 0.5 px 4,798 / 5,783 / 20,000: 5,854; 1 px 3,598 / 4,449 / 40,000: 4,997; 2 px
+///   2,198 / 2,515 / 46,000: 2,699; 3 px 1,613 / 1,749 / 66,000: 1,937.
+/// - Social force: 0.5 px 17,367 / 18,894; 1 px 18,199 / 20,699; 2 px 19,536 / 20,046; 3 px
+///   17,429 / 18,115.
 pub const SMALL_BODY_FIGURES: &[(PlannerKind, bool, [f64; 4])] = &[
     (PlannerKind::Boids, true, [11_700.0, 10_700.0, 7_000.0, 6_200.0]),
     (PlannerKind::Pso, false, [7_700.0, 11_400.0, 8_600.0, 900.0]),
     (PlannerKind::Firefly, false, [14_400.0, 14_100.0, 11_700.0, 1_500.0]),
     (PlannerKind::Forces, false, [16_100.0, 13_300.0, 12_300.0, 10_300.0]),
     (PlannerKind::Igsa, false, [4_100.0, 4_200.0, 2_500.0, 1_300.0]),
+    (PlannerKind::Orca, false, [5_900.0, 5_000.0, 2_700.0, 2_000.0]),
+    (PlannerKind::SocialForce, false, [18_900.0, 20_700.0, 20_100.0, 18_200.0]),
 ];
 
 /// The figure of a crowd of `crowd_radius`: `default_bodies` from 4 px up, else the largest
