@@ -151,6 +151,14 @@ export async function waitReady(page) {
   await page.waitForFunction(() => window.flockpath !== undefined, null, { timeout: 30_000 });
 }
 
+/** Pauses the playground and loads `scene` through its API, in one task (no frame runs between). */
+export async function loadPaused(page, scene) {
+  await page.evaluate((s) => {
+    window.flockpath.pause();
+    window.flockpath.load(s);
+  }, scene);
+}
+
 /** Waits until the page has painted `n` more animation frames. */
 export async function frames(page, n = 2) {
   await page.evaluate(
