@@ -8,10 +8,9 @@
 use flockpath::World;
 use std::time::Instant;
 
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
-}
+#[path = "support/median.rs"]
+mod median;
+use median::median;
 
 #[path = "support/page_scene.rs"]
 mod page_scene;

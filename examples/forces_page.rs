@@ -3,8 +3,12 @@
 //! natively: on-CPU ns per agent-step over the first steps (the page's few seconds) and a
 //! digest of the positions (bit for bit: compare two builds).
 //! `taskset -c 0 cargo run --release --example forces_page [N] [STEPS] [packed|spread]`
-use flockpath::{presets, PlannerKind, Region, World};
+use flockpath::World;
 use std::time::Instant;
+
+#[path = "support/page_scene.rs"]
+mod page_scene;
+use page_scene::scene;
 
 fn cpu_ns() -> Option<u64> {
     let text = std::fs::read_to_string("/proc/thread-self/schedstat").ok()?;
@@ -15,26 +19,7 @@ fn main() {
     let n: u32 = std::env::args().nth(1).and_then(|a| a.parse().ok()).unwrap_or(10_000);
     let steps: u32 = std::env::args().nth(2).and_then(|a| a.parse().ok()).unwrap_or(40);
     let layout = std::env::args().nth(3).unwrap_or_else(|| "packed".into());
-    let mut scene = presets::open_field();
-    let density = 9.0 / (std::f32::consts::PI * 50.0 * 50.0);
-    let width = ((n as f32 / density) * 1.6).sqrt();
-    let height = width / 1.6;
-    let (sx, sy) = (width / scene.width, height / scene.height);
-    scene.width = width;
-    scene.height = height;
-    for g in &mut scene.goals {
-        g.position = [g.position[0] * sx, g.position[1] * sy];
-        g.radius *= (sx * sy).sqrt();
-    }
-    let group = &mut scene.groups[0];
-    group.count = n;
-    group.planner = PlannerKind::Forces.default_config();
-    let side = (n as f32 * 1.5).sqrt() * 2.0 * group.agent_radius;
-    group.spawn = if layout == "spread" {
-        Region { min: [10.0, 10.0], max: [width - 10.0, height - 10.0] }
-    } else {
-        Region { min: [40.0, height / 2.0 - side / 2.0], max: [40.0 + side, height / 2.0 + side / 2.0] }
-    };
+    let scene = scene("forces", n, &layout);
     let mut world = World::new_beyond_cost_limit(scene).expect("scene");
     let (t0, c0) = (Instant::now(), cpu_ns());
     world.step_n(steps);

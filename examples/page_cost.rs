@@ -10,10 +10,9 @@ use flockpath::render::Renderer;
 use flockpath::sim::run::{Run, RunOptions};
 use std::time::Instant;
 
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
-}
+#[path = "support/median.rs"]
+mod median;
+use median::median;
 
 /// Nanoseconds since `start`, wall-clock: `schedstat`'s on-CPU time only moves at scheduler
 /// ticks (4 ms), too coarse for the parts of a frame; run pinned and take the medians.

@@ -9,10 +9,9 @@ use flockpath::sim::replay::{checkpoint_bytes_estimate, Replay};
 use flockpath::{presets, World};
 use std::time::Instant;
 
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
-}
+#[path = "support/median.rs"]
+mod median;
+use median::median;
 
 fn main() {
     for n in [1_000u32, 10_000] {

@@ -16,10 +16,9 @@ use std::time::Instant;
 const CANVAS: (u32, u32) = (1280, 800);
 const REPS: usize = 7;
 
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
-}
+#[path = "support/median.rs"]
+mod median;
+use median::median;
 
 fn ms_since(t: Instant) -> f64 {
     1e3 * t.elapsed().as_secs_f64()

@@ -3,19 +3,14 @@
 // Usage: node scripts/bench-browser.mjs [--quick] [--native target/bench-native.json] [--json FILE]
 // Run it under `taskset -c 0` (scripts/bench.sh does): Chromium inherits the pinning.
 
-import { mkdtemp, readFile, rm, writeFile } from 'node:fs/promises';
-import { tmpdir } from 'node:os';
+import { readFile, writeFile } from 'node:fs/promises';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { chromium } from 'playwright-core';
+import { launchChromium } from './chromium.mjs';
 import { serveStatic } from './static-server.mjs';
 
 const ROOT = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
 const WWW = path.join(ROOT, 'www');
-const CHROMIUM_ARGS = [
-  '--no-sandbox', '--disable-dev-shm-usage', '--disable-gpu', '--disable-quic', '--no-first-run',
-  '--disable-background-networking', '--disable-component-update', '--disable-sync',
-];
 
 const args = process.argv.slice(2);
 const flag = (name) => {
@@ -27,16 +22,9 @@ const quick = args.includes('--quick');
 const server = await serveStatic({ '/': WWW });
 const url = `${server.origin}/bench.html${quick ? '#quick' : ''}`;
 
-const profile = await mkdtemp(path.join(tmpdir(), 'flockpath-bench-'));
 let failed = false;
-const context = await chromium.launchPersistentContext(profile, {
-  executablePath: '/usr/bin/chromium',
-  headless: true,
-  args: CHROMIUM_ARGS,
-  viewport: { width: 1400, height: 1000 },
-});
+const { context, page, close } = await launchChromium('flockpath-bench-', { width: 1400, height: 1000 });
 try {
-  const page = context.pages()[0] ?? (await context.newPage());
   page.on('pageerror', (error) => console.error(`page error: ${error.message}`));
   await page.goto(url);
   await page.waitForFunction(() => window.benchResults !== undefined, null, { timeout: 15 * 60_000, polling: 500 });
@@ -79,8 +67,7 @@ try {
   console.error(`bench-browser: ${error.message}`);
   failed = true;
 } finally {
-  await context.close().catch(() => {});
+  await close();
   await server.close();
-  await rm(profile, { recursive: true, force: true });
 }
 process.exit(failed ? 1 : 0);

@@ -31,6 +31,7 @@ import { tmpdir } from 'node:os';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
+import { CHROMIUM_ARGS } from './chromium.mjs';
 import { serveStatic } from './static-server.mjs';
 
 const ROOT = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
@@ -41,10 +42,6 @@ const flag = (name, fallback) => {
 };
 /** The folder served: www/ unless --www points at another copy (a before/after comparison). */
 const WWW = path.resolve(flag('--www', path.join(ROOT, 'www')));
-const CHROMIUM_ARGS = [
-  '--no-sandbox', '--disable-dev-shm-usage', '--disable-gpu', '--disable-quic', '--no-first-run',
-  '--disable-background-networking', '--disable-component-update', '--disable-sync',
-];
 const PLANNERS = ['boids', 'pso', 'firefly', 'forces', 'igsa', 'orca', 'social_force'];
 const SIZES = [1000, 10000, 100000];
 const LAYOUTS = ['spread', 'packed'];

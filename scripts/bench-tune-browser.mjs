@@ -6,19 +6,14 @@
 //          [--population 200] [--generations 30] [--frames 400] [--json FILE]
 // Build the page first (bash scripts/build-wasm.sh); run under `taskset -c 0` to pin Chromium.
 
-import { mkdtemp, rm, writeFile } from 'node:fs/promises';
-import { tmpdir } from 'node:os';
+import { writeFile } from 'node:fs/promises';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { chromium } from 'playwright-core';
+import { launchChromium } from './chromium.mjs';
 import { serveStatic } from './static-server.mjs';
 
 const ROOT = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
 const WWW = path.join(ROOT, 'www');
-const CHROMIUM_ARGS = [
-  '--no-sandbox', '--disable-dev-shm-usage', '--disable-gpu', '--disable-quic', '--no-first-run',
-  '--disable-background-networking', '--disable-component-update', '--disable-sync',
-];
 
 const args = process.argv.slice(2);
 const flag = (name, fallback) => {
@@ -38,16 +33,9 @@ const server = await serveStatic({ '/': WWW });
 const query = new URLSearchParams({ ...setup, autostart: '1' });
 const url = `${server.origin}/tune.html?${query}`;
 
-const profile = await mkdtemp(path.join(tmpdir(), 'flockpath-tune-bench-'));
 let failed = false;
-const context = await chromium.launchPersistentContext(profile, {
-  executablePath: '/usr/bin/chromium',
-  headless: true,
-  args: CHROMIUM_ARGS,
-  viewport: { width: 1280, height: 800 },
-});
+const { context, page, close } = await launchChromium('flockpath-tune-bench-', { width: 1280, height: 800 });
 try {
-  const page = context.pages()[0] ?? (await context.newPage());
   page.on('pageerror', (error) => console.error(`page error: ${error.message}`));
   const start = Date.now();
   await page.goto(url);
@@ -91,8 +79,7 @@ try {
   console.error(`bench-tune-browser: ${error.message}`);
   failed = true;
 } finally {
-  await context.close();
+  await close();
   await server.close();
-  await rm(profile, { recursive: true, force: true });
 }
 process.exit(failed ? 1 : 0);

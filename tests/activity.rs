@@ -5,6 +5,7 @@
 use flockpath::model::activity::{Activity, MAX_CHOICES, MAX_PROMPT_CHARS};
 use flockpath::sim::activity_check::{ActivityWatch, Page, Status};
 use flockpath::sim::compare::{Comparison, ComparisonSpec};
+use flockpath::sim::run::{Run, RunOptions};
 use flockpath::{
     presets, scene_from_any, scene_from_fragment, scene_from_json, scene_to_fragment, scene_to_json,
 };
@@ -288,4 +289,43 @@ fn on_the_compare_page_pane_b_arrives_before_pane_a() {
     let run_report = run_watch.report(world.scene(), 1).expect("check");
     assert!(!run_report.conditions[0].applies && run_report.conditions[1].applies);
     assert_eq!(run_report.status, Status::Unavailable);
+}
+
+#[test]
+fn the_run_and_the_comparison_feed_the_check_themselves() {
+    // A watch fed by hand after every step, as the page once did, against the core's own.
+    let scene = with_activity("pillars", MARKUP);
+    let mut world = World::new(scene.clone()).expect("valid");
+    let mut watch = ActivityWatch::new(Page::Run);
+    for _ in 0..500 {
+        world.step();
+        watch.observe_world(&world);
+    }
+    let expected = watch.report(world.scene(), world.step_count());
+    assert!(expected.is_some());
+    // The page's run and the command line's (which keeps nothing else), stepped in frames.
+    for options in [RunOptions::page(), RunOptions::command_line(false, false)] {
+        let mut run = Run::new(scene.clone(), options).expect("valid");
+        assert_eq!(run.activity_report().map(|r| (r.status, r.step)), Some((Status::Running, 0)));
+        for n in [1, 7, 92, 400] {
+            run.step(n);
+        }
+        assert_eq!(run.activity_report(), expected, "{options:?}");
+    }
+
+    let spec = ComparisonSpec::parse("1.boids~pso").expect("spec");
+    let mut by_hand = Comparison::new(scene.clone(), spec.clone()).expect("comparison");
+    let mut watch = ActivityWatch::new(Page::Compare);
+    for _ in 0..300 {
+        by_hand.step_n(1);
+        let metrics = by_hand.metrics();
+        watch.observe(by_hand.scene(), by_hand.step_count(), || metrics);
+    }
+    let mut comparison = Comparison::new(scene, spec).expect("comparison");
+    comparison.step_n(120);
+    comparison.step_n(180);
+    assert_eq!(comparison.activity_report(), watch.report(by_hand.scene(), 300));
+    assert_eq!(comparison.digests(), by_hand.digests(), "stepped together or in frames, the same panes");
+    comparison.reset().expect("restarts");
+    assert_eq!(comparison.activity_report().map(|r| (r.status, r.step)), Some((Status::Running, 0)));
 }

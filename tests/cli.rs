@@ -260,3 +260,46 @@ fn unknown_names_are_worded_by_the_library() {
     assert_eq!(algorithm, "unknown algorithm \"nope\"; known: gsa, igsa, pso, firefly, ga");
     fails_naming(flockpath(&["optimize", "--algorithms", "nope"]), &algorithm);
 }
+
+/// `run` reports a scene's activity check after its summary, decided at the step the metrics of
+/// an independent run meet every condition; with the metrics JSON on stdout the check goes to
+/// stderr; a scene without a check prints the summary alone.
+#[test]
+fn run_reports_the_activity_check_after_the_summary() {
+    // pillars with "arrived_share >= 0.9 and penetrations_agent_obstacle = 0 within 1500 steps".
+    let file = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/fragments/v2/pillars-activity.json");
+    let scene = flockpath::scene_from_json(&std::fs::read_to_string(file).expect("the scene file"))
+        .expect("a valid scene");
+    let mut world = flockpath::World::new(scene).expect("a valid scene");
+    let met = (1..=1500u32)
+        .find(|_| {
+            world.step();
+            let m = world.metrics();
+            m.overall.arrived_share >= 0.9 && m.overall.penetrations_agent_obstacle == 0
+        })
+        .expect("pillars arrive within 1500 steps");
+
+    let printed = ok(flockpath(&["run", "--scene", file, "--steps", "1500"]));
+    let lines: Vec<&str> = printed.lines().collect();
+    assert_eq!(lines.len(), 2, "{printed}");
+    assert!(lines[0].starts_with("pillars: 80 agents, 1500 steps"), "{printed}");
+    assert_eq!(lines[1], format!("activity: met at step {met} (limit 1500), 2 of 2 conditions hold"));
+
+    let early = ok(flockpath(&["run", "--scene", file, "--steps", "10"]));
+    assert!(
+        early.ends_with("\nactivity: not decided by step 10 (limit 1500), 1 of 2 conditions hold\n"),
+        "{early}"
+    );
+
+    let json = flockpath(&["run", "--scene", file, "--steps", "10", "--metrics", "-"]);
+    assert_eq!(
+        stderr(&json),
+        "flockpath: activity: not decided by step 10 (limit 1500), 1 of 2 conditions hold\n"
+    );
+    let metrics: serde_json::Value =
+        serde_json::from_str(&ok(json)).expect("stdout is the metrics JSON alone");
+    assert_eq!(metrics["steps"], 10);
+
+    let plain = ok(flockpath_with_stdin(&["run", "--scene", "-", "--steps", "10"], &preset_json("pillars")));
+    assert_eq!(plain.lines().count(), 1, "no check, no activity line: {plain}");
+}

@@ -7,13 +7,18 @@
 //! output changes on purpose).
 
 use std::path::{Path, PathBuf};
-use std::process::Command;
+use std::process::{Command, Output};
 
 /// A scene small enough for short committed outputs: two groups of three agents, one obstacle.
 const SCENE: &str = "tests/data/cli/small-scene.json";
 
+/// The crate's root, where the tests run the binary unless a case has its own directory.
+fn root() -> &'static Path {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+}
+
 fn data_dir() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/cli")
+    root().join("tests/data/cli")
 }
 
 fn blessing() -> bool {
@@ -68,6 +73,15 @@ fn mask_clock(text: &str) -> String {
     out
 }
 
+/// Runs the binary with `args` in `dir` and collects its output.
+fn flockpath<S: AsRef<std::ffi::OsStr>>(args: &[S], dir: &Path) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_flockpath"))
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .expect("the binary runs")
+}
+
 /// One command-line case: its arguments (`{scene}` stands for the committed scene file), the
 /// files it writes (relative to its working directory) and whether wall-clock figures are masked.
 struct Case {
@@ -80,18 +94,14 @@ struct Case {
 /// Runs `case` and compares (or, when blessing, writes) its stdout and files.
 fn check(case: &Case) {
     let dir = work_dir(case.name);
-    let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join(SCENE);
+    let scene = root().join(SCENE);
     let args: Vec<String> = case
         .args
         .iter()
         .map(|a| a.replace("{scene}", scene.to_str().expect("utf-8 path")))
         .map(|a| a.replace("{fragment}", &fragment()))
         .collect();
-    let output = Command::new(env!("CARGO_BIN_EXE_flockpath"))
-        .args(&args)
-        .current_dir(&dir)
-        .output()
-        .expect("the binary runs");
+    let output = flockpath(&args, &dir);
     assert!(
         output.status.success(),
         "{}: exit {:?}, stderr: {}",
@@ -155,9 +165,7 @@ fn presets_preset_url_and_scene_print_the_same_bytes() {
         files: &[],
         timed: false,
     });
-    for case in &cases {
-        check(case);
-    }
+    cases.iter().for_each(check);
 }
 
 #[test]
@@ -220,9 +228,7 @@ fn run_prints_and_writes_the_same_bytes() {
             timed: false,
         },
     ];
-    for case in &cases {
-        check(case);
-    }
+    cases.iter().for_each(check);
 }
 
 #[test]
@@ -305,9 +311,7 @@ fn optimize_prints_and_writes_the_same_bytes() {
             timed: true,
         },
     ];
-    for case in &cases {
-        check(case);
-    }
+    cases.iter().for_each(check);
 }
 
 #[test]
@@ -414,9 +418,7 @@ fn tune_prints_and_writes_the_same_bytes() {
             timed: true,
         },
     ];
-    for case in &cases {
-        check(case);
-    }
+    cases.iter().for_each(check);
 }
 
 /// Exit codes: 2 for a usage mistake, 1 for a failure, for every command.
@@ -446,13 +448,8 @@ fn usage_mistakes_exit_2_and_failures_exit_1() {
         &["run", "--scene", "no/such/scene.json", "--steps", "5"],
         &["run", "--scene", SCENE, "--steps", "3", "--paths", "/no/such/dir/p.csv"],
     ];
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     for (args, code) in usage.iter().map(|a| (a, 2)).chain(failure.iter().map(|a| (a, 1))) {
-        let output = Command::new(env!("CARGO_BIN_EXE_flockpath"))
-            .args(*args)
-            .current_dir(root)
-            .output()
-            .expect("the binary runs");
+        let output = flockpath(args, root());
         let stderr = String::from_utf8_lossy(&output.stderr);
         assert_eq!(output.status.code(), Some(code), "{args:?}: stderr {stderr}");
         assert!(
@@ -468,8 +465,7 @@ fn usage_mistakes_exit_2_and_failures_exit_1() {
 #[test]
 fn every_command_has_help() {
     let run = |args: &[&str]| {
-        let output =
-            Command::new(env!("CARGO_BIN_EXE_flockpath")).args(args).output().expect("the binary runs");
+        let output = flockpath(args, root());
         assert!(output.status.success(), "{args:?}: {}", String::from_utf8_lossy(&output.stderr));
         String::from_utf8(output.stdout).expect("UTF-8 help")
     };
@@ -489,8 +485,7 @@ fn every_command_has_help() {
 /// stderr is not a terminal here: no progress bar is drawn, while tune's log lines stay.
 #[test]
 fn no_progress_bar_off_a_terminal() {
-    let run =
-        |args: &[&str]| Command::new(env!("CARGO_BIN_EXE_flockpath")).args(args).output().expect("runs");
+    let run = |args: &[&str]| flockpath(args, root());
     let optimize = run(&[
         "optimize",
         "--functions",

@@ -4,8 +4,9 @@
 //! An "arrives before" condition that can no longer hold (the second reached the share first)
 //! decides the check as missed at that step.
 //!
-//! The page steps in frames of several steps; the watch is fed after every single step, so the
-//! deciding step and the values shown with it are the same on every machine (the same run, the
+//! The page steps in frames of several steps; the watch is fed after every single step (by
+//! [`crate::sim::run::Run`] and [`crate::sim::compare::Comparison`], which the page and the
+//! command line drive alike), so the deciding step and the values shown with it are the same on every machine (the same run, the
 //! same check). While a check is open each step costs one metrics summary (O(agents), what the
 //! page's readout polls every 250 ms); once decided, nothing.
 //!

@@ -18,6 +18,7 @@
 
 use crate::model::params::{PlannerConfig, PlannerKind};
 use crate::model::scene::{Scene, SceneError};
+use crate::sim::activity_check::{ActivityWatch, Page, Report};
 use crate::sim::limits;
 use crate::sim::metrics::Metrics;
 use crate::sim::series::BoundedSeries;
@@ -490,10 +491,12 @@ pub struct PaneSummary {
     pub stuck_agents: u32,
 }
 
-/// The panes of a comparison, stepped in lockstep.
+/// The panes of a comparison, stepped in lockstep, with the scene activity's check over them.
 pub struct Comparison {
     scene: Scene,
     panes: Vec<Pane>,
+    /// Fed after every step of the panes (a restart builds a new comparison, and a new check).
+    activity: ActivityWatch,
 }
 
 impl Comparison {
@@ -504,7 +507,7 @@ impl Comparison {
         }
         scene.validate()?;
         let panes = spec.panes.into_iter().map(|p| Pane::new(&scene, p)).collect::<Result<Vec<_>, _>>()?;
-        Ok(Self { scene, panes })
+        Ok(Self { scene, panes, activity: ActivityWatch::new(Page::Compare) })
     }
 
     /// The scene every pane runs (with the pane's planners applied on top).
@@ -524,17 +527,25 @@ impl Comparison {
 
     /// Steps simulated (the same in every pane).
     pub fn step_count(&self) -> u32 {
-        self.panes.first().map_or(0, |p| p.world.step_count())
+        step_count(&self.panes)
     }
 
-    /// Advances every pane `n` steps.
+    /// Advances every pane `n` steps, one step of every pane at a time (the panes are
+    /// independent: the order changes nothing but when the activity check sees them).
     pub fn step_n(&mut self, n: u32) {
-        for pane in &mut self.panes {
-            for _ in 0..n {
+        for _ in 0..n {
+            for pane in &mut self.panes {
                 pane.world.step();
                 sample(&mut pane.series, &pane.world);
             }
+            let (panes, scene) = (&self.panes, &self.scene);
+            self.activity.observe(scene, step_count(panes), || metrics(panes));
         }
+    }
+
+    /// The activity check over the panes at the step shown (`None` when the scene has no check).
+    pub fn activity_report(&self) -> Option<Report> {
+        self.activity.report(&self.scene, self.step_count())
     }
 
     /// Restarts every pane from step 0.
@@ -598,7 +609,7 @@ impl Comparison {
 
     /// The metrics of every pane.
     pub fn metrics(&self) -> Vec<Metrics> {
-        self.panes.iter().map(|p| p.world.metrics()).collect()
+        metrics(&self.panes)
     }
 
     /// The summary row of every pane.
@@ -672,6 +683,16 @@ fn csv_field(text: &str) -> String {
     } else {
         text.to_string()
     }
+}
+
+/// Steps simulated by `panes` (the same in every pane; 0 without panes).
+fn step_count(panes: &[Pane]) -> u32 {
+    panes.first().map_or(0, |p| p.world.step_count())
+}
+
+/// The metrics of every pane of `panes`.
+fn metrics(panes: &[Pane]) -> Vec<Metrics> {
+    panes.iter().map(|p| p.world.metrics()).collect()
 }
 
 #[cfg(test)]

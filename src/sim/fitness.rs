@@ -147,46 +147,62 @@ pub fn k_nearest_from(
     start: f32,
     out: &mut Vec<(f32, u32)>,
 ) {
-    k_nearest_gathered(grid, p, k, radius, exclude, start, &mut Vec::new(), out);
+    k_nearest_gathered(NearestQuery { grid, p, k, radius, exclude, start }, &mut Vec::new(), out);
 }
 
-/// [`k_nearest_from`] with a reused buffer `slots` for the grid's storage slots: each disc is
-/// gathered by [`SpatialGrid::gather_within`] (the agents
-/// [`SpatialGrid::for_each_within_capped`] visits, in its order, under the same caps, found
-/// without a branch per candidate), then its distances are those the query computes.
-#[allow(clippy::too_many_arguments, reason = "k_nearest_from's arguments and its scratch buffer")]
-fn k_nearest_gathered(
-    grid: &SpatialGrid,
+/// One k-nearest query of the measures: the `k` nearest to `p` within `radius`, `exclude` left
+/// out, searched in discs from `start` px (see [`k_nearest_from`]).
+#[derive(Clone, Copy)]
+struct NearestQuery<'a> {
+    grid: &'a SpatialGrid,
     p: Vec2,
     k: usize,
     radius: f32,
     exclude: u32,
     start: f32,
-    slots: &mut Vec<u32>,
-    out: &mut Vec<(f32, u32)>,
-) {
-    match k {
-        1..=8 => return k_nearest_sorted::<8>(grid, p, k, radius, exclude, start, slots, out),
-        9..=16 => return k_nearest_sorted::<16>(grid, p, k, radius, exclude, start, slots, out),
+}
+
+impl NearestQuery<'_> {
+    /// The disc search both forms of the query share: gathers a disc of `start` px (at least 1)
+    /// into `slots` by [`SpatialGrid::gather_within`] (the agents
+    /// [`SpatialGrid::for_each_within_capped`] visits, in its order, under
+    /// [`FITNESS_QUERY_CAP`], found without a branch per candidate) and hands it to `take`, which
+    /// returns how many agents other than `exclude` it found; doubles the disc until that is at
+    /// least k, the disc reaches `radius`, or a cap bound (a capped disc is the last searched).
+    #[inline]
+    fn search_discs(&self, slots: &mut Vec<u32>, mut take: impl FnMut(&[u32]) -> usize) {
+        let mut reach = self.start.max(1.0);
+        loop {
+            let disc = reach.min(self.radius);
+            let capped = self.grid.gather_within(self.p, disc, FITNESS_QUERY_CAP, slots);
+            if take(slots) >= self.k || disc >= self.radius || capped {
+                break;
+            }
+            reach *= 2.0;
+        }
+    }
+}
+
+/// [`k_nearest_from`] with a reused buffer `slots` for the grid's storage slots: each disc of
+/// [`NearestQuery::search_discs`], then its distances are those the grid's query computes.
+fn k_nearest_gathered(query: NearestQuery, slots: &mut Vec<u32>, out: &mut Vec<(f32, u32)>) {
+    match query.k {
+        1..=8 => return k_nearest_sorted::<8>(query, slots, out),
+        9..=16 => return k_nearest_sorted::<16>(query, slots, out),
         _ => {}
     }
+    let NearestQuery { grid, p, k, exclude, .. } = query;
     let columns = grid.columns();
-    let mut reach = start.max(1.0);
-    loop {
-        let disc = reach.min(radius);
+    query.search_discs(slots, |slots| {
         out.clear();
-        let capped = grid.gather_within(p, disc, FITNESS_QUERY_CAP, slots);
         out.extend(slots.iter().filter_map(|&slot| {
             let slot = slot as usize;
             let id = *columns.ids.get(slot)?;
             let q = Vec2::new(*columns.x.get(slot)?, *columns.y.get(slot)?);
             (id != exclude).then(|| (p.distance_squared(q), id))
         }));
-        if out.len() >= k || disc >= radius || capped {
-            break;
-        }
-        reach *= 2.0;
-    }
+        out.len()
+    });
     let order = |a: &(f32, u32), b: &(f32, u32)| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1));
     if out.len() > k && k > 0 {
         out.select_nth_unstable_by(k - 1, order);
@@ -219,26 +235,15 @@ fn from_nearest_key(key: u64) -> (f32, u32) {
 /// smallest so far by a minimum and a maximum per place, without a branch. The selection and
 /// sort it replaces branched on comparisons the CPU could not predict (a fifth of a sample).
 /// Keys are distinct (ids are), so the first k of the list are the k smallest, in order.
-#[allow(clippy::too_many_arguments, reason = "k_nearest_gathered's arguments")]
-fn k_nearest_sorted<const K: usize>(
-    grid: &SpatialGrid,
-    p: Vec2,
-    k: usize,
-    radius: f32,
-    exclude: u32,
-    start: f32,
-    slots: &mut Vec<u32>,
-    out: &mut Vec<(f32, u32)>,
-) {
+fn k_nearest_sorted<const K: usize>(query: NearestQuery, slots: &mut Vec<u32>, out: &mut Vec<(f32, u32)>) {
+    let NearestQuery { grid, p, k, exclude, .. } = query;
     let columns = grid.columns();
-    let mut reach = start.max(1.0);
-    let (mut best, mut found);
-    loop {
-        let disc = reach.min(radius);
-        let capped = grid.gather_within(p, disc, FITNESS_QUERY_CAP, slots);
+    let mut best = [u64::MAX; K];
+    let mut found = 0usize;
+    query.search_discs(slots, |slots| {
         best = [u64::MAX; K];
-        found = 0usize;
-        for &slot in slots.iter() {
+        found = 0;
+        for &slot in slots {
             let slot = slot as usize;
             let (Some(&id), Some(&x), Some(&y)) =
                 (columns.ids.get(slot), columns.x.get(slot), columns.y.get(slot))
@@ -256,11 +261,8 @@ fn k_nearest_sorted<const K: usize>(
                 *place = low;
             }
         }
-        if found >= k || disc >= radius || capped {
-            break;
-        }
-        reach *= 2.0;
-    }
+        found
+    });
     out.clear();
     out.extend(best.iter().take(found.min(k)).map(|&key| from_nearest_key(key)));
 }
@@ -389,16 +391,15 @@ impl FitnessRecorder {
             let r = radius.get(j).copied().unwrap_or(0.0);
             // The k nearest within the radius; an agent alone scores 0 on Gm, Ga and Gd.
             // The previous agent's k-th distance is a good first disc in an even crowd.
-            k_nearest_gathered(
-                &self.grid,
+            let query = NearestQuery {
+                grid: &self.grid,
                 p,
-                prm.k as usize,
-                prm.neighbour_radius,
-                j as u32,
-                reach,
-                &mut self.slots,
-                &mut self.near,
-            );
+                k: prm.k as usize,
+                radius: prm.neighbour_radius,
+                exclude: j as u32,
+                start: reach,
+            };
+            k_nearest_gathered(query, &mut self.slots, &mut self.near);
             reach = self.near.last().map_or(reach, |(d2, _)| d2.sqrt() * 1.05);
             // This agent's values: [Gm, Gg, Gc, Ga, Gd] (Gc below).
             let mut mine = [0.0f64; 5];

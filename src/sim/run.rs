@@ -14,11 +14,15 @@
 //!   go on) is noted on the timeline at its step, so a jump replays it where it happened;
 //! - view options (trails, fade) are not history: changing them or jumping keeps the ones shown.
 //!
+//! The scene activity's check (`crate::sim::activity_check`) is fed after every step here, so
+//! the page and `flockpath run` decide it at the same step; [`Run::activity_report`] reads it.
+//!
 //! Planning ahead (IGSA paths) may be done in slices ([`RunOptions::sliced_planning`], the page)
 //! so a frame never waits for it; [`Run::cancel_planning`] goes back to the world shown before.
 
 use crate::model::params::{PlannerConfig, PlannerKind};
 use crate::model::scene::{Scene, SceneError, ViewOptions};
+use crate::sim::activity_check::{ActivityWatch, Page, Report};
 use crate::sim::limits;
 use crate::sim::metric_series::MetricSeries;
 use crate::sim::recording::Recording;
@@ -79,6 +83,9 @@ pub struct Run {
     /// The world shown before the current one started planning ahead, which
     /// [`Run::cancel_planning`] goes back to; `None` when nothing is being planned.
     before_planning: Option<World>,
+    /// The scene activity's check, fed after every step (kept across restarts: it starts over
+    /// by itself when the steps it sees do not follow on).
+    activity: ActivityWatch,
 }
 
 impl Run {
@@ -93,7 +100,9 @@ impl Run {
         let metrics =
             options.metric_series.map_or_else(|| MetricSeries::new(1, 2), |(e, c)| MetricSeries::new(e, c));
         let recording = Recording::new(0, 0);
-        let mut run = Self { options, world, recording, replay: None, metrics, before_planning: None };
+        let activity = ActivityWatch::new(Page::Run);
+        let mut run =
+            Self { options, world, recording, replay: None, metrics, before_planning: None, activity };
         run.start_recording();
         run
     }
@@ -123,22 +132,31 @@ impl Run {
         &self.metrics
     }
 
+    /// The activity check's state at the step shown (`None` when the scene has no check).
+    pub fn activity_report(&self) -> Option<Report> {
+        self.activity.report(self.world.scene(), self.world.step_count())
+    }
+
     /// Advances `n` steps, recording each.
     pub fn step(&mut self, n: u32) {
         let o = &self.options;
-        if o.recording_budget_bytes.is_none() && o.replay.is_none() && o.metric_series.is_none() {
+        let keeps_nothing =
+            o.recording_budget_bytes.is_none() && o.replay.is_none() && o.metric_series.is_none();
+        let checks = self.world.scene().activity.as_ref().is_some_and(|a| a.check.is_some());
+        if keeps_nothing && !checks {
             self.world.step_n(n);
         } else {
             self.step_each(n, |_| {});
         }
     }
 
-    /// Advances `n` steps, recording each and calling `each` with the world after every step
-    /// (the page traces trails).
+    /// Advances `n` steps, recording each, calling `each` with the world after every step (the
+    /// page traces trails) and feeding the activity check.
     pub fn step_each(&mut self, n: u32, mut each: impl FnMut(&World)) {
         for _ in 0..n {
             self.world.step();
             each(&self.world);
+            self.activity.observe_world(&self.world);
             let new_step = self.replay.as_mut().is_none_or(|r| r.record(&self.world));
             if new_step {
                 // A new step (not one replayed after a jump back): the recording and the metric

@@ -17,8 +17,7 @@ impl Sim {
     /// The activity check as JSON (`crate::sim::activity_check::Report`: status, step, limit,
     /// conditions with their measured values), or `null` when the scene has no check.
     pub fn activity_report_json(&self) -> Result<String, JsError> {
-        let world = self.run.world();
-        to_json(&self.activity.report(world.scene(), world.step_count()))
+        to_json(&self.run.activity_report())
     }
 
     /// Sets the scene's activity from JSON (empty text or `null` removes it), without restarting

@@ -6,7 +6,6 @@ use crate::model::codec;
 use crate::model::params::PlannerKind;
 use crate::model::scene::Scene;
 use crate::render::Renderer;
-use crate::sim::activity_check::{ActivityWatch, Page};
 use crate::sim::compare::{Comparison, ComparisonSpec, MAX_PANES, PANE_COLORS, PANE_NAMES, SERIES_KEYS};
 use wasm_bindgen::prelude::*;
 
@@ -17,8 +16,6 @@ pub struct CompareSim {
     renderers: Vec<Renderer>,
     width: u32,
     height: u32,
-    /// The scene activity's check over the panes, fed after every step.
-    activity: ActivityWatch,
 }
 
 /// The spec a link's `c=` value asks for: empty for the default (the scene's planners against
@@ -50,8 +47,7 @@ impl CompareSim {
         let scene = codec::scene_from_any(scene_text).map_err(scene_error)?;
         let spec = spec_for(&scene, spec_text)?;
         let comparison = Comparison::new(scene, spec).map_err(worded("compare"))?;
-        let activity = ActivityWatch::new(Page::Compare);
-        let mut sim = CompareSim { comparison, renderers: Vec::new(), width, height, activity };
+        let mut sim = CompareSim { comparison, renderers: Vec::new(), width, height };
         sim.fit_renderers();
         Ok(sim)
     }
@@ -96,8 +92,6 @@ impl CompareSim {
     pub fn step(&mut self, n: u32) {
         for _ in 0..n {
             self.comparison.step_n(1);
-            let comparison = &self.comparison;
-            self.activity.observe(comparison.scene(), comparison.step_count(), || comparison.metrics());
             for (r, p) in self.renderers.iter_mut().zip(self.comparison.panes()) {
                 r.trace_step(p.world());
             }
@@ -309,8 +303,7 @@ impl CompareSim {
     /// The activity check over the panes as JSON (`crate::sim::activity_check::Report`), or
     /// `null` when the scene has no check.
     pub fn activity_report_json(&self) -> Result<String, JsError> {
-        let scene = self.comparison.scene();
-        to_json(&self.activity.report(scene, self.comparison.step_count()))
+        to_json(&self.comparison.activity_report())
     }
 
     /// Every pane's digest as JSON `["16 hex digits", …]`.

@@ -18,7 +18,6 @@ use crate::model::presets;
 use crate::model::refusal::Refusal;
 use crate::model::scene::ViewOptions;
 use crate::render::{Renderer, Theme};
-use crate::sim::activity_check::{ActivityWatch, Page};
 use crate::sim::run::{Run, RunOptions};
 use glam::Vec2;
 use std::fmt::Display;
@@ -146,8 +145,6 @@ fn to_json<T: serde::Serialize>(value: &T) -> Result<String, JsError> {
 pub struct Sim {
     run: Run,
     renderer: Renderer,
-    /// The scene activity's check, fed after every step.
-    activity: ActivityWatch,
 }
 
 #[wasm_bindgen]
@@ -158,8 +155,7 @@ impl Sim {
         console_error_panic_hook::set_once();
         let scene = codec::scene_from_any(scene_text).map_err(scene_error)?;
         let run = Run::new(scene, RunOptions::page()).map_err(scene_error)?;
-        let mut sim =
-            Sim { run, renderer: Renderer::new(width, height), activity: ActivityWatch::new(Page::Run) };
+        let mut sim = Sim { run, renderer: Renderer::new(width, height) };
         sim.show_scene_view();
         Ok(sim)
     }
@@ -198,11 +194,8 @@ impl Sim {
     /// Advances `n` fixed steps, recording each and tracing its trail.
     pub fn step(&mut self, n: u32) {
         // Every step leaves its trail, however many run before the next frame.
-        let (renderer, activity) = (&mut self.renderer, &mut self.activity);
-        self.run.step_each(n, |world| {
-            renderer.trace_step(world);
-            activity.observe_world(world);
-        });
+        let renderer = &mut self.renderer;
+        self.run.step_each(n, |world| renderer.trace_step(world));
     }
 
     /// Steps simulated since the start.

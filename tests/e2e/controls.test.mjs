@@ -3,7 +3,7 @@
 
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { assertNoUnexpectedErrors, frames, openPage, sceneToClient, screenshot, simpleScene } from './helpers.mjs';
+import { assertNoUnexpectedErrors, frames, loadPaused, openPage, sceneToClient, screenshot, simpleScene } from './helpers.mjs';
 
 const steps = (page) => page.evaluate(() => window.flockpath.metrics().steps);
 
@@ -63,10 +63,7 @@ test('play, pause, step and reset by button and by key', async () => {
 test('undo and redo an edit; a slider changes the group parameters live', async () => {
   const { page, errors, close } = await openPage();
   try {
-    await page.evaluate((scene) => {
-      window.flockpath.pause();
-      window.flockpath.load(scene);
-    }, simpleScene());
+    await loadPaused(page, simpleScene());
     const original = await page.evaluate(() => window.flockpath.scene());
 
     // Draw a rectangle with the mouse.

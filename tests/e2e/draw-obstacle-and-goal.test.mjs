@@ -6,6 +6,7 @@ import assert from 'node:assert/strict';
 import {
   assertNoUnexpectedErrors,
   frames,
+  loadPaused,
   openPage,
   pixelsAt,
   sceneToCanvasPixel,
@@ -27,10 +28,7 @@ function meanDistance(positions, [gx, gy]) {
 test('draw a circle obstacle and a goal, then the crowd walks to the new goal around it', async () => {
   const { page, errors, close } = await openPage();
   try {
-    await page.evaluate((scene) => {
-      window.flockpath.pause();
-      window.flockpath.load(scene);
-    }, simpleScene());
+    await loadPaused(page, simpleScene());
     await frames(page);
     const start = await page.evaluate(() => window.flockpath.scene());
     assert.equal(start.obstacles.length, 0);

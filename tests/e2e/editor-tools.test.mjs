@@ -4,7 +4,7 @@
 
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { assertNoUnexpectedErrors, openPage, sceneToClient, screenshot, simpleScene } from './helpers.mjs';
+import { assertNoUnexpectedErrors, loadPaused, openPage, sceneToClient, screenshot, simpleScene } from './helpers.mjs';
 
 const scene = (page) => page.evaluate(() => window.flockpath.scene());
 
@@ -25,10 +25,7 @@ async function dragFrom(page, [x0, y0], [x1, y1]) {
 test('polygon, group and move tools edit the scene through the page', async () => {
   const { page, errors, close } = await openPage();
   try {
-    await page.evaluate((s) => {
-      window.flockpath.pause();
-      window.flockpath.load(s);
-    }, simpleScene());
+    await loadPaused(page, simpleScene());
     const pixel = 1 / (await page.evaluate(() => window.flockpath.view().scale));
     const near = (a, b) => Math.abs(a - b) <= 2 * pixel;
 

@@ -7,7 +7,7 @@
 
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { assertNoUnexpectedErrors, frames, openPage, simpleScene } from './helpers.mjs';
+import { assertNoUnexpectedErrors, frames, loadPaused, openPage, simpleScene } from './helpers.mjs';
 
 const BIG = simpleScene({
   // Small bodies: the spawn keeps bodies apart, and 20,000 of radius 4 px do not fit the field.
@@ -39,10 +39,7 @@ test('a crowd too big for the requested speed runs fewer steps per frame and say
   const { page, errors, close } = await openPage();
   try {
     assert.deepEqual(await readout(page), { limited: 'false', text: '', visible: false }, 'small scene: nothing to say');
-    await page.evaluate((scene) => {
-      window.flockpath.pause();
-      window.flockpath.load(scene);
-    }, BIG);
+    await loadPaused(page, BIG);
     const canvasBox = () => page.evaluate(() => JSON.stringify(document.getElementById('scene-canvas').getBoundingClientRect()));
     const boxBefore = await canvasBox();
     await setSpeed(page, 20);

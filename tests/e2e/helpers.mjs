@@ -81,24 +81,20 @@ export async function startServer({ cors = false } = {}) {
 }
 
 /**
- * Launches Chromium with a fresh profile, opens the page and waits for `flockpath-ready`.
- * Options: viewport, deviceScaleFactor, hasTouch, hash (appended to the URL), expectBootError,
- * serviceWorkers ('block' by default: only tests of the offline worker allow it).
- * Returns { page, context, server, errors, close } where `errors` collects console errors and
- * page errors; `close()` tears everything down.
+ * Starts the server (`startServer`) and Chromium with a fresh profile, and collects the page's
+ * console errors, page errors and (unless `requestFailures` is false) failed requests in
+ * `errors`. `contextOptions` go to `launchPersistentContext` over the common ones (Debian's
+ * Chromium, headless, CHROMIUM_ARGS). Returns { page, context, server, errors, close } where
+ * `close()` tears everything down; nothing is opened yet.
  */
-export async function openPage(options = {}) {
+export async function launchBrowser(contextOptions = {}, { requestFailures = true, profilePrefix = 'flockpath-e2e-' } = {}) {
   const server = await startServer();
-  const profile = await mkdtemp(path.join(tmpdir(), 'flockpath-e2e-'));
+  const profile = await mkdtemp(path.join(tmpdir(), profilePrefix));
   const context = await chromium.launchPersistentContext(profile, {
     executablePath: '/usr/bin/chromium',
     headless: true,
     args: CHROMIUM_ARGS,
-    viewport: options.viewport ?? { width: 1280, height: 800 },
-    deviceScaleFactor: options.deviceScaleFactor ?? 1,
-    hasTouch: options.hasTouch ?? false,
-    isMobile: false,
-    serviceWorkers: options.serviceWorkers ?? 'block',
+    ...contextOptions,
   });
   const page = context.pages()[0] ?? (await context.newPage());
   const errors = [];
@@ -106,25 +102,61 @@ export async function openPage(options = {}) {
     if (msg.type() === 'error') errors.push(`console: ${msg.text()}`);
   });
   page.on('pageerror', (error) => errors.push(`page error: ${error.message}`));
-  page.on('requestfailed', (request) => errors.push(`request failed: ${request.url()}`));
+  if (requestFailures) page.on('requestfailed', (request) => errors.push(`request failed: ${request.url()}`));
   const close = async () => {
     await context.close().catch(() => {});
     await server.close();
     await rm(profile, { recursive: true, force: true });
   };
+  return { page, context, server, errors, close };
+}
+
+/**
+ * Opens `server.url + pathAndHash` in a browser from `launchBrowser` and, given `ready` (a
+ * function evaluated in the page), waits until it returns true; on failure closes the browser and throws
+ * `failure: …` with the page's errors.
+ */
+async function openIn(launched, pathAndHash, ready, failure) {
+  const { page, server, errors, close } = launched;
   try {
-    await page.goto(server.url + (options.hash ?? ''));
-    await waitReady(page);
+    await page.goto(server.url + pathAndHash);
+    if (ready) await page.waitForFunction(ready, null, { timeout: 30_000 });
   } catch (error) {
     await close();
-    throw new Error(`the page did not boot: ${error.message}\n${errors.join('\n')}`);
+    throw new Error(`${failure}: ${error.message}\n${errors.join('\n')}`);
   }
-  return { page, context, server, errors, close };
+  return launched;
+}
+
+/**
+ * Launches Chromium with a fresh profile, opens the page and waits for `flockpath-ready`.
+ * Options: viewport, deviceScaleFactor, hasTouch, hash (appended to the URL), expectBootError,
+ * serviceWorkers ('block' by default: only tests of the offline worker allow it).
+ * Returns { page, context, server, errors, close } where `errors` collects console errors and
+ * page errors; `close()` tears everything down.
+ */
+export async function openPage(options = {}) {
+  const launched = await launchBrowser({
+    viewport: options.viewport ?? { width: 1280, height: 800 },
+    deviceScaleFactor: options.deviceScaleFactor ?? 1,
+    hasTouch: options.hasTouch ?? false,
+    isMobile: false,
+    serviceWorkers: options.serviceWorkers ?? 'block',
+  });
+  return openIn(launched, options.hash ?? '', () => window.flockpath !== undefined, 'the page did not boot');
 }
 
 /** Resolves when `window.flockpath` exists (the page sets it after boot). */
 export async function waitReady(page) {
   await page.waitForFunction(() => window.flockpath !== undefined, null, { timeout: 30_000 });
+}
+
+/** Pauses the playground and loads `scene` through its API, in one task (no frame runs between). */
+export async function loadPaused(page, scene) {
+  await page.evaluate((s) => {
+    window.flockpath.pause();
+    window.flockpath.load(s);
+  }, scene);
 }
 
 /** Waits until the page has painted `n` more animation frames. */
@@ -244,35 +276,11 @@ export function assertNoUnexpectedErrors(errors, allowed = []) {
  * `openPage`. Returns the same handles.
  */
 export async function openPath(pathAndHash, { ready, viewport, hasTouch = false, serviceWorkers = 'block' } = {}) {
-  const server = await startServer();
-  const profile = await mkdtemp(path.join(tmpdir(), 'flockpath-e2e-'));
-  const context = await chromium.launchPersistentContext(profile, {
-    executablePath: '/usr/bin/chromium',
-    headless: true,
-    args: CHROMIUM_ARGS,
+  const launched = await launchBrowser({
     viewport: viewport ?? { width: 1280, height: 800 },
     hasTouch,
     acceptDownloads: true,
     serviceWorkers,
   });
-  const page = context.pages()[0] ?? (await context.newPage());
-  const errors = [];
-  page.on('console', (msg) => {
-    if (msg.type() === 'error') errors.push(`console: ${msg.text()}`);
-  });
-  page.on('pageerror', (error) => errors.push(`page error: ${error.message}`));
-  page.on('requestfailed', (request) => errors.push(`request failed: ${request.url()}`));
-  const close = async () => {
-    await context.close().catch(() => {});
-    await server.close();
-    await rm(profile, { recursive: true, force: true });
-  };
-  try {
-    await page.goto(server.url + pathAndHash);
-    if (ready) await page.waitForFunction(ready, null, { timeout: 30_000 });
-  } catch (error) {
-    await close();
-    throw new Error(`${pathAndHash} did not load: ${error.message}\n${errors.join('\n')}`);
-  }
-  return { page, context, server, errors, close };
+  return openIn(launched, pathAndHash, ready, `${pathAndHash} did not load`);
 }

@@ -10,11 +10,9 @@
 
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { readFile, readdir, mkdtemp, rm } from 'node:fs/promises';
-import { tmpdir } from 'node:os';
+import { readFile } from 'node:fs/promises';
 import path from 'node:path';
-import { chromium } from 'playwright-core';
-import { CHROMIUM_ARGS, WWW, assertNoUnexpectedErrors, simpleScene, startServer } from './helpers.mjs';
+import { CHROMIUM_ARGS, WWW, assertNoUnexpectedErrors, launchBrowser, simpleScene } from './helpers.mjs';
 
 const STRINGS = path.join(WWW, 'js', 'core', 'strings');
 const SHIPPED = ['en', 'zh'];
@@ -24,6 +22,27 @@ async function table(code) {
 }
 
 const placeholders = (text) => [...text.matchAll(/\{(\w+)\}/g)].map((m) => m[1]).sort();
+
+/** The page's wasm module (www/pkg), set up here in Node: the core's own words and errors, no browser. */
+async function wasmModule() {
+  const pkg = path.join(WWW, 'pkg');
+  const m = await import(path.join(pkg, 'flockpath.js'));
+  m.initSync({ module: await readFile(path.join(pkg, 'flockpath_bg.wasm')) });
+  return m;
+}
+
+/** One of the pages' scripts, `www/js/<parts>`. */
+const pageModule = (...parts) => import(path.join(WWW, 'js', ...parts));
+
+/** The error `fn` throws; fails the test when it throws none. */
+function refused(fn) {
+  try {
+    fn();
+  } catch (error) {
+    return error;
+  }
+  throw new Error('not refused');
+}
 
 test('every shipped table has the same keys, no empty value and the same placeholders', async () => {
   const en = await table('en');
@@ -60,9 +79,7 @@ test('the Chinese table is Chinese: most values hold CJK characters', async () =
 });
 
 test('the core’s planners, parameters, choices, units, presets, series and validation tests all have their keys', async () => {
-  const pkg = path.join(WWW, 'pkg');
-  const m = await import(path.join(pkg, 'flockpath.js'));
-  m.initSync({ module: await readFile(path.join(pkg, 'flockpath_bg.wasm')) });
+  const m = await wasmModule();
   const en = await table('en');
   const zh = await table('zh');
   const expect = new Map();
@@ -100,19 +117,9 @@ test('the core’s planners, parameters, choices, units, presets, series and val
 });
 
 test('the core’s refusals are worded in Chinese (real errors from the wasm module, no browser)', async () => {
-  const pkg = path.join(WWW, 'pkg');
-  const m = await import(path.join(pkg, 'flockpath.js'));
-  m.initSync({ module: await readFile(path.join(pkg, 'flockpath_bg.wasm')) });
-  const i18n = await import(path.join(WWW, 'js', 'core', 'i18n.js'));
-  const { refusalText } = await import(path.join(WWW, 'js', 'core', 'refusals.js'));
-  const refused = (fn) => {
-    try {
-      fn();
-    } catch (error) {
-      return error;
-    }
-    throw new Error('not refused');
-  };
+  const m = await wasmModule();
+  const i18n = await pageModule('core', 'i18n.js');
+  const { refusalText } = await pageModule('core', 'refusals.js');
   const base = JSON.parse(m.preset_scene_json('open-field'));
   const dense = structuredClone(base);
   Object.assign(dense.groups[0], { count: 5000, spawn: { min: [10, 10], max: [60, 60] } });
@@ -168,21 +175,11 @@ function englishWords(text, names) {
 }
 
 test('every other refusal is worded in Chinese too: scene fields, items, compare specs, lab, tune, validation, export, theme (real errors from the wasm module)', async () => {
-  const pkg = path.join(WWW, 'pkg');
-  const m = await import(path.join(pkg, 'flockpath.js'));
-  m.initSync({ module: await readFile(path.join(pkg, 'flockpath_bg.wasm')) });
-  const i18n = await import(path.join(WWW, 'js', 'core', 'i18n.js'));
-  const { refusalText } = await import(path.join(WWW, 'js', 'core', 'refusals.js'));
+  const m = await wasmModule();
+  const i18n = await pageModule('core', 'i18n.js');
+  const { refusalText } = await pageModule('core', 'refusals.js');
   const en = await table('en');
   const zhTable = await table('zh');
-  const refused = (fn) => {
-    try {
-      fn();
-    } catch (error) {
-      return error;
-    }
-    throw new Error('not refused');
-  };
   const base = JSON.parse(m.preset_scene_json('open-field'));
   const scene = (change) => {
     const s = structuredClone(base);
@@ -284,11 +281,9 @@ test('every other refusal is worded in Chinese too: scene fields, items, compare
 });
 
 test('the validation suite’s "measured" words are Chinese for every test (real rows from the wasm module)', async () => {
-  const pkg = path.join(WWW, 'pkg');
-  const m = await import(path.join(pkg, 'flockpath.js'));
-  m.initSync({ module: await readFile(path.join(pkg, 'flockpath_bg.wasm')) });
-  const i18n = await import(path.join(WWW, 'js', 'core', 'i18n.js'));
-  const { measuredText } = await import(path.join(WWW, 'js', 'validation', 'measured.js'));
+  const m = await wasmModule();
+  const i18n = await pageModule('core', 'i18n.js');
+  const { measuredText } = await pageModule('validation', 'measured.js');
   const rows = [];
   for (const test of JSON.parse(m.validation_options_json()).tests) {
     rows.push(...JSON.parse(m.validation_run_json(test.id, 'forces')).rows);
@@ -373,28 +368,20 @@ test('static: the course notes’ element fallbacks come from the tables', async
 
 // ---- in Chromium ----
 
+/**
+ * Chromium (in `locale`, when given) and the server, nothing opened yet. Failed requests are not
+ * counted as errors here: these tests leave pages while their requests are in flight.
+ */
 async function openBrowser({ locale } = {}) {
-  const server = await startServer();
-  const profile = await mkdtemp(path.join(tmpdir(), 'flockpath-i18n-'));
-  const context = await chromium.launchPersistentContext(profile, {
-    executablePath: '/usr/bin/chromium',
-    headless: true,
-    args: [...CHROMIUM_ARGS, ...(locale ? [`--lang=${locale}`] : [])],
-    viewport: { width: 1280, height: 900 },
-    serviceWorkers: 'block',
-    ...(locale ? { locale } : {}),
-  });
-  const page = context.pages()[0] ?? (await context.newPage());
-  const errors = [];
-  page.on('console', (msg) => {
-    if (msg.type() === 'error') errors.push(`console: ${msg.text()}`);
-  });
-  page.on('pageerror', (error) => errors.push(`page error: ${error.message}`));
-  const close = async () => {
-    await context.close().catch(() => {});
-    await server.close();
-    await rm(profile, { recursive: true, force: true });
-  };
+  const { page, errors, close, server } = await launchBrowser(
+    {
+      args: [...CHROMIUM_ARGS, ...(locale ? [`--lang=${locale}`] : [])],
+      viewport: { width: 1280, height: 900 },
+      serviceWorkers: 'block',
+      ...(locale ? { locale } : {}),
+    },
+    { requestFailures: false, profilePrefix: 'flockpath-i18n-' },
+  );
   return { page, errors, close, url: server.url };
 }
 

@@ -8,7 +8,7 @@
 
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { assertNoUnexpectedErrors, openPage, screenshot, simpleScene } from './helpers.mjs';
+import { assertNoUnexpectedErrors, loadPaused, openPage, screenshot, simpleScene } from './helpers.mjs';
 
 const scene = (page) => page.evaluate(() => window.flockpath.scene());
 const cursorText = (page) => page.textContent('#canvas-cursor');
@@ -29,10 +29,7 @@ test('keyboard only: draw obstacles, place a goal, add a group, play, read the d
   const { page, errors, close } = await openPage();
   try {
     // Setup through the API: an empty field with one group and no goal.
-    await page.evaluate((s) => {
-      window.flockpath.pause();
-      window.flockpath.load(s);
-    }, simpleScene({ goals: [], groups: [{ ...simpleScene().groups[0], goal: null }] }));
+    await loadPaused(page, simpleScene({ goals: [], groups: [{ ...simpleScene().groups[0], goal: null }] }));
     await page.evaluate(() => document.activeElement?.blur());
 
     // Tab through the page to the editor canvas (the tool buttons are one tab stop).
@@ -151,10 +148,7 @@ test('keyboard only: draw obstacles, place a goal, add a group, play, read the d
 test('keyboard only: a polygon point by point, and selecting what is under the cursor', async () => {
   const { page, errors, close } = await openPage();
   try {
-    await page.evaluate((s) => {
-      window.flockpath.pause();
-      window.flockpath.load(s);
-    }, simpleScene());
+    await loadPaused(page, simpleScene());
     await page.focus('#overlay-canvas');
     await press(page, 'ArrowLeft'); // The first arrow shows the cursor (focus came from a script).
     await press(page, '4');

@@ -38,14 +38,28 @@ async function reopen(page, base, hash) {
   await page.evaluate(() => window.flockpath.ready);
 }
 
-test('a locked link shows only its controls; locked obstacles and goals resist the pointer, not the API', async () => {
+/**
+ * Opens the page, loads SCENE and opens it again as a fresh load of `#s=<SCENE>` followed by
+ * `options` (`&controls=…&lock=…&hide=…`); runs `body` with `{ page, server, fragment }` (the
+ * scene's part of the address) and fails on any console or page error; closes the browser either way.
+ */
+async function withLink(options, body) {
   const { page, server, errors, close } = await openPage();
   try {
     const fragment = await page.evaluate((scene) => {
       window.flockpath.load(scene);
       return window.flockpath.sceneString();
     }, SCENE);
-    await reopen(page, server.url, `#s=${fragment}&controls=play,step,reset,planner&lock=obstacles,goals&hide=metrics,plots,timeline`);
+    await reopen(page, server.url, `#s=${fragment}${options}`);
+    await body({ page, server, fragment });
+    assertNoUnexpectedErrors(errors);
+  } finally {
+    await close();
+  }
+}
+
+test('a locked link shows only its controls; locked obstacles and goals resist the pointer, not the API', () =>
+  withLink('&controls=play,step,reset,planner&lock=obstacles,goals&hide=metrics,plots,timeline', async ({ page, server }) => {
     await page.evaluate(() => window.flockpath.pause());
 
     const classroom = await page.evaluate(() => window.flockpath.classroom());
@@ -107,20 +121,10 @@ test('a locked link shows only its controls; locked obstacles and goals resist t
     assert.deepEqual((await page.evaluate(() => window.flockpath.classroom())).lock, ['obstacles', 'goals']);
     assert.equal((await visible(page, ['[data-tool="circle"]']))['[data-tool="circle"]'], false);
     await screenshot(page, 'lock-link');
-    assertNoUnexpectedErrors(errors);
-  } finally {
-    await close();
-  }
-});
+  }));
 
-test('keys of controls not given do nothing; those given still work', async () => {
-  const { page, server, errors, close } = await openPage();
-  try {
-    const fragment = await page.evaluate((scene) => {
-      window.flockpath.load(scene);
-      return window.flockpath.sceneString();
-    }, SCENE);
-    await reopen(page, server.url, `#s=${fragment}&controls=step`);
+test('keys of controls not given do nothing; those given still work', () =>
+  withLink('&controls=step', async ({ page, server, fragment }) => {
     await page.evaluate(() => window.flockpath.pause());
     await page.evaluate(() => document.activeElement?.blur());
     const steps = () => page.evaluate(() => window.flockpath.metrics().steps);
@@ -144,20 +148,10 @@ test('keys of controls not given do nothing; those given still work', async () =
     // All controls again (an old link): every shortcut is listed.
     await reopen(page, server.url, `#s=${fragment}`);
     assert.equal((await listed()).length, 7, 'every shortcut without a lock');
-    assertNoUnexpectedErrors(errors);
-  } finally {
-    await close();
-  }
-});
+  }));
 
-test('an unknown name is refused by field with the allowed names; an old link shows everything', async () => {
-  const { page, server, errors, close } = await openPage();
-  try {
-    const fragment = await page.evaluate((scene) => {
-      window.flockpath.load(scene);
-      return window.flockpath.sceneString();
-    }, SCENE);
-    await reopen(page, server.url, `#s=${fragment}&lock=obstacles,walls&hide=plots`);
+test('an unknown name is refused by field with the allowed names; an old link shows everything', () =>
+  withLink('&lock=obstacles,walls&hide=plots', async ({ page, server, fragment }) => {
     const banner = await bannerText(page);
     assert.match(banner ?? '', /lock/);
     assert.match(banner ?? '', /"walls"/);
@@ -180,20 +174,10 @@ test('an unknown name is refused by field with the allowed names; an old link sh
     await drag(page, OBSTACLE.center, [OBSTACLE.center[0] + 100, OBSTACLE.center[1]]);
     const center = await page.evaluate(() => window.flockpath.scene().obstacles[0].center);
     assert.ok(center[0] > OBSTACLE.center[0] + 50, `the obstacle moved to ${center}`);
-    assertNoUnexpectedErrors(errors);
-  } finally {
-    await close();
-  }
-});
+  }));
 
-test('with groups locked the Groups panel is read-only and a new goal leaves the groups as they were', async () => {
-  const { page, server, errors, close } = await openPage();
-  try {
-    const fragment = await page.evaluate((scene) => {
-      window.flockpath.load(scene);
-      return window.flockpath.sceneString();
-    }, SCENE);
-    await reopen(page, server.url, `#s=${fragment}&lock=groups`);
+test('with groups locked the Groups panel is read-only and a new goal leaves the groups as they were', () =>
+  withLink('&lock=groups', async ({ page }) => {
     await page.evaluate(() => window.flockpath.pause());
     const fields = await page.evaluate(() =>
       [...document.querySelectorAll('#group-editor input, #group-editor select, #group-editor button')].map((f) => f.disabled));
@@ -216,8 +200,4 @@ test('with groups locked the Groups panel is read-only and a new goal leaves the
     await drag(page, OBSTACLE.center, [OBSTACLE.center[0], OBSTACLE.center[1] + 100]);
     const center = await page.evaluate(() => window.flockpath.scene().obstacles[0].center);
     assert.ok(center[1] > OBSTACLE.center[1] + 50, `the obstacle moved to ${center}`);
-    assertNoUnexpectedErrors(errors);
-  } finally {
-    await close();
-  }
-});
+  }));

@@ -4,7 +4,7 @@
 
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { assertNoUnexpectedErrors, openPage, sceneToClient, simpleScene } from './helpers.mjs';
+import { assertNoUnexpectedErrors, loadPaused, openPage, sceneToClient, simpleScene } from './helpers.mjs';
 
 const scene = (page) => page.evaluate(() => window.flockpath.scene());
 
@@ -16,10 +16,7 @@ async function clickAt(page, x, y, options) {
 test('a drawn path is followed by the active group and can be deleted', async () => {
   const { page, errors, close } = await openPage();
   try {
-    await page.evaluate((s) => {
-      window.flockpath.pause();
-      window.flockpath.load(s);
-    }, simpleScene());
+    await loadPaused(page, simpleScene());
     await page.keyboard.press('7');
     for (const [x, y] of [[150, 250], [400, 120], [650, 250]]) await clickAt(page, x, y);
     await page.keyboard.press('Enter');

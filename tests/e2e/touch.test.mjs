@@ -3,15 +3,12 @@
 
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { assertNoUnexpectedErrors, openPage, sceneToClient, screenshot, simpleScene } from './helpers.mjs';
+import { assertNoUnexpectedErrors, loadPaused, openPage, sceneToClient, screenshot, simpleScene } from './helpers.mjs';
 
 test('a touch drag with the rectangle tool adds a rectangle obstacle', async () => {
   const { page, context, errors, close } = await openPage({ hasTouch: true });
   try {
-    await page.evaluate((scene) => {
-      window.flockpath.pause();
-      window.flockpath.load(scene);
-    }, simpleScene());
+    await loadPaused(page, simpleScene());
     await page.evaluate(() => {
       window.seenPointerTypes = new Set();
       document.getElementById('overlay-canvas').addEventListener('pointerdown', (e) => window.seenPointerTypes.add(e.pointerType));

@@ -1,10 +1,11 @@
-//! `flockpath run`: simulate a scene (a `Run` without a timeline), report its metrics, write the
-//! exports asked for.
+//! `flockpath run`: simulate a scene (a `Run` without a timeline), report its metrics and how
+//! its activity check stands (when the scene has one), write the exports asked for.
 
 use crate::scenes::load_scene;
 use crate::{failed, out, usage, whole_number, write_file, CliError};
 use flockpath::experiments::validation::pedpy;
 use flockpath::export::{self, ExportOptions};
+use flockpath::sim::activity_check::{Report, Status};
 use flockpath::sim::limits::{CLI_MAX_STEPS as MAX_STEPS, CLI_RECORDING_BUDGET_BYTES};
 use flockpath::sim::recording::Recording;
 use flockpath::sim::run::{Run, RunOptions};
@@ -13,7 +14,7 @@ use flockpath::{PlannerKind, Scene, World};
 /// `flockpath run`.
 #[derive(clap::Args, Debug)]
 #[command(
-    long_about = "Simulate a scene and report its metrics",
+    long_about = "Simulate a scene and report its metrics (and its activity check, if it has one)",
     after_help = "Every step is recorded up to 1 GiB (agents × steps × 16 bytes); beyond that every other\n\
                   step is dropped and a note says so on stderr."
 )]
@@ -127,14 +128,40 @@ pub fn run(args: &RunArgs) -> Result<(), CliError> {
     let metrics = world.metrics();
     let json = serde_json::to_string_pretty(&metrics)
         .map_err(|e| failed(format!("cannot write the metrics: {e}")))?;
+    let activity = run.activity_report().map(|report| activity_line(&report)).unwrap_or_default();
     match args.metrics.as_deref() {
-        Some("-") => out(&format!("{json}\n")),
+        Some("-") => {
+            // stdout holds the JSON alone: the check goes to stderr.
+            if !activity.is_empty() {
+                eprint!("flockpath: {activity}");
+            }
+            out(&format!("{json}\n"))
+        }
         Some(file) => {
             write_file("metrics file", file, &format!("{json}\n"))?;
-            out(&summary(world))
+            out(&format!("{}{activity}", summary(world)))
         }
-        None => out(&summary(world)),
+        None => out(&format!("{}{activity}", summary(world))),
     }
+}
+
+/// The line that follows the summary for a scene with an activity check: how the check stands
+/// at the last step (decided at which step, or not yet) and how many conditions hold there.
+fn activity_line(report: &Report) -> String {
+    let holding = report.conditions.iter().filter(|c| c.holds).count();
+    let stands = match report.status {
+        Status::Met => format!("met at step {}", report.step),
+        Status::Missed => format!("missed at step {}", report.step),
+        Status::Running => format!("not decided by step {}", report.step),
+        Status::Unavailable => {
+            return "activity: not checked here (a condition names a pane of the compare page)\n".into()
+        }
+    };
+    format!(
+        "activity: {stands} (limit {}), {holding} of {} conditions hold\n",
+        report.limit,
+        report.conditions.len()
+    )
 }
 
 /// Writes each export file asked for; a thinned recording is reported on stderr.
