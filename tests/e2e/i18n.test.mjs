@@ -125,7 +125,8 @@ test('the core’s refusals are worded in Chinese (real errors from the wasm mod
   Object.assign(dense.groups[0], { count: 5000, spawn: { min: [10, 10], max: [60, 60] } });
   const costly = structuredClone(base);
   // No goal: a crowd that cannot jam meets the ordinary limit (the jam limit has its own case).
-  Object.assign(costly.groups[0], { count: 200000, agent_radius: 0.5, goal: null, spawn: { min: [0, 0], max: [base.width, base.height] } });
+  // Fireflies among 0.5 px bodies: dearer than among the default ones, so the refusal names the size.
+  Object.assign(costly.groups[0], { count: 200000, agent_radius: 0.5, goal: null, planner: { kind: 'firefly', params: {} }, spawn: { min: [0, 0], max: [base.width, base.height] } });
   // The default bodies in a field large enough to hold them: the limit without small bodies.
   const costlyDefault = structuredClone(base);
   Object.assign(costlyDefault, { width: 20000, height: 20000, obstacles: [] });
@@ -159,7 +160,10 @@ test('the core’s refusals are worded in Chinese (real errors from the wasm mod
       assert.deepEqual(english, [], `${k}: no English words left in ${text}`);
     }
     assert.equal(zh.density, '群组 1（flock）：5000 个半径 4 像素的个体放不进其出生区域（50×50 像素）：在彼此、障碍物和其他群组之间保持间隔时最多只能放 49 个（密度上限）');
-    assert.match(zh.cost, /^群组 1（flock）：200000 个 boids 个体会使每步在浏览器中耗时约 \d+ 毫秒，超过 \d+ 毫秒的上限/);
+    assert.match(zh.cost_default, /^群组 1（flock）：200000 个 boids 个体会使每步在浏览器中耗时约 \d+ 毫秒，超过 \d+ 毫秒的上限/);
+    assert.match(cases.cost.message, /firefly agents among bodies of radius 0\.5 px/, 'small bodies are named');
+    assert.doesNotMatch(cases.cost_default.message, /among bodies/, 'default bodies are not');
+    assert.match(zh.cost, /^群组 1（flock）：半径 0\.5 像素的小个体中的 200000 个 firefly 个体/, 'and worded');
     assert.equal(zh.range, '最大速度（max_speed）的值为 1000000；允许：0.1…20 像素/步 之间的数');
     assert.equal(zh.version, '无法读取场景：未知的场景格式版本“7”；此 flockpath 能读取的版本为 1 和 2');
     assert.equal(zh.field, 'groups[0].agent_radius 的值为 500；允许：0.5…100 像素 之间的数');
@@ -268,9 +272,6 @@ test('every other refusal is worded in Chinese too: scene fields, items, compare
       if (process.env.I18N_SHOW) console.log(`${k} | ${text}`);
     }
     assert.match(cases.jam.message, /agents packed round their own goal \(the jam limit\)/, 'the jam refusal names its limit');
-    assert.match(cases.cost.message, /boids agents among bodies of radius 0\.5 px/, 'small bodies are named');
-    assert.doesNotMatch(cases.cost_default.message, /among bodies/, 'default bodies are not');
-    assert.match(zh.cost, /半径 0\.5 像素/, 'and worded');
     assert.equal(zh.no_item, '不存在障碍物 100');
     assert.match(zh.spec_planner, /^比较：未知的规划器“zz”；可用的有：/);
     assert.match(zh.polygon, /^obstacles\[\d+\]\.points 的值为 边 \d+→\d+ 与 \d+→\d+ 相交或接触的多边形；允许：简单多边形/);
