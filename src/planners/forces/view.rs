@@ -433,9 +433,10 @@ mod tests {
         points.extend([Vec2::new(300.0, 300.0), Vec2::new(300.0, 300.0 + 160.0)]);
         let mut grid = SpatialGrid::new(w, h, 160.0, points.len());
         grid.rebuild(&points, &[]);
+        let group = 0..points.len() as u32;
+        let mut hidden = 0;
         let mut index = ViewIndex::default();
         index.rebuild(&grid, Vec2::new(w, h), 160.0, &group);
-        let group = 0..points.len() as u32;
         for (i, &p) in points.iter().enumerate().step_by(5).chain([(3047, &points[3047])]) {
             let mut expected = Vec::new();
             grid.for_each_within(p, 160.0, |n| {
@@ -450,7 +451,15 @@ mod tests {
             found.sort_unstable();
             assert_eq!(found, expected, "agent {i} at {p}");
             assert_eq!(index.sums(&viewer).flock as usize, expected.len());
+            // With a heading, the cone hides some: the sums count those listed.
+            let viewer = Viewer { heading: Some(Vec2::from_angle(i as f32)), view_cos: -0.5, ..viewer };
+            let mut in_cone = 0;
+            index.for_each_seen(&viewer, |_| in_cone += 1);
+            assert!(in_cone <= found.len(), "agent {i}");
+            hidden += found.len() - in_cone;
+            assert_eq!(index.sums(&viewer).flock as usize, in_cone, "agent {i}");
         }
+        assert!(hidden > 1000, "the cone hid only {hidden}");
     }
 
     /// The cone test on squares agrees with the angle: 165° off the heading is the edge of a
