@@ -262,8 +262,8 @@ const FORCE_NAMES: [&str; 5] =
 
 impl Forces {
     /// The five normalised forces on agent `id` from the step's state, in [`FORCE_NAMES`] order,
-    /// its neighbours found in `index` (rebuilt for this step); `seen` is called with every
-    /// neighbour in view when `list_seen`. `plan` and `explain` both use it.
+    /// its neighbours found in `index` (rebuilt for this step); `seen`, if given, is called with
+    /// every neighbour in view. `plan` and `explain` both use it.
     fn agent_forces(
         &self,
         ctx: &StepContext,
