@@ -7,7 +7,7 @@
 //!
 //! The neighbour pass (separation over every robot seen, alignment and cohesion over those of
 //! the agent's own group) lives in `view.rs`: a fine index rebuilt every step finds each agent's
-//! candidates (the same neighbours as a query of the world grid, about three times fewer
+//! candidates (the same neighbours as a query of the world grid, among far fewer
 //! candidates), and the sums run four candidates at a time into four partial sums, candidate
 //! `k` of a row of cells into sum `k mod 4`, combined as `(s0 + s1) + (s2 + s3)`. That order is
 //! fixed by the positions alone, so a run is the same natively and in wasm; it is not the

@@ -3,9 +3,11 @@
 //! group, their velocities and offsets (alignment and cohesion).
 //!
 //! A fine index of every agent, rebuilt once per step ([`ViewIndex`]), holds the candidates:
-//! cells an eighth of the view range wide (20 px for 4 px bodies), and of each row of cells
-//! only those the view disc reaches, so a query scans about 1.3 agents per neighbour, where the
-//! world grid's 3 × 3 cells as wide as the view hold about four.
+//! cells of about 8 agents where the crowd is densest (between an eighth and a half of the view
+//! range: 20 px in a packed crowd of 4 px bodies), and of each row of cells only those the view
+//! disc reaches, so a query scans little beyond the disc, where the world grid's 3 × 3 cells as
+//! wide as the view hold about four agents per neighbour. It finds the same neighbours: every
+//! agent within range, unless a pile makes [`CANDIDATE_CAP`] bind.
 //!
 //! The sums run over the candidates without a branch, [`LANES`] at a time: candidate `k` of a
 //! run of cells (a row, in storage order) adds to partial sum `k mod LANES`, and the partial
@@ -17,7 +19,7 @@ use crate::spatial::SpatialGrid;
 use glam::{BVec4A, Vec2, Vec4};
 use std::ops::Range;
 
-/// Partial sums per force (candidates looked at together; two SSE or wasm SIMD vectors).
+/// Partial sums per force (candidates looked at together: one SSE or wasm SIMD vector).
 pub(super) const LANES: usize = 4;
 
 /// Candidates an agent looks at at most, the first in scan order (rows of cells, top row
@@ -242,8 +244,9 @@ impl ViewIndex {
         ((v * self.inv_cell) as u32).min(n - 1)
     }
 
-    /// Re-buckets every agent of `grid` into cells of `range / 8` px (grown for huge worlds)
-    /// over a `bounds` world, for views of about `range` px from the agents of `group`.
+    /// Re-buckets every agent of `grid` into cells of `range / 8` to `range / 2` px (grown for
+    /// huge worlds) over a `bounds` world, for views of about `range` px from the agents of
+    /// `group`.
     pub(super) fn rebuild(&mut self, grid: &SpatialGrid, bounds: Vec2, range: f32, group: &Range<u32>) {
         let columns = grid.columns();
         let n = grid.ids_in_cell_order().len();
@@ -306,9 +309,9 @@ impl ViewIndex {
         }
     }
 
-    /// The candidates of a view of `range` round `p`: one run of entries per row of cells, top
-    /// row first, each the cells of the row the disc reaches (widened by [`slack`]), cut after
-    /// [`CANDIDATE_CAP`] candidates in all. Every agent whose squared distance to `p`, as
+    /// Calls `visit` with the candidates of a view of `range` round `p`: one run of entries per
+    /// row of cells, top row first, each the cells of the row the disc reaches (widened by
+    /// [`slack`]), cut after [`CANDIDATE_CAP`] candidates in all. Every agent whose squared distance to `p`, as
     /// computed in `f32`, is at most `range²` lies in them (unless the cap cut them).
     #[inline(always)]
     fn for_each_run(&self, p: Vec2, range: f32, mut visit: impl FnMut(Range<usize>)) {
