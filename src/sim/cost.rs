@@ -42,7 +42,9 @@ pub fn wasm_factor(kind: PlannerKind) -> f64 {
         PlannerKind::Boids => 1.5,
         PlannerKind::Pso => 1.3,
         PlannerKind::Firefly => 1.25,
-        PlannerKind::Forces => 1.25,
+        // Since its SIMD neighbour pass (2026-11-26): a step of 18,000 packed round their goal
+        // took 173 ms median on the page against about 135 ms natively (1.28).
+        PlannerKind::Forces => 1.3,
         PlannerKind::Igsa => 1.3,
         // The largest factor of the others. On the page (`flockpath.step(1)` timed, Chromium
         // on one core, 2026-11-26) a step of the packed crowd at the new limits took 125 ms
@@ -70,8 +72,11 @@ pub fn wasm_factor(kind: PlannerKind) -> f64 {
 /// force's 12,591 at 2,000 and 14,982 at 10,000 (spread 1,387: it sums every neighbour within
 /// 5 m, up to its cap of 512, so a packed crowd costs it 10× a spread one).
 ///
-/// Forces: re-measured 2026-11-26 after the parking pass's free-place search got cheaper,
-/// worst window 5,042 at 2,000 and 9,518 at 10,000 (load 4–6); the figure stays 14,000.
+/// Forces: 8,000 (was 14,000). Since its neighbour pass finds the view through a fine per-step
+/// index and sums four candidates at a time ([`crate::planners::forces`]), the worst window
+/// measures 3,000 at 2,000 agents, 6,544 at 10,000 and 7,944 at 22,000 (about its new limit;
+/// `taskset -c 0`, load 2–3, 2026-11-26); about 70% of it is now the parking pass of the jam.
+/// In the browser 8,000 × 1.3 = 10,400 ns, so 180 ms hold 17,307 agents (before: 10,285).
 ///
 /// Boids: 1,200, for a crowd that cannot jam ([`can_jam`]; the jam has its own figure,
 /// [`jam_native_ns_per_agent_step`]), measured in the packed scene before Boids parked at
@@ -118,7 +123,7 @@ pub fn native_ns_per_agent_step(kind: PlannerKind, crowd_radius: f32) -> f64 {
         PlannerKind::Boids => 1_200.0,
         PlannerKind::Pso => 4_200.0,
         PlannerKind::Firefly => 1_400.0,
-        PlannerKind::Forces => 14_000.0,
+        PlannerKind::Forces => 8_000.0,
         PlannerKind::Igsa => 1_200.0,
         PlannerKind::Orca => 1_400.0,
         PlannerKind::SocialForce => 15_000.0,
@@ -156,8 +161,8 @@ pub const MEASURED_RADII: [f32; 5] = [0.5, 1.0, 2.0, 3.0, 4.0];
 /// - Firefly: 0.5 px 9,725 / 14,346; 1 px 4,849 / 14,091; 2 px 2,221 / 8,099 / 20,000:
 ///   11,640; 3 px 1,399 / 1,397 / 20,000: 1,416. Below about 2.2 px the survey's caps bind and
 ///   it takes the world grid's query.
-/// - Virtual forces: 0.5 px 11,181 / 16,033; 1 px 5,996 / 13,211; 2 px 5,334 / 12,249; 3 px
-///   4,869 / 10,214 (the last three below the default 14,000).
+/// - Virtual forces (its fine-index neighbour pass): 0.5 px 9,440 / 13,358; 1 px 4,196 / 9,032
+///   / 16,000: 7,236; 2 px 3,379 / 8,463 / 17,000: 9,514; 3 px 3,186 / 7,010 / 20,000: 8,444.
 /// - IGSA: 0.5 px 3,916 / 4,067 / 35,000: 3,913; 1 px 3,683 / 3,770 / 35,000: 4,144; 2 px
 ///   2,010 / 2,043 / 70,000: 2,428; 3 px 1,199 / 1,196 / 35,000: 1,220 (the default 1,200).
 /// - ORCA: 0.5 px 4,798 / 5,783 / 20,000: 5,854; 1 px 3,598 / 4,449 / 40,000: 4,997; 2 px
@@ -168,7 +173,7 @@ pub const SMALL_BODY_FIGURES: &[(PlannerKind, bool, [f64; 4])] = &[
     (PlannerKind::Boids, true, [11_700.0, 10_700.0, 7_000.0, 6_200.0]),
     (PlannerKind::Pso, false, [7_700.0, 11_400.0, 8_600.0, 900.0]),
     (PlannerKind::Firefly, false, [14_400.0, 14_100.0, 11_700.0, 1_500.0]),
-    (PlannerKind::Forces, false, [16_100.0, 13_300.0, 12_300.0, 10_300.0]),
+    (PlannerKind::Forces, false, [13_400.0, 9_100.0, 9_600.0, 8_500.0]),
     (PlannerKind::Igsa, false, [4_100.0, 4_200.0, 2_500.0, 1_300.0]),
     (PlannerKind::Orca, false, [5_900.0, 5_000.0, 2_700.0, 2_000.0]),
     (PlannerKind::SocialForce, false, [18_900.0, 20_700.0, 20_100.0, 18_200.0]),
