@@ -5,6 +5,7 @@
 //!
 //! Layer: spatial. Uses `model` only; planners and the world query it.
 
+pub mod fine_cells;
 pub mod flow_field;
 
 use crate::model::geometry::{Aabb, Obstacle};
@@ -72,7 +73,8 @@ pub struct Neighbour {
     pub d2: f32,
 }
 
-/// Cells per agent above which the grid coarsens its cells (memory and rebuild cost stay O(N)).
+/// Cells per agent above which the grid coarsens its cells (memory and rebuild cost stay O(N)),
+/// as do the planners' fine cells ([`fine_cells`]).
 const MAX_CELLS_PER_AGENT: usize = 4;
 const MIN_CELL_BUDGET: usize = 16_384;
 

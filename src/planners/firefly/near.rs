@@ -8,24 +8,17 @@
 //! each entry keeps its world-grid storage slot (the order that query lists agents in), and
 //! its position and brightness are copied bit for bit.
 
+use crate::spatial::fine_cells::FineCells;
 use crate::spatial::SpatialGrid;
 use glam::Vec2;
 use std::ops::Range;
 
-/// Cells per agent above which the index coarsens its cells (memory and rebuild stay O(N)),
-/// as the world grid does.
-const MAX_CELLS_PER_AGENT: usize = 4;
-const MIN_CELL_BUDGET: usize = 16_384;
-
 /// The world grid's agents bucketed into fine cells, one array per field (struct of arrays),
-/// cell by cell in row-major order and by world-grid slot within a cell.
+/// cell by cell in row-major order and by world-grid slot within a cell ([`FineCells`]).
 #[derive(Clone, Debug, Default)]
 pub(super) struct NearIndex {
-    inv_cell: f32,
-    cols: u32,
-    rows: u32,
-    /// `start[c]..start[c + 1]` are the entries of cell `c`.
-    start: Vec<u32>,
+    /// The cells and each slot's entry.
+    cells: FineCells,
     /// The entry's storage slot in the world grid ([`SpatialGrid::columns`]).
     pub slot: Vec<u32>,
     /// Agent id.
@@ -38,19 +31,9 @@ pub(super) struct NearIndex {
     /// (and for all without a target): a firefly at `my2` from the target finds the brighter
     /// ones as `bright2 < my2`, the comparison the survey makes, with the same floats.
     pub bright2: Vec<f32>,
-    /// Scratch: each slot's cell, then the next free entry of each cell.
-    cell_of_slot: Vec<u32>,
-    next: Vec<u32>,
 }
 
 impl NearIndex {
-    #[inline]
-    fn coord(&self, v: f32, n: u32) -> u32 {
-        // Saturating float→int cast, as the world grid's: NaN → 0, negatives → 0. Monotone, so
-        // every point at or beyond a bound falls in the bound's cell or beyond.
-        ((v * self.inv_cell) as u32).min(n - 1)
-    }
-
     /// Re-buckets the agents of `grid` (all of them, any group) into cells of about
     /// `cell_size` px over a `bounds` world; `own` are the group's agents and `target` its
     /// target (brightness).
@@ -64,30 +47,8 @@ impl NearIndex {
     ) {
         let columns = grid.columns();
         let n = grid.ids_in_cell_order().len();
-        let (width, height) = (bounds.x.max(1.0), bounds.y.max(1.0));
-        let mut cell = if cell_size.is_finite() && cell_size > 0.0 { cell_size } else { width.max(height) };
-        let budget = (n * MAX_CELLS_PER_AGENT).max(MIN_CELL_BUDGET);
-        while ((width / cell).ceil() * (height / cell).ceil()) as usize > budget {
-            cell *= 1.5;
-        }
-        self.cols = ((width / cell).ceil() as u32).max(1);
-        self.rows = ((height / cell).ceil() as u32).max(1);
-        self.inv_cell = 1.0 / cell;
-        let cells = (self.cols * self.rows) as usize;
-        self.start.clear();
-        self.start.resize(cells + 1, 0);
         let (xs, ys, ids) = (&columns.x[..n], &columns.y[..n], &columns.ids[..n]);
-        self.cell_of_slot.clear();
-        for (&x, &y) in xs.iter().zip(ys) {
-            let c = self.coord(y, self.rows) * self.cols + self.coord(x, self.cols);
-            self.cell_of_slot.push(c);
-            self.start[c as usize + 1] += 1;
-        }
-        for c in 1..self.start.len() {
-            self.start[c] += self.start[c - 1];
-        }
-        self.next.clear();
-        self.next.extend_from_slice(&self.start);
+        self.cells.rebuild(bounds, cell_size, xs, ys);
         for v in [&mut self.slot, &mut self.id] {
             v.clear();
             v.resize(n, 0);
@@ -96,10 +57,8 @@ impl NearIndex {
             v.clear();
             v.resize(n, 0.0);
         }
-        // Slots in increasing order: within a cell the entries keep the world grid's order.
-        for (k, &c) in self.cell_of_slot.iter().enumerate() {
-            let e = self.next[c as usize] as usize;
-            self.next[c as usize] += 1;
+        for (k, &e) in self.cells.entry_of_slot().iter().enumerate() {
+            let e = e as usize;
             let (id, pos) = (ids[k], Vec2::new(xs[k], ys[k]));
             self.slot[e] = k as u32;
             self.id[e] = id;
@@ -116,11 +75,12 @@ impl NearIndex {
     /// `f32`, is at most `radius²` lies in them.
     pub(super) fn rows(&self, c: Vec2, radius: f32) -> impl Iterator<Item = Range<usize>> + '_ {
         let r = radius + slack(c, radius);
-        let (x0, x1) = (self.coord(c.x - r, self.cols), self.coord(c.x + r, self.cols));
-        let (y0, y1) = (self.coord(c.y - r, self.rows), self.coord(c.y + r, self.rows));
-        let start = &self.start;
+        let cells = &self.cells;
+        let (x0, x1) = (cells.col(c.x - r), cells.col(c.x + r));
+        let (y0, y1) = (cells.row(c.y - r), cells.row(c.y + r));
+        let (start, cols) = (cells.start(), cells.cols());
         (y0..=y1).map(move |cy| {
-            let row = cy * self.cols;
+            let row = cy * cols;
             start[(row + x0) as usize] as usize..start[(row + x1 + 1) as usize] as usize
         })
     }

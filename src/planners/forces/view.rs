@@ -15,6 +15,7 @@
 //! positions only, never on the machine, so a run is the same natively and in wasm; one long
 //! chain of additions per sum would make each add wait for the previous one.
 
+use crate::spatial::fine_cells::FineCells;
 use crate::spatial::SpatialGrid;
 use glam::{BVec4A, Vec2, Vec4};
 use std::ops::Range;
@@ -33,21 +34,13 @@ const MAX_CELLS_PER_RANGE: f32 = 8.0;
 /// Agents per cell of the index the densest part of the crowd aims at.
 const AGENTS_PER_CELL: f32 = 8.0;
 
-/// Cells per agent above which the index coarsens its cells (memory and rebuild stay O(N)),
-/// as the world grid does.
-const MAX_CELLS_PER_AGENT: usize = 4;
-const MIN_CELL_BUDGET: usize = 16_384;
-
 /// Every agent bucketed into fine cells, one array per field, cell by cell in row-major order
-/// and by world-grid storage slot within a cell (so the order depends on the positions only).
+/// and by world-grid storage slot within a cell (so the order depends on the positions only:
+/// [`FineCells`]).
 #[derive(Clone, Debug, Default)]
 pub(super) struct ViewIndex {
-    cell: f32,
-    inv_cell: f32,
-    cols: u32,
-    rows: u32,
-    /// `start[c]..start[c + 1]` are the entries of cell `c`.
-    start: Vec<u32>,
+    /// The cells and each slot's entry.
+    cells: FineCells,
     /// Agent id of each entry.
     id: Vec<u32>,
     /// Position of each entry, the world grid's values.
@@ -59,9 +52,6 @@ pub(super) struct ViewIndex {
     vy: Vec<f32>,
     /// 1 for an entry of that group, else 0.
     member: Vec<f32>,
-    /// Scratch: each slot's cell, then the next free entry of each cell.
-    cell_of_slot: Vec<u32>,
-    next: Vec<u32>,
 }
 
 /// One agent's view: what decides whether a candidate is a neighbour it sees.
@@ -238,19 +228,12 @@ fn fold(s: Vec4) -> f32 {
 }
 
 impl ViewIndex {
-    #[inline]
-    fn coord(&self, v: f32, n: u32) -> u32 {
-        // Saturating float→int cast, as the world grid's: NaN → 0, negatives → 0. Monotone.
-        ((v * self.inv_cell) as u32).min(n - 1)
-    }
-
     /// Re-buckets every agent of `grid` into cells of `range / 8` to `range / 2` px (grown for
     /// huge worlds) over a `bounds` world, for views of about `range` px from the agents of
     /// `group`.
     pub(super) fn rebuild(&mut self, grid: &SpatialGrid, bounds: Vec2, range: f32, group: &Range<u32>) {
         let columns = grid.columns();
         let n = grid.ids_in_cell_order().len();
-        let (width, height) = (bounds.x.max(1.0), bounds.y.max(1.0));
         // Cells of about `AGENTS_PER_CELL` agents where the crowd is densest (the world grid's
         // fullest cell tells), between range / 8 and range / 2: a dense crowd's rows hold few
         // agents beyond the view disc, a sparse one's few cells.
@@ -259,33 +242,9 @@ impl ViewIndex {
         let divisions = (range / ideal).ceil();
         let divisions =
             if divisions.is_nan() { MAX_CELLS_PER_RANGE } else { divisions.clamp(2.0, MAX_CELLS_PER_RANGE) };
-        let mut cell = range / divisions;
-        if !(cell.is_finite() && cell > 0.0) {
-            cell = width.max(height);
-        }
-        let budget = (n * MAX_CELLS_PER_AGENT).max(MIN_CELL_BUDGET);
-        while ((width / cell).ceil() * (height / cell).ceil()) as usize > budget {
-            cell *= 1.5;
-        }
-        self.cell = cell;
-        self.inv_cell = 1.0 / cell;
-        self.cols = ((width / cell).ceil() as u32).max(1);
-        self.rows = ((height / cell).ceil() as u32).max(1);
-        self.start.clear();
-        self.start.resize((self.cols * self.rows) as usize + 1, 0);
         let (xs, ys) = (&columns.x[..n], &columns.y[..n]);
         let (vxs, vys, ids) = (&columns.vx[..n], &columns.vy[..n], &columns.ids[..n]);
-        self.cell_of_slot.clear();
-        for (&x, &y) in xs.iter().zip(ys) {
-            let c = self.coord(y, self.rows) * self.cols + self.coord(x, self.cols);
-            self.cell_of_slot.push(c);
-            self.start[c as usize + 1] += 1;
-        }
-        for c in 1..self.start.len() {
-            self.start[c] += self.start[c - 1];
-        }
-        self.next.clear();
-        self.next.extend_from_slice(&self.start);
+        self.cells.rebuild(bounds, range / divisions, xs, ys);
         // Every entry up to `n` is written below; `LANES` padding entries follow.
         self.id.clear();
         self.id.resize(n + LANES, u32::MAX);
@@ -297,10 +256,8 @@ impl ViewIndex {
             v.clear();
             v.resize(n + LANES, 0.0);
         }
-        // Slots in increasing order: within a cell the entries keep the world grid's order.
-        for (k, &c) in self.cell_of_slot.iter().enumerate() {
-            let e = self.next[c as usize] as usize;
-            self.next[c as usize] += 1;
+        for (k, &e) in self.cells.entry_of_slot().iter().enumerate() {
+            let e = e as usize;
             let member = group.contains(&ids[k]);
             self.id[e] = ids[k];
             (self.x[e], self.y[e]) = (xs[k], ys[k]);
@@ -316,18 +273,20 @@ impl ViewIndex {
     #[inline(always)]
     fn for_each_run(&self, p: Vec2, range: f32, mut visit: impl FnMut(Range<usize>)) {
         let r = range + slack(p, range);
-        let (y0, y1) = (self.coord(p.y - r, self.rows), self.coord(p.y + r, self.rows));
+        let cells = &self.cells;
+        let (cell, cols, rows) = (cells.cell(), cells.cols(), cells.rows());
+        let (y0, y1) = (cells.row(p.y - r), cells.row(p.y + r));
         let mut budget = CANDIDATE_CAP;
         for cy in y0..=y1 {
             // The row's span of y; edge rows also hold the points beyond the world's edge.
-            let top = if cy == 0 { f32::NEG_INFINITY } else { cy as f32 * self.cell };
-            let bottom = if cy + 1 == self.rows { f32::INFINITY } else { (cy + 1) as f32 * self.cell };
+            let top = if cy == 0 { f32::NEG_INFINITY } else { cy as f32 * cell };
+            let bottom = if cy + 1 == rows { f32::INFINITY } else { (cy + 1) as f32 * cell };
             let dy = (top - p.y).max(p.y - bottom).max(0.0);
             let half = (r * r - dy * dy).max(0.0).sqrt();
-            let (x0, x1) = (self.coord(p.x - half, self.cols), self.coord(p.x + half, self.cols));
-            let row = cy * self.cols;
+            let (x0, x1) = (cells.col(p.x - half), cells.col(p.x + half));
+            let row = cy * cols;
             let (Some(&start), Some(&end)) =
-                (self.start.get((row + x0) as usize), self.start.get((row + x1 + 1) as usize))
+                (cells.start().get((row + x0) as usize), cells.start().get((row + x1 + 1) as usize))
             else {
                 continue;
             };
