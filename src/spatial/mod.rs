@@ -333,14 +333,8 @@ impl SpatialGrid {
     /// caller can bound the candidates of many nearby queries by one wider query.
     #[inline]
     pub fn query_rows(&self, p: Vec2, radius: f32) -> impl Iterator<Item = Range<usize>> + '_ {
-        let x0 = self.cell_coord(p.x - radius, self.cols);
-        let x1 = self.cell_coord(p.x + radius, self.cols);
-        let y0 = self.cell_coord(p.y - radius, self.rows);
-        let y1 = self.cell_coord(p.y + radius, self.rows);
-        (y0..=y1).map(move |cy| {
-            let row = cy * self.cols;
-            self.cell_start[(row + x0) as usize] as usize..self.cell_start[(row + x1 + 1) as usize] as usize
-        })
+        self.query_cell_ranges(p, radius)
+            .map(move |cells| self.cell_start[cells.start] as usize..self.cell_start[cells.end] as usize)
     }
 
     /// The cells `[x0, y0, x1, y1]` (inclusive) a query of `radius` round `p` scans: every agent
