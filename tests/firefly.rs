@@ -115,7 +115,7 @@ fn the_queue_order_measure_tells_a_file_from_a_random_crowd() {
         let obstacles = ObstacleIndex::new(vec![], scene.width, scene.height);
         let mut recorder = MetricsRecorder::new(&scene, &pos);
         let goals = [Some((Vec2::new(780.0, 300.0), 10.0))];
-        recorder.record(1, &pos, &vel, &[0; 10], &[4.0; 10], &goals, &grid, &obstacles);
+        recorder.record(1, &pos, &vel, &[0; 10], &[4.0; 10], &goals, &grid, &obstacles, &[]);
         recorder.summary(&scene, &["firefly"], 1).overall.queue_order.expect("measured")
     };
     let towards = Vec2::new(1.5, 0.0);

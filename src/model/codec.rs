@@ -31,7 +31,7 @@ use crate::model::classroom::{Classroom, ClassroomError, Field, Options};
 use crate::model::geometry::Obstacle;
 use crate::model::params::{PlannerConfig, PlannerKind};
 use crate::model::scene::{
-    allowed_for, Goal, GoalMotion, Group, Hill, PathSpec, Region, Scene, SceneError, ViewOptions,
+    allowed_for, Goal, GoalMotion, Group, Hill, OnArrival, PathSpec, Region, Scene, SceneError, ViewOptions,
     DEFAULT_PX_PER_METRE,
 };
 use base64::engine::general_purpose::URL_SAFE_NO_PAD;
@@ -320,12 +320,15 @@ enum CompactObstacle {
     Polygon(Vec<[f32; 2]>),
 }
 
-/// A goal: `[x, y, radius]`, or `[x, y, radius, motion]` for a moving one.
+/// A goal: `[x, y, radius]`, or `[x, y, radius, motion]` for a moving one, or
+/// `[x, y, radius, motion or null, on_arrival]` for a goal that does not gather (links made
+/// before the option existed have three or four elements and gather).
 #[derive(Debug, Serialize, Deserialize)]
 #[serde(untagged)]
 enum CompactGoal {
     Fixed([f32; 3]),
     Moving(f32, f32, f32, GoalMotion),
+    WithArrival(f32, f32, f32, Option<GoalMotion>, OnArrival),
 }
 
 /// `[name, colour, count, [x0, y0, x1, y1], goal, agent radius, planner, [params]]`, the
@@ -361,9 +364,18 @@ impl CompactScene {
         let goals = s
             .goals
             .iter()
-            .map(|g| match &g.motion {
-                None => CompactGoal::Fixed([g.position[0], g.position[1], g.radius]),
-                Some(m) => CompactGoal::Moving(g.position[0], g.position[1], g.radius, m.clone()),
+            .map(|g| match (&g.motion, g.on_arrival) {
+                (None, OnArrival::Gather) => CompactGoal::Fixed([g.position[0], g.position[1], g.radius]),
+                (Some(m), OnArrival::Gather) => {
+                    CompactGoal::Moving(g.position[0], g.position[1], g.radius, m.clone())
+                }
+                (motion, on_arrival) => CompactGoal::WithArrival(
+                    g.position[0],
+                    g.position[1],
+                    g.radius,
+                    motion.clone(),
+                    on_arrival,
+                ),
             })
             .collect();
         let groups = s
@@ -417,9 +429,18 @@ impl CompactScene {
             .iter()
             .map(|g| match g {
                 CompactGoal::Fixed([x, y, radius]) => Goal::fixed([*x, *y], *radius),
-                CompactGoal::Moving(x, y, radius, motion) => {
-                    Goal { position: [*x, *y], radius: *radius, motion: Some(motion.clone()) }
-                }
+                CompactGoal::Moving(x, y, radius, motion) => Goal {
+                    position: [*x, *y],
+                    radius: *radius,
+                    motion: Some(motion.clone()),
+                    on_arrival: OnArrival::Gather,
+                },
+                CompactGoal::WithArrival(x, y, radius, motion, on_arrival) => Goal {
+                    position: [*x, *y],
+                    radius: *radius,
+                    motion: motion.clone(),
+                    on_arrival: *on_arrival,
+                },
             })
             .collect();
         let groups = groups
@@ -668,7 +689,11 @@ fn field_refusal(
         let allowed = "a condition {\"metric\": key, \"op\": \">=\", \"value\": number} (optional \"group\" or \"pane\") or {\"before\": [{\"group\": i} | {\"pane\": i}, …], \"share\": 0.9}";
         (value, allowed.to_string())
     } else if message.contains("untagged enum CompactGoal") {
-        (value, "[x, y, radius] or [x, y, radius, motion]".to_string())
+        (
+            value,
+            "[x, y, radius], [x, y, radius, motion] or [x, y, radius, motion or null, \"gather\" | \"exit\"]"
+                .to_string(),
+        )
     } else if message.starts_with("number out of range") {
         let allowed = hint
             .or_else(|| allowed_for(&path))

@@ -7,7 +7,7 @@ use crate::model::params::boids::{Arbitration, FlowGuide, Leader, Role};
 use crate::model::params::{
     BoidsParams, FireflyParams, IgsaParams, OrcaParams, PlannerConfig, PsoParams, SocialForceParams,
 };
-use crate::model::scene::{Goal, GoalMotion, Group, Hill, PathSpec, Region, Scene};
+use crate::model::scene::{Goal, GoalMotion, Group, Hill, OnArrival, PathSpec, Region, Scene};
 use crate::rng::Rng;
 
 /// A named scene builder.
@@ -255,17 +255,28 @@ pub fn u_trap() -> Scene {
 
 /// E1 with the following behaviour (B2).
 pub fn forces_e1_open() -> Scene {
-    forces_scene(Behaviour::Following, Environment::Open)
+    following_preset(forces_scene(Behaviour::Following, Environment::Open))
 }
 
 /// E2 with the following behaviour (B2).
 pub fn forces_e2_narrow() -> Scene {
-    forces_scene(Behaviour::Following, Environment::Narrow)
+    following_preset(forces_scene(Behaviour::Following, Environment::Narrow))
 }
 
 /// E3 with the following behaviour (B2).
 pub fn forces_e3_cluttered() -> Scene {
-    forces_scene(Behaviour::Following, Environment::Cluttered)
+    following_preset(forces_scene(Behaviour::Following, Environment::Cluttered))
+}
+
+/// A following scene of the virtual-force experiment as a preset: the goal the group follows
+/// is wide enough to hold all 30 agents once it stops (radius 40 px holds about 65 bodies of
+/// radius 4), so the run ends with the group gathered inside it. The experiment's own scenes
+/// keep the paper's small goal.
+fn following_preset(mut s: Scene) -> Scene {
+    for goal in &mut s.goals {
+        goal.radius = goal.radius.max(40.0);
+    }
+    s
 }
 
 /// Agents in every scene of the virtual-force experiment.
@@ -308,6 +319,7 @@ pub fn forces_scene(behaviour: Behaviour, environment: Environment) -> Scene {
                 position: [180.0, 200.0],
                 radius: 20.0,
                 motion: Some(GoalMotion::Polyline { points: vec![[180.0, 200.0], [740.0, 200.0]], speed }),
+                on_arrival: OnArrival::Gather,
             });
             flock.spawn = Region { min: [60.0, 140.0], max: [170.0, 260.0] };
         }
@@ -393,7 +405,8 @@ pub fn pso_crowd() -> Scene {
 /// A target moving on a circle of radius 250 (one turn per 60 s), chased by 20 people.
 pub fn pso_circle_target() -> Scene {
     let mut s = base("pso-circle-target", 1000.0, 700.0);
-    let mut goal = Goal::fixed([750.0, 350.0], 30.0);
+    // Wide enough for the 20 chasers to keep up inside it as it turns.
+    let mut goal = Goal::fixed([750.0, 350.0], 60.0);
     goal.motion = Some(GoalMotion::Circle { center: [500.0, 350.0], radius: 250.0, period_steps: 3600.0 });
     s.goals.push(goal);
     s.groups.push(pso_group("chasers", BLUE, 20, ([440.0, 290.0], [560.0, 410.0]), 0));
@@ -451,7 +464,8 @@ pub fn firefly_migration_with_seed(seed: u32) -> Scene {
             placed += 1;
         }
     }
-    s.goals.push(Goal::fixed([target.x, target.y], 40.0));
+    // Radius 55 px holds about 130 bodies of radius 4: the 80 gather inside it.
+    s.goals.push(Goal::fixed([target.x, target.y], 55.0));
     s.groups.push(Group {
         planner: PlannerConfig::Firefly(FireflyParams::default()),
         ..group("fireflies", ORANGE, 80, ([20.0, 20.0], [560.0, 580.0]), 0)

@@ -315,6 +315,38 @@ pub struct Goal {
     /// keeps it fixed at `position`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub motion: Option<GoalMotion>,
+    /// What agents do on reaching the goal: gather in it (the default, also for every scene
+    /// saved before the option existed) or leave the scene through it.
+    #[serde(default, skip_serializing_if = "OnArrival::is_gather")]
+    pub on_arrival: OnArrival,
+}
+
+/// What agents do once they reach their goal (DESIGN §4, "Goals and arrival").
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum OnArrival {
+    /// The goal is a place that fills, like a waiting area: each arriving agent walks to a free
+    /// place inside it and stops there; when none is left the others wait outside, packed.
+    #[default]
+    Gather,
+    /// The goal is an exit: an agent whose centre enters it leaves the scene (an evacuation,
+    /// the RiMEA tests).
+    Exit,
+}
+
+impl OnArrival {
+    /// Whether this is [`OnArrival::Gather`] (left out of JSON, the default).
+    pub fn is_gather(&self) -> bool {
+        *self == OnArrival::Gather
+    }
+
+    /// The name used in JSON and links.
+    pub fn name(self) -> &'static str {
+        match self {
+            OnArrival::Gather => "gather",
+            OnArrival::Exit => "exit",
+        }
+    }
 }
 
 /// Most points a goal's polyline path may have.
@@ -412,7 +444,34 @@ impl GoalMotion {
 impl Goal {
     /// A goal that stays at `position`.
     pub fn fixed(position: [f32; 2], radius: f32) -> Self {
-        Self { position, radius, motion: None }
+        Self { position, radius, motion: None, on_arrival: OnArrival::Gather }
+    }
+
+    /// The same goal as an exit ([`OnArrival::Exit`]).
+    pub fn exit(self) -> Self {
+        Self { on_arrival: OnArrival::Exit, ..self }
+    }
+
+    /// The first step from which the goal stays where it is: 0 for a fixed goal, the step a
+    /// polyline motion reaches its last point, `None` for a goal that never stops (a circle).
+    pub fn rest_step(&self) -> Option<u32> {
+        match &self.motion {
+            None => Some(0),
+            Some(GoalMotion::Circle { .. }) => None,
+            Some(GoalMotion::Polyline { points, speed }) => {
+                let length: f32 = points.windows(2).map(|w| v(w[0]).distance(v(w[1]))).sum();
+                if length <= 0.0 {
+                    Some(0)
+                } else if *speed <= 0.0 {
+                    // It never leaves its first point.
+                    Some(0)
+                } else {
+                    let steps = (f64::from(length) / f64::from(*speed)).ceil();
+                    // One more: the motion's f32 arithmetic may reach the end a step late.
+                    Some(if steps >= f64::from(u32::MAX - 1) { u32::MAX } else { steps as u32 + 1 })
+                }
+            }
+        }
     }
 
     /// Where the goal is at step `step`: `position` for a fixed goal, else along its motion.

@@ -403,10 +403,9 @@ impl Planner for Boids {
         self.params.max_speed
     }
 
-    /// Arrived agents would pile onto the goal (separation is soft): the world parks them;
-    /// not prey (they must still flee) nor path followers (they follow the path to its end).
-    fn parks_at_goal(&self) -> bool {
-        self.params.role == Role::None && self.params.path == 0
+    /// Prey must still flee once at their goal: they are not gathered.
+    fn gathers_at_goal(&self) -> bool {
+        self.params.role != Role::Prey
     }
 
     fn plan(&mut self, ctx: &StepContext, group: GroupView, _rng: &mut Rng, new_velocities: &mut [Vec2]) {

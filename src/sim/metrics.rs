@@ -23,6 +23,7 @@ use crate::model::geometry::{distance, length, Aabb};
 use crate::model::params::PlannerKind;
 use crate::model::scene::{Scale, Scene};
 use crate::sim::fitness::{FitnessMeasures, FitnessRecorder, Frame};
+use crate::sim::gather::Arrival;
 use crate::spatial::{ObstacleIndex, QueryCap, SpatialGrid};
 use glam::Vec2;
 use serde::Serialize;
@@ -111,9 +112,17 @@ pub struct GroupMetrics {
     pub planner: Option<String>,
     /// Number of agents.
     pub agents: u32,
-    /// Share of agents that have reached their goal (0…1); agents without a goal count as not arrived.
+    /// Share of agents that have arrived (0…1): whose centre is inside their goal's disc now (a
+    /// moving goal: where it is now), or that left the scene through an exit. Agents without a
+    /// goal count as not arrived.
     pub arrived_share: f64,
-    /// Mean steps from the start to reaching the goal, over arrived agents (null if none).
+    /// Agents at rest outside their full goal, waiting for room (DESIGN §4).
+    pub waiting_agents: u32,
+    /// `waiting_agents` as a share of the agents (0…1).
+    pub waiting_share: f64,
+    /// Agents that left the scene through an exit goal.
+    pub exited_agents: u32,
+    /// Mean steps from the start to first reaching the goal, over arrived agents (null if none).
     pub mean_time_to_goal: Option<f64>,
     /// The same in seconds (steps × DT).
     pub mean_time_to_goal_s: Option<f64>,
@@ -189,6 +198,10 @@ pub struct MetricsRecorder {
     prev_speed: Vec<f32>,
     path_length: Vec<f32>,
     arrived_step: Vec<u32>,
+    /// Whether each agent has arrived as of the last recorded step (inside its goal, or exited).
+    arrived_now: Vec<bool>,
+    /// Where each agent stood with its goal at the last recorded step.
+    arrival: Vec<Arrival>,
     best_goal_distance: Vec<f32>,
     last_progress_step: Vec<u32>,
     groups: Vec<GroupAcc>,
@@ -242,6 +255,8 @@ impl MetricsRecorder {
             prev_speed: vec![0.0; n],
             path_length: vec![0.0; n],
             arrived_step: vec![NOT_ARRIVED; n],
+            arrived_now: vec![false; n],
+            arrival: vec![Arrival::Moving; n],
             best_goal_distance: vec![f32::INFINITY; n],
             last_progress_step: vec![0; n],
             groups: vec![GroupAcc::default(); scene.groups.len()],
@@ -277,17 +292,6 @@ impl MetricsRecorder {
         }
     }
 
-    /// Records that agent `i` arrived at step `step` (the world parked it at its goal, perhaps
-    /// at the edge of the crowd parked there rather than inside the goal's radius); an agent
-    /// that arrived earlier keeps its first step. No effect for an id out of range.
-    pub fn arrive(&mut self, i: usize, step: u32) {
-        if let Some(s) = self.arrived_step.get_mut(i) {
-            if *s == NOT_ARRIVED {
-                *s = step;
-            }
-        }
-    }
-
     /// Takes the fitness measures on steps 1, 1 + `every`, … from now on (0 = never).
     pub fn set_fitness_sample_every(&mut self, every: u32) {
         self.fitness_every = every;
@@ -305,9 +309,24 @@ impl MetricsRecorder {
         goals: &[Option<(Vec2, f32)>],
         grid: &SpatialGrid,
         obstacles: &ObstacleIndex,
+        arrival: &[Arrival],
     ) {
+        self.arrival.clear();
+        self.arrival.extend_from_slice(arrival);
+        self.arrival.resize(pos.len(), Arrival::Moving);
         for i in 0..pos.len() {
             let g = group_of[i] as usize;
+            if self.arrival[i] == Arrival::Exited {
+                // Gone: it neither moves nor meets anyone; it arrived when it left.
+                if self.arrived_step[i] == NOT_ARRIVED {
+                    self.arrived_step[i] = step;
+                }
+                self.arrived_now[i] = true;
+                self.prev_pos[i] = pos[i];
+                self.prev_vel[i] = Vec2::ZERO;
+                self.prev_speed[i] = 0.0;
+                continue;
+            }
             let acc = &mut self.groups[g];
             let p = pos[i];
             let v = vel[i];
@@ -345,6 +364,7 @@ impl MetricsRecorder {
 
             if let Some((goal, goal_radius)) = goals.get(g).copied().flatten() {
                 let d = distance(p, goal);
+                self.arrived_now[i] = d <= goal_radius;
                 if self.arrived_step[i] == NOT_ARRIVED && d <= goal_radius {
                     self.arrived_step[i] = step;
                 }
@@ -375,11 +395,13 @@ impl MetricsRecorder {
         };
         let groups = &mut self.groups;
         let arrived = &self.arrived_step;
+        let gone = &self.arrival;
         let (mut count, mut moving_count) = (0u32, 0u32);
         let capped = pair_grid.for_each_pair_within_capped(pair_radius, cap, |a, b| {
             let d2 = pos[a as usize].distance_squared(pos[b as usize]);
             let r = radius[a as usize] + radius[b as usize];
-            if d2 < r * r {
+            let present = gone[a as usize] != Arrival::Exited && gone[b as usize] != Arrival::Exited;
+            if present && d2 < r * r {
                 count += 1;
                 let moving = arrived[a as usize] == NOT_ARRIVED || arrived[b as usize] == NOT_ARRIVED;
                 moving_count += u32::from(moving);
@@ -582,6 +604,7 @@ impl MetricsRecorder {
             return false;
         };
         arrived == NOT_ARRIVED
+            && !self.arrival.get(i).is_some_and(|a| *a == Arrival::Waiting)
             && has_goal
             && steps >= STUCK_WINDOW
             && steps.saturating_sub(progress) >= STUCK_WINDOW
@@ -592,10 +615,13 @@ impl MetricsRecorder {
         for i in agents {
             s.agents += 1;
             s.path_sum += f64::from(self.path_length[i]);
-            if self.arrived_step[i] != NOT_ARRIVED {
+            let waiting = self.arrival[i] == Arrival::Waiting;
+            s.waiting += u32::from(waiting);
+            s.exited += u32::from(self.arrival[i] == Arrival::Exited);
+            if self.arrived_now[i] {
                 s.arrived += 1;
                 s.arrival_steps_sum += f64::from(self.arrived_step[i]);
-            } else if self.is_stuck(i, has_goal, steps) {
+            } else if !waiting && self.is_stuck(i, has_goal, steps) {
                 s.stuck += 1;
             }
         }
@@ -607,6 +633,8 @@ impl MetricsRecorder {
 struct Stats {
     agents: u32,
     arrived: u32,
+    waiting: u32,
+    exited: u32,
     arrival_steps_sum: f64,
     path_sum: f64,
     stuck: u32,
@@ -616,6 +644,8 @@ impl Stats {
     fn add(&mut self, o: &Stats) {
         self.agents += o.agents;
         self.arrived += o.arrived;
+        self.waiting += o.waiting;
+        self.exited += o.exited;
         self.arrival_steps_sum += o.arrival_steps_sum;
         self.path_sum += o.path_sum;
         self.stuck += o.stuck;
@@ -641,6 +671,9 @@ fn to_metrics(acc: &GroupAcc, s: &Stats, collisions: (u64, u64), dt: f64, scale:
         planner: None,
         agents: s.agents,
         arrived_share: ratio(f64::from(s.arrived), u64::from(s.agents)),
+        waiting_agents: s.waiting,
+        waiting_share: ratio(f64::from(s.waiting), u64::from(s.agents)),
+        exited_agents: s.exited,
         mean_time_to_goal: mean_time,
         mean_time_to_goal_s: mean_time.map(|t| t * dt),
         collisions_agent_agent: collisions,

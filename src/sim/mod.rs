@@ -13,6 +13,7 @@ pub mod compare;
 pub mod cost;
 pub mod diagnose;
 pub mod fitness;
+pub mod gather;
 pub mod limits;
 pub mod metric_series;
 pub mod metrics;

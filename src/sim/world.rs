@@ -2,10 +2,11 @@
 
 use crate::model::geometry::{Aabb, Obstacle};
 use crate::model::params::PlannerConfig;
-use crate::model::scene::{Scene, SceneError};
+use crate::model::scene::{OnArrival, Scene, SceneError};
 use crate::planners::{GroupView, Planner, StepContext};
 use crate::rng::Rng;
 use crate::sim::fitness::Frame;
+use crate::sim::gather::{Arrival, GoalPlaces};
 use crate::sim::metrics::{Metrics, MetricsRecorder};
 use crate::sim::spawn::{centre_bounds, spawn, Spawn};
 use crate::spatial::{ObstacleIndex, QueryCap, SpatialGrid};
@@ -16,11 +17,27 @@ use std::ops::Range;
 const STREAM_PLAN: u32 = 1;
 /// How far outside a surface a pushed-out agent is placed (px).
 const PUSH_EPSILON: f32 = 0.01;
-/// A moving agent whose disc comes within this many of its body diameters of a body parked at
-/// its goal parks too (it has reached the crowd gathered there): see [`World::settle_parking`].
-/// Boids' separation keeps a stationary neighbour 14 px off centre to centre, a 6 px gap for
-/// 4 px bodies, so a gap of touching discs only would leave its flock hovering around the crowd.
+/// An agent whose goal is full and whose disc comes within this many of its body diameters of
+/// a body at rest at that goal has reached the crowd there: it presses towards the goal's
+/// centre until the crowd stops it ([`World::settle_parking`]). Boids' separation keeps a
+/// stationary neighbour 14 px off centre to centre, a 6 px gap for 4 px bodies, so a gap of
+/// touching discs only would leave its flock hovering round the crowd.
 pub const PARK_CONTACT_DIAMETERS: f32 = 1.0;
+/// How far outside the world (px, up and left) the grid holds agents that left the scene.
+const EXITED_AT: f32 = 1.0e7;
+/// Most neighbours a pressing agent steps out of.
+const PRESS_NEIGHBOUR_CAP: QueryCap = QueryCap { neighbours: 16, candidates: 256 };
+/// Progress below this (px per step) towards its place or the goal's centre counts as none.
+const SETTLE_PROGRESS: f32 = 0.05;
+/// Steps without progress after which a pressing agent comes to rest where it is.
+const PRESS_STALL_STEPS: u16 = 10;
+/// Steps without progress after which a walking agent gives its place back and takes the free
+/// one nearest to it (another body stands in its way).
+const WALK_STALL_STEPS: u16 = 60;
+/// How far off the straight way to the goal's centre a pressing agent aims (rad), to one side
+/// or the other by its number: a body pressing straight onto a single one at rest slides round
+/// it into a pocket instead of balancing on top of it (a chain growing outward).
+const PRESS_SKEW: f32 = 0.2;
 /// Most parked neighbours examined per moving agent and round of the parking pass (the first in
 /// the grid's scan order): non-overlapping bodies hold few within reach; a pile of moving
 /// agents (which do not park on each other) is bounded by it.
@@ -61,12 +78,15 @@ pub struct World {
     /// Whether planning ahead (IGSA paths) is left to [`World::advance_planning`] instead of
     /// being done at once when planners are built (the page plans in slices).
     sliced_planning: bool,
-    /// Whether each agent is parked at its goal: stopped for good, never overlapping another
-    /// parked agent ([`World::settle_parking`]).
+    /// Whether each agent is at rest for good (parked in its goal or waiting outside it): solid
+    /// to the others, never overlapping another at rest ([`World::settle_parking`]).
     parked: Vec<bool>,
-    /// Per group, the fixed goal (index, centre, radius) its agents park at, if its planner
-    /// parks ([`Planner::parks_at_goal`]) and its goal does not move.
-    park_goal: Vec<Option<(u32, Vec2, f32)>>,
+    /// Where each agent stands with its goal.
+    arrival: Vec<Arrival>,
+    /// Steps each settling agent has made no progress.
+    stall: Vec<u16>,
+    /// Per goal, its places once it gathers and rests (built on the first step it rests).
+    goal_places: Vec<Option<GoalPlaces>>,
     /// Largest body radius and largest planner speed limit (px, px/step): the reach of the
     /// parking pass's neighbour queries.
     max_radius: f32,
@@ -174,7 +194,9 @@ impl World {
             recorder,
             sliced_planning,
             parked: vec![false; total],
-            park_goal: Vec::new(),
+            arrival: vec![Arrival::Moving; total],
+            stall: vec![0; total],
+            goal_places: Vec::new(),
             max_radius,
             max_step: 0.0,
             previous: Vec::new(),
@@ -368,27 +390,38 @@ impl World {
     /// Recomputes which groups park where after a change of planners or goals; agents parked
     /// under a rule that no longer holds (another planner, a moved goal) walk on.
     fn update_parking_rules(&mut self) {
-        let before = std::mem::take(&mut self.park_goal);
-        let parking = self.parking;
-        self.park_goal = self
-            .groups
-            .iter()
-            .zip(&self.scene.groups)
-            .map(|(runtime, g)| {
-                let k = g.goal?;
-                let goal = self.scene.goals.get(k as usize)?;
-                (parking && runtime.planner.parks_at_goal() && goal.motion.is_none())
-                    .then(|| (k, crate::model::geometry::v(goal.position), goal.radius))
-            })
-            .collect();
-        for (gi, group) in self.groups.iter().enumerate() {
-            if before.get(gi).is_some_and(|b| *b != self.park_goal[gi]) {
-                for i in group.agents.clone() {
-                    self.parked[i as usize] = false;
-                }
-            }
+        let goals = self.scene.goals.len();
+        if self.goal_places.len() != goals {
+            self.goal_places = vec![None; goals];
         }
         self.max_step = self.groups.iter().map(|g| g.planner.max_speed()).fold(0.0, f32::max);
+    }
+
+    /// Forgets the places of goal `k` (moved, resized, or the obstacles changed) and sends every
+    /// agent heading there back to its planner: they find their places again.
+    fn reset_goal(&mut self, k: usize) {
+        if let Some(places) = self.goal_places.get_mut(k) {
+            *places = None;
+        }
+        for i in 0..self.pos.len() {
+            let heads_there =
+                self.scene.groups.get(self.group_of[i] as usize).and_then(|g| g.goal) == Some(k as u32);
+            if heads_there && self.arrival[i] != Arrival::Exited {
+                self.arrival[i] = Arrival::Moving;
+                self.parked[i] = false;
+                self.stall[i] = 0;
+            }
+        }
+    }
+
+    /// Where each agent stands with its goal (walking to its place, parked, waiting, exited…).
+    pub fn arrivals(&self) -> &[Arrival] {
+        &self.arrival
+    }
+
+    /// How many bodies goal `k` holds, once its places are laid out (it gathers and rests).
+    pub fn goal_capacity(&self, k: usize) -> Option<usize> {
+        self.goal_places.get(k)?.as_ref().map(GoalPlaces::capacity)
     }
 
     /// Whether each agent is parked at its goal (see [`World::settle_parking`]).
@@ -402,6 +435,11 @@ impl World {
     /// the exit has left the building). Agents parked so far walk on.
     pub fn set_parking(&mut self, on: bool) {
         self.parking = on;
+        if !on {
+            for k in 0..self.goal_places.len() {
+                self.reset_goal(k);
+            }
+        }
         self.update_parking_rules();
     }
 
@@ -449,8 +487,29 @@ impl World {
             return Ok(());
         }
         let geometry_changed = scene.obstacles != self.scene.obstacles || scene.goals != self.scene.goals;
+        let obstacles_changed = scene.obstacles != self.scene.obstacles;
+        let changed_goals: Vec<usize> = (0..scene.goals.len().max(self.scene.goals.len()))
+            .filter(|&k| obstacles_changed || scene.goals.get(k) != self.scene.goals.get(k))
+            .collect();
         self.obstacles = ObstacleIndex::new(scene.obstacles.clone(), scene.width, scene.height);
+        let goal_of_group: Vec<Option<u32>> = self.scene.groups.iter().map(|g| g.goal).collect();
         self.scene = scene;
+        self.goal_places.resize(self.scene.goals.len(), None);
+        for k in changed_goals {
+            self.reset_goal(k);
+        }
+        // A group sent to another goal finds a place there.
+        for (gi, before) in goal_of_group.iter().enumerate() {
+            if self.scene.groups.get(gi).map(|g| g.goal) != Some(*before) {
+                for i in self.groups[gi].agents.clone() {
+                    let i = i as usize;
+                    if self.arrival[i] != Arrival::Exited {
+                        self.arrival[i] = Arrival::Moving;
+                        self.parked[i] = false;
+                    }
+                }
+            }
+        }
         for (gi, group) in self.groups.iter_mut().enumerate() {
             if geometry_changed && group.planner.replans_on_edit() {
                 group.planner =
@@ -505,13 +564,12 @@ impl World {
             }
         }
 
+        self.steer_arrivals();
         let solid: Vec<bool> = self.groups.iter().map(|g| !g.planner.passes_through_obstacles()).collect();
-        if self.parked.contains(&true) {
-            self.previous.clear();
-            self.previous.extend_from_slice(&self.pos);
-        }
+        self.previous.clear();
+        self.previous.extend_from_slice(&self.pos);
         for i in 0..self.pos.len() {
-            if self.parked[i] {
+            if self.parked[i] || self.arrival[i] == Arrival::Exited {
                 self.vel[i] = Vec2::ZERO;
                 continue;
             }
@@ -552,7 +610,7 @@ impl World {
         }
         self.step += 1;
         self.settle_parking(bounds);
-        self.grid.rebuild(&self.pos, &self.vel);
+        self.rebuild_grid();
         let goals: Vec<Option<(Vec2, f32)>> = (0..self.groups.len()).map(|g| self.goal_of_group(g)).collect();
         self.recorder.record(
             self.step,
@@ -563,24 +621,21 @@ impl World {
             &goals,
             &self.grid,
             &self.obstacles,
+            &self.arrival,
         );
     }
 
-    /// Parking, after every agent moved (the grid still holds the positions before the move):
-    /// a moving agent is pushed out of any body parked anywhere (parked bodies are solid), then
-    /// an agent of a group that parks ([`Planner::parks_at_goal`]) parks — stops for good and
-    /// counts as arrived — when its centre is inside its fixed goal or its disc comes within
-    /// [`PARK_CONTACT_DIAMETERS`] of a body already parked at the same goal (the goal is full: it has
-    /// reached the crowd gathered there), provided it overlaps no parked body. So parked bodies
-    /// never overlap each other, and a crowd larger than its goal gathers around it instead of
-    /// piling onto it. O(N): one bounded neighbour query per moving agent, and none at all
-    /// before the first agent parks or arrives.
+    /// Arrival, after every agent moved (the grid still holds the positions before the move):
+    /// a moving agent is pushed out of any body at rest (they are solid), then
+    /// [`World::settle_arrival`] moves it on in its goal. So bodies at rest never overlap each
+    /// other. O(N): one bounded neighbour query per moving agent, and none at all before the
+    /// first agent rests.
     fn settle_parking(&mut self, bounds: Vec2) {
-        let parking = self.park_goal.iter().any(Option::is_some);
         let any_parked = self.parked.contains(&true);
-        if !parking && !any_parked {
+        if !self.parking && !any_parked {
             return;
         }
+        self.lay_out_places();
         let slack = self.max_radius + self.max_step + 2.0 * PARK_CONTACT_DIAMETERS * self.max_radius;
         let solid: Vec<bool> = self.groups.iter().map(|g| !g.planner.passes_through_obstacles()).collect();
         // Agents placed far from where the grid holds them in this pass (few, usually none; in
@@ -599,7 +654,7 @@ impl World {
             }
         }
         for i in 0..self.pos.len() {
-            if self.parked[i] {
+            if self.parked[i] || self.arrival[i] == Arrival::Exited {
                 continue;
             }
             let g = self.group_of[i] as usize;
@@ -647,7 +702,7 @@ impl World {
                     // Boxed in between parked bodies (bodies parked onto it), or pushed out of
                     // the world or into an obstacle: the nearest free place within ten body
                     // diameters (a jump out of the crowd), else back to where the step started.
-                    let towards = self.park_goal.get(g).copied().flatten().map(|(_, c, _)| c);
+                    let towards = self.gather_centre(g);
                     p = match self.free_place_near(before, r, slack, towards, &jumped, &placeable) {
                         Some(q) => {
                             // The grid still holds it where the step started.
@@ -661,36 +716,254 @@ impl World {
                 self.pos[i] = p;
                 self.vel[i] = v;
             }
-            let Some((goal, centre, goal_radius)) = self.park_goal.get(g).copied().flatten() else {
-                continue;
-            };
-            let mut touches = p.distance(centre) <= goal_radius;
-            let gap = 2.0 * PARK_CONTACT_DIAMETERS * r;
-            let mut overlaps = false;
-            if any_parked || touches {
-                let (pos, radius, group_of) = (&self.pos, &self.radius, &self.group_of);
-                let park_goal = &self.park_goal;
-                self.for_each_parked_near(p, r + slack, &jumped, &parked_in_cell, |j| {
-                    let d = p.distance(pos[j]);
-                    overlaps |= d < r + radius[j];
-                    let same_goal = park_goal
-                        .get(group_of[j] as usize)
-                        .copied()
-                        .flatten()
-                        .is_some_and(|(k, _, _)| k == goal);
-                    touches |= same_goal && d <= r + radius[j] + gap;
-                });
-            }
-            if touches && !overlaps {
-                self.parked[i] = true;
-                if let Some(count) = self.grid.cell_of_agent(i).and_then(|c| parked_in_cell.get_mut(c)) {
-                    *count += 1;
-                }
-                self.vel[i] = Vec2::ZERO;
-                self.recorder.arrive(i, self.step);
-            }
+            self.settle_arrival(i, &jumped, &mut parked_in_cell, slack);
         }
         self.parked_in_cell = parked_in_cell;
+    }
+
+    /// Rebuilds the neighbour grid from the agents' positions, with the agents that left the
+    /// scene held far outside the world, where no query within it meets them.
+    fn rebuild_grid(&mut self) {
+        if !self.arrival.contains(&Arrival::Exited) {
+            self.grid.rebuild(&self.pos, &self.vel);
+            return;
+        }
+        let gone = Vec2::splat(-EXITED_AT);
+        let held: Vec<Vec2> = self
+            .pos
+            .iter()
+            .zip(&self.arrival)
+            .map(|(&p, a)| if *a == Arrival::Exited { gone } else { p })
+            .collect();
+        self.grid.rebuild(&held, &self.vel);
+    }
+
+    /// The centre of the goal group `g` gathers at, once its places are laid out.
+    fn gather_centre(&self, g: usize) -> Option<Vec2> {
+        let k = self.scene.groups.get(g)?.goal? as usize;
+        self.goal_places.get(k)?.as_ref().map(|places| places.centre)
+    }
+
+    /// Lays out the places of every goal that gathers, is headed for, and has come to rest
+    /// (a fixed goal at once, a moving one at the end of its motion) and has none yet.
+    fn lay_out_places(&mut self) {
+        if !self.parking {
+            return;
+        }
+        for k in 0..self.scene.goals.len() {
+            if self.goal_places.get(k).is_none_or(Option::is_some) {
+                continue;
+            }
+            let goal = &self.scene.goals[k];
+            if goal.on_arrival != OnArrival::Gather || goal.rest_step().is_none_or(|rest| self.step < rest) {
+                continue;
+            }
+            let heading: Vec<usize> = (0..self.scene.groups.len())
+                .filter(|&g| {
+                    self.scene.groups[g].goal == Some(k as u32) && self.groups[g].planner.gathers_at_goal()
+                })
+                .collect();
+            if heading.is_empty() {
+                continue;
+            }
+            let centre = goal.position_at(self.step);
+            let body = heading.iter().map(|&g| self.scene.groups[g].agent_radius).fold(0.0, f32::max);
+            let crowd: usize = heading.iter().map(|&g| self.scene.groups[g].count as usize).sum();
+            let approaches: Vec<(u32, Vec2)> = heading
+                .iter()
+                .map(|&g| {
+                    let agents = self.groups[g].agents.clone();
+                    let n = agents.len().max(1) as f32;
+                    let sum: Vec2 = agents.map(|i| self.pos[i as usize]).sum();
+                    (g as u32, sum / n)
+                })
+                .collect();
+            let bounds = Vec2::new(self.scene.width, self.scene.height);
+            let (lo, hi) = centre_bounds(body, bounds);
+            let obstacles = &self.obstacles;
+            let clear = |q: Vec2| {
+                let query = Aabb { min: q - Vec2::splat(body), max: q + Vec2::splat(body) };
+                let mut clear = true;
+                obstacles
+                    .for_each_near(query, |_, o: &Obstacle| clear &= o.surface(q).signed_distance >= body);
+                clear
+            };
+            let places = GoalPlaces::new(centre, goal.radius, body, crowd, &approaches, |q| {
+                q.clamp(lo, hi) == q && clear(q)
+            });
+            self.goal_places[k] = Some(places);
+        }
+    }
+
+    /// Moves agent `i` on in its goal after its step (it is not at rest): an agent whose centre
+    /// enters a goal that gathers takes a free place there and walks to it, then rests there
+    /// (arrived); when the goal is full it presses towards the goal's centre until the crowd
+    /// stops it, and rests there (waiting, if outside the goal); an agent entering an exit
+    /// leaves the scene.
+    fn settle_arrival(&mut self, i: usize, jumped: &Jumped, parked_in_cell: &mut [u32], slack: f32) {
+        let g = self.group_of[i] as usize;
+        let Some(k) = self.scene.groups.get(g).and_then(|group| group.goal).map(|k| k as usize) else {
+            return;
+        };
+        let Some(goal) = self.scene.goals.get(k) else { return };
+        let (p, r) = (self.pos[i], self.radius[i]);
+        let centre = goal.position_at(self.step);
+        let d = p.distance(centre);
+        if goal.on_arrival == OnArrival::Exit {
+            if self.parking && d <= goal.radius {
+                self.arrival[i] = Arrival::Exited;
+                self.vel[i] = Vec2::ZERO;
+            }
+            return;
+        }
+        let goal_radius = goal.radius;
+        if !self.groups[g].planner.gathers_at_goal() {
+            return;
+        }
+        let Some(places) = self.goal_places.get_mut(k).and_then(Option::as_mut) else { return };
+        let before = self.previous.get(i).copied().unwrap_or(p);
+        match self.arrival[i] {
+            Arrival::Moving => {
+                let full = places.is_full();
+                if d <= goal_radius {
+                    let claim = places.claim_for_group(g as u32).or_else(|| places.claim_nearest(p));
+                    self.arrival[i] = claim.map_or(Arrival::Pressing, Arrival::Walking);
+                    self.stall[i] = 0;
+                } else if full {
+                    // Reached the crowd at rest round its full goal?
+                    let gap = 2.0 * PARK_CONTACT_DIAMETERS * r;
+                    let (pos, radius, group_of, groups) =
+                        (&self.pos, &self.radius, &self.group_of, &self.scene.groups);
+                    let mut touches = false;
+                    self.for_each_parked_near(p, r + slack, jumped, parked_in_cell, |j| {
+                        let same_goal =
+                            groups.get(group_of[j] as usize).and_then(|h| h.goal) == Some(k as u32);
+                        touches |= same_goal && p.distance(pos[j]) <= r + radius[j] + gap;
+                    });
+                    if touches {
+                        self.arrival[i] = Arrival::Pressing;
+                        self.stall[i] = 0;
+                    }
+                }
+            }
+            Arrival::Walking(place) => {
+                let target = places.place(place);
+                let left = p.distance(target);
+                if left <= SETTLE_PROGRESS && !self.overlaps_rest(target, r, jumped, slack) {
+                    self.pos[i] = target;
+                    self.rest(i, parked_in_cell);
+                    return;
+                }
+                if before.distance(target) - left < SETTLE_PROGRESS {
+                    self.stall[i] += 1;
+                } else {
+                    self.stall[i] = 0;
+                }
+                if self.stall[i] >= WALK_STALL_STEPS {
+                    // Its place stays taken (a body may rest on it): the nearest free one.
+                    let Some(places) = self.goal_places.get_mut(k).and_then(Option::as_mut) else { return };
+                    self.arrival[i] = places.claim_nearest(p).map_or(Arrival::Pressing, Arrival::Walking);
+                    self.stall[i] = 0;
+                }
+            }
+            Arrival::Pressing => {
+                let centre = places.centre;
+                if before.distance(centre) - p.distance(centre) < SETTLE_PROGRESS {
+                    self.stall[i] += 1;
+                } else {
+                    self.stall[i] = 0;
+                }
+                if self.stall[i] >= PRESS_STALL_STEPS && !self.overlaps_rest(p, r, jumped, slack) {
+                    self.rest(i, parked_in_cell);
+                }
+            }
+            Arrival::Parked | Arrival::Waiting | Arrival::Exited => {}
+        }
+    }
+
+    /// Whether a body of radius `r` at `p` overlaps one at rest. Every body the grid holds
+    /// near is looked at (no cap: a pile of moving agents round the place must not hide one at
+    /// rest); asked only when an agent is about to come to rest.
+    fn overlaps_rest(&self, p: Vec2, r: f32, jumped: &Jumped, slack: f32) -> bool {
+        let mut overlaps = false;
+        let (pos, radius) = (&self.pos, &self.radius);
+        self.grid.for_each_within(p, r + slack, |n| {
+            let j = n.id as usize;
+            overlaps |= self.parked[j] && !jumped.contains(j) && p.distance(pos[j]) < r + radius[j];
+        });
+        jumped.for_each_near(p, r + slack, |j| {
+            overlaps |= self.parked[j] && p.distance(pos[j]) < r + radius[j];
+        });
+        overlaps
+    }
+
+    /// Brings agent `i` to rest where it is: parked if its centre is inside its goal, else
+    /// waiting outside it.
+    fn rest(&mut self, i: usize, parked_in_cell: &mut [u32]) {
+        let inside = self
+            .goal_of_group(self.group_of[i] as usize)
+            .is_some_and(|(centre, radius)| self.pos[i].distance(centre) <= radius);
+        self.arrival[i] = if inside { Arrival::Parked } else { Arrival::Waiting };
+        self.parked[i] = true;
+        self.vel[i] = Vec2::ZERO;
+        self.stall[i] = 0;
+        if let Some(count) = self.grid.cell_of_agent(i).and_then(|c| parked_in_cell.get_mut(c)) {
+            *count += 1;
+        }
+    }
+
+    /// The velocities of the agents the world steers at its goals instead of their planners:
+    /// none for those at rest or gone, straight to its place for one walking there, towards the
+    /// goal's centre (a little to one side) for one pressing.
+    fn steer_arrivals(&mut self) {
+        for i in 0..self.pos.len() {
+            let target = match self.arrival[i] {
+                Arrival::Moving => continue,
+                Arrival::Parked | Arrival::Waiting | Arrival::Exited => {
+                    self.next_vel[i] = Vec2::ZERO;
+                    continue;
+                }
+                Arrival::Walking(place) => {
+                    let g = self.group_of[i] as usize;
+                    let k = self.scene.groups.get(g).and_then(|group| group.goal);
+                    match k.and_then(|k| self.goal_places.get(k as usize)).and_then(Option::as_ref) {
+                        Some(places) => places.place(place),
+                        None => continue,
+                    }
+                }
+                Arrival::Pressing => {
+                    let Some(centre) = self.gather_centre(self.group_of[i] as usize) else { continue };
+                    let p = self.pos[i];
+                    let way = centre - p;
+                    let skew = if i % 2 == 0 { PRESS_SKEW } else { -PRESS_SKEW };
+                    // Out of the moving bodies it overlaps (pressing ones do not steer apart
+                    // by themselves): they line up against the crowd instead of piling.
+                    let mut apart = Vec2::ZERO;
+                    let r = self.radius[i];
+                    self.grid.for_each_within_capped(p, r + self.max_radius, PRESS_NEIGHBOUR_CAP, |n| {
+                        let j = n.id as usize;
+                        let reach = r + self.radius[j];
+                        let d = p.distance(self.pos[j]);
+                        if j != i && !self.parked[j] && d < reach {
+                            let away = if d > 0.0 {
+                                (p - self.pos[j]) / d
+                            } else if i < j {
+                                Vec2::NEG_X
+                            } else {
+                                Vec2::X
+                            };
+                            apart += away * (reach - d) * 0.5;
+                        }
+                    });
+                    p + Vec2::from_angle(skew)
+                        .rotate(way)
+                        .clamp_length_max(self.groups[self.group_of[i] as usize].planner.max_speed())
+                        + apart
+                }
+            };
+            let speed = self.groups[self.group_of[i] as usize].planner.max_speed();
+            self.next_vel[i] = crate::model::geometry::limit(target - self.pos[i], speed);
+        }
     }
 
     /// Visits each parked agent the grid holds within `reach` of `p` (plus the step's slack the

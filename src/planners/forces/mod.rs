@@ -215,11 +215,6 @@ impl Planner for Forces {
         self.params.max_speed
     }
 
-    /// Arrived agents would pile onto the goal (separation is soft): the world parks them.
-    fn parks_at_goal(&self) -> bool {
-        true
-    }
-
     fn explain(&self, ctx: &StepContext, group: &GroupView, agent: u32) -> Explanation {
         let prm = &self.params;
         let mut e = Explanation { scale: 150.0, ..Explanation::default() };
@@ -321,6 +316,7 @@ mod tests {
             position: [100.0, 200.0],
             radius: 20.0,
             motion: Some(GoalMotion::Polyline { points: vec![[100.0, 200.0], [550.0, 200.0]], speed: 1.0 }),
+            on_arrival: crate::model::scene::OnArrival::Gather,
         });
         s.groups.push(Group {
             name: "f".into(),

@@ -123,7 +123,7 @@ const ALLOWED = [
   [/^no keys here$/, 'allowed.no_keys'],
   [/^a value: this key is required$/, 'allowed.required'],
   [/^a circle \[x, y, radius\], a rectangle \[x0, y0, x1, y1\] or a polygon \[\[x, y\], …\]$/, 'allowed.compact_obstacle'],
-  [/^\[x, y, radius\] or \[x, y, radius, motion\]$/, 'allowed.compact_goal'],
+  [/^\[x, y, radius\], \[x, y, radius, motion\] or \[x, y, radius, motion or null, "gather" \| "exit"\]$/, 'allowed.compact_goal'],
   [/^(?<choices>"[^"]+"(?:, "[^"]+")* or "[^"]+")$/, 'allowed.choices'],
   [/^a number in (?<min>[-−\d.e]+)…(?<max>[-−\d.e]+)(?: (?<unit>.+))?$/, 'allowed.number_in'],
   [/^a whole number (?<min>\d+)…(?<max>\d+)$/, 'allowed.whole_in'],

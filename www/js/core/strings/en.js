@@ -1195,7 +1195,7 @@ export default {
   "allowed.no_keys": "no keys here",
   "allowed.required": "a value: this key is required",
   "allowed.compact_obstacle": "a circle [x, y, radius], a rectangle [x0, y0, x1, y1] or a polygon [[x, y], …]",
-  "allowed.compact_goal": "[x, y, radius] or [x, y, radius, motion]",
+  "allowed.compact_goal": "[x, y, radius], [x, y, radius, motion] or [x, y, radius, motion or null, \"gather\" | \"exit\"]",
   "allowed.choices": "{choices}",
   "value.refused": "refused",
   "value.list_of": "a list of {n}",

@@ -1195,7 +1195,7 @@ export default {
   "allowed.no_keys": "此处不能有键",
   "allowed.required": "一个值：此键是必需的",
   "allowed.compact_obstacle": "圆 [x, y, 半径]、矩形 [x0, y0, x1, y1] 或多边形 [[x, y], …]",
-  "allowed.compact_goal": "[x, y, 半径] 或 [x, y, 半径, 运动]",
+  "allowed.compact_goal": "[x, y, 半径]、[x, y, 半径, 运动] 或 [x, y, 半径, 运动或 null, \"gather\" | \"exit\"]",
   "allowed.choices": "以下之一：{choices}",
   "value.refused": "被拒绝",
   "value.list_of": "{n} 项的列表",
