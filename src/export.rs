@@ -266,7 +266,8 @@ for index, (group, keys) in enumerate(AGENTS):
     out
 }
 
-/// The recorded trails as SVG polylines, one per agent, coloured by group.
+/// The recorded trails as SVG polylines, one per agent, coloured by group, over the obstacles
+/// and the goals where they are when the trails end.
 pub fn trails_svg(scene: &Scene, rec: &Recording) -> String {
     let groups = group_of_agents(scene);
     let mut out = String::new();
@@ -302,6 +303,7 @@ pub fn trails_svg(scene: &Scene, rec: &Recording) -> String {
             }
         }
     }
+    write_goals_svg(&mut out, scene, rec);
     for i in 0..rec.agents() {
         let color =
             scene.groups.get(groups.get(i).copied().unwrap_or(0)).map_or("#808080", |g| g.color.as_str());
@@ -318,6 +320,39 @@ pub fn trails_svg(scene: &Scene, rec: &Recording) -> String {
     }
     out.push_str("</svg>\n");
     out
+}
+
+/// Colour of a goal no group heads for (the renderer's `GOAL_COLOR`).
+const UNUSED_GOAL_COLOR: &str = "#3a8a4f";
+
+/// Each goal as a ring and centre dot where it is at the recording's last step, where the trails
+/// end (a moving goal's scene `position` is only where it started, and the trails would chase an
+/// empty spot); a moving goal also gets its route over the recorded steps as a dashed line.
+fn write_goals_svg(out: &mut String, scene: &Scene, rec: &Recording) {
+    let last = rec.steps().last().copied().unwrap_or(0);
+    for (i, goal) in scene.goals.iter().enumerate() {
+        let user = scene.groups.iter().find(|g| g.goal == Some(i as u32));
+        let color = user.map_or(UNUSED_GOAL_COLOR, |g| g.color.as_str());
+        if goal.motion.is_some() && rec.steps().len() > 1 {
+            let mut d = String::new();
+            for (k, &step) in rec.steps().iter().enumerate() {
+                let p = goal.position_at(step);
+                let _ = write!(d, "{}{:.2},{:.2} ", if k == 0 { 'M' } else { 'L' }, p.x, p.y);
+            }
+            let _ = writeln!(
+                out,
+                r#"<path d="{}" fill="none" stroke="{color}" stroke-width="1" stroke-dasharray="6 4" stroke-opacity="0.5"/>"#,
+                d.trim_end()
+            );
+        }
+        let at = goal.position_at(last);
+        let _ = writeln!(
+            out,
+            r#"<circle cx="{:.2}" cy="{:.2}" r="{}" fill="none" stroke="{color}" stroke-width="2"/>"#,
+            at.x, at.y, goal.radius
+        );
+        let _ = writeln!(out, r#"<circle cx="{:.2}" cy="{:.2}" r="3" fill="{color}"/>"#, at.x, at.y);
+    }
 }
 
 #[cfg(test)]
@@ -387,5 +422,22 @@ mod tests {
         let svg = trails_svg(&scene, &rec);
         assert_eq!(svg.matches("<polyline").count(), 60);
         assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"));
+    }
+
+    #[test]
+    fn svg_draws_a_moving_goal_where_it_is_when_the_trails_end() {
+        let scene = presets::pso_circle_target();
+        let mut world = World::new(scene.clone()).expect("valid");
+        let mut rec = Recording::new(world.agent_count(), 1 << 26);
+        for _ in 0..600 {
+            world.step();
+            rec.capture(world.step_count(), world.positions(), world.velocities());
+        }
+        let svg = trails_svg(&scene, &rec);
+        let now = scene.goals[0].position_at(600);
+        let ring = format!(r#"<circle cx="{:.2}" cy="{:.2}" r="30""#, now.x, now.y);
+        assert!(svg.contains(&ring), "no ring at the goal's step-600 position {now}");
+        assert!(!svg.contains(r#"cx="750.00" cy="350.00""#), "a ring where the goal started");
+        assert_eq!(svg.matches("stroke-dasharray").count(), 1, "one route for the one moving goal");
     }
 }

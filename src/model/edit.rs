@@ -1,9 +1,9 @@
 //! Scene edits from the editor: add, move, delete and replace items, and picking items under
 //! the pointer. Every edit yields a new validated scene or an error; the old scene is untouched.
 
-use crate::model::geometry::{v, Obstacle};
+use crate::model::geometry::Obstacle;
 use crate::model::params::PlannerConfig;
-use crate::model::scene::{Goal, Group, PathSpec, Scene, SceneError, DEFAULT_PATH_RADIUS};
+use crate::model::scene::{Goal, GoalMotion, Group, PathSpec, Scene, SceneError, DEFAULT_PATH_RADIUS};
 
 /// A path is picked within this many px of its polyline (or the pick tolerance, if larger).
 const PATH_PICK_PX: f32 = 6.0;
@@ -150,6 +150,19 @@ pub fn apply(scene: &Scene, edit: &Edit) -> Result<Scene, SceneError> {
                 ItemRef::Goal(i) => {
                     let g = s.goals.get_mut(i as usize).ok_or_else(|| missing(*item))?;
                     g.position = [g.position[0] + d.x, g.position[1] + d.y];
+                    // A moving goal is dragged where it is seen (at the step shown): its whole
+                    // route moves with it, so it stays under the pointer at every step.
+                    match &mut g.motion {
+                        Some(GoalMotion::Circle { center, .. }) => {
+                            *center = [center[0] + d.x, center[1] + d.y]
+                        }
+                        Some(GoalMotion::Polyline { points, .. }) => {
+                            for p in points {
+                                *p = [p[0] + d.x, p[1] + d.y];
+                            }
+                        }
+                        None => {}
+                    }
                 }
                 ItemRef::Group(i) => {
                     let g = s.groups.get_mut(i as usize).ok_or_else(|| missing(*item))?;
@@ -218,9 +231,10 @@ pub fn apply(scene: &Scene, edit: &Edit) -> Result<Scene, SceneError> {
     Ok(s)
 }
 
-/// The topmost item at `p` (scene px), within `tolerance` px: goals first, then obstacles
-/// (last drawn on top), then paths (near their polyline), then group spawn regions.
-pub fn pick(scene: &Scene, p: Vec2, tolerance: f32) -> Option<ItemRef> {
+/// The topmost item at `p` (scene px), within `tolerance` px: goals first (where they are at
+/// `step`, as the renderer draws them, so a moving goal is picked where it is seen), then
+/// obstacles (last drawn on top), then paths (near their polyline), then group spawn regions.
+pub fn pick(scene: &Scene, step: u32, p: Vec2, tolerance: f32) -> Option<ItemRef> {
     let tolerance = if tolerance.is_finite() { tolerance.max(0.0) } else { 0.0 };
     if !p.is_finite() {
         return None;
@@ -230,7 +244,7 @@ pub fn pick(scene: &Scene, p: Vec2, tolerance: f32) -> Option<ItemRef> {
         .iter()
         .enumerate()
         .rev()
-        .find(|(_, g)| p.distance(v(g.position)) <= g.radius.max(6.0) + tolerance);
+        .find(|(_, g)| p.distance(g.position_at(step)) <= g.radius.max(6.0) + tolerance);
     if let Some((i, _)) = goal {
         return Some(ItemRef::Goal(i as u32));
     }
@@ -262,6 +276,7 @@ pub fn pick(scene: &Scene, p: Vec2, tolerance: f32) -> Option<ItemRef> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::model::geometry::v;
     use crate::model::presets;
 
     #[test]
@@ -269,11 +284,26 @@ mod tests {
         let s = presets::open_field();
         let circle = Obstacle::Circle { center: [400.0, 100.0], radius: 30.0 };
         let s1 = apply(&s, &Edit::AddObstacle { obstacle: circle }).expect("adds");
-        assert_eq!(pick(&s1, Vec2::new(410.0, 100.0), 0.0), Some(ItemRef::Obstacle(0)));
+        assert_eq!(pick(&s1, 0, Vec2::new(410.0, 100.0), 0.0), Some(ItemRef::Obstacle(0)));
         let s2 = apply(&s1, &Edit::Move { item: ItemRef::Obstacle(0), dx: 10.0, dy: 5.0 }).expect("moves");
         assert_eq!(s2.obstacles[0], Obstacle::Circle { center: [410.0, 105.0], radius: 30.0 });
         let s3 = apply(&s2, &Edit::Delete { item: ItemRef::Obstacle(0) }).expect("deletes");
         assert_eq!(s3, s);
+    }
+
+    #[test]
+    fn a_moving_goal_is_picked_and_dragged_where_it_is_at_the_step_shown() {
+        let s = presets::pso_circle_target();
+        let start = v(s.goals[0].position);
+        let now = s.goals[0].position_at(600);
+        assert!(start.distance(now) > 100.0, "the goal should have moved ({start} → {now})");
+        assert_eq!(pick(&s, 600, now, 0.0), Some(ItemRef::Goal(0)));
+        assert_ne!(pick(&s, 600, start, 0.0), Some(ItemRef::Goal(0)), "picked where it started");
+        let moved = apply(&s, &Edit::Move { item: ItemRef::Goal(0), dx: 10.0, dy: -5.0 }).expect("moves");
+        for step in [0, 150, 600, 1234] {
+            let d = moved.goals[0].position_at(step) - s.goals[0].position_at(step);
+            assert!(d.distance(Vec2::new(10.0, -5.0)) < 1e-3, "step {step}: moved by {d}");
+        }
     }
 
     #[test]
@@ -305,7 +335,7 @@ mod tests {
         };
         assert_eq!((path_of(&s, 0), path_of(&s, 1)), (1, 2));
         assert_eq!(s.paths[0].radius, DEFAULT_PATH_RADIUS);
-        assert_eq!(pick(&s, Vec2::new(200.0, 112.0), 0.0), Some(ItemRef::Path(0)));
+        assert_eq!(pick(&s, 0, Vec2::new(200.0, 112.0), 0.0), Some(ItemRef::Path(0)));
         let moved = apply(&s, &Edit::Move { item: ItemRef::Path(1), dx: 5.0, dy: -5.0 }).expect("moves");
         assert_eq!(moved.paths[1].points[0], [105.0, 395.0]);
         let deleted = apply(&s, &Edit::Delete { item: ItemRef::Path(0) }).expect("deletes");

@@ -25,132 +25,132 @@ pub struct Preset {
 pub const ALL: &[Preset] = &[
     Preset {
         name: "pillars",
-        description: "A flock crosses a field of circular pillars to the goal on the right; priority arbitration keeps them apart.",
+        description: "Boids, priority arbitration: watch the flock split round the 16 pillars without touching them, close up again and gather inside the goal ring on the right.",
         build: pillars,
     },
     Preset {
         name: "open-field",
-        description: "One group crosses an empty field to its goal.",
+        description: "Boids with nothing in the way: watch 60 agents keep their spacing as they cross the field and gather inside the goal ring on the right.",
         build: open_field,
     },
     Preset {
         name: "two-groups-swap",
-        description: "Two groups swap sides and pass through each other.",
+        description: "Two Boids groups swap sides: watch blue and red meet in the middle, pass through each other and each gather inside the ring the other one left.",
         build: two_groups_swap,
     },
     Preset {
         name: "corridor",
-        description: "A group squeezes through a rectangle-walled passage.",
+        description: "Boids through a 90 px gap between two walls: watch the flock narrow into a queue at the entrance, then spread out again into the goal ring on the right.",
         build: corridor,
     },
     Preset {
         name: "pso-influx",
-        description: "PSO (Chen & Lin Fig. 3): 20 people scattered over the field converge on the target.",
+        description: "PSO (Chen & Lin Fig. 3): watch 20 people scattered over the whole field converge from every side on the target ring in the centre.",
         build: pso_influx,
     },
     Preset {
         name: "pso-stream",
-        description: "PSO (Fig. 4): 20 people on the left stream right, gathering first, then walking together.",
+        description: "PSO (Fig. 4): watch 20 people on the left first draw together into one group, then walk as a group to the target ring on the right.",
         build: pso_stream,
     },
     Preset {
         name: "pso-static-obstacle",
-        description: "PSO (Fig. 5): obstacle at (500, 15) with σ = 30, k = 1; set acceptance off to see it penetrated.",
+        description: "PSO (Fig. 5): watch 20 people along the top edge bend round the obstacle at (500, 15) on their way to the target on the right; turn acceptance off and they walk through it.",
         build: pso_static_obstacle,
     },
     Preset {
         name: "pso-dodge",
-        description: "PSO (Fig. 6): two persons walking head-on dodge each other (agent σ = 5, k = 1).",
+        description: "PSO (Fig. 6): watch two people walking head-on step aside just before they meet, pass each other and reach each other's start.",
         build: pso_dodge,
     },
     Preset {
         name: "pso-crowd",
-        description: "PSO (Fig. 7): two crowds of 20 walk through each other, every person avoiding the others.",
+        description: "PSO (Fig. 7): watch two crowds of 20 meet in the middle, thread through each other, and each reach the target ring on the opposite side.",
         build: pso_crowd,
     },
     Preset {
         name: "pso-circle-target",
-        description: "PSO (Figs. 8–9): 20 people chase a target moving on a circle of radius 250.",
+        description: "PSO (Figs. 8–9): the target ring circles the field (radius 250 px, one turn a minute); watch 20 people leave the centre, catch up with it and follow it round.",
         build: pso_circle_target,
     },
     Preset {
         name: "pso-four-corners",
-        description: "PSO (Fig. 10): four groups of 10 cross to the opposite corners past a central obstacle.",
+        description: "PSO (Fig. 10): watch four groups of 10 cross to the opposite corners at once, giving way to each other round the central pillar.",
         build: pso_four_corners,
     },
     Preset {
         name: "firefly-migration",
-        description: "Firefly (Zhang et al.): 80 fireflies on an 800×600 stage gather, then queue in file to the target.",
+        description: "Firefly (Zhang et al.): watch 80 fireflies follow brighter neighbours, form single files between the trees and reach the target ring on the right.",
         build: firefly_migration,
     },
     Preset {
         name: "u-trap",
-        description: "A U-shaped wall opens towards PSO, firefly and Boids groups: local minima, stuck agents flagged; path-following Boids go round.",
+        description: "A U-shaped cup opens towards the groups: watch the PSO, firefly and Boids agents walk into it and get stuck (flagged), while the purple Boids on a path go round it to the goal.",
         build: u_trap,
     },
     Preset {
         name: "forces-e1-open",
-        description: "Virtual forces, E1: a group follows a moving goal across open space.",
+        description: "Virtual forces (E1): the goal ring moves right along the middle at 1.2 px/step; watch the group of 30 follow it across open space and keep up with it.",
         build: forces_e1_open,
     },
     Preset {
         name: "forces-e2-narrow",
-        description: "Virtual forces, E2: a group follows a moving goal through a narrow passage.",
+        description: "Virtual forces (E2): the goal ring moves right through a 50 px gap in a wall; watch the group of 30 funnel through the gap after it.",
         build: forces_e2_narrow,
     },
     Preset {
         name: "forces-e3-cluttered",
-        description: "Virtual forces, E3: a group follows a moving goal among small obstacles.",
+        description: "Virtual forces (E3): the goal ring moves right through a grove of small pillars; watch the group of 30 weave between them to follow it.",
         build: forces_e3_cluttered,
     },
     Preset {
         name: "boids-leader",
-        description: "Boids leader following: the first agent leads to the goal, the flock follows behind it without overtaking.",
+        description: "Boids leader following: watch the first agent lead and the flock trail behind it without overtaking, all the way into the goal ring on the right.",
         build: boids_leader,
     },
     Preset {
         name: "boids-path",
-        description: "Boids path following: a flock walks a winding drawn path (radius 30 px) to the goal at its end.",
+        description: "Boids path following: watch the flock stay inside the winding path's 30 px corridor and gather inside the goal ring at its end.",
         build: boids_path,
     },
     Preset {
         name: "boids-flow-field",
-        description: "Boids flow field: a maze whose straight way ends in a U-shaped trap; the goal's flow field leads around it.",
+        description: "Boids flow field: the straight way through the maze ends in a U-shaped trap; watch the flock follow the flow field round it and into the goal ring.",
         build: boids_flow_field,
     },
     Preset {
         name: "boids-predator",
-        description: "Boids predator/prey: two predators chase a grazing flock, which flees and closes ranks when it sees them.",
+        description: "Boids predator/prey: watch the green flock graze in its ring, then scatter and close ranks again whenever one of the two red predators comes near.",
         build: boids_predator,
     },
     Preset {
         name: "pso-hills",
-        description: "PSO (§5.6): 300 people cross hills of three heights; the highest is never climbed, the lowest is walked over.",
+        description: "PSO (§5.6): watch 300 people cross to the wide target on the right, walking over the lowest hill and going round the highest one, never climbing it.",
         build: pso_hills,
     },
     Preset {
         name: "igsa-path-1",
-        description: "IGSA group path (Liu & Liu, Figs. 8–9): 40 agents follow one planned path between four pillars; drag its waypoints.",
+        description: "IGSA group path (Liu & Liu, Figs. 8–9): watch the dashed planned path thread between four pillars and 40 agents follow it to the goal; drag a waypoint to change it.",
         build: igsa_path_1,
     },
     Preset {
         name: "igsa-path-2",
-        description: "IGSA group path (Figs. 10–11): a wall, a triangle and a disc; the planned path goes over the wall.",
+        description: "IGSA group path (Figs. 10–11): a wall, a triangle and a disc; watch the planned path climb over the top of the wall and the group follow it to the goal.",
         build: igsa_path_2,
     },
     Preset {
         name: "igsa-crowd-1000",
-        description: "IGSA group path (Table 4): 1000 agents follow one path past a large obstacle, avoiding each other.",
+        description: "IGSA group path (Table 4): watch 1000 agents follow one planned path round the large disc, avoiding each other, and fill the goal on the right.",
         build: igsa_crowd_1000,
     },
     Preset {
         name: "orca-crossing",
-        description: "ORCA (van den Berg et al. 2011): four groups of 20 cross a 40 m × 30 m square to the opposite sides, each agent choosing the velocity nearest its preferred one that avoids the others reciprocally.",
+        description: "ORCA (van den Berg et al. 2011): four groups of 20 cross a 40 m × 30 m square; watch them meet in the centre and slip past each other, each taking the velocity nearest its wish that avoids the others.",
         build: orca_crossing,
     },
     Preset {
         name: "social-force-bottleneck",
-        description: "Social force (Helbing & Molnár 1995, body forces of Helbing et al. 2000): 60 pedestrians leave a room through a 1.6 m door; an arch of pressure forms before it.",
+        description: "Social force (Helbing & Molnár 1995, body forces of Helbing et al. 2000): watch 60 pedestrians press towards a 1.6 m door, an arch form in front of it, and the room empty through it.",
         build: social_force_bottleneck,
     },
 ];
@@ -253,26 +253,28 @@ pub fn u_trap() -> Scene {
     s
 }
 
-/// E1 with the following behaviour (B2).
+/// E1 with the following behaviour (B2), named as the preset (the page finds a preset's
+/// description by its scene's name; [`forces_scene`] names it after the paper's case, `forces-b2-e1`).
 pub fn forces_e1_open() -> Scene {
-    following_preset(forces_scene(Behaviour::Following, Environment::Open))
+    following_preset("forces-e1-open", forces_scene(Behaviour::Following, Environment::Open))
 }
 
 /// E2 with the following behaviour (B2).
 pub fn forces_e2_narrow() -> Scene {
-    following_preset(forces_scene(Behaviour::Following, Environment::Narrow))
+    following_preset("forces-e2-narrow", forces_scene(Behaviour::Following, Environment::Narrow))
 }
 
 /// E3 with the following behaviour (B2).
 pub fn forces_e3_cluttered() -> Scene {
-    following_preset(forces_scene(Behaviour::Following, Environment::Cluttered))
+    following_preset("forces-e3-cluttered", forces_scene(Behaviour::Following, Environment::Cluttered))
 }
 
-/// A following scene of the virtual-force experiment as a preset: the goal the group follows
-/// is wide enough to hold all 30 agents once it stops (radius 40 px holds about 65 bodies of
-/// radius 4), so the run ends with the group gathered inside it. The experiment's own scenes
-/// keep the paper's small goal.
-fn following_preset(mut s: Scene) -> Scene {
+/// A following scene of the virtual-force experiment as the preset `name`: the goal the group
+/// follows is wide enough to hold all 30 agents once it stops (radius 40 px holds about 65
+/// bodies of radius 4), so the run ends with the group gathered inside it. The experiment's
+/// own scenes keep the paper's small goal.
+fn following_preset(name: &str, mut s: Scene) -> Scene {
+    s.name = name.into();
     for goal in &mut s.goals {
         goal.radius = goal.radius.max(40.0);
     }
@@ -653,4 +655,24 @@ pub fn social_force_bottleneck() -> Scene {
         ..group("room", "#2f6fdf", 60, ([40.0, 60.0], [300.0, 340.0]), 0)
     });
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The page shows a preset's description for the scene whose name is the preset's: a
+    /// scene named otherwise (the forces presets were `forces-b2-e1`…) showed only its name.
+    #[test]
+    fn every_preset_builds_a_scene_named_after_it_with_a_description_of_what_to_watch() {
+        for p in ALL {
+            assert_eq!((p.build)().name, p.name, "preset {}", p.name);
+            let d = p.description;
+            assert!(d.contains("watch") && d.ends_with('.') && d.len() <= 240, "{}: {d:?}", p.name);
+        }
+        let mut descriptions: Vec<_> = ALL.iter().map(|p| p.description).collect();
+        descriptions.sort_unstable();
+        descriptions.dedup();
+        assert_eq!(descriptions.len(), ALL.len(), "two presets share a description");
+    }
 }

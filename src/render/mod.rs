@@ -468,7 +468,7 @@ impl Renderer {
         if let Some(mut pixmap) = PixmapMut::from_bytes(&mut self.frame, self.width, self.height) {
             draw_spawn_regions(&mut pixmap, scene, view);
             draw_paths(&mut pixmap, scene, view);
-            draw_goals(&mut pixmap, scene, view);
+            draw_goals(&mut pixmap, scene, world.step_count(), view);
             draw_planned_paths(&mut pixmap, world, view);
         }
         self.update_sprites(scene);
@@ -483,7 +483,7 @@ impl Renderer {
         overlay::draw(target, world, self.overlays, self.inspected);
         if let Some(item) = self.selection {
             if let Some(mut pixmap) = PixmapMut::from_bytes(&mut self.frame, self.width, self.height) {
-                draw_selection(&mut pixmap, scene, view, item);
+                draw_selection(&mut pixmap, scene, world.step_count(), view, item);
             }
         }
     }
@@ -861,19 +861,21 @@ fn draw_paths(pixmap: &mut PixmapMut, scene: &Scene, view: ViewTransform) {
     }
 }
 
-/// Each goal as a ring (its arrival radius) and a centre dot; goals no group uses are dimmer.
-fn draw_goals(pixmap: &mut PixmapMut, scene: &Scene, view: ViewTransform) {
+/// Each goal as a ring (its arrival radius) and a centre dot where it is at `step` (a moving goal
+/// is drawn where the agents are heading now, not where it started); goals no group uses are
+/// dimmer.
+fn draw_goals(pixmap: &mut PixmapMut, scene: &Scene, step: u32, view: ViewTransform) {
     for (i, goal) in scene.goals.iter().enumerate() {
         let user = scene.groups.iter().find(|g| g.goal == Some(i as u32));
         let (rgb, alpha) = match user {
             Some(g) => (parse_color(&g.color), 230),
             None => (GOAL_COLOR, 90),
         };
-        let [x, y] = goal.position;
+        let at = goal.position_at(step);
         let mut ring = PathBuilder::new();
-        ring.push_circle(x, y, goal.radius);
+        ring.push_circle(at.x, at.y, goal.radius);
         stroke_scene_path(pixmap, ring, view, rgb, alpha, 2.0, None);
-        let c = view.to_canvas(Vec2::new(x, y));
+        let c = view.to_canvas(at);
         if let Some(dot) = PathBuilder::from_circle(c.x, c.y, 3.0) {
             pixmap.fill_path(&dot, &paint(rgb, alpha), FillRule::Winding, Transform::identity(), None);
         }
@@ -914,8 +916,9 @@ fn draw_planned_paths(pixmap: &mut PixmapMut, world: &World, view: ViewTransform
     }
 }
 
-/// An orange outline around the selected item; a stale index draws nothing.
-fn draw_selection(pixmap: &mut PixmapMut, scene: &Scene, view: ViewTransform, item: ItemRef) {
+/// An orange outline around the selected item (a goal where it is at `step`, as
+/// [`draw_goals`] draws it); a stale index draws nothing.
+fn draw_selection(pixmap: &mut PixmapMut, scene: &Scene, step: u32, view: ViewTransform, item: ItemRef) {
     let mut pb = PathBuilder::new();
     match item {
         ItemRef::Obstacle(i) => {
@@ -924,7 +927,8 @@ fn draw_selection(pixmap: &mut PixmapMut, scene: &Scene, view: ViewTransform, it
         }
         ItemRef::Goal(i) => {
             let Some(goal) = scene.goals.get(i as usize) else { return };
-            pb.push_circle(goal.position[0], goal.position[1], goal.radius.max(6.0) + 4.0 / view.scale);
+            let at = goal.position_at(step);
+            pb.push_circle(at.x, at.y, goal.radius.max(6.0) + 4.0 / view.scale);
         }
         ItemRef::Group(i) => {
             let Some(group) = scene.groups.get(i as usize) else { return };

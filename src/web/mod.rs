@@ -311,7 +311,25 @@ impl Sim {
     /// The topmost item at scene point `(x, y)` within `tolerance` px: JSON of an item
     /// reference, or `"null"`.
     pub fn pick(&self, x: f32, y: f32, tolerance: f32) -> Result<String, JsError> {
-        to_json(&edit::pick(self.run.world().scene(), Vec2::new(x, y), tolerance))
+        let world = self.run.world();
+        to_json(&edit::pick(world.scene(), world.step_count(), Vec2::new(x, y), tolerance))
+    }
+
+    /// Where each goal is at the step shown, as the frame draws it: JSON `[{x, y, radius}]` in
+    /// scene px, in the scene's goal order (a moving goal's `position` in the scene is only where
+    /// it starts).
+    pub fn goals_json(&self) -> Result<String, JsError> {
+        let world = self.run.world();
+        let goals: Vec<serde_json::Value> = world
+            .scene()
+            .goals
+            .iter()
+            .map(|g| {
+                let at = g.position_at(world.step_count());
+                serde_json::json!({ "x": at.x, "y": at.y, "radius": g.radius })
+            })
+            .collect();
+        to_json(&goals)
     }
 
     /// Outlines an item (JSON item reference) or nothing (`"null"`).

@@ -109,6 +109,14 @@ export function positions() {
 }
 
 /**
+ * Each goal where it is at the step shown, as the canvas draws it: `[{x, y, radius}, …]` in scene
+ * px, in the scene's goal order. A moving goal's `position` in `scene()` is only where it starts.
+ */
+export function goals() {
+  return booted().guard((sim) => JSON.parse(sim.goals_json()), { rethrow: true }).value;
+}
+
+/**
  * The scene→canvas transform: canvas backing-store px = scene px × scale + offset. With the
  * canvas's CSS box it maps scene points to pointer positions (`canvasWidth` is in device px).
  */
@@ -252,6 +260,7 @@ export const flockpath = Object.freeze({
   seek,
   timeline,
   positions,
+  goals,
   view,
   agentAt,
   inspect,

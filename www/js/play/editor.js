@@ -561,8 +561,9 @@ export class Editor {
         ctx.closePath();
       }
     } else if (item.kind === 'goal') {
-      const g = scene.goals?.[item.index];
-      if (g) ctx.arc(g.position[0] + dx, g.position[1] + dy, g.radius, 0, Math.PI * 2);
+      // Where the frame draws it (a moving goal is not at its scene `position`), from the core.
+      const g = this.app.guard((sim) => JSON.parse(sim.goals_json())).value?.[item.index];
+      if (g) ctx.arc(g.x + dx, g.y + dy, g.radius, 0, Math.PI * 2);
     } else if (item.kind === 'path') {
       const path = scene.paths?.[item.index];
       path?.points.forEach(([x, y], i) => (i ? ctx.lineTo(x + dx, y + dy) : ctx.moveTo(x + dx, y + dy)));
