@@ -4,7 +4,7 @@
 //! `crate::experiments::validation`.
 
 use super::{to_json, worded};
-use crate::experiments::validation::measure::{seyfried_speed, weidmann_speed};
+use crate::experiments::validation::measure::{seyfried_speed, weidmann_specific_flow, weidmann_speed};
 use crate::experiments::validation::{find_test, TESTS};
 use crate::model::params::PlannerKind;
 use serde::Serialize;
@@ -14,6 +14,8 @@ use wasm_bindgen::prelude::*;
 struct TestInfo {
     id: &'static str,
     title: &'static str,
+    setup: &'static str,
+    measurement: &'static str,
     criterion: &'static str,
 }
 
@@ -29,11 +31,22 @@ struct Options {
     planners: Vec<PlannerInfo>,
 }
 
-/// `{tests: [{id, title, criterion}], planners: [{name, label}]}`, in table order.
+/// `{tests: [{id, title, setup, measurement, criterion}], planners: [{name, label}]}`, in table
+/// order; `setup` and `measurement` are docs/validation.md's words for the page's "how it is
+/// measured" paragraphs.
 #[wasm_bindgen]
 pub fn validation_options_json() -> Result<String, JsError> {
     to_json(&Options {
-        tests: TESTS.iter().map(|t| TestInfo { id: t.id, title: t.title, criterion: t.criterion }).collect(),
+        tests: TESTS
+            .iter()
+            .map(|t| TestInfo {
+                id: t.id,
+                title: t.title,
+                setup: t.setup,
+                measurement: t.measurement,
+                criterion: t.criterion,
+            })
+            .collect(),
         planners: PlannerKind::ALL.iter().map(|k| PlannerInfo { name: k.name(), label: k.label() }).collect(),
     })
 }
@@ -64,4 +77,11 @@ pub fn validation_reference_speeds(curve: &str, densities: &[f64]) -> Result<Vec
         }
     };
     Ok(densities.iter().map(|&d| f(d)).collect())
+}
+
+/// Weidmann's (1993) specific flow `J_s = ρ·v(ρ)` (persons/(m·s)) at each density of
+/// `densities` (persons/m²): the reference line of the page's flow–density plot.
+#[wasm_bindgen]
+pub fn validation_reference_specific_flows(densities: &[f64]) -> Vec<f64> {
+    densities.iter().map(|&d| weidmann_specific_flow(d)).collect()
 }

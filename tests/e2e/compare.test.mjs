@@ -54,7 +54,8 @@ test('a comparison URL opens both panes, which animate in lockstep with one tabl
     const header = await page.$$eval('#metrics-table thead th', (ths) => ths.map((t) => t.textContent));
     assert.deepEqual(header, ['', 'A', 'B'], 'one column per pane');
     const row = await page.$$eval('#metrics-table tr[data-key="steps"] td', (tds) => tds.map((t) => t.textContent));
-    assert.deepEqual(row.slice(1), [String(steps[0] + 1), String(steps[0] + 1)]);
+    // The row's name is its heading (th scope=row); the cells are the panes' values.
+    assert.deepEqual(row, [String(steps[0] + 1), String(steps[0] + 1)]);
     assert.equal(await page.$$eval('.plot canvas', (c) => c.length), 5, 'five overlaid plots');
     const series = await page.evaluate(() => window.flockpathCompare.series());
     assert.equal(series.panes.length, 2);

@@ -102,6 +102,8 @@ test('the core’s planners, parameters, choices, units, presets, series and val
   for (const test of JSON.parse(m.validation_options_json()).tests) {
     expect.set(`validation.test.${test.id}`, test.title);
     expect.set(`validation.test.${test.id}.criterion`, test.criterion);
+    expect.set(`validation.test.${test.id}.setup`, test.setup);
+    expect.set(`validation.test.${test.id}.measurement`, test.measurement);
   }
   assert.ok(expect.size > 250, `${expect.size} core words`);
   for (const [key, words] of expect) {

@@ -230,6 +230,12 @@ pub fn weidmann_speed(rho: f64) -> f64 {
     (v0 * (1.0 - (-gamma * (1.0 / rho - 1.0 / rho_max)).exp())).max(0.0)
 }
 
+/// Weidmann's (1993) specific flow at density `rho` (persons/m²), persons/(m·s): `J_s = ρ·v(ρ)`,
+/// the reference line of the flow–density diagram beside the speed–density one.
+pub fn weidmann_specific_flow(rho: f64) -> f64 {
+    rho.max(0.0) * weidmann_speed(rho)
+}
+
 /// Seyfried et al. (2005), single file: a walker needs `0.36 + 1.06 v` metres of line, so at
 /// `rho` persons/m the speed is `(1/ρ − 0.36)/1.06`, within 0…1.34 m/s.
 pub fn seyfried_speed(rho: f64) -> f64 {
@@ -371,8 +377,15 @@ mod tests {
         assert_eq!(weidmann_speed(5.4), 0.0);
         assert_eq!(weidmann_speed(6.0), 0.0);
         // Weidmann's flow peaks near 1.2 persons/(m·s) at about 1.75 persons/m².
-        let peak = (1..=60).map(|k| k as f64 / 10.0).map(|r| r * weidmann_speed(r)).fold(0.0, f64::max);
+        let (peak, at) = (1..=60)
+            .map(|k| k as f64 / 10.0)
+            .map(|r| (weidmann_specific_flow(r), r))
+            .fold((0.0, 0.0), |a, b| if b.0 > a.0 { b } else { a });
         assert!((1.15..1.3).contains(&peak), "{peak}");
+        assert!((1.5..2.0).contains(&at), "{at}");
+        // Nobody passes at zero density or in a jam: the flow curve starts and ends at 0.
+        assert_eq!(weidmann_specific_flow(0.0), 0.0);
+        assert_eq!(weidmann_specific_flow(5.4), 0.0);
         assert!((weidmann_speed(1.0) - 1.34 * (1.0 - (-1.913f64 * (1.0 - 1.0 / 5.4)).exp())).abs() < 1e-12);
         assert!((seyfried_speed(1.0) - (0.64 / 1.06)).abs() < 1e-12);
         assert_eq!(seyfried_speed(0.1), 1.34);

@@ -24,6 +24,11 @@ pub struct TestSpec {
     pub id: &'static str,
     /// Title.
     pub title: &'static str,
+    /// The scene in words: the "set-up" cell of the test's row in docs/validation.md, word
+    /// for word (tests/validation.rs holds them equal), so the page and the docs say the same.
+    pub setup: &'static str,
+    /// How the test measures, in words: the "measurement" cell of docs/validation.md's row.
+    pub measurement: &'static str,
     /// The criterion in words.
     pub criterion: &'static str,
     run: fn(&TestSpec, PlannerKind) -> Result<Outcome, Failure>,
@@ -101,72 +106,96 @@ pub const TESTS: &[TestSpec] = &[
     TestSpec {
         id: "t1-free-walking",
         title: "T1 free walking: one walker, 40 m × 2 m corridor",
+        setup: "one walker, 40 m × 2 m corridor",
+        measurement: "speed between the lines x = 5 m and 35 m (crossing times)",
         criterion: "speed over 5…35 m within 5% of the desired 1.34 m/s",
         run: t1,
     },
     TestSpec {
         id: "t4-fundamental-diagram",
         title: "T4 fundamental diagram: periodic 20 m × 2 m corridor at 0.5…6 persons/m²",
+        setup: "periodic corridor 20 m × 2 m at 0.5, 1, 2, 3, 4, 5, 6 persons/m²",
+        measurement: "after a 10 s warm-up, 20 s in the area x 5…15 m: classic density (head count / area), mean x-speed v, specific flow J_s = ρ·v (1/(m·s))",
         criterion: "mean |v − v_Weidmann| over the 7 densities ≤ 0.2 m/s",
         run: t4,
     },
     TestSpec {
         id: "t6-corner",
         title: "T6 corner: 20 walkers round a left-hand corner",
+        setup: "20 walkers round a left-hand corner, corridor 2 m wide, legs 12 m",
+        measurement: "agents whose centre was ever inside a wall; arrivals in the last 2 m",
         criterion: "no wall crossed and all 20 arrive within 40 s",
         run: t6,
     },
     TestSpec {
         id: "juelich-rotation",
         title: "Jülich: the same scene turned by 45°",
+        setup: "10 walkers pass a pillar to a goal 16 m away; the same scene turned by 45°",
+        measurement: "mean and last arrival time in the goal (sampled every step)",
         criterion: "mean and last arrival times within 2% of the unturned scene's",
         run: rotation,
     },
     TestSpec {
         id: "juelich-head-on",
         title: "Jülich: two walkers head-on",
+        setup: "two walkers 16 m apart on one line walk at each other",
+        measurement: "smallest gap between bodies (distance − both radii)",
         criterion: "both arrive and their bodies never overlap (gap ≥ 0)",
         run: head_on_test,
     },
     TestSpec {
         id: "counter-flow-lanes",
         title: "Counter-flow: 2 × 40 walkers in a periodic 20 m × 4 m corridor",
+        setup: "40 + 40 walkers mixed in a periodic 20 m × 4 m corridor, opposite directions",
+        measurement: "Rex & Löwen lane order: per walker ((s − o)/(s + o))² over neighbours within 4 m along and 0.25 m across, averaged; every second",
         criterion: "lane order (Rex & Löwen) over the last 10 s ≥ 0.75",
         run: lanes,
     },
     TestSpec {
         id: "t9-four-vs-two-exits",
         title: "T9 large room: 1,000 walkers, 4 exits vs 2 exits",
+        setup: "1,000 walkers in a 20 m room, 2 m doors: 2 doors (left, right) vs 4",
+        measurement: "exit flow = (exits − 1) / (last − first exit time) in 30 s",
         criterion: "exit flow with 4 exits / with 2 exits within 1.5…2.5",
         run: t9,
     },
     TestSpec {
         id: "t12-bottleneck",
         title: "T12 bottleneck: 150 walkers, room → 2 m corridor → room",
+        setup: "150 walkers, 10 m room → 6 m × 2 m corridor → room",
+        measurement: "samples slower than 0.2 m/s (outside the goal) before / in / after the corridor",
         criterion: "≥ 90% of jammed samples (< 0.2 m/s) before the corridor, ≥ 90% arrive in 90 s",
         run: t12,
     },
     TestSpec {
         id: "t7-demographics",
         title: "T7 demographics: four age groups with desired-speed ranges",
+        setup: "four age groups in their own 3 m lanes of a 50 m hall",
+        measurement: "each walker's speed over 5…35 m",
         criterion: "every walker's speed over 5…35 m inside its age group's range",
         run: t7,
     },
     TestSpec {
         id: "t8-speed-sweep",
         title: "T8 parameter study: evacuation time of a 10 m room vs desired speed",
+        setup: "40 walkers leave a 10 m room by a 1.5 m door; desired speed 0.8, 1.0, 1.2, 1.34, 1.6 m/s",
+        measurement: "evacuation time (last walker out)",
         criterion: "all 40 out at every speed, evacuation time falling as speed rises",
         run: t8,
     },
     TestSpec {
         id: "t15-corner-crowd",
         title: "T15 large crowd round a corner vs straight corridors",
+        setup: "100 walkers round a corner (3 m wide, 15 m legs) vs straight corridors of its inner (24 m) and outer (30 m) edge lengths",
+        measurement: "evacuation time (last walker in the final 2 m)",
         criterion: "evacuation time between the short (24 m) and long (30 m) straight corridors'",
         run: t15,
     },
     TestSpec {
         id: "t16-single-file",
         title: "T16 single file: periodic 20 m ring corridor 0.5 m wide",
+        setup: "periodic ring corridor 20 m × 0.5 m at 0.5…2.5 persons/m",
+        measurement: "as T4, density per metre of line",
         criterion: "mean |v − v_Seyfried| over the 5 line densities ≤ 0.2 m/s",
         run: t16,
     },
@@ -274,10 +303,10 @@ fn diagram(
             shown = Some(scene);
         }
         let scale = if per_metre { f64::from(width) } else { 1.0 };
-        let (d, v) =
-            periodic_point(&rec.traj, width).map_or((f64::NAN, f64::NAN), |p| (p.density * scale, p.speed));
+        let (d, v, flow) = periodic_point(&rec.traj, width)
+            .map_or((f64::NAN, f64::NAN, f64::NAN), |p| (p.density * scale, p.speed, p.flow * scale));
         let v_ref = reference(f64::from(rho));
-        rows.push(vec![f64::from(rho), d, v, d * v, v_ref, f64::from(rho) * v_ref, v - v_ref]);
+        rows.push(vec![f64::from(rho), d, v, flow, v_ref, f64::from(rho) * v_ref, v - v_ref]);
     }
     let devs: Vec<f64> = rows.iter().map(|r| r[6].abs()).collect();
     let mean = devs.iter().sum::<f64>() / devs.len() as f64;

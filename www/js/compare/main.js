@@ -10,7 +10,7 @@ import { onPage } from '../core/keys.js';
 import { prefersReducedMotion } from '../core/motion.js';
 import { SimHost } from '../core/sim-host.js';
 import { buildPanes, blitPanes, measurePane } from './panes.js';
-import { drawPlots, drawTable } from './plots.js';
+import { drawPlots, drawTable, explainTable } from './plots.js';
 import { download } from '../core/download.js';
 import { setupActivity } from './activity.js';
 import { setupCompareDescription } from './describe.js';
@@ -172,6 +172,7 @@ function refresh(app) {
   const { steps, metrics, panes, series } = result.value;
   setText($('steps'), 'playback.step_count', { n: steps.toLocaleString('en-US') });
   drawTable($('metrics-table'), panes, metrics);
+  explainTable($('metrics-table'));
   drawPlots($('plots'), series);
 }
 

@@ -4,15 +4,18 @@
 
 import { drawPlot } from '../core/plot.js';
 import { t } from '../core/i18n.js';
+import { describeMetric, metricsGlossary } from '../core/metric-words.js';
 
 /**
- * [metrics key, label, format]. Units sit in the label, not in every cell, so four panes' columns
- * fit the side card.
+ * [metrics key, label, format, optional]. Units sit in the label, not in every cell, so four
+ * panes' columns fit the side card; each label's hover and the card explain the key. An optional
+ * row shows only when the panes' metrics have its key.
  */
 const ROWS = [
   ['steps', 'compare.row.steps', (m) => m.steps.toLocaleString('en-US')],
   ['agents', 'compare.row.agents', (m) => m.agents.toLocaleString('en-US')],
   ['arrived_share', 'compare.row.arrived', (m) => (100 * m.arrived_share).toFixed(1)],
+  ['waiting_agents', 'compare.row.waiting', (m) => m.waiting_agents.toLocaleString('en-US'), true],
   ['mean_time_to_goal_s', 'compare.row.time_to_goal', (m) => (m.mean_time_to_goal_s == null ? '–' : m.mean_time_to_goal_s.toFixed(1))],
   ['collisions_agent_agent', 'compare.row.collisions', (m) => m.collisions_agent_agent.toLocaleString('en-US')],
   ['penetrations_agent_obstacle', 'compare.row.penetrations', (m) => m.penetrations_agent_obstacle.toLocaleString('en-US')],
@@ -32,26 +35,53 @@ const TITLES = {
   stuck_agents: 'compare.plot.stuck',
 };
 
-/** Fills the table: a header row of pane names, one row per metric, one column per pane. */
+/**
+ * Fills the table: a header row of pane names, one row per metric, one column per pane. The same
+ * panes and rows only get their cells' text written again, so a focused row name keeps its focus
+ * while the run plays.
+ */
 export function drawTable(table, panes, metrics) {
-  const head = document.createElement('thead');
-  const top = document.createElement('tr');
-  top.append(Object.assign(document.createElement('th'), { textContent: '' }));
-  for (const p of panes) {
-    const th = Object.assign(document.createElement('th'), { textContent: p.pane, title: p.label, scope: 'col' });
-    th.style.setProperty('--pane-color', p.color);
-    top.append(th);
+  const rows = ROWS.filter(([key, , , optional]) => !optional || metrics.some((m) => typeof m[key] === 'number'));
+  const shape = `${t('compare.row.steps')}|${panes.map((p) => `${p.pane}:${p.label}:${p.color}`).join()}|${rows.map((r) => r[0]).join()}`;
+  if (table.dataset.shape !== shape) {
+    table.dataset.shape = shape;
+    const head = document.createElement('thead');
+    const top = document.createElement('tr');
+    top.append(Object.assign(document.createElement('th'), { textContent: '' }));
+    for (const p of panes) {
+      const th = Object.assign(document.createElement('th'), { textContent: p.pane, title: p.label, scope: 'col' });
+      th.style.setProperty('--pane-color', p.color);
+      top.append(th);
+    }
+    head.append(top);
+    const body = document.createElement('tbody');
+    for (const [key, label] of rows) {
+      const tr = document.createElement('tr');
+      tr.dataset.key = key;
+      tr.append(describeMetric(Object.assign(document.createElement('th'), { textContent: t(label), scope: 'row' }), key));
+      for (let i = 0; i < panes.length; i += 1) tr.append(document.createElement('td'));
+      body.append(tr);
+    }
+    table.replaceChildren(head, body);
   }
-  head.append(top);
-  const body = document.createElement('tbody');
-  for (const [key, label, format] of ROWS) {
-    const tr = document.createElement('tr');
-    tr.dataset.key = key;
-    tr.append(Object.assign(document.createElement('td'), { textContent: t(label) }));
-    for (const m of metrics) tr.append(Object.assign(document.createElement('td'), { textContent: format(m) }));
-    body.append(tr);
-  }
-  table.replaceChildren(head, body);
+  rows.forEach(([, , format], r) => {
+    const tr = table.tBodies[0].rows[r];
+    metrics.forEach((m, i) => {
+      const cell = tr.cells[i + 1];
+      const text = cell ? format(m) : '';
+      if (cell && cell.textContent !== text) cell.textContent = text;
+    });
+  });
+}
+
+/** The metrics keys of the table's rows: what the compare page's card explains. */
+export const TABLE_KEYS = ROWS.map(([key]) => key);
+
+/** Puts the "What do these numbers mean?" card for the table's rows after `table`'s box, once. */
+export function explainTable(table) {
+  const box = table.closest('.table-scroll') ?? table;
+  if (box.nextElementSibling?.classList.contains('metrics-glossary')) return;
+  box.after(metricsGlossary(TABLE_KEYS));
 }
 
 function plotCanvas(container, key) {

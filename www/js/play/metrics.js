@@ -9,28 +9,36 @@
 // pass of the whole page).
 
 import { drawPlot, formatTick } from '../core/plot.js';
-import { onLanguageChange, setAttr, setText as bindText, t, tOr } from '../core/i18n.js';
+import { onLanguageChange, setText as bindText, t, tOr } from '../core/i18n.js';
 import { unitText } from '../core/params-form.js';
+import { METRIC_KEYS, describeMetric, metricsGlossary } from '../core/metric-words.js';
 
-/** [key, label key, format, shown in red when above zero]; tooltips explain the counting rules. */
+/**
+ * [key, label key, format, shown in red when above zero, optional]; each name's hover and the
+ * card explain the key (core/metric-words.js). An optional row shows only when the metrics have
+ * its key (`waiting_agents` comes with goals that fill).
+ */
 const ROWS = [
   ['steps', 'metrics.steps', (m) => m.steps.toLocaleString('en-US')],
   ['agents', 'metrics.agents', (m) => m.agents.toLocaleString('en-US')],
   ['arrived_share', 'metrics.arrived', (m) => `${(100 * m.arrived_share).toFixed(1)} %`],
+  ['waiting_agents', 'metrics.waiting', (m) => waitingText(m), false, true],
   ['collisions_agent_agent', 'metrics.collisions', (m) => m.collisions_agent_agent.toLocaleString('en-US')],
   ['penetrations_agent_obstacle', 'metrics.penetrations', (m) => m.penetrations_agent_obstacle.toLocaleString('en-US'), true],
   ['mean_speed', 'metrics.mean_speed', (m) => `${m.mean_speed.toFixed(2)} ${unitText('px/step')}`],
   ['stuck_agents', 'metrics.stuck', (m) => m.stuck_agents.toLocaleString('en-US'), true],
 ];
 
-/** Tooltip keys of the rows. */
-const TIPS = {
-  arrived_share: 'metrics.tip.arrived_share',
-  collisions_agent_agent: 'metrics.tip.collisions',
-  penetrations_agent_obstacle: 'metrics.tip.penetrations',
-  mean_speed: 'metrics.tip.mean_speed',
-  stuck_agents: 'metrics.tip.stuck',
-};
+/** The metrics the Metrics card explains: its rows' and columns' keys, in the card's order. */
+const EXPLAINED = METRIC_KEYS.filter((key) =>
+  ['steps', 'agents', 'arrived_share', 'waiting_agents', 'waiting_share', 'collisions_agent_agent',
+    'penetrations_agent_obstacle', 'mean_speed', 'stuck_agents', 'queue_order', 'fitness'].includes(key));
+
+/** Waiting agents, with their share when the metrics give it: `3 (5.0 %)`. */
+function waitingText(m) {
+  const count = m.waiting_agents.toLocaleString('en-US');
+  return typeof m.waiting_share === 'number' ? `${count} (${(100 * m.waiting_share).toFixed(1)} %)` : count;
+}
 
 /** How often the readout refreshes (ms): fast enough to feel live, slow enough to read. */
 const REFRESH_MS = 250;
@@ -42,14 +50,18 @@ function setText(node, text) {
   if (node.textContent !== text) node.textContent = text;
 }
 
-/** Per-group table columns: [key, heading key, format, tooltip key]. */
+/**
+ * Per-group table columns: [key, heading key, format, optional]; the heading's hover explains the
+ * key. An optional column shows only when the groups' metrics have its key.
+ */
 const GROUP_COLUMNS = [
-  ['arrived_share', 'metrics.col.arrived', (v) => `${Math.round(100 * v)}%`, 'metrics.col.arrived_tip'],
-  ['collisions_agent_agent', 'metrics.col.collisions', (v) => v.toLocaleString('en-US'), 'metrics.col.collisions_tip'],
-  ['penetrations_agent_obstacle', 'metrics.col.penetrations', (v) => v.toLocaleString('en-US'), 'metrics.col.penetrations_tip'],
-  ['stuck_agents', 'metrics.col.stuck', (v) => String(v), 'metrics.col.stuck_tip'],
-  ['queue_order', 'metrics.col.queue', (v) => (v === null ? '–' : v.toFixed(2)), 'metrics.col.queue_tip'],
-  ['fitness', 'metrics.col.gsum', (v) => (v ? v.gsum.toFixed(1) : '–'), 'metrics.col.gsum_tip'],
+  ['arrived_share', 'metrics.col.arrived', (v) => `${Math.round(100 * v)}%`],
+  ['waiting_agents', 'metrics.col.waiting', (v) => v.toLocaleString('en-US'), true],
+  ['collisions_agent_agent', 'metrics.col.collisions', (v) => v.toLocaleString('en-US')],
+  ['penetrations_agent_obstacle', 'metrics.col.penetrations', (v) => v.toLocaleString('en-US')],
+  ['stuck_agents', 'metrics.col.stuck', (v) => String(v)],
+  ['queue_order', 'metrics.col.queue', (v) => (v === null ? '–' : v.toFixed(2))],
+  ['fitness', 'metrics.col.gsum', (v) => (v ? v.gsum.toFixed(1) : '–')],
 ];
 
 /** Colour of the whole-run line in the plots. */
@@ -59,17 +71,17 @@ export function setupMetrics(app) {
   const list = document.getElementById('metrics');
   const fps = document.getElementById('fps');
   const cells = new Map();
-  for (const [key, label] of ROWS) {
-    const dt = document.createElement('dt');
-    bindText(dt, label);
-    if (TIPS[key]) setAttr(dt, 'title', TIPS[key]);
-    else dt.title = '';
+  for (const [key, label, , , optional] of ROWS) {
+    const dt = describeMetric(bindText(document.createElement('dt'), label), key);
     const dd = document.createElement('dd');
     dd.dataset.key = key;
     dd.textContent = '–';
+    dt.hidden = dd.hidden = Boolean(optional);
     list.append(dt, dd);
     cells.set(key, dd);
   }
+  // The card sits below the per-group table, closed until asked for.
+  (list.closest('section') ?? list.parentElement).append(metricsGlossary(EXPLAINED));
   let lastRefresh = -Infinity;
   let refreshEvery = REFRESH_MS;
   let frames = 0;
@@ -125,23 +137,29 @@ export function setupMetrics(app) {
       drawPlot(plot.canvas, overTime(steps, lines, plot));
     }
   };
+  /** The columns shown now (optional ones only when the metrics have their key). */
+  let columns = [];
   const fillGroups = (m) => {
     if (!groupTable) return;
     const body = groupTable.tBodies[0] ?? groupTable.createTBody();
-    if (!groupTable.tHead) {
+    const shown = GROUP_COLUMNS.filter(([key, , , optional]) => !optional || (m.groups[0] ?? m)[key] !== undefined);
+    if (!groupTable.tHead || shown.length !== columns.length) {
+      columns = shown;
+      groupTable.tHead?.remove();
+      body.replaceChildren();
       const head = groupTable.createTHead().insertRow();
-      for (const key of ['metrics.col.group', ...GROUP_COLUMNS.map((c) => c[1])]) {
-        const th = document.createElement('th');
-        bindText(th, key);
-        const tip = GROUP_COLUMNS.find((c) => c[1] === key)?.[3];
-        if (tip) setAttr(th, 'title', tip);
+      const group = bindText(document.createElement('th'), 'metrics.col.group');
+      head.append(group);
+      for (const [key, heading] of columns) {
+        const th = describeMetric(bindText(document.createElement('th'), heading), key);
+        th.scope = 'col';
         head.append(th);
       }
     }
     while (body.rows.length > m.groups.length) body.deleteRow(-1);
     while (body.rows.length < m.groups.length) {
       const row = body.insertRow();
-      for (let c = 0; c <= GROUP_COLUMNS.length; c += 1) row.insertCell();
+      for (let c = 0; c <= columns.length; c += 1) row.insertCell();
     }
     m.groups.forEach((g, i) => {
       const row = body.rows[i];
@@ -158,7 +176,7 @@ export function setupMetrics(app) {
         swatch.style.background = color;
         name.append(swatch, label);
       }
-      GROUP_COLUMNS.forEach(([key, , format], c) => {
+      columns.forEach(([key, , format], c) => {
         const value = g[key];
         setText(row.cells[c + 1], value === undefined ? '–' : format(value));
         row.cells[c + 1].classList.toggle('bad', (key === 'stuck_agents' || key === 'penetrations_agent_obstacle') && value > 0);
@@ -183,8 +201,12 @@ export function setupMetrics(app) {
     // force a second layout pass in this frame.
     drawPlots();
     fillGroups(m);
-    for (const [key, , format, badWhenPositive] of ROWS) {
+    for (const [key, , format, badWhenPositive, optional] of ROWS) {
       const cell = cells.get(key);
+      if (optional) {
+        const absent = typeof m[key] !== 'number';
+        if (cell.hidden !== absent) cell.hidden = cell.previousElementSibling.hidden = absent;
+      }
       if (typeof m[key] !== 'number') {
         setText(cell, '–');
         continue;

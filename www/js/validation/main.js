@@ -1,7 +1,8 @@
 // The Validation page: pick planners and tests, run the suite in a Web Worker (progress,
-// Cancel), fill the table (each test linked to its scene in the playground) and plot the
-// fundamental diagram of T4 per planner against Weidmann's curve and the T8 sweep. Every number comes from
-// the wasm core; this module only lays them out.
+// Cancel), fill the table (each test linked to its scene in the playground), plot the T4
+// fundamental diagram per planner against Weidmann's curve (speed–density and flow–density side by
+// side) and the T8 sweep, and say how each test is measured. Every number comes from the wasm
+// core; this module only lays them out.
 
 import { errorFromData, messageOf, setupBanner, showMessage } from '../core/errors.js';
 import { drawPlot } from '../core/plot.js';
@@ -16,21 +17,51 @@ const COLORS = ['#2f6fdf', '#d9482b', '#2b9d48', '#a23bc4', '#d49a1c', '#1c9aa8'
 /** Tests picked by default: the quick ones (the whole suite takes minutes in a browser). */
 const DEFAULT_TESTS = new Set(['t1-free-walking', 'juelich-head-on', 't6-corner', 't4-fundamental-diagram']);
 
-/** Lines over shared x values (`xs`) on a linear scale from 0, a tick at each x. */
-function plotOver(canvas, xs, lines, title, empty) {
-  const finite = lines.flatMap((l) => Array.from(l.ys).filter(Number.isFinite));
-  const top = finite.length ? Math.max(...finite) * 1.05 : 1;
+/** The fundamental diagram's density axis (persons/m²): Weidmann's curve is drawn at these. */
+const CURVE_DENSITIES = Float64Array.from({ length: 60 }, (_, i) => 0.1 * (i + 1));
+
+/**
+ * Lines (each `{xs, ys, color, width, dots}`) from 0 up, a tick at each of `xTicks`; the axis
+ * labels and the legend are HTML beside the canvas (validation.html), so they are text a reader
+ * can select and a screen reader reads.
+ */
+function plotLines(canvas, lines, xTicks, empty) {
+  const finite = (values) => Array.from(values).filter(Number.isFinite);
+  const ys = lines.flatMap((l) => finite(l.ys));
+  const xs = lines.flatMap((l) => finite(l.xs)).concat(xTicks);
+  const top = ys.length ? Math.max(...ys) * 1.05 || 1 : 1;
   drawPlot(canvas, {
-    lines: lines.map((l) => ({ xs, ys: l.ys, color: l.color, width: l.width ?? 1.5, dots: true, name: l.name })),
-    x: { min: Math.min(...xs), max: Math.max(...xs) },
+    lines: lines.map((l) => ({ xs: l.xs, ys: l.ys, color: l.color, width: l.width ?? 1.5, dots: l.dots ?? true })),
+    x: { min: Math.min(0, ...xs), max: Math.max(...xs) },
     y: { min: 0, max: top },
-    margin: { left: 38, right: 10, top: 18, bottom: 20 },
+    margin: { left: 38, right: 12, top: 8, bottom: 20 },
     yTicks: [0, top / 2, top].map((v) => ({ value: v, text: v.toFixed(v < 10 ? 2 : 0) })),
-    xTicks: xs.map((v) => ({ value: v, text: String(v) })),
-    title,
+    xTicks: xTicks.map((v) => ({ value: v, text: String(v) })),
     empty,
     background: '#ffffff',
   });
+}
+
+/** Fills a legend: a line key (with a dot for measured points) and a name per entry. */
+function fillLegend(legend, entries) {
+  legend.replaceChildren(
+    ...entries.map(({ name, color, dots }) => {
+      const entry = Object.assign(document.createElement('span'), { className: 'entry' });
+      entry.style.color = color;
+      const key = Object.assign(document.createElement('span'), { className: dots ? 'key dots' : 'key' });
+      key.setAttribute('aria-hidden', 'true');
+      const label = Object.assign(document.createElement('span'), { textContent: name });
+      label.style.color = 'var(--ink)';
+      entry.append(key, label);
+      return entry;
+    }),
+  );
+}
+
+/** Column `name` of curve `c` as numbers (NaN where the run gave none). */
+function column(c, name) {
+  const i = c.columns.indexOf(name);
+  return c.rows.map((r) => (i < 0 || r[i] === null ? NaN : r[i]));
 }
 
 async function boot() {
@@ -84,42 +115,61 @@ async function boot() {
     if (row.pass) state.passed += 1;
   };
 
+  // The T4 curves' columns (src/experiments/validation/suite.rs): the density measured in the
+  // area, the mean speed and the specific flow J_s = ρ·v, all computed by the core.
+  const DENSITY = 'density_measured_persons_per_m2';
+  const SPEED = 'speed_m_s';
+  const FLOW = 'specific_flow_persons_m_s';
+  const weidmannSpeeds = module.validation_reference_speeds('weidmann', CURVE_DENSITIES);
+  const weidmannFlows = module.validation_reference_specific_flows(CURVE_DENSITIES);
+  const densityTicks = [0, 1, 2, 3, 4, 5, 6];
+
   const drawDiagram = () => {
     const diagrams = state.curves.filter((c) => c.test === 't4-fundamental-diagram');
-    const densities = diagrams[0]?.rows.map((r) => r[0]) ?? [0.5, 1, 2, 3, 4, 5, 6];
-    const reference = module.validation_reference_speeds('weidmann', Float64Array.from(densities));
-    const lines = [{ ys: reference, color: '#111111', width: 2.5, name: 'Weidmann' }];
-    const legend = $('val-legend');
-    legend.replaceChildren(Object.assign(document.createElement('span'), { textContent: '━ Weidmann (1993)', style: 'color:#111' }));
+    const reference = { name: t('validation.weidmann'), color: '#111111', dots: false };
+    const entries = [reference, ...diagrams.map((c) => ({ name: c.planner, color: colorOf.get(c.planner) ?? '#888', dots: true }))];
+    const speedLines = [{ xs: CURVE_DENSITIES, ys: weidmannSpeeds, color: reference.color, width: 2.5, dots: false }];
+    const flowLines = [{ xs: CURVE_DENSITIES, ys: weidmannFlows, color: reference.color, width: 2.5, dots: false }];
     for (const c of diagrams) {
-      // Column 2 is the measured speed (m/s), null where the run gave none.
-      lines.push({ ys: c.rows.map((r) => (r[2] === null ? NaN : r[2])), color: colorOf.get(c.planner) ?? '#888', name: c.planner });
-      const span = Object.assign(document.createElement('span'), { textContent: `━ ${c.planner}` });
-      span.style.color = colorOf.get(c.planner) ?? '#888';
-      legend.append(span);
+      const color = colorOf.get(c.planner) ?? '#888';
+      const xs = column(c, DENSITY);
+      speedLines.push({ xs, ys: column(c, SPEED), color });
+      flowLines.push({ xs, ys: column(c, FLOW), color });
     }
-    plotOver($('val-plot'), densities, lines, t('validation.fd_axes'), t('plots.empty'));
+    fillLegend($('val-legend'), entries);
+    fillLegend($('val-flow-legend'), entries);
+    plotLines($('val-plot'), speedLines, densityTicks, t('plots.empty'));
+    plotLines($('val-flow'), flowLines, densityTicks, t('plots.empty'));
   };
 
   const drawSweep = () => {
     const sweeps = state.curves.filter((c) => c.test === 't8-speed-sweep');
-    if (sweeps.length === 0) {
-      plotOver($('val-sweep'), [0.8, 1.6], [], t('validation.sweep_axes'), t('plots.empty'));
-      return;
-    }
-    const speeds = sweeps[0].rows.map((r) => r[0]);
+    const speeds = sweeps[0]?.rows.map((r) => r[0]) ?? [0.8, 1.6];
     // Column 1 is the evacuation time (s), null when someone was still inside after 60 s.
-    const lines = sweeps.map((c) => ({ ys: c.rows.map((r) => (r[1] === null ? NaN : r[1])), color: colorOf.get(c.planner) ?? '#888', name: c.planner }));
-    const legend = $('val-sweep-legend');
-    // The planners' legend replaces the hint: a language switch must not write the hint back.
-    delete legend.dataset.i18n;
-    legend.replaceChildren(...sweeps.map((c) => {
-      const span = Object.assign(document.createElement('span'), { textContent: `━ ${c.planner}` });
-      span.style.color = colorOf.get(c.planner) ?? '#888';
-      return span;
-    }));
-    plotOver($('val-sweep'), speeds, lines, t('validation.sweep_axes'), t('plots.empty'));
+    const lines = sweeps.map((c) => ({ xs: speeds, ys: c.rows.map((r) => (r[1] === null ? NaN : r[1])), color: colorOf.get(c.planner) ?? '#888' }));
+    fillLegend($('val-sweep-legend'), sweeps.map((c) => ({ name: c.planner, color: colorOf.get(c.planner) ?? '#888', dots: true })));
+    plotLines($('val-sweep'), lines, speeds, t('plots.empty'));
   };
+
+  // One paragraph per test: its set-up, how it is measured and its criterion, in
+  // docs/validation.md's words (the core holds them; tests/validation_words.rs keeps them equal).
+  const describeTests = () => {
+    $('val-methods').replaceChildren(
+      ...options.tests.map((test) => {
+        const p = document.createElement('p');
+        p.dataset.test = test.id;
+        const title = Object.assign(document.createElement('strong'), { textContent: `${titleOf(test)}. ` });
+        const words = t('validation.method', {
+          setup: tOr(`validation.test.${test.id}.setup`, test.setup),
+          measurement: tOr(`validation.test.${test.id}.measurement`, test.measurement),
+          criterion: criterionOf(test),
+        });
+        p.append(title, words);
+        return p;
+      }),
+    );
+  };
+  describeTests();
 
   const finish = (text) => {
     state.worker?.terminate();
@@ -180,6 +230,7 @@ async function boot() {
   onLanguageChange(() => {
     drawDiagram();
     drawSweep();
+    describeTests();
     for (const cell of tbody.querySelectorAll('td[data-measured]')) cell.textContent = measuredText(cell.dataset.measured);
   });
   window.flockpathValidation = { rows: () => state.rows, running: () => state.worker !== null };
