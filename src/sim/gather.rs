@@ -23,6 +23,9 @@ const SIDEWAYS_WEIGHT: f32 = 0.25;
 const ROOMY_FACTOR: f32 = 2.0;
 const ROOMY_EXTRA: f32 = 16.0;
 
+/// How many of the deepest free places an arriving agent chooses from (the nearest to it).
+const CLAIM_CHOICE: usize = 12;
+
 /// Area of a lattice cell per place, as a multiple of the spacing squared (√3/2).
 const CELL_AREA: f32 = 0.866_025_4;
 
@@ -163,13 +166,24 @@ impl GoalPlaces {
         self.places.get(k as usize).copied().unwrap_or(self.centre)
     }
 
-    /// Takes the next free place in `group`'s order (deepest first along its way in).
-    pub fn claim_for_group(&mut self, group: u32) -> Option<u32> {
+    /// Takes a free place for an agent of `group` at `from`: of the next [`CLAIM_CHOICE`] free
+    /// places in the group's order (deepest first along its way in), the one nearest to the
+    /// agent, so agents coming in side by side walk to places side by side instead of
+    /// crossing each other's way.
+    pub fn claim_for_group(&mut self, group: u32, from: Vec2) -> Option<u32> {
         let (_, order, next) = self.orders.iter_mut().find(|(g, _, _)| *g == group)?;
         while *next < order.len() && self.taken[order[*next] as usize] {
             *next += 1;
         }
-        let k = *order.get(*next)?;
+        let places = &self.places;
+        let taken = &self.taken;
+        let k = order[*next..].iter().copied().filter(|&k| !taken[k as usize]).take(CLAIM_CHOICE).min_by(
+            |&a, &b| {
+                from.distance_squared(places[a as usize])
+                    .total_cmp(&from.distance_squared(places[b as usize]))
+                    .then(a.cmp(&b))
+            },
+        )?;
         self.taken[k as usize] = true;
         self.free -= 1;
         Some(k)
@@ -220,22 +234,22 @@ mod tests {
     #[test]
     fn a_group_fills_from_the_far_side_then_the_goal_is_full() {
         let mut g = GoalPlaces::new(Vec2::new(100.0, 0.0), 20.0, 4.0, 100, &[(3, Vec2::ZERO)], |_| true);
-        let first = g.claim_for_group(3).map(|k| g.place(k));
+        let first = g.claim_for_group(3, Vec2::ZERO).map(|k| g.place(k));
         assert!(first.is_some_and(|p| p.x > 110.0), "first place {first:?} is on the far side");
         let mut taken = 1;
-        while g.claim_for_group(3).is_some() {
+        while g.claim_for_group(3, Vec2::ZERO).is_some() {
             taken += 1;
         }
         assert_eq!(taken, g.capacity());
         assert!(g.is_full());
-        assert_eq!(g.claim_for_group(7), None, "a group that does not head there gets none");
+        assert_eq!(g.claim_for_group(7, Vec2::ZERO), None, "a group that does not head there gets none");
     }
 
     #[test]
     fn a_roomy_goal_has_places_for_its_crowd_only_and_is_never_full() {
         let mut g = GoalPlaces::new(Vec2::ZERO, 5000.0, 1.0, 10, &[(0, Vec2::new(-1.0, 0.0))], |_| true);
         assert!(g.capacity() < 200, "{} places", g.capacity());
-        while g.claim_for_group(0).is_some() {}
+        while g.claim_for_group(0, Vec2::ZERO).is_some() {}
         assert!(!g.is_full());
     }
 }

@@ -832,7 +832,7 @@ impl World {
             Arrival::Moving => {
                 let full = places.is_full();
                 if d <= goal_radius {
-                    let claim = places.claim_for_group(g as u32).or_else(|| places.claim_nearest(p));
+                    let claim = places.claim_for_group(g as u32, p).or_else(|| places.claim_nearest(p));
                     self.arrival[i] = claim.map_or(Arrival::Pressing, Arrival::Walking);
                     self.stall[i] = 0;
                     self.closest[i] = f32::INFINITY;
@@ -856,7 +856,7 @@ impl World {
                         let claim = if full {
                             None
                         } else {
-                            places.claim_for_group(g as u32).or_else(|| places.claim_nearest(p))
+                            places.claim_for_group(g as u32, p).or_else(|| places.claim_nearest(p))
                         };
                         self.arrival[i] = claim.map_or(Arrival::Pressing, Arrival::Walking);
                         self.stall[i] = 0;
@@ -877,7 +877,7 @@ impl World {
                     self.closest[i] = left;
                 }
                 if self.stall[i] < WALK_STALL_STEPS {
-                    // Giving way: held up by moving bodies, or its place is out of reach.
+                    // Giving way: held up by bodies in its way, or its place is out of reach.
                     self.stall[i] = if progress { 0 } else { self.stall[i] + 1 };
                 } else if !progress {
                     // Walking on without giving way ([`World::steer_arrivals`]) and still held.
@@ -901,7 +901,7 @@ impl World {
                     // Its place is out of reach (behind bodies at rest, or one rests on it): it
                     // stays taken, and the agent takes the next in its group's order.
                     let Some(places) = self.goal_places.get_mut(k).and_then(Option::as_mut) else { return };
-                    let claim = places.claim_for_group(g as u32).or_else(|| places.claim_nearest(p));
+                    let claim = places.claim_for_group(g as u32, p).or_else(|| places.claim_nearest(p));
                     self.arrival[i] = claim.map_or(Arrival::Pressing, Arrival::Walking);
                     self.stall[i] = 0;
                     self.closest[i] = f32::INFINITY;
@@ -994,9 +994,13 @@ impl World {
             };
             let speed = self.groups[self.group_of[i] as usize].planner.max_speed();
             let wanted = crate::model::geometry::limit(target - p, speed);
+            // Held up this long, a walker walks on without giving way (two walkers that meet
+            // head-on would wait for each other for ever).
             let walking = matches!(self.arrival[i], Arrival::Walking(_));
-            self.next_vel[i] =
+            let step =
                 if walking && self.stall[i] >= WALK_STALL_STEPS { wanted } else { self.free_step(i, wanted) };
+            // Within the planner's speed limit, as every move.
+            self.next_vel[i] = crate::model::geometry::limit(step, speed);
         }
     }
 
@@ -1009,18 +1013,13 @@ impl World {
         let p = self.pos[i];
         let r = self.radius[i];
         let reach = r + self.max_radius + wanted.length();
-        let mut share = 1.0f32;
+        // The first body the move meets: the share of the move before it, and the normal there.
+        let mut first = (1.0f32, Vec2::ZERO);
         let mut apart = Vec2::ZERO;
+        let mut held = false;
         self.grid.for_each_within_capped(p, reach, PRESS_NEIGHBOUR_CAP, |n| {
             let j = n.id as usize;
-            // Walkers give way to the planners' agents and to walkers of lower number (so two
-            // never wait for each other); pressing agents to everyone.
-            let gives_way = match (self.arrival[i], self.arrival[j]) {
-                (_, Arrival::Exited) => false,
-                (Arrival::Walking(_), Arrival::Walking(_) | Arrival::Pressing) => j < i,
-                _ => true,
-            };
-            if j == i || !gives_way {
+            if j == i || self.arrival[j] == Arrival::Exited {
                 return;
             }
             let q = self.pos[j];
@@ -1036,9 +1035,7 @@ impl World {
                     Vec2::X
                 };
                 apart += away * (contact - d) * 0.5;
-                if wanted.dot(q - p) > 0.0 {
-                    share = 0.0;
-                }
+                held |= wanted.dot(q - p) > 0.0;
                 return;
             }
             // The first t in [0, 1] at which p + t·wanted touches q: |p − q + t·w| = contact.
@@ -1054,10 +1051,20 @@ impl World {
             if disc < 0.0 {
                 return;
             }
-            let t = (-b - disc.sqrt()) / (2.0 * a);
-            share = share.min(t.clamp(0.0, 1.0));
+            let t = ((-b - disc.sqrt()) / (2.0 * a)).clamp(0.0, 1.0);
+            if t < first.0 {
+                first = (t, (o + w * t).normalize_or_zero());
+            }
         });
-        wanted * share + apart
+        if held {
+            return apart;
+        }
+        let (t, normal) = first;
+        // Up to the body, then the rest of the move along it (sliding round it, as walkers
+        // slide round bodies at rest), less any part that runs back into it.
+        let rest = wanted * (1.0 - t);
+        let into = rest.dot(normal);
+        wanted * t + rest - normal * into.min(0.0) + apart
     }
 
     /// Visits each parked agent the grid holds within `reach` of `p` (plus the step's slack the
