@@ -328,20 +328,28 @@ impl Boids {
     /// Whisker obstacle avoidance: a forward probe and two shorter side probes; a touching
     /// probe yields a force along the surface normal plus a sideways push (lecture, "Obstacle
     /// Avoidance"), stronger the nearer the hit.
-    /// A standing agent's whiskers point along `to_goal`.
+    ///
+    /// The whiskers' length is `whisker_length` at top speed and shrinks with the speed: they
+    /// look as many steps ahead at any speed (Reynolds' look-ahead is a time, not a distance).
+    /// With a fixed length, a crowd waiting at a door a few bodies wide never went through:
+    /// the barely moving agents at its mouth, heading wherever the crowd's jostling turned
+    /// them, had whiskers touching the wall round the door and were pushed back from it, and
+    /// under priority arbitration that push took the whole force budget before seeking had
+    /// any. An agent that has (almost) stopped has whiskers of about its own radius, pointing
+    /// along `to_goal`.
     fn avoid_obstacles(&self, ctx: &StepContext, p: Vec2, vel: Vec2, radius: f32, to_goal: Vec2) -> Vec2 {
-        let length = self.params.whisker_length;
-        if ctx.obstacles.is_empty() || length <= 0.0 {
+        if ctx.obstacles.is_empty() || self.params.whisker_length <= 0.0 {
             return Vec2::ZERO;
         }
+        let ahead = self.params.whisker_length * (length(vel) / self.params.max_speed).min(1.0);
         let heading = unit_or(vel, unit_or(to_goal, Vec2::X));
         let side = self.side_whisker;
         let whiskers = [
-            heading * (length + radius),
-            side.rotate(heading) * (length * SIDE_WHISKER_SCALE + radius),
-            Vec2::new(side.x, -side.y).rotate(heading) * (length * SIDE_WHISKER_SCALE + radius),
+            heading * (ahead + radius),
+            side.rotate(heading) * (ahead * SIDE_WHISKER_SCALE + radius),
+            Vec2::new(side.x, -side.y).rotate(heading) * (ahead * SIDE_WHISKER_SCALE + radius),
         ];
-        let reach = length + radius;
+        let reach = ahead + radius;
         let query = Aabb { min: p - Vec2::splat(reach), max: p + Vec2::splat(reach) };
         let mut force = Vec2::ZERO;
         for (w, whisker) in whiskers.iter().enumerate() {
