@@ -59,9 +59,9 @@ fn the_door_scene_is_what_it_says() {
 
 #[test]
 fn a_flock_passes_a_door_three_bodies_wide_with_either_arbitration() {
-    // Parking off: agents that reach the goal walk on instead of stopping where they touch the
-    // first ones parked, which grows a chain of parked bodies back into the door and plugs it
-    // (the arrival rule issue 23 replaces); what this pins is the steering through the door.
+    // Parking off: what this pins is the steering through the door, whatever happens at the
+    // goal (under the arrival rule before issue 23, agents parked on touching a parked body and
+    // grew a chain of them back into the door that plugged it).
     // Measured at 7ad6f04 (fixed-length whiskers): priority 0 of 200 beyond the wall at step
     // 6,000, weighted 200. With whiskers that shrink with speed: priority 138 at step 3,000
     // and 200 at 6,000, weighted 200 by step 1,000.
@@ -73,6 +73,35 @@ fn a_flock_passes_a_door_three_bodies_wide_with_either_arbitration() {
         assert!(
             through >= ENOUGH,
             "{arbitration:?}: {through} of {AGENTS} beyond the wall at step {STEPS}, want >= {ENOUGH}"
+        );
+    }
+}
+
+/// Agents whose centre is inside the goal now.
+fn inside_the_goal(world: &World) -> usize {
+    world.positions().iter().filter(|p| p.distance(GOAL.0) <= GOAL.1).count()
+}
+
+#[test]
+fn the_flock_fills_its_goal_beyond_the_door_with_either_arbitration() {
+    // Measured: at 66da5a5 the weighted flock had 199 of 200 arrived (168 centres inside at
+    // step 6,000) and the priority flock none; with parking on first touch (58a075b to
+    // 7ad6f04) weighted read arrived 1.0 with 1 centre inside and 75 agents behind the wall;
+    // with goals that fill and whiskers that shrink with speed, 200 of 200 inside for both.
+    for arbitration in [Arbitration::Priority, Arbitration::Weighted] {
+        let mut world = World::new(door_scene(arbitration)).expect("valid scene");
+        world.step_n(STEPS);
+        let inside = inside_the_goal(&world);
+        let arrived = world.metrics().overall.arrived_share;
+        assert!(
+            inside >= ENOUGH,
+            "{arbitration:?}: {inside} of {AGENTS} centres inside the goal at step {STEPS}, want >= {ENOUGH} \
+             ({} beyond the wall)",
+            beyond_the_wall(&world)
+        );
+        assert!(
+            arrived >= 0.95,
+            "{arbitration:?}: arrived_share {arrived} at step {STEPS} ({inside} inside)"
         );
     }
 }
