@@ -40,6 +40,14 @@ fn door_scene(arbitration: Arbitration) -> Scene {
     s
 }
 
+/// Steps `world` in blocks of 100 until `done` holds or [`STEPS`] have run (the tests ask for
+/// "by step 6,000"; stopping early keeps the debug-build test short).
+fn run_until(world: &mut World, done: impl Fn(&World) -> bool) {
+    while world.step_count() < STEPS && !done(world) {
+        world.step_n(100);
+    }
+}
+
 /// Agents whose centre lies beyond the wall's far face.
 fn beyond_the_wall(world: &World) -> usize {
     world.positions().iter().filter(|p| p.x > WALL.1).count()
@@ -68,11 +76,12 @@ fn a_flock_passes_a_door_three_bodies_wide_with_either_arbitration() {
     for arbitration in [Arbitration::Priority, Arbitration::Weighted] {
         let mut world = World::new(door_scene(arbitration)).expect("valid scene");
         world.set_parking(false);
-        world.step_n(STEPS);
+        run_until(&mut world, |w| beyond_the_wall(w) >= ENOUGH);
         let through = beyond_the_wall(&world);
+        println!("{arbitration:?}: {through} of {AGENTS} beyond the wall at step {}", world.step_count());
         assert!(
             through >= ENOUGH,
-            "{arbitration:?}: {through} of {AGENTS} beyond the wall at step {STEPS}, want >= {ENOUGH}"
+            "{arbitration:?}: {through} of {AGENTS} beyond the wall by step {STEPS}, want >= {ENOUGH}"
         );
     }
 }
@@ -90,18 +99,22 @@ fn the_flock_fills_its_goal_beyond_the_door_with_either_arbitration() {
     // with goals that fill and whiskers that shrink with speed, 200 of 200 inside for both.
     for arbitration in [Arbitration::Priority, Arbitration::Weighted] {
         let mut world = World::new(door_scene(arbitration)).expect("valid scene");
-        world.step_n(STEPS);
+        run_until(&mut world, |w| inside_the_goal(w) >= ENOUGH && w.metrics().overall.arrived_share >= 0.95);
         let inside = inside_the_goal(&world);
         let arrived = world.metrics().overall.arrived_share;
+        println!(
+            "{arbitration:?}: {inside} of {AGENTS} inside, arrived {arrived} at step {}",
+            world.step_count()
+        );
         assert!(
             inside >= ENOUGH,
-            "{arbitration:?}: {inside} of {AGENTS} centres inside the goal at step {STEPS}, want >= {ENOUGH} \
+            "{arbitration:?}: {inside} of {AGENTS} centres inside the goal by step {STEPS}, want >= {ENOUGH} \
              ({} beyond the wall)",
             beyond_the_wall(&world)
         );
         assert!(
             arrived >= 0.95,
-            "{arbitration:?}: arrived_share {arrived} at step {STEPS} ({inside} inside)"
+            "{arbitration:?}: arrived_share {arrived} by step {STEPS} ({inside} inside)"
         );
     }
 }
