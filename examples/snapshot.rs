@@ -34,8 +34,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
     std::fs::write(out, ppm)?;
     let m = world.metrics();
+    let mut states = std::collections::BTreeMap::new();
+    for a in world.arrivals() {
+        let state = format!("{a:?}");
+        *states.entry(state.split('(').next().unwrap_or_default().to_string()).or_insert(0) += 1;
+    }
     println!(
-        "{name} step {steps}: arrived {:.3}, waiting {}",
+        "{name} step {steps}: arrived {:.3}, waiting {}, {states:?}",
         m.overall.arrived_share, m.overall.waiting_agents
     );
     Ok(())

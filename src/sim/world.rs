@@ -27,6 +27,8 @@ pub const PARK_CONTACT_DIAMETERS: f32 = 1.0;
 const EXITED_AT: f32 = 1.0e7;
 /// Most neighbours a pressing agent steps out of.
 const PRESS_NEIGHBOUR_CAP: QueryCap = QueryCap { neighbours: 16, candidates: 256 };
+/// Net progress (px) towards its place that counts for a walker.
+const WALK_PROGRESS: f32 = 1.0;
 /// Progress below this (px per step) towards its place or the goal's centre counts as none.
 const SETTLE_PROGRESS: f32 = 0.05;
 /// Steps without progress after which a pressing agent comes to rest where it is.
@@ -85,6 +87,9 @@ pub struct World {
     arrival: Vec<Arrival>,
     /// Steps each settling agent has made no progress.
     stall: Vec<u16>,
+    /// Nearest each walking agent has come to its place so far (px): progress is counted net,
+    /// so a walker that jitters back and forth in a jam is held up all the same.
+    closest: Vec<f32>,
     /// Per goal, its places once it gathers and rests (built on the first step it rests).
     goal_places: Vec<Option<GoalPlaces>>,
     /// Largest body radius and largest planner speed limit (px, px/step): the reach of the
@@ -196,6 +201,7 @@ impl World {
             parked: vec![false; total],
             arrival: vec![Arrival::Moving; total],
             stall: vec![0; total],
+            closest: vec![f32::INFINITY; total],
             goal_places: Vec::new(),
             max_radius,
             max_step: 0.0,
@@ -829,8 +835,11 @@ impl World {
                     let claim = places.claim_for_group(g as u32).or_else(|| places.claim_nearest(p));
                     self.arrival[i] = claim.map_or(Arrival::Pressing, Arrival::Walking);
                     self.stall[i] = 0;
-                } else if full {
-                    // Reached the crowd at rest round its full goal?
+                    self.closest[i] = f32::INFINITY;
+                } else {
+                    // Reached the crowd at rest in (or round) its goal? It takes the free place
+                    // nearest to it (the crowd may fill the way in before the goal is full), or,
+                    // the goal full, presses in and waits.
                     let gap = 2.0 * PARK_CONTACT_DIAMETERS * r;
                     let (pos, radius, group_of, groups) =
                         (&self.pos, &self.radius, &self.group_of, &self.scene.groups);
@@ -841,8 +850,17 @@ impl World {
                         touches |= same_goal && p.distance(pos[j]) <= r + radius[j] + gap;
                     });
                     if touches {
-                        self.arrival[i] = Arrival::Pressing;
+                        let Some(places) = self.goal_places.get_mut(k).and_then(Option::as_mut) else {
+                            return;
+                        };
+                        let claim = if full {
+                            None
+                        } else {
+                            places.claim_for_group(g as u32).or_else(|| places.claim_nearest(p))
+                        };
+                        self.arrival[i] = claim.map_or(Arrival::Pressing, Arrival::Walking);
                         self.stall[i] = 0;
+                        self.closest[i] = f32::INFINITY;
                     }
                 }
             }
@@ -854,16 +872,39 @@ impl World {
                     self.rest(i, parked_in_cell);
                     return;
                 }
-                if before.distance(target) - left < SETTLE_PROGRESS {
-                    self.stall[i] += 1;
-                } else {
-                    self.stall[i] = 0;
+                let progress = left < self.closest[i] - WALK_PROGRESS;
+                if progress {
+                    self.closest[i] = left;
                 }
-                if self.stall[i] >= WALK_STALL_STEPS {
-                    // Its place stays taken (a body may rest on it): the nearest free one.
+                if self.stall[i] < WALK_STALL_STEPS {
+                    // Giving way: held up by moving bodies, or its place is out of reach.
+                    self.stall[i] = if progress { 0 } else { self.stall[i] + 1 };
+                } else if !progress {
+                    // Walking on without giving way ([`World::steer_arrivals`]) and still held.
+                    self.stall[i] += 1;
+                }
+                if self.stall[i] >= 2 * WALK_STALL_STEPS
+                    && d <= goal_radius
+                    && self.overlaps_walker(i)
+                    && !self.overlaps_rest(p, r, jumped, slack)
+                {
+                    // Held up for good inside the goal on top of another walker (two in a hole
+                    // the crowd left for one): it rests where it is and gives its place back;
+                    // the other is then pushed out of it like out of any body at rest.
+                    if let Some(places) = self.goal_places.get_mut(k).and_then(Option::as_mut) {
+                        places.release(place);
+                    }
+                    self.rest(i, parked_in_cell);
+                    return;
+                }
+                if self.stall[i] >= 4 * WALK_STALL_STEPS || self.overlaps_rest(target, r, jumped, slack) {
+                    // Its place is out of reach (behind bodies at rest, or one rests on it): it
+                    // stays taken, and the agent takes the next in its group's order.
                     let Some(places) = self.goal_places.get_mut(k).and_then(Option::as_mut) else { return };
-                    self.arrival[i] = places.claim_nearest(p).map_or(Arrival::Pressing, Arrival::Walking);
+                    let claim = places.claim_for_group(g as u32).or_else(|| places.claim_nearest(p));
+                    self.arrival[i] = claim.map_or(Arrival::Pressing, Arrival::Walking);
                     self.stall[i] = 0;
+                    self.closest[i] = f32::INFINITY;
                 }
             }
             Arrival::Pressing => {
@@ -879,6 +920,19 @@ impl World {
             }
             Arrival::Parked | Arrival::Waiting | Arrival::Exited => {}
         }
+    }
+
+    /// Whether agent `i` overlaps another that walks to its place.
+    fn overlaps_walker(&self, i: usize) -> bool {
+        let (p, r) = (self.pos[i], self.radius[i]);
+        let mut overlaps = false;
+        self.grid.for_each_within_capped(p, r + self.max_radius, PRESS_NEIGHBOUR_CAP, |n| {
+            let j = n.id as usize;
+            overlaps |= j != i
+                && matches!(self.arrival[j], Arrival::Walking(_))
+                && p.distance(self.pos[j]) < r + self.radius[j];
+        });
+        overlaps
     }
 
     /// Whether a body of radius `r` at `p` overlaps one at rest. Every body the grid holds
@@ -917,6 +971,7 @@ impl World {
     /// goal's centre (a little to one side) for one pressing.
     fn steer_arrivals(&mut self) {
         for i in 0..self.pos.len() {
+            let p = self.pos[i];
             let target = match self.arrival[i] {
                 Arrival::Moving => continue,
                 Arrival::Parked | Arrival::Waiting | Arrival::Exited => {
@@ -933,37 +988,76 @@ impl World {
                 }
                 Arrival::Pressing => {
                     let Some(centre) = self.gather_centre(self.group_of[i] as usize) else { continue };
-                    let p = self.pos[i];
-                    let way = centre - p;
                     let skew = if i % 2 == 0 { PRESS_SKEW } else { -PRESS_SKEW };
-                    // Out of the moving bodies it overlaps (pressing ones do not steer apart
-                    // by themselves): they line up against the crowd instead of piling.
-                    let mut apart = Vec2::ZERO;
-                    let r = self.radius[i];
-                    self.grid.for_each_within_capped(p, r + self.max_radius, PRESS_NEIGHBOUR_CAP, |n| {
-                        let j = n.id as usize;
-                        let reach = r + self.radius[j];
-                        let d = p.distance(self.pos[j]);
-                        if j != i && !self.parked[j] && d < reach {
-                            let away = if d > 0.0 {
-                                (p - self.pos[j]) / d
-                            } else if i < j {
-                                Vec2::NEG_X
-                            } else {
-                                Vec2::X
-                            };
-                            apart += away * (reach - d) * 0.5;
-                        }
-                    });
-                    p + Vec2::from_angle(skew)
-                        .rotate(way)
-                        .clamp_length_max(self.groups[self.group_of[i] as usize].planner.max_speed())
-                        + apart
+                    p + Vec2::from_angle(skew).rotate(centre - p)
                 }
             };
             let speed = self.groups[self.group_of[i] as usize].planner.max_speed();
-            self.next_vel[i] = crate::model::geometry::limit(target - self.pos[i], speed);
+            let wanted = crate::model::geometry::limit(target - p, speed);
+            let walking = matches!(self.arrival[i], Arrival::Walking(_));
+            self.next_vel[i] =
+                if walking && self.stall[i] >= WALK_STALL_STEPS { wanted } else { self.free_step(i, wanted) };
         }
+    }
+
+    /// The part of the move `wanted` that agent `i` (steered by the world at its goal) can
+    /// make without running into a body it gives way to where that body stands now, plus a step
+    /// out of any such body it already overlaps: the world's walkers do not steer round others
+    /// as planners do, so they only walk into free room (the planners' agents see them and
+    /// steer round them).
+    fn free_step(&self, i: usize, wanted: Vec2) -> Vec2 {
+        let p = self.pos[i];
+        let r = self.radius[i];
+        let reach = r + self.max_radius + wanted.length();
+        let mut share = 1.0f32;
+        let mut apart = Vec2::ZERO;
+        self.grid.for_each_within_capped(p, reach, PRESS_NEIGHBOUR_CAP, |n| {
+            let j = n.id as usize;
+            // Walkers give way to the planners' agents and to walkers of lower number (so two
+            // never wait for each other); pressing agents to everyone.
+            let gives_way = match (self.arrival[i], self.arrival[j]) {
+                (_, Arrival::Exited) => false,
+                (Arrival::Walking(_), Arrival::Walking(_) | Arrival::Pressing) => j < i,
+                _ => true,
+            };
+            if j == i || !gives_way {
+                return;
+            }
+            let q = self.pos[j];
+            let contact = r + self.radius[j];
+            let d = p.distance(q);
+            if d < contact {
+                // Already overlapping: step out of it; moving closer is not allowed.
+                let away = if d > 0.0 {
+                    (p - q) / d
+                } else if i < j {
+                    Vec2::NEG_X
+                } else {
+                    Vec2::X
+                };
+                apart += away * (contact - d) * 0.5;
+                if wanted.dot(q - p) > 0.0 {
+                    share = 0.0;
+                }
+                return;
+            }
+            // The first t in [0, 1] at which p + t·wanted touches q: |p − q + t·w| = contact.
+            let w = wanted;
+            let o = p - q;
+            let a = w.length_squared();
+            let b = 2.0 * o.dot(w);
+            let c = o.length_squared() - contact * contact;
+            if a <= 0.0 || b >= 0.0 {
+                return;
+            }
+            let disc = b * b - 4.0 * a * c;
+            if disc < 0.0 {
+                return;
+            }
+            let t = (-b - disc.sqrt()) / (2.0 * a);
+            share = share.min(t.clamp(0.0, 1.0));
+        });
+        wanted * share + apart
     }
 
     /// Visits each parked agent the grid holds within `reach` of `p` (plus the step's slack the

@@ -326,6 +326,30 @@ impl ViewIndex {
         });
     }
 
+    /// Calls `visit` with the id and position of every agent whose centre lies within `reach` of
+    /// `p` (squared distances compared in `f32`), the agent at `p` itself included, in scan
+    /// order (rows of cells, top row first), until `visit` returns false: the bodies a step
+    /// could touch (the contact rule of `Forces::keep_bodies_apart`). All round: a body
+    /// touching from behind is felt, not seen.
+    pub(super) fn for_each_within(&self, p: Vec2, reach: f32, mut visit: impl FnMut(u32, Vec2) -> bool) {
+        let reach2 = reach * reach;
+        let mut going = true;
+        self.for_each_run(p, reach, |r| {
+            for e in r {
+                if !going {
+                    return;
+                }
+                let (Some(&id), Some(&x), Some(&y)) = (self.id.get(e), self.x.get(e), self.y.get(e)) else {
+                    return;
+                };
+                let q = Vec2::new(x, y);
+                if p.distance_squared(q) <= reach2 {
+                    going = visit(id, q);
+                }
+            }
+        });
+    }
+
     /// Calls `visit` with the candidates of [`Self::for_each_run`] in blocks of [`LANES`]: each run
     /// from its start, its last block padded.
     #[inline(always)]
