@@ -136,6 +136,49 @@ fn path_followers_keep_to_the_corridor_and_reach_its_end() {
     assert!(arrived > 0.95);
 }
 
+/// Agents of group `g` whose centre is inside the group's goal now (recounted from positions).
+fn inside_goal(world: &World, g: usize) -> usize {
+    let (goal, radius) = world.goal_of_group(g).expect("the group has a goal");
+    let group = world.group_of();
+    world
+        .positions()
+        .iter()
+        .zip(group)
+        .filter(|&(p, &k)| k as usize == g && p.distance(goal) <= radius)
+        .count()
+}
+
+#[test]
+fn path_followers_walk_on_to_a_goal_beyond_the_paths_end() {
+    // The path ends 150 px before the goal, as when a teacher draws a path towards a new goal
+    // and stops short of it. Before, an agent that stepped out of the end's circle towards the
+    // goal was pulled back to the end: the group circled there for ever (0 of 30 inside).
+    let mut scene = presets::boids_path();
+    scene.paths[0].points = vec![[90.0, 520.0], [300.0, 490.0], [420.0, 330.0], [560.0, 300.0]];
+    scene.goals[0].position = [710.0, 300.0];
+    let end = Vec2::from(scene.paths[0].points[3]);
+    assert_eq!(end.distance(Vec2::from(scene.goals[0].position)), 150.0);
+    let mut world = World::new(scene).expect("valid");
+    let agents = world.agent_count();
+    let mut most_inside = (0, 0);
+    for _ in 0..30 {
+        world.step_n(100);
+        let inside = inside_goal(&world, 0);
+        if inside > most_inside.0 {
+            most_inside = (inside, world.step_count());
+        }
+    }
+    let (inside, step) = most_inside;
+    println!("goal beyond the path's end: at most {inside} of {agents} inside, at step {step}");
+    assert!(inside * 10 >= agents * 9, "at most {inside} of {agents} inside the goal in 3,000 steps");
+
+    // The preset, whose goal lies at the path's end, still ends inside it.
+    let mut preset = World::new(presets::boids_path()).expect("valid");
+    preset.step_n(1800);
+    let inside = inside_goal(&preset, 0);
+    assert!(inside * 10 >= preset.agent_count() * 9, "boids-path: {inside} inside its goal at step 1,800");
+}
+
 #[test]
 fn the_flow_field_gets_through_the_maze_where_plain_seek_is_trapped() {
     let run = |guide: FlowGuide| {

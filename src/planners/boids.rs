@@ -35,6 +35,11 @@ pub struct Boids {
     flow: CachedFlowField,
     /// Per agent of the group: the path segment it has reached (path following only moves on).
     path_segment: Vec<u32>,
+    /// Per agent of the group: whether it has reached the path's end. Once there, the path no
+    /// longer guides it and it seeks the group's goal, however far the goal lies from the end
+    /// (stepping out of the end's circle towards the goal pulled it back to the end before, so
+    /// a group whose goal lay beyond the path's end circled there for ever).
+    path_done: Vec<bool>,
     /// The leader's last heading while it moved (leader following).
     leader_heading: Vec2,
 }
@@ -88,6 +93,7 @@ impl Boids {
             sums: Vec::new(),
             flow: CachedFlowField::default(),
             path_segment: Vec::new(),
+            path_done: Vec::new(),
             leader_heading: Vec2::ZERO,
         }
     }
@@ -128,6 +134,7 @@ impl Boids {
         let n = group.agents.len();
         if self.path_segment.len() != n {
             self.path_segment = vec![UNPLACED; n];
+            self.path_done = vec![false; n];
         }
         if let Some(path) = self.followed_path(ctx) {
             for (k, id) in group.agents.clone().enumerate() {
@@ -143,6 +150,7 @@ impl Boids {
                 if let Some(q) = found {
                     self.path_segment[k] =
                         if seg == UNPLACED { q.segment as u32 } else { seg.max(q.segment as u32) };
+                    self.path_done[k] |= at_path_end(path, q.along, p);
                 }
             }
         }
@@ -267,17 +275,18 @@ impl Boids {
 
     /// Reynolds' path following: predict the position `path_lookahead` ahead; inside the
     /// corridor, steer along the path; outside it, seek the path point `path_lookahead` beyond
-    /// the predicted position's projection. `None` once the end is reached (the goal takes over).
+    /// the predicted position's projection. `None` once the agent has reached the end (the
+    /// group's goal takes over for good); without a goal, it stays at the end.
     fn follow_path(&self, path: &PathSpec, group: &GroupView, k: usize, p: Vec2, vel: Vec2) -> Option<Guide> {
         let prm = &self.params;
         let seg = self.path_segment.get(k).copied().filter(|&s| s != UNPLACED).unwrap_or(0) as usize;
         let here = path.closest_point_in(p, seg..seg + 3)?;
-        let length = path.length();
-        let end = path.point_at(length);
-        if here.along >= length - path.radius && p.distance(end) <= path.radius {
+        let done = self.path_done.get(k).copied().unwrap_or(false);
+        if done || at_path_end(path, here.along, p) {
             return if group.goal.is_some() {
                 None
             } else {
+                let end = path.point_at(path.length());
                 let (steer, to, parked) = self.seek_goal(Some((end, path.radius)), p, vel, prm.max_speed);
                 Some(Guide { name: "path end", steer, to_goal: to, parked, flock: !parked, evade: None })
             };
@@ -328,20 +337,28 @@ impl Boids {
     /// Whisker obstacle avoidance: a forward probe and two shorter side probes; a touching
     /// probe yields a force along the surface normal plus a sideways push (lecture, "Obstacle
     /// Avoidance"), stronger the nearer the hit.
-    /// A standing agent's whiskers point along `to_goal`.
+    ///
+    /// The whiskers' length is `whisker_length` at top speed and shrinks with the speed: they
+    /// look as many steps ahead at any speed (Reynolds' look-ahead is a time, not a distance).
+    /// With a fixed length, a crowd waiting at a door a few bodies wide never went through:
+    /// the barely moving agents at its mouth, heading wherever the crowd's jostling turned
+    /// them, had whiskers touching the wall round the door and were pushed back from it, and
+    /// under priority arbitration that push took the whole force budget before seeking had
+    /// any. An agent that has (almost) stopped has whiskers of about its own radius, pointing
+    /// along `to_goal`.
     fn avoid_obstacles(&self, ctx: &StepContext, p: Vec2, vel: Vec2, radius: f32, to_goal: Vec2) -> Vec2 {
-        let length = self.params.whisker_length;
-        if ctx.obstacles.is_empty() || length <= 0.0 {
+        if ctx.obstacles.is_empty() || self.params.whisker_length <= 0.0 {
             return Vec2::ZERO;
         }
+        let ahead = self.params.whisker_length * (length(vel) / self.params.max_speed).min(1.0);
         let heading = unit_or(vel, unit_or(to_goal, Vec2::X));
         let side = self.side_whisker;
         let whiskers = [
-            heading * (length + radius),
-            side.rotate(heading) * (length * SIDE_WHISKER_SCALE + radius),
-            Vec2::new(side.x, -side.y).rotate(heading) * (length * SIDE_WHISKER_SCALE + radius),
+            heading * (ahead + radius),
+            side.rotate(heading) * (ahead * SIDE_WHISKER_SCALE + radius),
+            Vec2::new(side.x, -side.y).rotate(heading) * (ahead * SIDE_WHISKER_SCALE + radius),
         ];
-        let reach = length + radius;
+        let reach = ahead + radius;
         let query = Aabb { min: p - Vec2::splat(reach), max: p + Vec2::splat(reach) };
         let mut force = Vec2::ZERO;
         for (w, whisker) in whiskers.iter().enumerate() {
@@ -552,6 +569,13 @@ impl Guide {
     fn new(name: &'static str, steer: Vec2, to_goal: Vec2) -> Self {
         Self { name, steer, to_goal, parked: false, flock: true, evade: None }
     }
+}
+
+/// Whether an agent at `p`, whose closest path point lies `along` the path, has reached the
+/// path's end: within the corridor's half-width of the last point, on its last stretch.
+fn at_path_end(path: &PathSpec, along: f32, p: Vec2) -> bool {
+    let length = path.length();
+    along >= length - path.radius && p.distance(path.point_at(length)) <= path.radius
 }
 
 /// A planner's role read from another group's settings (only Boids groups have one).

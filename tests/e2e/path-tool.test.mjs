@@ -53,3 +53,36 @@ test('a drawn path is followed by the active group and can be deleted', async ()
     await close();
   }
 });
+
+test('a group given a drawn path short of a new goal walks on into the goal', async () => {
+  // The goal tool makes a 20 px goal the active group's; the path tool's path ends 150 px
+  // before it. Before, the group circled the path's end for ever (none inside the goal).
+  const { page, errors, close } = await openPage();
+  try {
+    const base = simpleScene();
+    await loadPaused(page, simpleScene({ groups: [{ ...base.groups[0], count: 10 }] }));
+    await page.keyboard.press('5');
+    await clickAt(page, 650, 120);
+    await page.keyboard.press('7');
+    for (const [x, y] of [[150, 250], [300, 150], [500, 120]]) await clickAt(page, x, y);
+    await page.keyboard.press('Enter');
+    const s = await scene(page);
+    assert.equal(s.goals.length, 2, 'a goal added');
+    assert.equal(s.groups[0].goal, 1, 'the new goal is the group\'s');
+    assert.equal(s.groups[0].planner.params.path, 1, 'the group follows the drawn path');
+    const end = s.paths[0].points.at(-1);
+    const goal = s.goals[1];
+    const gap = Math.hypot(goal.position[0] - end[0], goal.position[1] - end[1]);
+    assert.ok(gap >= 140, `the path ends ${gap.toFixed(0)} px from the goal`);
+
+    await page.evaluate(() => window.flockpath.step(2000));
+    const positions = await page.evaluate(() => window.flockpath.positions());
+    const inside = positions.filter(([x, y]) => Math.hypot(x - goal.position[0], y - goal.position[1]) <= goal.radius);
+    const metrics = await page.evaluate(() => window.flockpath.metrics());
+    assert.ok(inside.length >= 9, `${inside.length} of 10 centres inside the new goal at step 2000`);
+    assert.ok(metrics.arrived_share >= 0.9, `arrived_share ${metrics.arrived_share}`);
+    assertNoUnexpectedErrors(errors);
+  } finally {
+    await close();
+  }
+});
