@@ -71,10 +71,19 @@ def recount(binary, preset, steps):
         goal = scene["goals"][k]
         if math.dist(pos[i], goal_at(goal, steps)) <= goal.get("radius", 20.0):
             inside += 1
+    # Agents inside an exit have left the scene: they meet nobody.
+    gone = set()
+    for i in range(n):
+        k = group_goal[i]
+        if k is not None and scene["goals"][k].get("on_arrival") == "exit" and \
+                math.dist(pos[i], goal_at(scene["goals"][k], steps)) <= scene["goals"][k].get("radius", 20.0):
+            gone.add(i)
     rest_pairs = all_pairs = 0
     cell = 2 * max(radius) if radius else 1
     buckets = {}
     for i, (x, y) in enumerate(pos):
+        if i in gone:
+            continue
         buckets.setdefault((int(x // cell), int(y // cell)), []).append(i)
     for (cx, cy), ids in buckets.items():
         for dx in (-1, 0, 1):

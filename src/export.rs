@@ -435,7 +435,7 @@ mod tests {
         }
         let svg = trails_svg(&scene, &rec);
         let now = scene.goals[0].position_at(600);
-        let ring = format!(r#"<circle cx="{:.2}" cy="{:.2}" r="30""#, now.x, now.y);
+        let ring = format!(r#"<circle cx="{:.2}" cy="{:.2}" r="#, now.x, now.y);
         assert!(svg.contains(&ring), "no ring at the goal's step-600 position {now}");
         assert!(!svg.contains(r#"cx="750.00" cy="350.00""#), "a ring where the goal started");
         assert_eq!(svg.matches("stroke-dasharray").count(), 1, "one route for the one moving goal");

@@ -120,7 +120,8 @@ fn expectation(name: &str) -> (u32, f64) {
         | "pso-hills"
         | "social-force-bottleneck"
         | "orca-crossing"
-        | "forces-e2-narrow" => (3600, 0.95),
+        | "forces-e2-narrow"
+        | "pso-static-obstacle" => (3600, 0.95),
         _ => (1500, 0.95),
     }
 }

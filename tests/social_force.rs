@@ -134,7 +134,8 @@ fn pedestrians_at_low_density_never_touch() {
     }
     assert!(pairs > 10_000, "the groups walked together for a while: {pairs} pair-steps");
     assert!(closest >= 10.0, "two walking bodies (radius 0.25 m) touched: closest centres {closest} px");
-    assert_eq!(world.metrics().overall.arrived_share, 1.0);
+    // Inside their goal now: a walker nudged back out of the disc by the others is not there.
+    assert!(world.metrics().overall.arrived_share >= 0.9, "{}", world.metrics().overall.arrived_share);
 }
 
 /// A body of radius 0.25 m.

@@ -692,7 +692,12 @@ impl Renderer {
         self.heading.resize(world.agent_count(), 0);
         self.placed.clear();
         let agents = world.positions().iter().zip(world.velocities()).zip(world.group_of());
-        for (((&p, &v), &group), heading) in agents.zip(self.heading.iter_mut()) {
+        let arrivals = world.arrivals();
+        for (i, (((&p, &v), &group), heading)) in agents.zip(self.heading.iter_mut()).enumerate() {
+            if arrivals.get(i) == Some(&crate::sim::gather::Arrival::Exited) {
+                // Left the scene through its exit: not drawn.
+                continue;
+            }
             // Dots have no heading: no arctangent per agent for a crowd too small to show one
             // (100,000 agents on a page canvas).
             let dots = self.sprites.get(group as usize).is_none_or(|s| s.headings.is_empty());

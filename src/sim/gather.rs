@@ -101,6 +101,8 @@ pub struct GoalPlaces {
     places: Vec<Vec2>,
     taken: Vec<bool>,
     free: usize,
+    /// Places a body has come to rest on.
+    filled: usize,
     /// Per group heading for the goal, its places in the order it takes them, and how far
     /// along that order every place before is taken.
     orders: Vec<(u32, Vec<u32>, usize)>,
@@ -135,10 +137,16 @@ impl GoalPlaces {
         let orders = approaches
             .iter()
             .map(|&(group, from)| {
+                // A group around the goal (coming from every side) fills it from the centre out.
+                let around = from.distance(centre) < radius;
                 let way = (centre - from).try_normalize().unwrap_or(Vec2::X);
                 let key = |p: Vec2| {
                     let w = p - centre;
-                    -w.dot(way) + SIDEWAYS_WEIGHT * w.perp_dot(way).abs()
+                    if around {
+                        w.length()
+                    } else {
+                        -w.dot(way) + SIDEWAYS_WEIGHT * w.perp_dot(way).abs()
+                    }
                 };
                 let mut order: Vec<u32> = (0..places.len() as u32).collect();
                 order.sort_by(|&a, &b| {
@@ -148,7 +156,7 @@ impl GoalPlaces {
             })
             .collect();
         let free = places.len();
-        Self { centre, radius, taken: vec![false; places.len()], places, free, orders, roomy }
+        Self { centre, radius, taken: vec![false; places.len()], places, free, filled: 0, orders, roomy }
     }
 
     /// Number of places.
@@ -156,9 +164,16 @@ impl GoalPlaces {
         self.places.len()
     }
 
-    /// Whether every place is taken (never for a goal much larger than its crowd).
+    /// Whether a body rests on every place (never for a goal much larger than its crowd):
+    /// then the late-comers wait outside. While some are only claimed by agents walking to
+    /// them, the others go on as their planner steers them.
     pub fn is_full(&self) -> bool {
-        self.free == 0 && !self.roomy
+        self.filled >= self.places.len() && !self.roomy
+    }
+
+    /// Records that a body came to rest on a place it took.
+    pub fn fill(&mut self) {
+        self.filled += 1;
     }
 
     /// Where place `k` is.
@@ -233,14 +248,18 @@ mod tests {
 
     #[test]
     fn a_group_fills_from_the_far_side_then_the_goal_is_full() {
-        let mut g = GoalPlaces::new(Vec2::new(100.0, 0.0), 20.0, 4.0, 100, &[(3, Vec2::ZERO)], |_| true);
+        let mut g = GoalPlaces::new(Vec2::new(100.0, 0.0), 60.0, 4.0, 1000, &[(3, Vec2::ZERO)], |_| true);
         let first = g.claim_for_group(3, Vec2::ZERO).map(|k| g.place(k));
-        assert!(first.is_some_and(|p| p.x > 110.0), "first place {first:?} is on the far side");
+        assert!(first.is_some_and(|p| p.x > 140.0), "first place {first:?} is on the far side");
         let mut taken = 1;
         while g.claim_for_group(3, Vec2::ZERO).is_some() {
             taken += 1;
         }
         assert_eq!(taken, g.capacity());
+        assert!(!g.is_full(), "taken, but nobody rests there yet");
+        for _ in 0..taken {
+            g.fill();
+        }
         assert!(g.is_full());
         assert_eq!(g.claim_for_group(7, Vec2::ZERO), None, "a group that does not head there gets none");
     }

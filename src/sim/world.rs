@@ -827,12 +827,13 @@ impl World {
             return;
         }
         let Some(places) = self.goal_places.get_mut(k).and_then(Option::as_mut) else { return };
-        let before = self.previous.get(i).copied().unwrap_or(p);
         match self.arrival[i] {
             Arrival::Moving => {
                 let full = places.is_full();
                 if d <= goal_radius {
                     let claim = places.claim_for_group(g as u32, p).or_else(|| places.claim_nearest(p));
+                    // No free place (all taken, some perhaps by agents still walking there): it
+                    // presses in and rests where the crowd stops it.
                     self.arrival[i] = claim.map_or(Arrival::Pressing, Arrival::Walking);
                     self.stall[i] = 0;
                     self.closest[i] = f32::INFINITY;
@@ -869,6 +870,9 @@ impl World {
                 let left = p.distance(target);
                 if left <= SETTLE_PROGRESS && !self.overlaps_rest(target, r, jumped, slack) {
                     self.pos[i] = target;
+                    if let Some(places) = self.goal_places.get_mut(k).and_then(Option::as_mut) {
+                        places.fill();
+                    }
                     self.rest(i, parked_in_cell);
                     return;
                 }
@@ -897,22 +901,32 @@ impl World {
                     self.rest(i, parked_in_cell);
                     return;
                 }
-                if self.stall[i] >= 4 * WALK_STALL_STEPS || self.overlaps_rest(target, r, jumped, slack) {
-                    // Its place is out of reach (behind bodies at rest, or one rests on it): it
-                    // stays taken, and the agent takes the next in its group's order.
+                let occupied = self.overlaps_rest(target, r, jumped, slack);
+                if self.stall[i] >= 4 * WALK_STALL_STEPS || occupied {
+                    // Its place is out of reach (behind bodies at rest) or a body rests on it:
+                    // the agent takes the next in its group's order, and gives its place back
+                    // unless a body rests on it (then it stays taken, so the goal can be full).
                     let Some(places) = self.goal_places.get_mut(k).and_then(Option::as_mut) else { return };
                     let claim = places.claim_for_group(g as u32, p).or_else(|| places.claim_nearest(p));
+                    if occupied {
+                        // Another body fills it.
+                        places.fill();
+                    } else {
+                        places.release(place);
+                    }
                     self.arrival[i] = claim.map_or(Arrival::Pressing, Arrival::Walking);
                     self.stall[i] = 0;
                     self.closest[i] = f32::INFINITY;
                 }
             }
             Arrival::Pressing => {
-                let centre = places.centre;
-                if before.distance(centre) - p.distance(centre) < SETTLE_PROGRESS {
-                    self.stall[i] += 1;
-                } else {
+                // Net progress towards the centre, as for walkers: jostling in a crowd is none.
+                let left = p.distance(places.centre);
+                if left < self.closest[i] - SETTLE_PROGRESS {
+                    self.closest[i] = left;
                     self.stall[i] = 0;
+                } else {
+                    self.stall[i] += 1;
                 }
                 if self.stall[i] >= PRESS_STALL_STEPS && !self.overlaps_rest(p, r, jumped, slack) {
                     self.rest(i, parked_in_cell);

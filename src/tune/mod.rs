@@ -260,6 +260,10 @@ impl TuneTask {
         let scene = self.scene_with(weights);
         let groups = scene.groups.len();
         let mut world = World::new(scene)?;
+        // The paper's experiment: the five forces alone steer the group, also at its goal (the
+        // world would otherwise walk arrived agents to places and the weights would not matter
+        // there).
+        world.set_parking(false);
         let n = world.agent_count();
         let mut recorder =
             FitnessRecorder::new(self.fitness.clone(), world.scene().width, world.scene().height, n);
@@ -646,16 +650,23 @@ mod tests {
 
     #[test]
     fn a_short_run_beats_its_first_generation() {
-        let (task, ga) = small();
-        let mut tuner = Tuner::new(task, ga, 5).expect("valid");
-        let best = tuner.run(|_| {}).expect("a best");
-        let history = tuner.history();
-        assert_eq!(history.len(), 6);
-        assert!(best.gsum > history[0].best_gsum, "{} vs {}", best.gsum, history[0].best_gsum);
-        // The reported best really scores what it says.
-        assert_eq!(tuner.task().evaluate(best.weights).gsum, best.gsum);
-        assert!(history.windows(2).all(|w| w[1].best.gsum >= w[0].best.gsum));
-        assert!(tuner.generation().is_none());
+        // Six generations of 16 improve on the first in most seeds (measured: 6 of seeds 1–7;
+        // in seed 5 the first generation already holds the best of the run); never worse.
+        let mut improved = 0;
+        for seed in 1..=7 {
+            let (task, ga) = small();
+            let mut tuner = Tuner::new(task, ga, seed).expect("valid");
+            let best = tuner.run(|_| {}).expect("a best");
+            let history = tuner.history();
+            assert_eq!(history.len(), 6);
+            assert!(best.gsum >= history[0].best_gsum, "{} vs {}", best.gsum, history[0].best_gsum);
+            improved += u32::from(best.gsum > history[0].best_gsum);
+            // The reported best really scores what it says.
+            assert_eq!(tuner.task().evaluate(best.weights).gsum, best.gsum);
+            assert!(history.windows(2).all(|w| w[1].best.gsum >= w[0].best.gsum));
+            assert!(tuner.generation().is_none());
+        }
+        assert!(improved >= 5, "only {improved} of 7 seeds improved on their first generation");
     }
 
     #[test]
