@@ -42,9 +42,10 @@ fn wall(min: [f32; 2], max: [f32; 2]) -> Obstacle {
     Obstacle::Rect { min: [px(min[0]), px(min[1])], max: [px(max[0]), px(max[1])] }
 }
 
-/// A goal at `at` (m) of radius `r` (m).
+/// An exit at `at` (m) of radius `r` (m): in the RiMEA tests a walker that reaches it has left
+/// the building ([`crate::model::scene::OnArrival::Exit`]).
 fn goal(at: [f32; 2], r: f32) -> Goal {
-    Goal::fixed([px(at[0]), px(at[1])], px(r))
+    Goal::fixed([px(at[0]), px(at[1])], px(r)).exit()
 }
 
 /// T1: one walker in a 40 m × 2 m corridor, from its left end to a goal at its right end.

@@ -207,16 +207,13 @@ pub fn find_test(id: &str) -> Option<&'static TestSpec> {
 }
 
 /// A world for `scene` (no cost limit: the suite runs natively and in a worker), at `starts`
-/// when given; without parking, since the suite's goals are exits ([`World::set_parking`]).
+/// when given. The suite's goals are exits: a walker that reaches one leaves the scene.
 fn world(scene: &Scene, starts: Option<Vec<Vec2>>) -> Result<World, Failure> {
     let built = match starts {
         Some(p) => World::new_at(scene.clone(), p),
         None => World::new_beyond_cost_limit(scene.clone()),
     };
-    let mut w =
-        built.map_err(|e| Failure { message: e.to_string(), scene: Some(Box::new(scene.clone())) })?;
-    w.set_parking(false);
-    Ok(w)
+    built.map_err(|e| Failure { message: e.to_string(), scene: Some(Box::new(scene.clone())) })
 }
 
 /// Steps per second.
@@ -269,7 +266,6 @@ pub fn periodic_run(
         width,
     );
     let mut w = World::new_beyond_cost_limit(scene.clone())?;
-    w.set_parking(false);
     w.set_periodic_x(Some(band));
     Ok((record(w, (WARM_UP_S + MEASURE_S) * HZ, PERIODIC_EVERY, |_| false), scene))
 }
