@@ -4,11 +4,13 @@
 //! when full, the recording, the metric series, the replay, lockstep comparison), a `Run` that keeps
 //! a world and its recording, replay and metric series in step for the page and the command
 //! line, the budgets and limits of the front-ends in `limits`, and the check of a scene's
-//! activity goal on the metrics (`activity_check`).
+//! activity goal on the metrics (`activity_check`), and the notice that a goal is too small for
+//! its crowd (`capacity_notice`).
 //!
 //! Layer: sim. Uses `model`, `spatial`, `planners` and `rng`.
 
 pub mod activity_check;
+pub mod capacity_notice;
 pub mod compare;
 pub mod cost;
 pub mod diagnose;

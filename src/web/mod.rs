@@ -332,6 +332,13 @@ impl Sim {
         to_json(&goals)
     }
 
+    /// The scene check's notices that a goal is too small for the groups heading for it, as JSON
+    /// (`[]` when every crowd fits; fields of [`crate::sim::capacity_notice::CapacityNotice`]):
+    /// the page words them in the reader's language.
+    pub fn capacity_notices_json(&self) -> Result<String, JsError> {
+        to_json(&crate::sim::capacity_notice::capacity_notices(self.run.world().scene()))
+    }
+
     /// Outlines an item (JSON item reference) or nothing (`"null"`).
     pub fn set_selection(&mut self, item_json: &str) -> Result<(), JsError> {
         let item: Option<ItemRef> = serde_json::from_str(item_json)

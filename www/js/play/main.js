@@ -12,6 +12,7 @@ import { isPanic, messageOf, showMessage } from '../core/errors.js';
 import { setupHistoryButtons } from './history.js';
 import { startLoop } from '../core/loop.js';
 import { setupMetrics } from './metrics.js';
+import { setupCapacityNotice } from './capacity-notice.js';
 import { setupInspector } from './inspector.js';
 import { setupLock } from './lock.js';
 import { Panel } from './panel.js';
@@ -65,6 +66,7 @@ bootPage(t('boot.what_play'), ({ module, wasm }) => {
   setupTimeline(app);
   setupSceneLinks(app);
   const onFrame = setupMetrics(app);
+  setupCapacityNotice(app);
   setupInspector(app);
   setupActivity(app);
   // The canvas in words for screen readers (core/describe.js), beside the canvas.
