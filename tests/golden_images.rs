@@ -14,6 +14,9 @@
 //! FLOCKPATH_BLESS=1 cargo test --test golden_images
 //! ```
 
+// PNG reading and writing (the `png` crate) is a native-only dev-dependency.
+#![cfg(not(target_arch = "wasm32"))]
+
 use flockpath::render::{Renderer, Theme};
 use flockpath::{presets, Scene, World};
 use std::fs::File;
