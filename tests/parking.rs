@@ -92,9 +92,9 @@ fn the_converging_presets_arrive_as_fully_as_before() {
         let share = arrival(scene, 1500);
         assert!(share >= before, "{name}: arrived {share} at step 1500, {before} before parking");
     }
-    // 2,000 Boids converging from every side on a goal that holds them (radius 250 px: about
-    // 3,000 places for bodies of radius 4): all inside by step 1,500 (measured 1.0).
-    let share = arrival(presets::constant_density_to_centre(2000, 8.0, 250.0), 1500);
+    // 1,000 Boids converging from every side on a goal that holds them (radius 180 px: about
+    // 1,500 places for bodies of radius 4): all inside by step 1,200.
+    let share = arrival(presets::constant_density_to_centre(1000, 8.0, 180.0), 1200);
     assert_eq!(share, 1.0);
 }
 
