@@ -213,9 +213,9 @@ mod tests {
         scene.goals[0] = Goal::fixed([10_000.0, 10_000.0], 9_000.0);
         scene.groups[0].count = 200_000;
         scene.groups[0].agent_radius = 0.5;
-        let started = std::time::Instant::now();
+        // Checked from the lattice's area (no places laid out): the answer, not its time, is
+        // what a test can hold; the time belongs in a benchmark.
         let notices = capacity_notices(&scene);
-        assert!(started.elapsed().as_millis() < 500, "took {:?}", started.elapsed());
         assert_eq!(notices, vec![], "a 9,000 px goal holds 200,000 bodies of radius 0.5 px");
     }
 }
