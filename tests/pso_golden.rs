@@ -96,7 +96,7 @@ pso-influx seed 3: f075c7ca49dfaaf8\n\
 pso-stream seed 3: 66cf30a0aed3cf11\n\
 pso-static-obstacle seed 3: af8039c1172e3e1a\n\
 pso-dodge seed 3: 846c510ffd4f29c0\n\
-pso-crowd seed 3: dbbf9db70390f0e6\n\
+pso-crowd seed 3: 7ea9ab74ba07f26d\n\
 pso-circle-target seed 3: b85faa4115030002\n\
 pso-four-corners seed 3: e9019d237b0b9ecc\n\
 pso-hills seed 3: 3a1eef57db965580\n\

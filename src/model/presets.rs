@@ -383,7 +383,7 @@ pub fn pso_static_obstacle() -> Scene {
     let mut s = base("pso-static-obstacle", 1000.0, 300.0);
     s.obstacles.push(Obstacle::Circle { center: [500.0, 15.0], radius: 30.0 });
     // Holds the gathered crowd (it reaches about 80 px from the target).
-    s.goals.push(Goal::fixed([950.0, 25.0], 90.0));
+    s.goals.push(Goal::fixed([950.0, 25.0], 110.0));
     s.groups.push(pso_group("people", BLUE, 20, ([10.0, 5.0], [110.0, 60.0]), 0));
     s
 }
@@ -402,8 +402,8 @@ pub fn pso_dodge() -> Scene {
 pub fn pso_crowd() -> Scene {
     let mut s = base("pso-crowd", 1000.0, 600.0);
     // Each holds its gathered crowd of 20 (about 70 px out).
-    s.goals.push(Goal::fixed([920.0, 300.0], 75.0));
-    s.goals.push(Goal::fixed([80.0, 300.0], 75.0));
+    s.goals.push(Goal::fixed([900.0, 300.0], 85.0));
+    s.goals.push(Goal::fixed([100.0, 300.0], 85.0));
     s.groups.push(pso_group("east", BLUE, 20, ([20.0, 180.0], [160.0, 420.0]), 0));
     s.groups.push(pso_group("west", VERMILLION, 20, ([840.0, 180.0], [980.0, 420.0]), 1));
     s
@@ -413,7 +413,7 @@ pub fn pso_crowd() -> Scene {
 pub fn pso_circle_target() -> Scene {
     let mut s = base("pso-circle-target", 1000.0, 700.0);
     // Wide enough for the 20 chasers to keep up inside it as it turns.
-    let mut goal = Goal::fixed([750.0, 350.0], 60.0);
+    let mut goal = Goal::fixed([750.0, 350.0], 70.0);
     goal.motion = Some(GoalMotion::Circle { center: [500.0, 350.0], radius: 250.0, period_steps: 3600.0 });
     s.goals.push(goal);
     s.groups.push(pso_group("chasers", BLUE, 20, ([440.0, 290.0], [560.0, 410.0]), 0));
@@ -493,7 +493,7 @@ pub fn igsa_path_1() -> Scene {
     {
         s.obstacles.push(Obstacle::Circle { center: c, radius: r });
     }
-    s.goals.push(Goal::fixed([745.0, 250.0], 50.0));
+    s.goals.push(Goal::fixed([735.0, 250.0], 55.0));
     s.groups.push(igsa_group("group", BLUE, 40, ([20.0, 190.0], [110.0, 310.0]), 0));
     s
 }
@@ -638,7 +638,7 @@ pub fn orca_crossing() -> Scene {
         ("south", "#8f3fbf", ([320.0, 480.0], [480.0, 580.0]), [400.0, 60.0]),
     ];
     for (k, (name, color, spawn, goal)) in sides.into_iter().enumerate() {
-        s.goals.push(Goal::fixed(goal, 50.0));
+        s.goals.push(Goal::fixed(goal, 60.0));
         s.groups.push(Group {
             agent_radius: PEDESTRIAN_RADIUS,
             planner: PlannerConfig::Orca(OrcaParams::default()),

@@ -40,6 +40,13 @@ const WALK_STALL_STEPS: u16 = 60;
 /// or the other by its number: a body pressing straight onto a single one at rest slides round
 /// it into a pocket instead of balancing on top of it (a chain growing outward).
 const PRESS_SKEW: f32 = 0.2;
+/// Rounds of [`World::shoulder_through`]: one push can cause another overlap; two undo most.
+const SHOULDER_ROUNDS: usize = 4;
+/// Room [`World::shoulder_through`] leaves between two bodies it parts (px): with less, the
+/// next push in a crowd (rounding, a neighbour's) makes them overlap again.
+const SHOULDER_MARGIN: f32 = 0.1;
+/// Steps in a row a walker stands wedged on another before it rests where it is.
+const WEDGED_STEPS: u16 = 10;
 /// Most parked neighbours examined per moving agent and round of the parking pass (the first in
 /// the grid's scan order): non-overlapping bodies hold few within reach; a pile of moving
 /// agents (which do not park on each other) is bounded by it.
@@ -87,6 +94,9 @@ pub struct World {
     arrival: Vec<Arrival>,
     /// Steps each settling agent has made no progress.
     stall: Vec<u16>,
+    /// Steps in a row each walker overlapped another that [`World::shoulder_through`] could
+    /// not part (the two stand in a hole the crowd at rest left for one).
+    wedged: Vec<u16>,
     /// Nearest each walking agent has come to its place so far (px): progress is counted net,
     /// so a walker that jitters back and forth in a jam is held up all the same.
     closest: Vec<f32>,
@@ -201,6 +211,7 @@ impl World {
             parked: vec![false; total],
             arrival: vec![Arrival::Moving; total],
             stall: vec![0; total],
+            wedged: vec![0; total],
             closest: vec![f32::INFINITY; total],
             goal_places: Vec::new(),
             max_radius,
@@ -416,6 +427,7 @@ impl World {
                 self.arrival[i] = Arrival::Moving;
                 self.parked[i] = false;
                 self.stall[i] = 0;
+                self.wedged[i] = 0;
             }
         }
     }
@@ -616,6 +628,7 @@ impl World {
         }
         self.step += 1;
         self.settle_parking(bounds);
+        self.shoulder_through(bounds);
         self.rebuild_grid();
         let goals: Vec<Option<(Vec2, f32)>> = (0..self.groups.len()).map(|g| self.goal_of_group(g)).collect();
         self.recorder.record(
@@ -725,6 +738,96 @@ impl World {
             self.settle_arrival(i, &jumped, &mut parked_in_cell, slack);
         }
         self.parked_in_cell = parked_in_cell;
+    }
+
+    /// Agents the world steers at their goals (walking to a place, pressing in) shoulder
+    /// their way after the move: each overlap with an agent not at rest is undone by moving the
+    /// two apart, half each (all of it for the walker when the other cannot move there: out
+    /// of the world or into an obstacle). So a walker held up for long, which walks on without
+    /// giving way, parts the crowd instead of walking through it, and agents queued at a goal
+    /// do not pile on its walkers. Bodies at rest are left to [`World::settle_parking`].
+    fn shoulder_through(&mut self, bounds: Vec2) {
+        let steered = |a: Arrival| matches!(a, Arrival::Walking(_) | Arrival::Pressing);
+        if !self.arrival.iter().any(|&a| steered(a)) {
+            return;
+        }
+        let solid: Vec<bool> = self.groups.iter().map(|g| !g.planner.passes_through_obstacles()).collect();
+        // The grid holds the positions before the move: a neighbour is within a step of it.
+        let slack = self.max_radius + 2.0 * self.max_step;
+        let mut near: Vec<usize> = Vec::new();
+        // The grid holds a body that came to rest in this step within a step of where it rests.
+        let (none_jumped, rest_slack) = (Jumped::new(1.0), self.max_radius + self.max_step);
+        for round in 0..SHOULDER_ROUNDS {
+            let last_round = round + 1 == SHOULDER_ROUNDS;
+            for i in 0..self.pos.len() {
+                if !steered(self.arrival[i]) {
+                    continue;
+                }
+                let mut wedged = false;
+                let bold =
+                    matches!(self.arrival[i], Arrival::Walking(_)) && self.stall[i] >= WALK_STALL_STEPS;
+                near.clear();
+                self.grid.for_each_within_capped(
+                    self.pos[i],
+                    self.radius[i] + slack,
+                    PRESS_NEIGHBOUR_CAP,
+                    |n| {
+                        near.push(n.id as usize);
+                    },
+                );
+                for &j in &near {
+                    if j == i || self.parked[j] || self.arrival[j] == Arrival::Exited {
+                        continue;
+                    }
+                    let (pi, pj) = (self.pos[i], self.pos[j]);
+                    let contact = self.radius[i] + self.radius[j];
+                    let d = pi.distance(pj);
+                    if d >= contact {
+                        continue;
+                    }
+                    let away = if d > 0.0 {
+                        (pi - pj) / d
+                    } else if i < j {
+                        Vec2::NEG_X
+                    } else {
+                        Vec2::X
+                    };
+                    let overlap = contact - d + SHOULDER_MARGIN;
+                    // Wedged for long, the two are parted into bodies at rest as well: the
+                    // next step pushes whoever that leaves overlapping one out of it (or on to
+                    // the nearest free place), so a hole for one never holds two for good.
+                    let loose = self.wedged[i] >= WEDGED_STEPS;
+                    let placeable = |k: usize, q: Vec2| {
+                        let (lo, hi) = centre_bounds(self.radius[k], bounds);
+                        q.clamp(lo, hi) == q
+                            && !(solid[self.group_of[k] as usize] && self.obstacles.contains(q))
+                            && (loose || !self.overlaps_rest(q, self.radius[k], &none_jumped, rest_slack))
+                    };
+                    let (qi, qj) = (pi + away * (overlap * 0.5), pj - away * (overlap * 0.5));
+                    if bold {
+                        // A walker held up for long is not pushed back (it would never get
+                        // through): the other steps aside if it can, else they overlap a while.
+                        if placeable(j, pj - away * overlap) {
+                            self.pos[j] = pj - away * overlap;
+                        } else {
+                            wedged = true;
+                        }
+                    } else if placeable(i, qi) && placeable(j, qj) {
+                        self.pos[i] = qi;
+                        self.pos[j] = qj;
+                    } else if placeable(i, pi + away * overlap) {
+                        self.pos[i] = pi + away * overlap;
+                    } else if placeable(j, pj - away * overlap) {
+                        self.pos[j] = pj - away * overlap;
+                    } else {
+                        wedged = true;
+                    }
+                }
+                if last_round {
+                    self.wedged[i] = if wedged { self.wedged[i].saturating_add(1) } else { 0 };
+                }
+            }
+        }
     }
 
     /// Rebuilds the neighbour grid from the agents' positions, with the agents that left the
@@ -887,7 +990,7 @@ impl World {
                     // Walking on without giving way ([`World::steer_arrivals`]) and still held.
                     self.stall[i] += 1;
                 }
-                if self.stall[i] >= 2 * WALK_STALL_STEPS
+                if (self.stall[i] >= 2 * WALK_STALL_STEPS || self.wedged[i] >= WEDGED_STEPS)
                     && d <= goal_radius
                     && self.overlaps_walker(i)
                     && !self.overlaps_rest(p, r, jumped, slack)
