@@ -421,10 +421,6 @@ impl Planner for Boids {
     }
 
     /// Prey must still flee once at their goal: they are not gathered.
-    fn gathers_at_goal(&self) -> bool {
-        self.params.role != Role::Prey
-    }
-
     fn plan(&mut self, ctx: &StepContext, group: GroupView, _rng: &mut Rng, new_velocities: &mut [Vec2]) {
         self.prepare(ctx, &group);
         // Pass 1: the neighbour sums of every agent. Pass 2: the rule forces from them, in id

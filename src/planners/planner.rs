@@ -73,13 +73,6 @@ pub trait Planner: PlannerClone {
     fn passes_through_obstacles(&self) -> bool {
         false
     }
-    /// Whether the world gathers this group's agents in a goal that gathers (DESIGN §4): an
-    /// agent that reaches it walks to a free place inside and stops there for good. True for
-    /// every planner but those whose agents must go on moving once there (prey that still
-    /// flee); theirs count as arrived while their centre is inside.
-    fn gathers_at_goal(&self) -> bool {
-        true
-    }
     /// The path the group follows, for planners that plan one (IGSA group path control).
     fn planned_path(&self) -> Option<&GroupPath> {
         None

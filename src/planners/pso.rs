@@ -511,10 +511,6 @@ fn obstacle_scope(o: &Obstacle) -> f32 {
 impl Planner for Pso {
     /// PSO agents gather at their goal by themselves: its objective keeps every agent off the others (agent σ) round the target, the paper's gathering. Walking them to places by the
     /// world (straight, not seen by this planner's avoidance) would make them overlap.
-    fn gathers_at_goal(&self) -> bool {
-        false
-    }
-
     fn interaction_radius(&self) -> f32 {
         CUTOFF_SCALED * 2.0 * self.params.agent_sigma
     }

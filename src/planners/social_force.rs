@@ -266,10 +266,6 @@ impl Planner for SocialForce {
     /// inside, [`crate::planners::goal_way`]) and keep apart by their own model; walking them
     /// to places by the world would override the social force step that keeps them apart (the
     /// world's walkers do not reciprocate as the model assumes).
-    fn gathers_at_goal(&self) -> bool {
-        false
-    }
-
     fn max_speed(&self) -> f32 {
         self.params.max_speed() * self.scale * DT
     }

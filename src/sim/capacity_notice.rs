@@ -9,8 +9,6 @@
 //! the largest radius among them. Its capacity is [`capacity`], the lattice of places without
 //! obstacles or the world's border, hence "about".
 
-use crate::model::params::boids::Role;
-use crate::model::params::PlannerConfig;
 use crate::model::scene::{OnArrival, Scene};
 use crate::sim::gather::capacity;
 use serde::Serialize;
@@ -43,21 +41,6 @@ pub struct HeadingGroup {
     pub count: u32,
 }
 
-/// Whether a group steered by `config` is gathered at its goal by the world: every planner but
-/// those that keep their own arrival (PSO, firefly, ORCA, social force) and Boids prey, who
-/// must go on fleeing. The same answer as the built planner's `gathers_at_goal` (a test holds
-/// them together), read from the settings so the check builds no planner.
-pub fn gathers(config: &PlannerConfig) -> bool {
-    match config {
-        PlannerConfig::Boids(p) => p.role != Role::Prey,
-        PlannerConfig::Forces(_) | PlannerConfig::Igsa(_) => true,
-        PlannerConfig::Pso(_)
-        | PlannerConfig::Firefly(_)
-        | PlannerConfig::Orca(_)
-        | PlannerConfig::SocialForce(_) => false,
-    }
-}
-
 /// Every goal of `scene` that gathers and will be full before all its agents arrive, in goal
 /// order; empty when every crowd fits. Goals that are exits, or that never stop moving (a
 /// circle), hold nobody and are left out. Work: one pass over the goals and groups, and
@@ -72,7 +55,7 @@ pub fn capacity_notices(scene: &Scene) -> Vec<CapacityNotice> {
             .groups
             .iter()
             .enumerate()
-            .filter(|(_, g)| g.goal == Some(k as u32) && g.count > 0 && gathers(&g.planner))
+            .filter(|(_, g)| g.goal == Some(k as u32) && g.count > 0 && g.planner.gathers_at_goal())
             .collect();
         if heading.is_empty() {
             continue;
@@ -105,23 +88,9 @@ pub fn capacity_notices(scene: &Scene) -> Vec<CapacityNotice> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::params::boids::BoidsParams;
     use crate::model::params::PlannerKind;
     use crate::model::presets;
     use crate::model::scene::Goal;
-
-    #[test]
-    fn the_check_agrees_with_the_planners_on_who_gathers() {
-        let mut configs: Vec<PlannerConfig> = PlannerKind::ALL.iter().map(|k| k.default_config()).collect();
-        for role in [Role::None, Role::Predator, Role::Prey] {
-            configs.push(PlannerConfig::Boids(BoidsParams { role, ..BoidsParams::default() }));
-        }
-        for config in &configs {
-            let planner = crate::planners::build(config, 1, &[]);
-            assert_eq!(gathers(config), planner.gathers_at_goal(), "{config:?}");
-        }
-        assert!(configs.iter().any(gathers) && !configs.iter().all(gathers));
-    }
 
     #[test]
     fn a_goal_too_small_names_its_goal_capacity_groups_and_the_waiting() {

@@ -869,7 +869,8 @@ impl World {
             }
             let heading: Vec<usize> = (0..self.scene.groups.len())
                 .filter(|&g| {
-                    self.scene.groups[g].goal == Some(k as u32) && self.groups[g].planner.gathers_at_goal()
+                    self.scene.groups[g].goal == Some(k as u32)
+                        && self.scene.groups[g].planner.gathers_at_goal()
                 })
                 .collect();
             if heading.is_empty() {
@@ -926,7 +927,7 @@ impl World {
             return;
         }
         let goal_radius = goal.radius;
-        if !self.groups[g].planner.gathers_at_goal() {
+        if !self.scene.groups[g].planner.gathers_at_goal() {
             return;
         }
         let Some(places) = self.goal_places.get_mut(k).and_then(Option::as_mut) else { return };

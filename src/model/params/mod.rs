@@ -213,6 +213,23 @@ impl PlannerConfig {
         }
     }
 
+    /// Whether the world gathers this planner's agents in a goal that gathers (DESIGN §4): an
+    /// agent that reaches it walks to a free place inside and stops there for good. False for
+    /// the planners that keep their own arrival (PSO, firefly, ORCA, social force: their
+    /// avoidance does not see the world's walkers) and for Boids prey, who must go on fleeing;
+    /// theirs count as arrived while their centre is inside. The world and the scene check's
+    /// capacity notice both ask this.
+    pub fn gathers_at_goal(&self) -> bool {
+        match self {
+            PlannerConfig::Boids(p) => p.role != boids::Role::Prey,
+            PlannerConfig::Forces(_) | PlannerConfig::Igsa(_) => true,
+            PlannerConfig::Pso(_)
+            | PlannerConfig::Firefly(_)
+            | PlannerConfig::Orca(_)
+            | PlannerConfig::SocialForce(_) => false,
+        }
+    }
+
     /// Checks every parameter against its table range (and IGSA's edited waypoints); a refusal
     /// names the parameter by its key, value and range.
     pub fn check(&self) -> Result<(), ParamError> {

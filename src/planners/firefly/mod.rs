@@ -610,10 +610,6 @@ impl ContactList<'_> {
 impl Planner for Firefly {
     /// firefly agents gather at their goal by themselves: its feeler queues each behind a brighter one and the crowd gathers at the target without touching. Walking them to places by the
     /// world (straight, not seen by this planner's avoidance) would make them overlap.
-    fn gathers_at_goal(&self) -> bool {
-        false
-    }
-
     fn interaction_radius(&self) -> f32 {
         self.params.view_radius.max(self.params.feeler_length + self.params.safe_distance)
     }
