@@ -1,5 +1,8 @@
 //! The command line as scripts use it (DESIGN §5): runs the built `flockpath` binary.
 
+#[path = "support/largest_scene.rs"]
+mod largest_scene;
+
 use std::io::Write as _;
 use std::path::PathBuf;
 use std::process::{Command, Output, Stdio};
@@ -203,7 +206,10 @@ fn bad_inputs_fail_with_a_message_naming_the_problem() {
         "--fps",
     );
     std::fs::remove_file("o.mel").ok();
-    fails_naming(flockpath(&["run", "--scene", path, "--steps", "5", "--blender", "o.py", "--scale", "inf"]), "--scale");
+    fails_naming(
+        flockpath(&["run", "--scene", path, "--steps", "5", "--blender", "o.py", "--scale", "inf"]),
+        "--scale",
+    );
     std::fs::remove_file("o.py").ok();
     fails_naming(flockpath(&["fly"]), "fly");
     fails_naming(flockpath(&["preset", "moon-base"]), "unknown preset 'moon-base' (known: pillars");
@@ -325,17 +331,57 @@ fn non_finite_numbers_and_empty_sample_intervals_are_refused_by_option() {
         ("--alpha", "-infinity", "0…1000000"),
     ] {
         let flag = format!("{option}={value}");
-        let o = flockpath(&["optimize", "--algorithms", "gsa", "--functions", "sphere", "--runs", "1", &flag]);
+        let o =
+            flockpath(&["optimize", "--algorithms", "gsa", "--functions", "sphere", "--runs", "1", &flag]);
         assert_eq!(o.status.code(), Some(2), "{flag} is a usage mistake: {}", stderr(&o));
         let err = stderr(&o);
         assert!(err.contains(option) && err.contains(range), "{flag}: names the option and its range: {err}");
         fails_naming(o, value);
     }
     for every in ["0", "1000000", "401"] {
-        let o = flockpath(&["tune", "--behaviour", "b1", "--environment", "e1", "--seed", "1", "--sample-every", every]);
+        let o = flockpath(&[
+            "tune",
+            "--behaviour",
+            "b1",
+            "--environment",
+            "e1",
+            "--seed",
+            "1",
+            "--sample-every",
+            every,
+        ]);
         assert_eq!(o.status.code(), Some(2), "--sample-every {every}: {}", stderr(&o));
         fails_naming(o, &format!("--sample-every {every} is outside 1…400"));
     }
     let o = flockpath(&["tune", "--table", "--frames", "20", "--sample-every", "21"]);
     fails_naming(o, "--sample-every 21 is outside 1…20");
+}
+
+/// Regression (issue 24): `flockpath url` wrote a link `flockpath run` refused (a scene JSON
+/// with a 7 MiB group name loaded, its link unpacked past the reader's limit). Now a scene that
+/// loads has a link that loads: at the largest sizes a scene may have, url → run round-trips,
+/// and the 7 MiB name is refused by `url` itself, naming the field and the limit.
+#[test]
+fn url_writes_only_links_that_run_reads_even_at_the_largest_sizes() {
+    let (largest, _) = largest_scene::largest_scene();
+    let json = temp_path("largest.json");
+    std::fs::write(&json, serde_json::to_string(&largest).expect("JSON")).expect("temp file written");
+    let link = ok(flockpath(&["url", json.to_str().expect("utf-8 path")]));
+    std::fs::remove_file(&json).ok();
+    let link = link.trim();
+    assert!(link.len() > flockpath::model::codec::MAX_LINK_CHARS * 99 / 100, "{} characters", link.len());
+    // A link this long does not fit in one command-line argument (128 KiB): run reads it from a file.
+    let link_file = temp_path("largest-link.txt");
+    std::fs::write(&link_file, link).expect("temp file written");
+    let run = ok(flockpath(&["run", "--scene", link_file.to_str().expect("utf-8 path"), "--steps", "1"]));
+    assert!(run.starts_with(&format!("{}:", largest.name)), "{}", run.chars().take(200).collect::<String>());
+    std::fs::remove_file(&link_file).ok();
+
+    let mut scene: serde_json::Value = serde_json::from_str(&preset_json("pillars")).expect("preset JSON");
+    scene["groups"][0]["name"] = serde_json::json!("x".repeat(7 << 20));
+    let file = temp_path("long-name.json");
+    std::fs::write(&file, scene.to_string()).expect("temp file written");
+    let o = flockpath(&["url", file.to_str().expect("utf-8 path")]);
+    std::fs::remove_file(&file).ok();
+    fails_naming(o, "groups[0].name is text of 7340032 character(s)");
 }

@@ -68,7 +68,6 @@ pub struct RunArgs {
     scale: Option<f32>,
 }
 
-
 /// Makes one export file's text.
 type Export = fn(&Scene, &Recording, ExportOptions) -> String;
 

@@ -233,7 +233,11 @@ mod tests {
         assert!(parse("--table --frames 0").expect_err("frames").contains("--frames"));
         assert!(parse("--table --generations 0").expect_err("generations").contains("--generations"));
         // A sample interval of 0 or beyond the frames would measure nothing (all-zero fitness).
-        for (flags, range) in [("--sample-every 0", "1…400"), ("--sample-every 1000000", "1…400"), ("--frames 50 --sample-every 51", "1…50")] {
+        for (flags, range) in [
+            ("--sample-every 0", "1…400"),
+            ("--sample-every 1000000", "1…400"),
+            ("--frames 50 --sample-every 51", "1…50"),
+        ] {
             let e = parse(&format!("--behaviour b1 --environment e1 --seed 1 {flags}")).expect_err(flags);
             assert!(e.contains("--sample-every") && e.contains(range), "{flags}: {e}");
         }
