@@ -1,5 +1,8 @@
 //! The command line as scripts use it (DESIGN §5): runs the built `flockpath` binary.
 
+#[path = "support/largest_scene.rs"]
+mod largest_scene;
+
 use std::io::Write as _;
 use std::path::PathBuf;
 use std::process::{Command, Output, Stdio};
@@ -198,6 +201,16 @@ fn bad_inputs_fail_with_a_message_naming_the_problem() {
         "frame rate",
     );
     fails_naming(flockpath(&["optimize", "--algorithms", "nope"]), "nope");
+    fails_naming(
+        flockpath(&["run", "--scene", path, "--steps", "5", "--maya", "o.mel", "--fps", "NaN"]),
+        "--fps",
+    );
+    std::fs::remove_file("o.mel").ok();
+    fails_naming(
+        flockpath(&["run", "--scene", path, "--steps", "5", "--blender", "o.py", "--scale", "inf"]),
+        "--scale",
+    );
+    std::fs::remove_file("o.py").ok();
     fails_naming(flockpath(&["fly"]), "fly");
     fails_naming(flockpath(&["preset", "moon-base"]), "unknown preset 'moon-base' (known: pillars");
     fails_naming(flockpath(&["run", "--scene", "moon-base", "--steps", "5"]), "no preset has that name");
@@ -302,4 +315,73 @@ fn run_reports_the_activity_check_after_the_summary() {
 
     let plain = ok(flockpath_with_stdin(&["run", "--scene", "-", "--steps", "10"], &preset_json("pillars")));
     assert_eq!(plain.lines().count(), 1, "no check, no activity line: {plain}");
+}
+
+/// Regression (issue 24): `flockpath optimize --g0 NaN --alpha NaN` ran (GSA's best then 23,103
+/// instead of 99.3), because the range check `x < lo || x > hi` is false for NaN; and
+/// `flockpath tune --sample-every 1000000` (or 0) ran the GA on fitness that was 0 for every
+/// chromosome, because no frame was ever sampled. Every float option now refuses a non-finite
+/// value naming the option and its range, and the sample interval must lie in 1…--frames.
+#[test]
+fn non_finite_numbers_and_empty_sample_intervals_are_refused_by_option() {
+    for (option, value, range) in [
+        ("--g0", "NaN", "0…1000000000000"),
+        ("--alpha", "NaN", "0…1000000"),
+        ("--g0", "inf", "0…1000000000000"),
+        ("--alpha", "-infinity", "0…1000000"),
+    ] {
+        let flag = format!("{option}={value}");
+        let o =
+            flockpath(&["optimize", "--algorithms", "gsa", "--functions", "sphere", "--runs", "1", &flag]);
+        assert_eq!(o.status.code(), Some(2), "{flag} is a usage mistake: {}", stderr(&o));
+        let err = stderr(&o);
+        assert!(err.contains(option) && err.contains(range), "{flag}: names the option and its range: {err}");
+        fails_naming(o, value);
+    }
+    for every in ["0", "1000000", "401"] {
+        let o = flockpath(&[
+            "tune",
+            "--behaviour",
+            "b1",
+            "--environment",
+            "e1",
+            "--seed",
+            "1",
+            "--sample-every",
+            every,
+        ]);
+        assert_eq!(o.status.code(), Some(2), "--sample-every {every}: {}", stderr(&o));
+        fails_naming(o, &format!("--sample-every {every} is outside 1…400"));
+    }
+    let o = flockpath(&["tune", "--table", "--frames", "20", "--sample-every", "21"]);
+    fails_naming(o, "--sample-every 21 is outside 1…20");
+}
+
+/// Regression (issue 24): `flockpath url` wrote a link `flockpath run` refused (a scene JSON
+/// with a 7 MiB group name loaded, its link unpacked past the reader's limit). Now a scene that
+/// loads has a link that loads: at the largest sizes a scene may have, url → run round-trips,
+/// and the 7 MiB name is refused by `url` itself, naming the field and the limit.
+#[test]
+fn url_writes_only_links_that_run_reads_even_at_the_largest_sizes() {
+    let (largest, _) = largest_scene::largest_scene();
+    let json = temp_path("largest.json");
+    std::fs::write(&json, serde_json::to_string(&largest).expect("JSON")).expect("temp file written");
+    let link = ok(flockpath(&["url", json.to_str().expect("utf-8 path")]));
+    std::fs::remove_file(&json).ok();
+    let link = link.trim();
+    assert!(link.len() > flockpath::model::codec::MAX_LINK_CHARS * 99 / 100, "{} characters", link.len());
+    // A link this long does not fit in one command-line argument (128 KiB): run reads it from a file.
+    let link_file = temp_path("largest-link.txt");
+    std::fs::write(&link_file, link).expect("temp file written");
+    let run = ok(flockpath(&["run", "--scene", link_file.to_str().expect("utf-8 path"), "--steps", "1"]));
+    assert!(run.starts_with(&format!("{}:", largest.name)), "{}", run.chars().take(200).collect::<String>());
+    std::fs::remove_file(&link_file).ok();
+
+    let mut scene: serde_json::Value = serde_json::from_str(&preset_json("pillars")).expect("preset JSON");
+    scene["groups"][0]["name"] = serde_json::json!("x".repeat(7 << 20));
+    let file = temp_path("long-name.json");
+    std::fs::write(&file, scene.to_string()).expect("temp file written");
+    let o = flockpath(&["url", file.to_str().expect("utf-8 path")]);
+    std::fs::remove_file(&file).ok();
+    fails_naming(o, "groups[0].name is text of 7340032 character(s)");
 }

@@ -208,8 +208,9 @@ fn fault<T>(
     Err(ActivityFault { path: path.into(), value: value.into(), allowed: allowed.into() })
 }
 
-/// A text's description as a refused value: its length, and its start.
-fn text_value(text: &str) -> String {
+/// A text's description as a refused value: its length, and its start (a name or prompt of
+/// megabytes is not repeated in the message).
+pub(crate) fn text_value(text: &str) -> String {
     let n = text.chars().count();
     let start: String = text.chars().take(24).collect();
     format!("text of {n} character(s) ({start:?}{})", if n > 24 { "…" } else { "" })

@@ -42,7 +42,7 @@ use serde::{Deserialize, Serialize};
 pub const FRAGMENT_VERSION: &str = "2";
 /// Every version this build reads, oldest first.
 pub const READABLE_VERSIONS: &[&str] = &["1", "2"];
-pub use crate::model::scene::{MAX_INPUT_BYTES, MAX_SCENE_BYTES};
+pub use crate::model::scene::{MAX_INPUT_BYTES, MAX_LINK_CHARS, MAX_SCENE_BYTES};
 /// The byte-order mark some editors put at the start of a UTF-8 file.
 const BYTE_ORDER_MARK: char = '\u{feff}';
 
@@ -52,6 +52,7 @@ pub fn scene_from_json(text: &str) -> Result<Scene, SceneError> {
     check_input_size(text)?;
     let scene: Scene = deserialize(text, Layout::Keyed)?;
     scene.validate().map_err(|e| as_written(e, text))?;
+    check_link_fits(&scene)?;
     Ok(scene)
 }
 
@@ -104,15 +105,55 @@ pub fn scene_to_json(scene: &Scene) -> String {
 
 /// The URL fragment value (`s=` part) for a scene, in the current version.
 pub fn scene_to_fragment(scene: &Scene) -> String {
+    format!("{FRAGMENT_VERSION}.{}", pack(&link_payload(scene)))
+}
+
+/// The JSON a link packs: the compact form, which must give back this very scene; otherwise
+/// (a field it does not know) the keyed JSON, which the same version decodes.
+fn link_payload(scene: &Scene) -> Vec<u8> {
     let compact = CompactScene::from_scene(scene);
-    // The compact form must give back this very scene; otherwise (a field it does not know)
-    // fall back to the keyed JSON, which the same version decodes.
-    let json = match compact.to_scene() {
+    match compact.to_scene() {
         Ok(back) if &back == scene => serde_json::to_vec(&compact),
         _ => serde_json::to_vec(scene),
     }
-    .expect(SCENE_SERIALISES);
-    format!("{FRAGMENT_VERSION}.{}", pack(&json))
+    .expect(SCENE_SERIALISES)
+}
+
+/// Refuses a scene whose own link would not open it again: one that unpacks beyond
+/// [`MAX_SCENE_BYTES`] (the reader stops there) or is longer than [`MAX_LINK_CHARS`] (the browser
+/// drops it). Checked whenever a scene is loaded or edited, so `flockpath url` and the page's
+/// address bar only ever write links that `flockpath run` and the page read.
+///
+/// Exact, and cheap for all but huge scenes: the link is packed (a deflate at level 9, about
+/// 0.6 s natively for a 2 MB link) only when a bound says it might not fit (from about 1.4 MB
+/// of link JSON).
+///
+/// Not checked: the pretty JSON [`scene_to_json`] writes against [`MAX_INPUT_BYTES`]. It spells
+/// out every key and puts every number on its own line, so a scene whose link fits may write
+/// more JSON than a file may hold (5,000 groups: 5.9 MB; 40,000: about 47 MB).
+pub fn check_link_fits(scene: &Scene) -> Result<(), SceneError> {
+    let payload = link_payload(scene);
+    if payload.len() > MAX_SCENE_BYTES {
+        return Err(SceneError::TooLarge {
+            what: "the unpacked scene string",
+            bytes: Some(payload.len()),
+            limit: MAX_SCENE_BYTES,
+        });
+    }
+    // Deflate stores an incompressible block with 5 bytes per 65,535, and base64 writes 4
+    // characters per 3 bytes: a generous bound on the link without packing it.
+    let stored = payload.len() + payload.len() / 64 + 1024;
+    if FRAGMENT_VERSION.len() + 1 + stored.div_ceil(3) * 4 > MAX_LINK_CHARS {
+        let chars = FRAGMENT_VERSION.len() + 1 + pack(&payload).len();
+        if chars > MAX_LINK_CHARS {
+            return Err(SceneError::TooLarge {
+                what: "the scene's link",
+                bytes: Some(chars),
+                limit: MAX_LINK_CHARS,
+            });
+        }
+    }
+    Ok(())
 }
 
 fn pack(bytes: &[u8]) -> String {
@@ -159,6 +200,7 @@ pub fn scene_from_fragment(input: &str) -> Result<Scene, SceneError> {
                 let compact: CompactScene = deserialize(&text, Layout::Compact)?;
                 let scene = compact.to_scene()?;
                 scene.validate()?;
+                check_link_fits(&scene)?;
                 Ok(scene)
             } else {
                 scene_from_json(&text)
@@ -595,11 +637,20 @@ fn refusal(error: &serde_path_to_error::Error<serde_json::Error>, text: &str, la
     // Best-effort re-reads that locate the field; the parser's error itself is what is reported.
     let json: Option<serde_json::Value> = serde_json::from_str(text).ok();
     let token = token_at(text, inner.line(), inner.column());
-    // The text's structure with a word JSON cannot hold (NaN) replaced by 0: it tells a compact
-    // circle [x, y, r] from a polygon and finds a group's planner.
-    let structure = json.clone().or_else(|| {
-        let (start, end, _) = token.as_ref()?;
-        serde_json::from_str(&format!("{}0{}", &text[..*start], &text[*end..])).ok()
+    // A string that is no text (a lone surrogate escape, an unknown escape, a raw control
+    // character): its fault in words, and its place, which the structure below leaves empty.
+    let bad_string = (inner.is_syntax() && json.is_none())
+        .then(|| invalid_string_at(text, inner.line(), inner.column()))
+        .flatten();
+    // The text's structure with a word JSON cannot hold (NaN) replaced by 0, or a string that
+    // is no text by "": it tells a compact circle [x, y, r] from a polygon and finds a group's
+    // planner.
+    let structure = json.clone().or_else(|| match &bad_string {
+        Some(bad) => serde_json::from_str(&format!("{}\"\"{}", &text[..bad.start], &text[bad.end..])).ok(),
+        None => {
+            let (start, end, _) = token.as_ref()?;
+            serde_json::from_str(&format!("{}0{}", &text[..*start], &text[*end..])).ok()
+        }
     });
     let message = raw.rsplit_once(" at line ").map_or(raw.as_str(), |(m, _)| m).to_string();
     // Internally tagged obstacles and goal motions report errors at the object: read it again
@@ -617,6 +668,9 @@ fn refusal(error: &serde_path_to_error::Error<serde_json::Error>, text: &str, la
             Layout::Keyed => format!("the text is not a scene object ({message}, {at})"),
             Layout::Compact => format!("the scene string does not hold a version 2 scene ({message})"),
         });
+    }
+    if let Some(bad) = bad_string {
+        return with_detail(SceneError::field(path, bad.value, bad.allowed), Some(raw));
     }
     let hint = planner_param_allowed(&path, structure.as_ref());
     let value = json.as_ref().and_then(|j| walk(j, &segments)).map(render);
@@ -860,6 +914,106 @@ fn token_at(text: &str, line: usize, column: usize) -> Option<(usize, usize, Str
     (!token.is_empty()).then_some((row_start + start, row_start + end, token))
 }
 
+/// A JSON string literal that does not hold text, found where the parser stopped.
+struct InvalidString {
+    /// Byte range of the literal in the text, quotes included.
+    start: usize,
+    end: usize,
+    /// The fault as a refused value: `an invalid string (the lone surrogate \ud800)`.
+    value: String,
+    /// The rule it breaks.
+    allowed: &'static str,
+}
+
+/// What a text field allows when its string breaks JSON's rules for a surrogate escape.
+const ALLOWED_SURROGATES: &str =
+    "text in which each \\ud800…\\udbff escape is followed by a \\udc00…\\udfff one (a surrogate pair)";
+/// … for an escape JSON does not have.
+const ALLOWED_ESCAPES: &str =
+    "text whose escapes are \\\" \\\\ \\/ \\b \\f \\n \\r \\t or \\u and 4 hex digits";
+/// … for a control character written as it is.
+const ALLOWED_CONTROL: &str = "text without raw control characters (write a line break as \\n)";
+
+/// The string literal of `text` around (1-based) `line`, `column` and what makes it no text:
+/// serde_json stops inside or just after it, and its own words ("lone leading surrogate in hex
+/// escape", "unexpected end of hex escape") name neither the escape nor, for `"\ud800x"`, the
+/// fault. `None` when the parser stopped outside a string or the string looks fine.
+fn invalid_string_at(text: &str, line: usize, column: usize) -> Option<InvalidString> {
+    let row_start: usize = text.split_inclusive('\n').take(line.checked_sub(1)?).map(str::len).sum();
+    let at = row_start + column;
+    // The literal holding `at`: scan from the start (strings can hold `[`, `"` escaped, …).
+    let bytes = text.as_bytes();
+    let (mut i, mut start) = (0, None);
+    let (start, end) = loop {
+        let b = *bytes.get(i)?;
+        match (start, b) {
+            (None, b'"') => start = Some(i),
+            (Some(_), b'\\') => i += 1,
+            (Some(s), b'"') => {
+                // serde_json's column may lie one past the closing quote (`"\u12"` reads the
+                // quote as the escape's third digit).
+                if at <= i + 2 {
+                    break (s, i + 1);
+                }
+                start = None;
+            }
+            _ => {}
+        }
+        i += 1;
+        if start.is_none() && i > at {
+            return None;
+        }
+    };
+    let literal = &text[start + 1..end - 1];
+    let fault = |value: String, allowed| Some(InvalidString { start, end, value, allowed });
+    fn hex(s: &str) -> Option<&str> {
+        s.get(..4).filter(|h| h.bytes().all(|b| b.is_ascii_hexdigit()))
+    }
+    let mut rest = literal;
+    while let Some(c) = rest.chars().next() {
+        rest = &rest[c.len_utf8()..];
+        if c < ' ' {
+            let named =
+                format!("an invalid string (the control character U+{:04X} written as it is)", u32::from(c));
+            return fault(named, ALLOWED_CONTROL);
+        }
+        if c != '\\' {
+            continue;
+        }
+        let Some(e) = rest.chars().next() else { break };
+        rest = &rest[e.len_utf8()..];
+        match e {
+            '"' | '\\' | '/' | 'b' | 'f' | 'n' | 'r' | 't' => {}
+            'u' => {
+                let Some(h) = hex(rest) else {
+                    let written: String = rest.chars().take(4).collect();
+                    return fault(format!("an invalid string (the escape \\u{written})"), ALLOWED_ESCAPES);
+                };
+                rest = &rest[4..];
+                let n = u16::from_str_radix(h, 16).ok()?;
+                let low_follows = || {
+                    rest.strip_prefix("\\u")
+                        .and_then(hex)
+                        .and_then(|l| u16::from_str_radix(l, 16).ok())
+                        .is_some_and(|l| (0xDC00..=0xDFFF).contains(&l))
+                };
+                match n {
+                    0xD800..=0xDBFF if low_follows() => rest = &rest[6..],
+                    0xD800..=0xDFFF => {
+                        return fault(
+                            format!("an invalid string (the lone surrogate \\u{h})"),
+                            ALLOWED_SURROGATES,
+                        )
+                    }
+                    _ => {}
+                }
+            }
+            other => return fault(format!("an invalid string (the escape \\{other})"), ALLOWED_ESCAPES),
+        }
+    }
+    None
+}
+
 /// A keyed path: `groups[2].planner.params.max_speed`.
 fn keyed_path(segments: &[Segment]) -> String {
     let mut path = String::new();
@@ -1081,6 +1235,52 @@ mod tests {
         assert_eq!(percent_decoded("é%2Cü%zz%4%C3%A9%"), "é,ü%zz%4%C3%A9%");
         assert_eq!(link_option("x#s=2.a&lock=goals&lock=paths", "lock"), Some("goals"));
         assert_eq!(link_option("2.abc", "lock"), None);
+    }
+
+    /// Regression (issue 24): a lone surrogate in a name (`"\ud800x"`) was refused as "a finite
+    /// number (JSON has no NaN or Infinity)" with the value `ud800x`.
+    #[test]
+    fn a_string_that_is_no_text_is_refused_naming_its_fault() {
+        let scene = (crate::model::presets::ALL[0].build)();
+        let json = scene_to_json(&scene);
+        let name = format!("\"name\": {}", serde_json::to_string(&scene.groups[0].name).expect("a name"));
+        let with_name = |written: &str| json.replacen(&name, &format!("\"name\": \"{written}\""), 1);
+        for (written, value, allowed) in [
+            ("\\ud800x", "an invalid string (the lone surrogate \\ud800)", ALLOWED_SURROGATES),
+            ("ab\\ud800\\u0041", "an invalid string (the lone surrogate \\ud800)", ALLOWED_SURROGATES),
+            ("\\uDC00", "an invalid string (the lone surrogate \\uDC00)", ALLOWED_SURROGATES),
+            ("a\\qb", "an invalid string (the escape \\q)", ALLOWED_ESCAPES),
+            ("a\\u12", "an invalid string (the escape \\u12)", ALLOWED_ESCAPES),
+            (
+                "tab\there",
+                "an invalid string (the control character U+0009 written as it is)",
+                ALLOWED_CONTROL,
+            ),
+        ] {
+            let text = with_name(written);
+            assert_ne!(text, json);
+            let e = scene_from_json(&text).expect_err(written);
+            let SceneError::Field(f) = &e else { panic!("{written}: {e}") };
+            assert_eq!(
+                (f.path.as_str(), f.value.as_str(), f.allowed.as_str()),
+                ("groups[0].name", value, allowed),
+                "{written}"
+            );
+            assert!(!e.to_string().contains("finite number"), "{e}");
+        }
+        // A surrogate pair is text (U+1F600), and loads.
+        assert!(scene_from_json(&with_name("\\ud83d\\ude00")).is_ok());
+        // In a link's compact form, the same words and the keyed path.
+        let fragment = scene_to_fragment(&scene);
+        let compact = unpack(fragment.split_once('.').expect("version").1).expect("unpacks");
+        let quoted = serde_json::to_string(&scene.groups[0].name).expect("a name");
+        let broken = compact.replacen(&format!("[{quoted},"), "[\"\\ud800x\",", 1);
+        assert_ne!(broken, compact, "the group's name is in the compact form");
+        let e = scene_from_fragment(&format!("2.{}", pack(broken.as_bytes()))).expect_err("a lone surrogate");
+        assert_eq!(
+            e.to_string(),
+            format!("groups[0].name is an invalid string (the lone surrogate \\ud800); allowed: {ALLOWED_SURROGATES}")
+        );
     }
 
     #[test]

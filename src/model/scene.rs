@@ -14,6 +14,17 @@ pub const DT: f32 = 1.0 / 60.0;
 pub const MAX_SCENE_BYTES: usize = 4 << 20;
 /// Largest scene text accepted (a file, a link, a JSON string; the codec checks it) from a URL or file (bytes).
 pub const MAX_INPUT_BYTES: usize = 8 << 20;
+/// Longest scene string (the `s=` value of a link, `flockpath url`'s output) a scene may have,
+/// in characters. Chromium keeps at most 2 MiB (2,097,152 characters) of address: a longer
+/// link loses its fragment on reload or when opened, and the page then shows its default
+/// scene without a word. The page's own address and the classroom options need the rest. A
+/// scene is checked against it when loaded (`crate::model::codec`), so every scene that loads
+/// has a link that opens it again.
+pub const MAX_LINK_CHARS: usize = 2_000_000;
+/// Longest name (the scene's, a group's), in characters: one line in the legend, the metrics
+/// panel and the exports' headers. Before this limit a 7 MiB name loaded from JSON, and its
+/// link was too long to open.
+pub const MAX_NAME_CHARS: usize = 100;
 
 /// Most agents a scene may hold in total (keeps a typo from freezing the page).
 pub const MAX_AGENTS: u32 = 200_000;
@@ -662,6 +673,7 @@ pub fn field_limits() -> Vec<FieldLimit> {
     );
     let length = format!("a number above 0 and at most {MAX_SIDE} px");
     let mut rows = vec![
+        row("name", name_text(), "one line in the legend, the metrics and the exports; a link holds it"),
         row("width", side.clone(), "a world from a dot to a large poster; bigger worlds cost memory per grid cell"),
         row("height", side, "as width"),
         row(
@@ -691,6 +703,7 @@ pub fn field_limits() -> Vec<FieldLimit> {
         row("goals[].motion.points", format!("1…{MAX_PATH_POINTS} points, each {near}"), "a goal's route"),
         row("goals[].motion.speed", format!("a number in 0…{MAX_SIDE} px/step"), "as obstacle radii"),
         row("groups[].count", format!("a whole number 0…{MAX_AGENTS}; all groups together at most {MAX_AGENTS} agents; 0 is an empty group that spawns nothing"), "keeps a typo from freezing the page"),
+        row("groups[].name", name_text(), "as the scene's name"),
         row("groups[].color", "a colour \"#rrggbb\"".into(), "what the renderer draws"),
         row("groups[].spawn.min[]", format!("{inside}, at most max"), "agents start inside the world"),
         row("groups[].spawn.max[]", format!("{inside}, at least min"), "agents start inside the world"),
@@ -709,11 +722,34 @@ pub fn field_limits() -> Vec<FieldLimit> {
         row("(any object)", "only the keys listed here and in the planner tables; an unknown key is refused".into(), "a misspelt key would otherwise be ignored without a word"),
         row("(scene text)", format!("at most {} bytes", MAX_INPUT_BYTES), "a file or link larger than any real scene"),
         row("(unpacked scene string)", format!("at most {} bytes", MAX_SCENE_BYTES), "a guard against deflate bombs"),
+        row(
+            "(the scene's link)",
+            format!("at most {MAX_LINK_CHARS} characters, unpacking to at most {MAX_SCENE_BYTES} bytes"),
+            "every scene that loads has a link that opens it again; Chromium drops addresses over 2 MiB",
+        ),
     ];
     rows.extend(
         crate::model::activity::limits().into_iter().map(|(field, allowed, why)| row(field, allowed, why)),
     );
     rows
+}
+
+/// What a name may hold, in the refusal's words.
+fn name_text() -> String {
+    format!("text of at most {MAX_NAME_CHARS} characters on one line")
+}
+
+/// Refuses the name at `path` if longer than [`MAX_NAME_CHARS`] or holding a control character
+/// (a line break would split the exports' header lines).
+fn name_in(path: impl Fn() -> String, name: &str) -> Result<(), SceneError> {
+    if name.chars().count() > MAX_NAME_CHARS {
+        return Err(SceneError::field(path(), crate::model::activity::text_value(name), name_text()));
+    }
+    if let Some(c) = name.chars().find(|c| c.is_control()) {
+        let value = format!("text holding the control character U+{:04X}", u32::from(c));
+        return Err(SceneError::field(path(), value, name_text()));
+    }
+    Ok(())
 }
 
 /// What `path` accepts, from [`field_limits`] (indices in the path may be any number).
@@ -805,6 +841,7 @@ impl Scene {
     /// Empty is fine: a scene without obstacles, goals or groups is an empty canvas to draw on,
     /// and a group with `count: 0` spawns nothing (the editor keeps its settings).
     pub fn validate(&self) -> Result<(), SceneError> {
+        name_in(|| "name".into(), &self.name)?;
         number_in(|| "width".into(), self.width, 10.0, false, MAX_SIDE)?;
         number_in(|| "height".into(), self.height, 10.0, false, MAX_SIDE)?;
         number_in(|| "px_per_metre".into(), self.px_per_metre, MIN_PX_PER_METRE, false, MAX_PX_PER_METRE)?;
@@ -874,6 +911,7 @@ impl Scene {
     }
 
     fn validate_group(&self, i: usize, g: &Group) -> Result<(), SceneError> {
+        name_in(|| format!("groups[{i}].name"), &g.name)?;
         let s = g.spawn;
         for (corner, p) in [("min", s.min), ("max", s.max)] {
             self.point_inside(|| format!("groups[{i}].spawn.{corner}"), p)?;

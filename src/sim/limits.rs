@@ -50,26 +50,27 @@ pub const COMPARE_SERIES_CAP: usize = 1000;
 /// recording and timeline budgets above bound what it keeps.
 pub const CLI_MAX_STEPS: u32 = 1_000_000;
 
-/// The optimizer lab page's largest population. GSA and IGSA cost O(N²·d) per iteration
-/// (`docs/optimizers.md` measures 50 ns per pair at d = 30: 2,000 agents ≈ 0.2 s per
-/// iteration), and the page runs them in a worker it must be able to wait for.
-/// `flockpath optimize` allows [`CLI_LAB_POPULATION`].
-pub const PAGE_LAB_POPULATION: u32 = 2_000;
+/// The optimizer lab page's largest population: its form's maximum, enforced here because a
+/// typed number passes the form (issue 24: 500 particles at d = 200 with all five algorithms is
+/// already a 7.7 s task in the page's worker). GSA and IGSA cost O(N²·d) per iteration
+/// (`docs/optimizers.md` measures 50 ns per pair at d = 30). `flockpath optimize` allows
+/// [`CLI_LAB_POPULATION`].
+pub const PAGE_LAB_POPULATION: u32 = 500;
 /// `flockpath optimize`'s largest population: batch runs natively, where a slow O(N²)
 /// iteration (100,000 agents ≈ 8 minutes at d = 30) is a choice, not a frozen tab.
 pub const CLI_LAB_POPULATION: usize = 100_000;
-/// The lab page's largest dimension (its picture and 30-run tables; the command line: 10,000).
-pub const PAGE_LAB_DIMENSION: u32 = 1_000;
+/// The lab page's largest dimension, its form's maximum (the command line: 10,000).
+pub const PAGE_LAB_DIMENSION: u32 = 200;
 /// `flockpath optimize`'s largest dimension.
 pub const CLI_LAB_DIMENSION: usize = 10_000;
-/// The lab page's most iterations per run (the command line: 10,000,000, a batch job).
-pub const PAGE_LAB_ITERATIONS: u32 = 100_000;
+/// The lab page's most iterations per run, its form's maximum (the command line: 10,000,000,
+/// a batch job).
+pub const PAGE_LAB_ITERATIONS: u32 = 10_000;
 /// `flockpath optimize`'s most iterations per run.
 pub const CLI_LAB_ITERATIONS: u32 = 10_000_000;
 
-// Not here, and why: the lab page's form (`www/lab.html`) offers smaller ranges than the wasm
-// API above accepts (d ≤ 200, N ≤ 500, T ≤ 10,000; a script calling the API may go up to the
-// limits above), and the tuning page's form caps its
-// population at 2,000 where `crate::tune` accepts 100,000 (the command line's limit). The
-// playground's agent-count field repeats the scene's `MAX_AGENTS` (200,000). These are inputs'
-// `max` attributes in HTML/JS, which cannot name a Rust constant.
+// Not here, and why: the lab page's form (`www/lab.html`) repeats the three `PAGE_LAB_*`
+// values above as its inputs' `max` (a test reads them back: tests/web_lab.rs), and the
+// tuning page's form caps its population at 2,000 where `crate::tune` accepts 100,000 (the
+// command line's limit). The playground's agent-count field repeats the scene's `MAX_AGENTS`
+// (200,000). These are inputs' `max` attributes in HTML/JS, which cannot name a Rust constant.

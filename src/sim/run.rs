@@ -204,6 +204,9 @@ impl Run {
     /// Switches to an edited scene: obstacles and goals change live (noted on the timeline);
     /// a change to the groups or the seed restarts the run. On error nothing changes.
     pub fn edit_scene(&mut self, scene: Scene) -> Result<(), SceneError> {
+        // An edit may not grow the scene past a link that opens it, as a load may not (the
+        // page keeps the link in its address bar).
+        crate::model::codec::check_link_fits(&scene)?;
         let before = plans_ahead(self.world.scene()).then(|| self.world.clone());
         self.world.edit_scene(scene)?;
         self.keep_for_cancel(before);

@@ -43,6 +43,15 @@ pub enum TuneError {
     /// A population outside `2…100000`.
     #[error("population {0} is outside 2…100000")]
     Population(u32),
+    /// A sample interval outside `1…frames`: 0, or more steps than an evaluation runs, would
+    /// take no sample, and every chromosome would score the same 0.
+    #[error("sample interval {every} is outside 1…{frames} (the frames per evaluation)")]
+    SampleEvery {
+        /// The interval asked for (steps).
+        every: u32,
+        /// The frames per evaluation.
+        frames: u32,
+    },
     /// A crossover or mutation rate outside `0…1`.
     #[error("crossover and mutation rates must be in 0…1")]
     Rates,
@@ -410,6 +419,9 @@ impl Tuner {
         if rates.iter().any(|r| !(0.0..=1.0).contains(r)) {
             return Err(TuneError::Rates);
         }
+        if !(1..=task.frames).contains(&task.sample_every) {
+            return Err(TuneError::SampleEvery { every: task.sample_every, frames: task.frames });
+        }
         World::new(task.scene_with([0.5; GENES]))?;
         let mut rng = Rng::new(seed, STREAM_GA);
         let population = (0..ga.population)
@@ -711,6 +723,12 @@ mod tests {
     fn bad_settings_are_refused() {
         let (task, ga) = small();
         assert!(Tuner::new(task.clone(), GaParams { population: 1, ..ga.clone() }, 1).is_err());
-        assert!(Tuner::new(task, GaParams { mutation_rate: 2.0, ..ga }, 1).is_err());
+        assert!(Tuner::new(task.clone(), GaParams { mutation_rate: 2.0, ..ga.clone() }, 1).is_err());
+        // No frame sampled would score every chromosome 0 (issue 24).
+        for every in [0, task.frames + 1] {
+            let e = Tuner::new(TuneTask { sample_every: every, ..task.clone() }, ga.clone(), 1).err();
+            assert_eq!(e, Some(TuneError::SampleEvery { every, frames: task.frames }));
+        }
+        assert!(Tuner::new(TuneTask { sample_every: task.frames, ..task }, ga, 1).is_ok());
     }
 }

@@ -16,14 +16,18 @@ fn function(name: &str) -> Result<Function, JsValue> {
     Function::parse(name).map_err(worded("lab"))
 }
 
+/// The run's sizes, each refused by name with its range when outside the page's limits (the
+/// lab form's maxima, `crate::sim::limits`): a number typed past an input's `max` reaches here.
 fn settings(dim: u32, population: u32, iterations: u32) -> Result<Settings, JsValue> {
     use crate::sim::limits::{
         PAGE_LAB_DIMENSION as DIM, PAGE_LAB_ITERATIONS as ITERS, PAGE_LAB_POPULATION as POP,
     };
-    if !(1..=DIM).contains(&dim) || !(2..=POP).contains(&population) || !(1..=ITERS).contains(&iterations) {
-        return Err(worded("lab")(format!(
-            "dimension {dim}, population {population}, iterations {iterations}: allowed 1…{DIM}, 2…{POP}, 1…{ITERS}"
-        )));
+    for (field, value, min, max) in
+        [("dimension", dim, 1, DIM), ("population", population, 2, POP), ("iterations", iterations, 1, ITERS)]
+    {
+        if !(min..=max).contains(&value) {
+            return Err(worded("lab")(format!("{field} {value} is outside {min}…{max}")));
+        }
     }
     Ok(Settings { population: population as usize, iterations, ..Settings::default() })
 }

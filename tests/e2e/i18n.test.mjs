@@ -283,6 +283,62 @@ test('every other refusal is worded in Chinese too: scene fields, items, compare
   }
 });
 
+// Issue 24: a name of 7 MiB, a lone surrogate in a name, a link longer than a browser keeps and
+// lab sizes past the form's maxima are refused naming the field and the limit, in both languages.
+test('names, strings that are no text, links too long and lab sizes are refused by field and limit, in English and Chinese (wasm module, no browser)', async () => {
+  const m = await wasmModule();
+  const i18n = await pageModule('core', 'i18n.js');
+  const { refusalText } = await pageModule('core', 'refusals.js');
+  const base = JSON.parse(m.preset_scene_json('open-field'));
+  const withName = (name) => {
+    const s = structuredClone(base);
+    s.groups[0].name = name;
+    return JSON.stringify(s);
+  };
+  const load = (text) => refused(() => new m.Sim(text, 100, 100));
+  // Empty groups with 100 random CJK characters each: their link outgrows what a browser keeps.
+  const many = structuredClone(base);
+  let seed = 24;
+  const cjk = () => String.fromCharCode(0x4e00 + (((seed = (Math.imul(seed, 1103515245) + 12345) >>> 0) >>> 8) % 32768));
+  for (let i = 0; i < 8500; i++) many.groups.push({ name: Array.from({ length: 100 }, cjk).join(''), count: 0, spawn: base.groups[0].spawn });
+  const cases = {
+    long_name: load(withName('x'.repeat(7 << 20))),
+    // JSON.stringify writes a lone surrogate as the escape `\ud800`, as a hand-edited file would.
+    surrogate: load(withName('\ud800x')),
+    escape: load(withName('ab').replace('"ab"', '"a\\qb"')),
+    long_link: load(JSON.stringify(many)),
+    lab_dimension: refused(() => new m.Lab('pso', 'sphere', 201, 30, 300, 1)),
+    lab_population: refused(() => new m.Lab('pso', 'sphere', 2, 501, 300, 1)),
+    lab_iterations: refused(() => m.lab_best_of_run('pso', 'sphere', 2, 30, 10001, 1, 0)),
+  };
+  assert.equal(cases.long_name.message, 'groups[0].name is text of 7340032 character(s) ("xxxxxxxxxxxxxxxxxxxxxxxx"…); allowed: text of at most 100 characters on one line');
+  assert.equal(cases.surrogate.message, 'groups[0].name is an invalid string (the lone surrogate \\ud800); allowed: text in which each \\ud800…\\udbff escape is followed by a \\udc00…\\udfff one (a surrogate pair)');
+  assert.equal(cases.escape.message, 'groups[0].name is an invalid string (the escape \\q); allowed: text whose escapes are \\" \\\\ \\/ \\b \\f \\n \\r \\t or \\u and 4 hex digits');
+  assert.match(cases.long_link.message, /^the scene's link is too large \(\d+ bytes; limit 2000000 bytes\)$/);
+  assert.equal(cases.lab_dimension.message, 'dimension 201 is outside 1…200');
+  assert.equal(cases.lab_population.message, 'population 501 is outside 2…500');
+  assert.equal(cases.lab_iterations.message, 'iterations 10001 is outside 1…10000');
+  // The lab's form offers exactly what the core accepts: its maxima load, one more is refused.
+  const html = await readFile(path.join(WWW, 'lab.html'), 'utf8');
+  const max = (id) => Number(new RegExp(`id="${id}"[^>]*max="(\\d+)"`).exec(html)?.[1]);
+  assert.deepEqual([max('lab-dim'), max('lab-pop'), max('lab-iters')], [200, 500, 10000]);
+  new m.Lab('pso', 'sphere', max('lab-dim'), max('lab-pop'), max('lab-iters'), 1).free();
+  try {
+    for (const e of Object.values(cases)) assert.equal(refusalText(e), null, 'English pages show the core’s words');
+    i18n.setLanguage('zh', null);
+    const zh = Object.fromEntries(Object.entries(cases).map(([k, e]) => [k, refusalText(e)]));
+    assert.equal(zh.long_name, 'groups[0].name 的值为 7340032 个字符的文本（"xxxxxxxxxxxxxxxxxxxxxxxx"…）；允许：单行文本，最多 100 个字符');
+    assert.equal(zh.surrogate, 'groups[0].name 的值为 无效的字符串（孤立的代理项 \\ud800）；允许：文本，其中每个 \\ud800…\\udbff 转义之后必须紧跟一个 \\udc00…\\udfff 转义（代理对）');
+    assert.equal(zh.escape, 'groups[0].name 的值为 无效的字符串（无效的转义 \\q）；允许：文本，其中的转义只能是 \\" \\\\ \\/ \\b \\f \\n \\r \\t，或 \\u 加 4 位十六进制数字');
+    assert.match(zh.long_link, /^场景链接太大（\d+ 字节；上限 2000000 字节）$/);
+    assert.equal(zh.lab_dimension, '维数 201 超出 1…200 的范围');
+    assert.equal(zh.lab_population, '种群规模 501 超出 2…500 的范围');
+    assert.equal(zh.lab_iterations, '迭代次数 10001 超出 1…10000 的范围');
+  } finally {
+    i18n.setLanguage('en', null);
+  }
+});
+
 test('the validation suite’s "measured" words are Chinese for every test (real rows from the wasm module)', async () => {
   const m = await wasmModule();
   const i18n = await pageModule('core', 'i18n.js');

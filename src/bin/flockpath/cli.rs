@@ -155,18 +155,33 @@ pub fn whole_number<T: std::str::FromStr>(text: &str) -> Result<T, String> {
     text.trim().parse().map_err(|_| format!("must be a whole number, got {text:?}"))
 }
 
-/// A clap value parser for a number in `lo…hi`.
+/// A clap value parser for a number in `lo…hi`. Written as "inside" rather than "not outside"
+/// so that NaN, which compares false with everything, is refused too (Rust's float parser
+/// reads `NaN`, `inf` and `infinity`).
 pub fn in_range<T>(lo: T, hi: T) -> impl Fn(&str) -> Result<T, String> + Clone + Send + Sync + 'static
 where
     T: std::str::FromStr + PartialOrd + std::fmt::Display + Copy + Send + Sync + 'static,
 {
     move |text: &str| {
-        let x: T = text.trim().parse().map_err(|_| format!("needs a number, got {text:?}"))?;
-        if x < lo || x > hi {
+        let x: T = text.trim().parse().map_err(|_| format!("needs a number in {lo}…{hi}, got {text:?}"))?;
+        if !(lo <= x && x <= hi) {
             return Err(format!("{x} is outside {lo}…{hi}"));
         }
         Ok(x)
     }
+}
+
+/// A clap value parser for a finite number (the option's own range is checked where it is
+/// used): `NaN` and `inf` parse as floats but are no setting.
+pub fn finite<T>(text: &str) -> Result<T, String>
+where
+    T: std::str::FromStr + Into<f64> + Copy,
+{
+    let x: T = text.trim().parse().map_err(|_| format!("must be a number, got {text:?}"))?;
+    if !x.into().is_finite() {
+        return Err(format!("must be a finite number, got {text:?}"));
+    }
+    Ok(x)
 }
 
 #[cfg(test)]

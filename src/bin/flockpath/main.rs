@@ -26,7 +26,7 @@ mod tune;
 mod validate;
 
 #[cfg(not(target_arch = "wasm32"))]
-pub use cli::{failed, in_range, out, usage, whole_number, write_file, CliError};
+pub use cli::{failed, finite, in_range, out, usage, whole_number, write_file, CliError};
 
 #[cfg(not(target_arch = "wasm32"))]
 fn main() -> std::process::ExitCode {

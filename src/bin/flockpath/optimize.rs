@@ -41,10 +41,10 @@ pub struct OptimizeArgs {
     /// Master seed; run r draws from stream r of it (default 1)
     #[arg(long, value_name = "S", value_parser = in_range(0u32, u32::MAX))]
     seed: Option<u32>,
-    /// Override G0 of GSA and IGSA (defaults GSA 100, IGSA 1)
+    /// Override G0 of GSA and IGSA: a finite number in 0…1e12 (defaults GSA 100, IGSA 1)
     #[arg(long, value_name = "X", value_parser = in_range(0.0f64, 1e12))]
     g0: Option<f64>,
-    /// Override α of GSA and IGSA (defaults GSA 20, IGSA 30)
+    /// Override α of GSA and IGSA: a finite number in 0…1e6 (defaults GSA 20, IGSA 30)
     #[arg(long, value_name = "X", value_parser = in_range(0.0f64, 1e6))]
     alpha: Option<f64>,
     /// Write one record per algorithm and function: {algorithm, function, dim, runs, best,

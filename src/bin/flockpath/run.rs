@@ -2,7 +2,7 @@
 //! its activity check stands (when the scene has one), write the exports asked for.
 
 use crate::scenes::load_scene;
-use crate::{failed, out, usage, whole_number, write_file, CliError};
+use crate::{failed, finite, out, usage, whole_number, write_file, CliError};
 use flockpath::experiments::validation::pedpy;
 use flockpath::export::{self, ExportOptions};
 use flockpath::sim::activity_check::{Report, Status};
@@ -61,15 +61,11 @@ pub struct RunArgs {
     #[arg(long, value_name = "FILE")]
     pedpy: Option<String>,
     /// Keyframes per second of the MEL/Python exports (1…240, default 24)
-    #[arg(long, value_name = "F", value_parser = real, allow_negative_numbers = true)]
+    #[arg(long, value_name = "F", value_parser = finite::<f32>, allow_negative_numbers = true)]
     fps: Option<f32>,
     /// Scene px → 3-D units in the MEL/Python exports (default 0.01)
-    #[arg(long, value_name = "S", value_parser = real, allow_negative_numbers = true)]
+    #[arg(long, value_name = "S", value_parser = finite::<f32>, allow_negative_numbers = true)]
     scale: Option<f32>,
-}
-
-fn real(text: &str) -> Result<f32, String> {
-    text.trim().parse().map_err(|_| format!("must be a number, got {text:?}"))
 }
 
 /// Makes one export file's text.

@@ -41,7 +41,7 @@ pub struct TuneArgs {
     /// Frames simulated per evaluation (1…100000, default 400)
     #[arg(long, value_name = "F", value_parser = crate::in_range(1u32, 100_000))]
     frames: Option<u32>,
-    /// Measure every K frames (default 1)
+    /// Measure every K frames (1…F, at most --frames; default 1)
     #[arg(long, value_name = "K", value_parser = crate::whole_number::<u32>)]
     sample_every: Option<u32>,
     /// Write the JSON report to FILE, or to stdout with `-`
@@ -96,6 +96,14 @@ impl TuneArgs {
         budget.sample_every = self.sample_every.unwrap_or(budget.sample_every);
         if budget.ga.max_generations == 0 {
             return Err(usage("--generations must be at least 1"));
+        }
+        // A measure every K frames of the F an evaluation runs: K = 0 or K > F takes no sample,
+        // and the GA would rank chromosomes that all score 0.
+        if !(1..=budget.frames).contains(&budget.sample_every) {
+            return Err(usage(format!(
+                "--sample-every {} is outside 1…{} (at most --frames, the {} frames of an evaluation)",
+                budget.sample_every, budget.frames, budget.frames
+            )));
         }
         Ok(budget)
     }
@@ -224,6 +232,16 @@ mod tests {
         assert!(parse("--frobnicate").expect_err("flag").contains("--frobnicate"));
         assert!(parse("--table --frames 0").expect_err("frames").contains("--frames"));
         assert!(parse("--table --generations 0").expect_err("generations").contains("--generations"));
+        // A sample interval of 0 or beyond the frames would measure nothing (all-zero fitness).
+        for (flags, range) in [
+            ("--sample-every 0", "1…400"),
+            ("--sample-every 1000000", "1…400"),
+            ("--frames 50 --sample-every 51", "1…50"),
+        ] {
+            let e = parse(&format!("--behaviour b1 --environment e1 --seed 1 {flags}")).expect_err(flags);
+            assert!(e.contains("--sample-every") && e.contains(range), "{flags}: {e}");
+        }
+        assert!(parse("--behaviour b1 --environment e1 --seed 1 --frames 50 --sample-every 50").is_ok());
         let Ok((super::Task::Score { weights, .. }, _)) =
             parse("--behavior b1 --environment e2 --score 0.1,0.2,0.3,0.4,1")
         else {

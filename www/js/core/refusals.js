@@ -60,7 +60,8 @@ const PATTERNS = [
   [/^unknown planner "(?<name>[^"]*)"; known: (?<known>.+)$/, 'error.unknown_planner'],
   [/^unknown algorithm "(?<name>[^"]*)"; known: (?<known>.+)$/, 'error.unknown_algorithm'],
   [/^unknown function "(?<name>[^"]*)"; known: (?<known>.+)$/, 'error.unknown_function'],
-  [/^dimension (?<dim>\d+), population (?<population>\d+), iterations (?<iterations>\d+): allowed 1…(?<maxDim>\d+), 2…(?<maxPopulation>\d+), 1…(?<maxIterations>\d+)$/, 'error.lab_settings'],
+  [/^dimension (?<value>\d+) is outside 1…(?<max>\d+)$/, 'error.lab_dimension'],
+  [/^iterations (?<value>\d+) is outside 1…(?<max>\d+)$/, 'error.lab_iterations'],
   [/^cannot read the tuning settings: (?<reason>.*)$/, 'error.tune_settings'],
   [/^unknown behaviour "(?<name>[^"]*)"; known: (?<known>.+)$/, 'error.unknown_behaviour'],
   [/^unknown environment "(?<name>[^"]*)"; known: (?<known>.+)$/, 'error.unknown_environment'],
@@ -132,6 +133,10 @@ const ALLOWED = [
   [/^a finite number \(JSON has no NaN or Infinity\)$/, 'allowed.finite'],
   [/^a number above 0 and at most (?<max>[\d.]+) px$/, 'allowed.positive_px'],
   [/^a colour "#rrggbb"$/, 'allowed.colour'],
+  [/^text of at most (?<max>\d+) characters on one line$/, 'allowed.name_text'],
+  [/^text in which each \\ud800…\\udbff escape is followed by a \\udc00…\\udfff one \(a surrogate pair\)$/, 'allowed.surrogate_pairs'],
+  [/^text whose escapes are \\" \\\\ \\\/ \\b \\f \\n \\r \\t or \\u and 4 hex digits$/, 'allowed.json_escapes'],
+  [/^text without raw control characters \(write a line break as \\n\)$/, 'allowed.no_raw_control'],
 ];
 
 /** The JSON reader's words (serde) about a value of the wrong kind: [regex, table key]. */
@@ -205,6 +210,11 @@ const VALUE_PATTERNS = [
   [/^a polygon with no area \(its points lie on one line\)$/, 'value.polygon_no_area'],
   [/^a polygon whose edges (?<a>\d+→\d+) and (?<b>\d+→\d+) fold back onto each other$/, 'value.polygon_folds'],
   [/^a polygon whose edges (?<a>\d+→\d+) and (?<b>\d+→\d+) cross or touch$/, 'value.polygon_cross'],
+  [/^an invalid string \(the lone surrogate (?<escape>\\u[0-9a-fA-F]{4})\)$/, 'value.lone_surrogate'],
+  [/^an invalid string \(the escape (?<escape>\\.*)\)$/, 'value.bad_escape'],
+  [/^an invalid string \(the control character (?<code>U\+[0-9A-F]{4,}) written as it is\)$/, 'value.raw_control'],
+  [/^text of (?<n>\d+) character\(s\) \((?<start>".*?")(?<more>…?)\)$/, 'value.text_of'],
+  [/^text holding the control character (?<code>U\+[0-9A-F]{4,})$/, 'value.text_control'],
 ];
 
 /** A refused value in the reader's language (words through the tables; JSON values as they are). */
