@@ -23,8 +23,6 @@ const PUSH_EPSILON: f32 = 0.01;
 /// stationary neighbour 14 px off centre to centre, a 6 px gap for 4 px bodies, so a gap of
 /// touching discs only would leave its flock hovering round the crowd.
 pub const PARK_CONTACT_DIAMETERS: f32 = 1.0;
-/// How far outside the world (px, up and left) the grid holds agents that left the scene.
-const EXITED_AT: f32 = 1.0e7;
 /// Most neighbours a pressing agent steps out of.
 const PRESS_NEIGHBOUR_CAP: QueryCap = QueryCap { neighbours: 16, candidates: 256 };
 /// Net progress (px) towards its place that counts for a walker.
@@ -830,21 +828,11 @@ impl World {
         }
     }
 
-    /// Rebuilds the neighbour grid from the agents' positions, with the agents that left the
-    /// scene held far outside the world, where no query within it meets them.
+    /// Rebuilds the neighbour grid from the agents' positions, without the agents that left
+    /// the scene.
     fn rebuild_grid(&mut self) {
-        if !self.arrival.contains(&Arrival::Exited) {
-            self.grid.rebuild(&self.pos, &self.vel);
-            return;
-        }
-        let gone = Vec2::splat(-EXITED_AT);
-        let held: Vec<Vec2> = self
-            .pos
-            .iter()
-            .zip(&self.arrival)
-            .map(|(&p, a)| if *a == Arrival::Exited { gone } else { p })
-            .collect();
-        self.grid.rebuild(&held, &self.vel);
+        let arrival = &self.arrival;
+        self.grid.rebuild_present(&self.pos, &self.vel, |i| arrival[i] != Arrival::Exited);
     }
 
     /// The centre of the goal group `g` gathers at, once its places are laid out.

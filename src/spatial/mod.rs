@@ -204,7 +204,8 @@ impl SpatialGrid {
             inv_cell: 1.0 / cell,
             cols,
             rows,
-            cell_start: vec![0; (cols * rows + 1) as usize],
+            // One more cell past the world's: agents that are not there ([`Self::rebuild_present`]).
+            cell_start: vec![0; (cols * rows + 2) as usize],
             len: 0,
             ids: Vec::new(),
             scratch_cell: Vec::new(),
@@ -237,17 +238,33 @@ impl SpatialGrid {
 
     /// Re-buckets all agents; `positions[i]` and `velocities[i]` belong to agent `i`.
     pub fn rebuild(&mut self, positions: &[Vec2], velocities: &[Vec2]) {
+        self.rebuild_present(positions, velocities, |_| true);
+    }
+
+    /// [`Self::rebuild`] with the agents for which `present(i)` is false left out of every
+    /// cell (agents that left the scene): no query, pair pass or candidate block meets them,
+    /// and [`Self::cell_of_agent`] gives a cell past the world's. Held in one cell of the
+    /// world instead, k of them would cost every query near it k tests.
+    pub fn rebuild_present(
+        &mut self,
+        positions: &[Vec2],
+        velocities: &[Vec2],
+        present: impl Fn(usize) -> bool,
+    ) {
         let n = positions.len();
+        let nowhere = self.cols * self.rows;
         self.cell_start.iter_mut().for_each(|c| *c = 0);
         self.scratch_cell.clear();
-        for &p in positions {
-            let c = self.cell_of(p);
+        for (i, &p) in positions.iter().enumerate() {
+            let c = if present(i) { self.cell_of(p) } else { nowhere };
             self.scratch_cell.push(c);
             self.cell_start[c as usize + 1] += 1;
         }
         let mut max_occupancy = 0;
         for c in 1..self.cell_start.len() {
-            max_occupancy = max_occupancy.max(self.cell_start[c]);
+            if c <= nowhere as usize {
+                max_occupancy = max_occupancy.max(self.cell_start[c]);
+            }
             self.cell_start[c] += self.cell_start[c - 1];
         }
         self.max_occupancy = max_occupancy;
@@ -944,6 +961,39 @@ mod tests {
         grid.for_each_pair_within(2.0, |a, b| pairs.push((a, b)));
         pairs.sort();
         assert_eq!(pairs, vec![(0, 1), (0, 3), (1, 3)]);
+    }
+
+    #[test]
+    fn agents_left_out_are_met_by_no_query_pair_or_block() {
+        let (w, h, cell) = (300.0, 200.0, 20.0);
+        let points = scattered_points(5, 800, (w, h), cell);
+        let present = |i: usize| i % 3 != 0;
+        let mut grid = SpatialGrid::new(w, h, cell, points.len());
+        grid.rebuild_present(&points, &[], present);
+        // The same as a grid of the present agents alone (ids mapped back).
+        let kept: Vec<usize> = (0..points.len()).filter(|&i| present(i)).collect();
+        let kept_points: Vec<Vec2> = kept.iter().map(|&i| points[i]).collect();
+        let mut out = Vec::new();
+        for &p in &points {
+            grid.within_distance(p, cell * 1.3, &mut out);
+            let expected: Vec<(f32, u32)> = brute(&kept_points, p, cell * 1.3)
+                .into_iter()
+                .map(|(d2, k)| (d2, kept[k as usize] as u32))
+                .collect();
+            assert_eq!(out, expected);
+        }
+        let mut pairs = 0;
+        grid.for_each_pair_within(cell, |a, b| {
+            assert!(present(a as usize) && present(b as usize));
+            pairs += 1;
+        });
+        assert!(pairs > 0);
+        let mut runs = CandidateRuns::default();
+        let mut blocked = 0;
+        grid.for_each_candidate_block(cell, &mut runs, |agents, _| blocked += agents.len());
+        assert_eq!(blocked, kept.len());
+        assert_eq!(grid.cell_of_agent(0), Some(grid.cell_count()));
+        assert!(grid.cell_of_agent(1).is_some_and(|c| c < grid.cell_count()));
     }
 
     #[test]
