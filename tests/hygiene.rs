@@ -127,6 +127,44 @@ fn no_clock_or_unseeded_generator_outside_the_command_line() {
     }
 }
 
+/// Speed is measured in benchmarks, never in a test: no clock in any test, the core's
+/// `#[cfg(test)]` modules and `tests/` included (a timed test fails on a loaded machine and
+/// passes on a fast one, and asserts nothing about the code).
+#[test]
+fn no_clock_in_any_test() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut files = Vec::new();
+    rust_files(&root.join("src"), &mut files);
+    rust_files(&root.join("tests"), &mut files);
+    let clocks = ["Instant::now", "SystemTime", ".elapsed()"];
+    let mut scanned = 0;
+    for path in files {
+        let rel = path.strip_prefix(root).expect("under the crate").to_string_lossy().replace('\\', "/");
+        // The command line's bench may time (its tests may not); this file names the words.
+        if rel == "tests/hygiene.rs" {
+            continue;
+        }
+        let text = std::fs::read_to_string(&path).expect("source is readable UTF-8");
+        let code: String = if rel.starts_with("src/bin/") {
+            // Only its test modules: the text that shipped_code leaves out.
+            let shipped = shipped_code(&text);
+            let all: String = text.lines().map(|l| format!("{}\n", strip_line_comment(l))).collect();
+            all.lines().filter(|l| !shipped.contains(l)).collect::<Vec<_>>().join("\n")
+        } else {
+            text.lines().map(|l| format!("{}\n", strip_line_comment(l))).collect()
+        };
+        for clock in clocks {
+            let hits = offending_lines(&code, clock);
+            assert!(
+                hits.is_empty(),
+                "{rel} reads the clock ({clock}) in a test; measure speed in a bench: {hits:?}"
+            );
+        }
+        scanned += 1;
+    }
+    assert!(scanned >= 40, "expected the test files, scanned {scanned}");
+}
+
 /// Entropy enters only as a seed: `getrandom` is named in `src/rng.rs` alone, and
 /// `rng::fresh_seed` is called only by the front-ends (`src/web/`, `src/bin/`), never inside a run.
 #[test]
