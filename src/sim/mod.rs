@@ -24,4 +24,5 @@ pub mod replay;
 pub mod run;
 pub mod series;
 pub mod spawn;
+pub mod sweep;
 pub mod world;
