@@ -458,6 +458,51 @@ mod tests {
     }
 
     #[test]
+    fn a_segment_enters_an_interior_not_a_boundary() {
+        let wall = Obstacle::Rect { min: [0.0, 10.0], max: [100.0, 11.0] };
+        let (above, below) = (Vec2::new(50.0, 0.0), Vec2::new(50.0, 20.0));
+        let hit = wall.segment_entry(above, below).expect("through the 1 px wall");
+        assert_eq!((hit.t, hit.normal), (0.5, Vec2::NEG_Y));
+        assert_eq!(wall.segment_entry(below, above).map(|h| h.normal), Some(Vec2::Y));
+        // Touching the face, running along it, stopping short, starting inside: no entry.
+        assert!(wall.segment_entry(above, Vec2::new(50.0, 10.0)).is_none());
+        assert!(wall.segment_entry(Vec2::new(-5.0, 10.0), Vec2::new(120.0, 10.0)).is_none());
+        assert!(wall.segment_entry(above, Vec2::new(50.0, 9.5)).is_none());
+        assert!(wall.segment_entry(Vec2::new(50.0, 10.5), below).is_none());
+        // Clipping a corner.
+        assert!(wall.segment_entry(Vec2::new(94.0, 0.0), Vec2::new(104.0, 20.0)).is_some());
+        assert!(wall.segment_entry(Vec2::new(99.0, 0.0), Vec2::new(111.0, 20.0)).is_none());
+
+        let disc = Obstacle::Circle { center: [0.0, 0.0], radius: 1.0 };
+        let hit = disc.segment_entry(Vec2::new(-3.0, 0.0), Vec2::new(3.0, 0.0)).expect("through");
+        assert!((hit.t - 2.0 / 6.0).abs() < 1e-6 && hit.normal == Vec2::NEG_X, "{hit:?}");
+        assert!(disc.segment_entry(Vec2::new(-3.0, 1.0), Vec2::new(3.0, 1.0)).is_none(), "tangent");
+        assert!(disc.segment_entry(Vec2::new(0.5, 0.0), Vec2::new(3.0, 0.0)).is_none(), "leaving");
+        assert!(disc.segment_entry(Vec2::new(-3.0, 0.0), Vec2::new(-1.5, 0.0)).is_none(), "short");
+
+        // A U open at the top: a segment across the mouth enters nothing; one across the
+        // arms enters the left arm first.
+        let u = Obstacle::Polygon {
+            points: vec![
+                [0.0, 0.0],
+                [2.0, 0.0],
+                [2.0, 8.0],
+                [8.0, 8.0],
+                [8.0, 0.0],
+                [10.0, 0.0],
+                [10.0, 10.0],
+                [0.0, 10.0],
+            ],
+        };
+        assert!(u.segment_entry(Vec2::new(3.0, 4.0), Vec2::new(7.0, 4.0)).is_none());
+        let hit = u.segment_entry(Vec2::new(-2.0, 4.0), Vec2::new(12.0, 4.0)).expect("the left arm");
+        assert!((hit.t - 2.0 / 14.0).abs() < 1e-6 && hit.normal == Vec2::NEG_X, "{hit:?}");
+        let hit = u.segment_entry(Vec2::new(5.0, 4.0), Vec2::new(12.0, 4.0)).expect("the right arm");
+        assert!((hit.t - 3.0 / 7.0).abs() < 1e-6, "{hit:?}");
+        assert!(u.segment_entry(Vec2::new(5.0, 4.0), Vec2::new(5.0, -3.0)).is_none(), "out of the mouth");
+    }
+
+    #[test]
     fn polygon_ray_hits_nearest_edge() {
         let hit = square().ray_cast(Vec2::new(-5.0, 5.0), Vec2::new(30.0, 0.0)).expect("hits");
         assert!((hit.t - 5.0 / 30.0).abs() < 1e-6);

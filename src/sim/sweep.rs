@@ -214,3 +214,126 @@ fn push_out(obstacles: &ObstacleIndex, p: &mut Vec2, v: &mut Vec2, radius: f32) 
     }
     false
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::rng::Rng;
+
+    const W: f32 = 300.0;
+    const H: f32 = 300.0;
+
+    fn index(obstacles: Vec<Obstacle>) -> ObstacleIndex {
+        ObstacleIndex::new(obstacles, W, H)
+    }
+
+    fn terrain(obstacles: &ObstacleIndex) -> Terrain<'_> {
+        Terrain { obstacles, bounds: Vec2::new(W, H), periodic_x: None }
+    }
+
+    /// A thin obstacle somewhere in the world: a wall 0.5…3 px thick (either way), a small
+    /// circle, a thin triangle or an L-shaped polygon (not convex).
+    fn thin_obstacle(rng: &mut Rng) -> Obstacle {
+        let (x, y) = (rng.range(0.0, W), rng.range(0.0, H));
+        let (long, thin) = (rng.range(10.0, 200.0), rng.range(0.5, 3.0));
+        match rng.below(4) {
+            0 => Obstacle::Rect { min: [x, y], max: [x + long, y + thin] },
+            1 => Obstacle::Rect { min: [x, y], max: [x + thin, y + long] },
+            2 => Obstacle::Circle { center: [x, y], radius: rng.range(0.5, 20.0) },
+            _ if rng.below(2) == 0 => Obstacle::Polygon {
+                points: vec![
+                    [x, y],
+                    [x + long, y + rng.range(-40.0, 40.0)],
+                    [x + long * 0.5, y + thin * 4.0],
+                ],
+            },
+            _ => Obstacle::Polygon {
+                points: vec![
+                    [x, y],
+                    [x + long, y],
+                    [x + long, y + thin],
+                    [x + thin, y + thin],
+                    [x + thin, y + long],
+                    [x, y + long],
+                ],
+            },
+        }
+    }
+
+    /// Whether any of `samples` evenly spaced points of `a → b` lies in an obstacle that does
+    /// not hold `a`: the crossing test made by sampling, apart from `segment_entry`.
+    fn sampled_crossing(obstacles: &[Obstacle], a: Vec2, b: Vec2, samples: u32) -> Option<usize> {
+        obstacles.iter().position(|o| {
+            !o.contains(a) && (1..=samples).any(|k| o.contains(a.lerp(b, k as f32 / samples as f32)))
+        })
+    }
+
+    #[test]
+    fn no_move_passes_through_a_thin_obstacle_at_any_speed() {
+        let mut rng = Rng::new(24, 2);
+        let mut stopped = 0;
+        for case in 0..3000 {
+            let list: Vec<Obstacle> = (0..2 + rng.below(7)).map(|_| thin_obstacle(&mut rng)).collect();
+            let obstacles = index(list.clone());
+            let radius = if rng.below(2) == 0 { rng.range(0.5, 2.0) } else { rng.range(2.0, 12.0) };
+            let previous = Vec2::new(rng.range(0.0, W), rng.range(0.0, H));
+            let speed =
+                [rng.range(0.0, 2.0), rng.range(2.0, 30.0), rng.range(30.0, 300.0)][rng.below(3) as usize];
+            let angle = rng.range(0.0, std::f32::consts::TAU);
+            let velocity = Vec2::new(angle.cos(), angle.sin()) * speed;
+            let (p, v) = terrain(&obstacles).move_agent(previous, velocity, radius, true);
+            let what = format!("case {case}: {previous} by {velocity} (radius {radius}) to {p}, {list:?}");
+            assert!(p.is_finite() && v.is_finite(), "{what}");
+            assert!(p.x >= 0.0 && p.x <= W && p.y >= 0.0 && p.y <= H, "left the world: {what}");
+            assert!(!obstacles.contains(p) || p == previous, "ended inside: {what}");
+            // 0.5 px is the thinnest obstacle; 300 px / 2,000 samples = 0.15 px apart.
+            assert_eq!(sampled_crossing(&list, previous, p, 2000), None, "crossed: {what}");
+            stopped += usize::from(sampled_crossing(&list, previous, previous + velocity, 500).is_some());
+        }
+        // The cases are not all easy: many intended moves went through an obstacle.
+        assert!(stopped > 200, "only {stopped} of 3000 intended moves crossed an obstacle");
+    }
+
+    #[test]
+    fn a_short_move_clear_of_obstacles_is_not_changed() {
+        // The push-out and clamp alone decide a move that cannot cross: the same floats as a
+        // plain `previous + velocity`.
+        let obstacles = index(vec![Obstacle::Rect { min: [100.0, 100.0], max: [101.0, 200.0] }]);
+        let (p, v) = terrain(&obstacles).move_agent(Vec2::new(90.0, 150.0), Vec2::new(1.5, 0.25), 4.0, true);
+        assert_eq!((p, v), (Vec2::new(91.5, 150.25), Vec2::new(1.5, 0.25)));
+        // Sliding along the wall's face: the push-out's result, unchanged.
+        let (p, v) = terrain(&obstacles).move_agent(Vec2::new(95.0, 150.0), Vec2::new(3.0, 2.0), 4.0, true);
+        assert!((p.x - (100.0 - 4.0 - PUSH_EPSILON)).abs() < 1e-4 && p.y == 152.0, "{p}");
+        assert_eq!(v, Vec2::new(0.0, 2.0));
+    }
+
+    #[test]
+    fn a_fast_move_stops_before_the_wall_and_slides_along_it() {
+        let obstacles = index(vec![Obstacle::Rect { min: [0.0, 150.0], max: [W, 151.0] }]);
+        let t = terrain(&obstacles);
+        let (p, v) = t.move_agent(Vec2::new(100.0, 100.0), Vec2::new(30.0, 100.0), 4.0, true);
+        assert!(p.y < 150.0 - 4.0 + 1e-3, "on the near side, clear of the wall: {p}");
+        assert_eq!(v, Vec2::new(30.0, 0.0), "the part into the wall is gone");
+        // A passing planner (`solid` false) goes through, as its design says.
+        let (p, _) = t.move_agent(Vec2::new(100.0, 100.0), Vec2::new(30.0, 100.0), 4.0, false);
+        assert_eq!(p, Vec2::new(130.0, 200.0));
+    }
+
+    #[test]
+    fn a_wrap_across_the_seam_is_no_crossing_but_a_wall_past_it_still_stops() {
+        let band = Some((0.0, 200.0));
+        // A wall beyond the band's end (x ≥ 200) is never on the way of a centre that wraps.
+        let beyond = index(vec![Obstacle::Rect { min: [205.0, 0.0], max: [206.0, H] }]);
+        let t = Terrain { periodic_x: band, ..terrain(&beyond) };
+        let (p, _) = t.move_agent(Vec2::new(195.0, 100.0), Vec2::new(20.0, 0.0), 2.0, true);
+        assert!((p.x - 15.0).abs() < 1e-4, "wrapped to the band's start: {p}");
+        assert!(!path_enters(&beyond, Vec2::new(195.0, 100.0), p, band));
+        // A wall just past the band's start is on the way after the wrap.
+        let after = index(vec![Obstacle::Rect { min: [5.0, 0.0], max: [6.0, H] }]);
+        let t = Terrain { periodic_x: band, ..terrain(&after) };
+        let (p, _) = t.move_agent(Vec2::new(195.0, 100.0), Vec2::new(20.0, 0.0), 2.0, true);
+        assert!(p.x > 150.0 || p.x < 5.0, "not past the wall at x 5…6: {p}");
+        assert!(path_enters(&after, Vec2::new(195.0, 100.0), Vec2::new(15.0, 100.0), band));
+        assert!(!path_enters(&after, Vec2::new(195.0, 100.0), p, band));
+    }
+}
