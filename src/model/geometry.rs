@@ -287,7 +287,7 @@ impl Obstacle {
     /// normal of the side it enters through; `None` when it stays outside (touching the boundary,
     /// or running along it, is not entering) or starts inside (leaving is not entering). A
     /// centre's move that enters an obstacle and leaves it again went through it: the move
-    /// tunnelled ([`crate::sim::sweep`]).
+    /// tunnelled (the world stops such a move, and the metrics count it as a penetration).
     ///
     /// Unlike [`Obstacle::ray_cast`], a hit on the boundary alone is no entry, and a polygon is
     /// not copied. Cost: a circle or rectangle O(1); a polygon O(n) for the edges plus O(k · n)

@@ -17,14 +17,16 @@
 //! a clamp at the border, a wrap, or an end the push-out could not clear asks the obstacle index
 //! about the segment's box.
 //!
-//! The metrics count a centre whose way passed through an obstacle as a penetration
-//! ([`crate::sim::metrics`]), with [`path_enters`], so a crossing that happened would show.
+//! The metrics count a centre whose way passed through an obstacle as a penetration, with
+//! [`path_enters`], so a crossing that happened would show.
 
 use crate::model::geometry::{distance, Aabb, Obstacle, RayHit};
 use crate::sim::spawn::centre_bounds;
-use crate::sim::world::PUSH_EPSILON;
 use crate::spatial::ObstacleIndex;
 use glam::Vec2;
+
+/// How far outside a surface a pushed-out agent is placed (px).
+pub(crate) const PUSH_EPSILON: f32 = 0.01;
 
 /// Where the world is, for moving one agent: its obstacles, its size and its periodic band.
 #[derive(Clone, Copy)]
@@ -33,7 +35,7 @@ pub(crate) struct Terrain<'a> {
     pub obstacles: &'a ObstacleIndex,
     /// World size (px): centres are clamped inside it.
     pub bounds: Vec2,
-    /// The periodic band in x (`World::set_periodic_x`), if any.
+    /// The periodic band in x (the world's `set_periodic_x`), if any.
     pub periodic_x: Option<(f32, f32)>,
 }
 

@@ -9,15 +9,13 @@ use crate::sim::fitness::Frame;
 use crate::sim::gather::{Arrival, GoalPlaces};
 use crate::sim::metrics::{Metrics, MetricsRecorder};
 use crate::sim::spawn::{centre_bounds, spawn, Spawn};
-use crate::sim::sweep::Terrain;
+use crate::sim::sweep::{Terrain, PUSH_EPSILON};
 use crate::spatial::{ObstacleIndex, QueryCap, SpatialGrid};
 use glam::Vec2;
 use std::ops::Range;
 
 /// Planners draw from this stream; each group's placement has its own ([`crate::sim::spawn`]).
 const STREAM_PLAN: u32 = 1;
-/// How far outside a surface a pushed-out agent is placed (px).
-pub(crate) const PUSH_EPSILON: f32 = 0.01;
 /// An agent whose goal is full and whose disc comes within this many of its body diameters of
 /// a body at rest at that goal has reached the crowd there: it presses towards the goal's
 /// centre until the crowd stops it ([`World::settle_parking`]). Boids' separation keeps a
