@@ -162,9 +162,10 @@ fn pieces(from: Vec2, to: Vec2, band: Option<(f32, f32)>) -> [Option<(Vec2, Vec2
     [Some((from, at_edge)), Some((shifted(at_edge), shifted(unwrapped)))]
 }
 
-/// Whether a centre's way from `from` to `to` (wrapping in `band`, see [`pieces`]) passes into
-/// the interior of an obstacle it did not start in: enters one and leaves it again, or ends
-/// inside it.
+/// Whether a centre's way from `from` to `to` passes into the interior of an obstacle it did
+/// not start in: enters one and leaves it again, or ends inside it. In the periodic band
+/// `band`, a centre that moved more than half the band's width in x wrapped: its way is the
+/// part up to the band's edge and the part from the other edge.
 pub fn path_enters(obstacles: &ObstacleIndex, from: Vec2, to: Vec2, band: Option<(f32, f32)>) -> bool {
     pieces(from, to, band).into_iter().flatten().any(|(a, b)| first_entry(obstacles, a, b).is_some())
 }
