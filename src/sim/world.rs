@@ -9,7 +9,7 @@ use crate::sim::fitness::Frame;
 use crate::sim::gather::{Arrival, GoalPlaces};
 use crate::sim::metrics::{Metrics, MetricsRecorder};
 use crate::sim::spawn::{centre_bounds, spawn, Spawn};
-use crate::sim::sweep::{Terrain, PUSH_EPSILON};
+use crate::sim::sweep::{path_enters, Terrain, PUSH_EPSILON};
 use crate::spatial::{ObstacleIndex, QueryCap, SpatialGrid};
 use glam::Vec2;
 use std::ops::Range;
@@ -687,7 +687,15 @@ impl World {
                     }
                 }
                 let (lo, hi) = centre_bounds(r, bounds);
-                let placeable = |q: Vec2| q.clamp(lo, hi) == q && !(solid[g] && self.obstacles.contains(q));
+                // A place lies in the world, outside the obstacles, and is reached from where the
+                // step began without passing through one.
+                let from = self.previous[i];
+                let placeable = |q: Vec2| {
+                    q.clamp(lo, hi) == q
+                        && !(solid[g]
+                            && (self.obstacles.contains(q)
+                                || path_enters(&self.obstacles, from, q, self.periodic_x)))
+                };
                 if !free || (p != before && !placeable(p)) {
                     // Boxed in between parked bodies (bodies parked onto it), or pushed out of
                     // the world or into an obstacle: the nearest free place within ten body
