@@ -44,6 +44,7 @@ impl Terrain<'_> {
     /// periodic band, is pushed out of obstacles (when `solid`) and kept inside the world.
     /// Returns its new centre and velocity. A solid agent never ends inside an obstacle and its
     /// way never passes through one it was not already in (see the module docs).
+    #[inline]
     pub fn move_agent(&self, previous: Vec2, velocity: Vec2, radius: f32, solid: bool) -> (Vec2, Vec2) {
         let mut v = velocity;
         let intended = previous + velocity;
@@ -62,7 +63,7 @@ impl Terrain<'_> {
             // stay where it was, inside the world and outside the obstacles.
             return (previous, Vec2::ZERO);
         }
-        let short = clear && !clamped && !wrapped && distance(previous, p) <= radius;
+        let short = clear && !clamped && !wrapped && previous.distance_squared(p) <= radius * radius;
         if short || self.obstacles.is_empty() || !path_enters(self.obstacles, previous, p, self.periodic_x) {
             return (p, v);
         }
@@ -103,6 +104,7 @@ impl Terrain<'_> {
     /// Keeps the centre inside the world (a world narrower than the body holds it on the middle
     /// line), also when an obstacle touches the border; a clamped axis loses its velocity.
     /// Returns whether it clamped.
+    #[inline]
     fn clamp(&self, p: &mut Vec2, v: &mut Vec2, radius: f32) -> bool {
         let (lo, hi) = centre_bounds(radius, self.bounds);
         let clamped = p.clamp(lo, hi);
@@ -120,6 +122,7 @@ impl Terrain<'_> {
 
 /// The centre at `intended` after a move from `previous`: only a centre leaving the periodic
 /// band wraps (one outside it stays outside).
+#[inline]
 fn wrap(previous: Vec2, intended: Vec2, band: Option<(f32, f32)>) -> Vec2 {
     let mut p = intended;
     if let Some((start, end)) = band {
@@ -189,6 +192,7 @@ fn first_entry(obstacles: &ObstacleIndex, from: Vec2, to: Vec2) -> Option<RayHit
 /// component into the surface (agents slide along walls). A few rounds handle corners. Returns
 /// whether the last round found no obstacle within `radius` of `p` (false when the rounds ran
 /// out while still pushing).
+#[inline]
 fn push_out(obstacles: &ObstacleIndex, p: &mut Vec2, v: &mut Vec2, radius: f32) -> bool {
     if obstacles.is_empty() {
         return true;
