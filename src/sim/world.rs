@@ -779,7 +779,9 @@ impl World {
                     let placeable = |k: usize, q: Vec2| {
                         let (lo, hi) = centre_bounds(self.radius[k], bounds);
                         q.clamp(lo, hi) == q
-                            && !(solid[self.group_of[k] as usize] && self.obstacles.contains(q))
+                            && !(solid[self.group_of[k] as usize]
+                                && (self.obstacles.contains(q)
+                                    || path_enters(&self.obstacles, self.previous[k], q, self.periodic_x)))
                             && (loose || !self.overlaps_rest(q, self.radius[k], &none_jumped, rest_slack))
                     };
                     let (qi, qj) = (pi + away * (overlap * 0.5), pj - away * (overlap * 0.5));
