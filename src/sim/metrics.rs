@@ -2,7 +2,11 @@
 //!
 //! Counting rules: a collision is a pair of agents whose discs overlap at the end of a step,
 //! counted once per pair per step; a penetration is an agent whose centre is inside an obstacle
-//! at the end of a step. Key names are a stable contract: add keys, never rename.
+//! at the end of a step, or whose centre's way during the step (the segment from where it was
+//! to where it is, cut at the seam of a periodic band) passed through an obstacle it was not
+//! already in: once per agent per step either way. A fast agent that jumped a thin wall
+//! tunnelled through it, which the world prevents ([`crate::sim::sweep`]) and this would show.
+//! Key names are a stable contract: add keys, never rename.
 //!
 //! Cost: recording a step is O(N) with a small constant, and so is a summary (what the page polls
 //! every 250 ms); a pile of overlapping agents costs a bounded amount per agent too. Where a
@@ -24,6 +28,7 @@ use crate::model::params::PlannerKind;
 use crate::model::scene::{Scale, Scene};
 use crate::sim::fitness::{FitnessMeasures, FitnessRecorder, Frame};
 use crate::sim::gather::Arrival;
+use crate::sim::sweep::path_enters;
 use crate::spatial::{ObstacleIndex, QueryCap, SpatialGrid};
 use glam::Vec2;
 use serde::Serialize;
@@ -132,7 +137,8 @@ pub struct GroupMetrics {
     /// The overlapping pairs of `collisions_agent_agent` in which at least one agent had not
     /// arrived (it was moving): without the pile-up of agents at their goal.
     pub collisions_moving: u64,
-    /// Agents whose centre is inside an obstacle, summed over steps.
+    /// Agents whose centre is inside an obstacle at the end of a step or passed through one
+    /// during it, summed over steps.
     pub penetrations_agent_obstacle: u64,
     /// Mean speed over agents and steps (px/step).
     pub mean_speed: f64,
@@ -219,6 +225,8 @@ pub struct MetricsRecorder {
     queue_groups: Vec<bool>,
     /// Each group's body radius (px): the queue order's reach is a multiple of it.
     group_radius: Vec<f32>,
+    /// The world's periodic band in x, if any: a centre that wrapped did not cross the world.
+    periodic_x: Option<(f32, f32)>,
     /// Per group `(queued, candidates)` at the last sample, and the step of that sample.
     queue: Vec<(u32, u32)>,
     queue_step: Option<u32>,
@@ -279,6 +287,7 @@ impl MetricsRecorder {
             },
             queue_groups: scene.groups.iter().map(|g| g.planner.kind() == PlannerKind::Firefly).collect(),
             group_radius: scene.groups.iter().map(|g| g.agent_radius).collect(),
+            periodic_x: None,
             queue: vec![(0, 0); scene.groups.len()],
             queue_step: None,
             fitness: FitnessRecorder::new(
@@ -295,6 +304,12 @@ impl MetricsRecorder {
     /// Takes the fitness measures on steps 1, 1 + `every`, … from now on (0 = never).
     pub fn set_fitness_sample_every(&mut self, every: u32) {
         self.fitness_every = every;
+    }
+
+    /// Takes a centre that leaves the band `[start, end)` at one end and re-enters at the other
+    /// as one that wrapped (`World::set_periodic_x`), not one that crossed the world.
+    pub fn set_periodic_x(&mut self, band: Option<(f32, f32)>) {
+        self.periodic_x = band;
     }
 
     /// Records the state at the end of step `step`.
@@ -330,7 +345,8 @@ impl MetricsRecorder {
             let acc = &mut self.groups[g];
             let p = pos[i];
             let v = vel[i];
-            self.path_length[i] += distance(p, self.prev_pos[i]);
+            let moved = distance(p, self.prev_pos[i]);
+            self.path_length[i] += moved;
             let speed = length(v);
             acc.speed_sum += f64::from(speed);
             acc.speed_samples += 1;
@@ -347,13 +363,19 @@ impl MetricsRecorder {
 
             if !obstacles.is_empty() {
                 let query = Aabb { min: p, max: p }.inflate(NEAR_OBSTACLE);
-                let (mut inside, mut near) = (false, false);
+                let (mut inside, mut near, mut nearest) = (false, false, f32::INFINITY);
                 obstacles.for_each_near(query, |_, o| {
                     let s = o.surface(p);
                     inside |= s.signed_distance < 0.0;
                     near |= s.signed_distance < NEAR_OBSTACLE;
+                    nearest = nearest.min(s.signed_distance);
                 });
-                if inside {
+                // The way lies within `moved` of where it ends: a move shorter than the query's
+                // reach crosses only an obstacle it found nearer than that (usually none).
+                let crossed = !inside
+                    && (moved > NEAR_OBSTACLE || nearest < moved)
+                    && path_enters(obstacles, self.prev_pos[i], p, self.periodic_x);
+                if inside || crossed {
                     acc.penetrations += 1;
                 }
                 if near {

@@ -1,5 +1,6 @@
 //! A deterministic run of a scene: the world (struct-of-arrays agent state, spawn, the
-//! two-phase fixed step that calls the planners), its cost limits, metrics and the fitness
+//! two-phase fixed step that calls the planners, and in `sweep` the move of one agent, which
+//! never passes through an obstacle), its cost limits, metrics and the fitness
 //! measures, diagnosis of one agent, and the run's timeline (one bounded series that halves
 //! when full, the recording, the metric series, the replay, lockstep comparison), a `Run` that keeps
 //! a world and its recording, replay and metric series in step for the page and the command
@@ -24,4 +25,5 @@ pub mod replay;
 pub mod run;
 pub mod series;
 pub mod spawn;
+pub mod sweep;
 pub mod world;

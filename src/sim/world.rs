@@ -9,14 +9,13 @@ use crate::sim::fitness::Frame;
 use crate::sim::gather::{Arrival, GoalPlaces};
 use crate::sim::metrics::{Metrics, MetricsRecorder};
 use crate::sim::spawn::{centre_bounds, spawn, Spawn};
+use crate::sim::sweep::{path_enters, Terrain, PUSH_EPSILON};
 use crate::spatial::{ObstacleIndex, QueryCap, SpatialGrid};
 use glam::Vec2;
 use std::ops::Range;
 
 /// Planners draw from this stream; each group's placement has its own ([`crate::sim::spawn`]).
 const STREAM_PLAN: u32 = 1;
-/// How far outside a surface a pushed-out agent is placed (px).
-const PUSH_EPSILON: f32 = 0.01;
 /// An agent whose goal is full and whose disc comes within this many of its body diameters of
 /// a body at rest at that goal has reached the crowd there: it presses towards the goal's
 /// centre until the crowd stops it ([`World::settle_parking`]). Boids' separation keeps a
@@ -466,6 +465,7 @@ impl World {
     /// An empty or non-finite band is ignored.
     pub fn set_periodic_x(&mut self, band: Option<(f32, f32)>) {
         self.periodic_x = band.filter(|(a, b)| a.is_finite() && b.is_finite() && b > a);
+        self.recorder.set_periodic_x(self.periodic_x);
     }
 
     /// Takes the fitness measures of the metrics every `every` steps from now on (0 = never;
@@ -584,43 +584,14 @@ impl World {
         let solid: Vec<bool> = self.groups.iter().map(|g| !g.planner.passes_through_obstacles()).collect();
         self.previous.clear();
         self.previous.extend_from_slice(&self.pos);
+        let terrain = Terrain { obstacles: &self.obstacles, bounds, periodic_x: self.periodic_x };
         for i in 0..self.pos.len() {
             if self.parked[i] || self.arrival[i] == Arrival::Exited {
                 self.vel[i] = Vec2::ZERO;
                 continue;
             }
-            let previous = self.pos[i];
-            let mut v = self.next_vel[i];
-            let mut p = previous + v;
-            if let Some((start, end)) = self.periodic_x {
-                // Only a centre leaving the band wraps (one outside it stays outside).
-                if p.x >= end && previous.x < end {
-                    p.x -= end - start;
-                } else if p.x < start && previous.x >= start {
-                    p.x += end - start;
-                }
-            }
             let solid = solid[self.group_of[i] as usize];
-            if solid {
-                resolve_obstacles(&self.obstacles, &mut p, &mut v, self.radius[i]);
-            }
-            // The centre always ends inside the world (a world narrower than the body holds
-            // it on the middle line), also when an obstacle touches the border.
-            let (lo, hi) = centre_bounds(self.radius[i], bounds);
-            let clamped = p.clamp(lo, hi);
-            if clamped.x != p.x {
-                v.x = 0.0;
-            }
-            if clamped.y != p.y {
-                v.y = 0.0;
-            }
-            p = clamped;
-            if solid && self.obstacles.contains(p) {
-                // Pushing out failed (overlapping obstacles, or the border pushed it back in):
-                // stay where it was, inside the world and outside the obstacles.
-                p = previous;
-                v = Vec2::ZERO;
-            }
+            let (p, v) = terrain.move_agent(self.pos[i], self.next_vel[i], self.radius[i], solid);
             self.pos[i] = p;
             self.vel[i] = v;
         }
@@ -714,7 +685,15 @@ impl World {
                     }
                 }
                 let (lo, hi) = centre_bounds(r, bounds);
-                let placeable = |q: Vec2| q.clamp(lo, hi) == q && !(solid[g] && self.obstacles.contains(q));
+                // A place lies in the world, outside the obstacles, and is reached from where the
+                // step began without passing through one.
+                let from = self.previous[i];
+                let placeable = |q: Vec2| {
+                    q.clamp(lo, hi) == q
+                        && !(solid[g]
+                            && (self.obstacles.contains(q)
+                                || path_enters(&self.obstacles, from, q, self.periodic_x)))
+                };
                 if !free || (p != before && !placeable(p)) {
                     // Boxed in between parked bodies (bodies parked onto it), or pushed out of
                     // the world or into an obstacle: the nearest free place within ten body
@@ -798,7 +777,9 @@ impl World {
                     let placeable = |k: usize, q: Vec2| {
                         let (lo, hi) = centre_bounds(self.radius[k], bounds);
                         q.clamp(lo, hi) == q
-                            && !(solid[self.group_of[k] as usize] && self.obstacles.contains(q))
+                            && !(solid[self.group_of[k] as usize]
+                                && (self.obstacles.contains(q)
+                                    || path_enters(&self.obstacles, self.previous[k], q, self.periodic_x)))
                             && (loose || !self.overlaps_rest(q, self.radius[k], &none_jumped, rest_slack))
                     };
                     let (qi, qj) = (pi + away * (overlap * 0.5), pj - away * (overlap * 0.5));
@@ -1506,38 +1487,4 @@ fn ring_directions(ring: u32) -> &'static [Vec2] {
             .collect()
     });
     table.get(ring as usize).map_or(&[], Vec::as_slice)
-}
-
-/// Pushes a disc of `radius` at `p` out of any obstacle it overlaps and removes the velocity
-/// component into the surface (agents slide along walls). A few rounds handle corners.
-fn resolve_obstacles(obstacles: &ObstacleIndex, p: &mut Vec2, v: &mut Vec2, radius: f32) {
-    if obstacles.is_empty() {
-        return;
-    }
-    for _ in 0..3 {
-        let mut moved = false;
-        let query = Aabb { min: *p - Vec2::splat(radius), max: *p + Vec2::splat(radius) };
-        let here = *p;
-        let mut push = None;
-        obstacles.for_each_near(query, |_, o: &Obstacle| {
-            if push.is_some() {
-                return;
-            }
-            let s = o.surface(here);
-            if s.signed_distance < radius {
-                push = Some(s);
-            }
-        });
-        if let Some(s) = push {
-            *p = s.point + s.normal * (radius + PUSH_EPSILON);
-            let into = v.dot(s.normal);
-            if into < 0.0 {
-                *v -= s.normal * into;
-            }
-            moved = true;
-        }
-        if !moved {
-            break;
-        }
-    }
 }

@@ -157,7 +157,7 @@ export default {
   'metric.def.waiting_share': 'Share of agents outside a full goal, waiting for room in it.',
   'metric.def.mean_time_to_goal_s': 'Mean time from the start until an agent arrived, over the agents that arrived.',
   'metric.def.collisions_agent_agent': 'Pairs of agents whose discs overlap at the end of a step, counted once per pair per step and summed over steps.',
-  'metric.def.penetrations_agent_obstacle': 'Agents whose centre is inside an obstacle at the end of a step, summed over steps.',
+  'metric.def.penetrations_agent_obstacle': 'Agents whose centre is inside an obstacle at the end of a step, or passed through one during the step, summed over steps.',
   'metric.def.mean_speed': 'How far an agent moves in one step, averaged over agents and steps.',
   'metric.def.mean_path_length': 'Distance walked per agent since the start, averaged over agents.',
   'metric.def.mean_turn_deg': 'How much a moving agent turns its heading in one step, averaged over moving agents and steps.',

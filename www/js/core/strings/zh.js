@@ -157,7 +157,7 @@ export default {
   'metric.def.waiting_share': '在已满的目标外面、等待里面腾出位置的个体所占的比例。',
   'metric.def.mean_time_to_goal_s': '从开始到个体到达目标所用时间的平均值，只算已到达的个体。',
   'metric.def.collisions_agent_agent': '每一步结束时圆盘相互重叠的个体对数，每对每步只算一次，再把所有步加起来。',
-  'metric.def.penetrations_agent_obstacle': '每一步结束时中心位于障碍物内部的个体数，再把所有步加起来。',
+  'metric.def.penetrations_agent_obstacle': '每一步结束时中心位于障碍物内部、或在这一步中穿过了障碍物的个体数，再把所有步加起来。',
   'metric.def.mean_speed': '个体每一步移动的距离，对所有个体和所有步取平均。',
   'metric.def.mean_path_length': '从开始到现在每个个体走过的路程，对所有个体取平均。',
   'metric.def.mean_turn_deg': '移动中的个体每一步改变朝向的角度，对移动中的个体和所有步取平均。',
