@@ -27,7 +27,8 @@ let current = 'standard';
 /** Draws every simulation of the page in `current` (the playground and <flock-path> elements). */
 function paintCanvases() {
   try {
-    if (window.flockpath?.theme) window.flockpath.theme(current);
+    // The playground's simulation runs in a worker: the theme is set there (a Promise).
+    if (window.flockpath?.theme) Promise.resolve(window.flockpath.theme(current)).catch(() => {});
   } catch {
     // Still booting or crashed: boot applies it (below) or nothing can.
   }
