@@ -91,9 +91,9 @@ test('the authoring form writes an activity into a link that round-trips', { tim
     await page.click('#activity-clear');
     assert.equal(await page.evaluate(() => window.flockpath.scene().activity), undefined);
     assert.equal(await page.locator('#activity .fp-activity').isHidden(), true);
-    const plain = await page.evaluate(() => {
+    const plain = await page.evaluate(async () => {
       const s = window.flockpath.sceneString();
-      window.flockpath.load('two-groups-swap');
+      await window.flockpath.load('two-groups-swap');
       return s === window.flockpath.sceneString();
     });
     assert.equal(plain, true, 'without the activity the link is the preset link again');

@@ -77,10 +77,10 @@ test('a linked activity shows its prompt, asks the prediction before Play and ch
     assert.equal(await there.locator(`${card} li.fp-pass`).count(), 2, items.join(' | '));
 
     // An independent stepping of the same scene finds the same deciding step and values.
-    const found = await there.evaluate((limit) => {
-      window.flockpath.reset();
+    const found = await there.evaluate(async (limit) => {
+      await window.flockpath.reset();
       for (let k = 1; k <= limit; k += 1) {
-        window.flockpath.step(1);
+        await window.flockpath.step(1);
         const m = window.flockpath.metrics();
         if (m.arrived_share >= 0.9 && m.penetrations_agent_obstacle === 0) return { k, share: m.arrived_share };
       }

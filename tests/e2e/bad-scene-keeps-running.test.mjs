@@ -14,9 +14,9 @@ async function stepsIncrease(page, than) {
 
 /** Calls load() in the page; returns the thrown message and its details (or null if it loaded). */
 async function tryLoad(page, input) {
-  return page.evaluate((value) => {
+  return page.evaluate(async (value) => {
     try {
-      window.flockpath.load(value);
+      await window.flockpath.load(value);
       return null;
     } catch (error) {
       return { message: error instanceof Error ? error.message : String(error), details: error?.details ?? null };

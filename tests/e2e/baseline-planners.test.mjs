@@ -17,9 +17,9 @@ test('ORCA and social force are chosen in the panel, run, and every agent arrive
   try {
     // 30 agents cross 28 m of open field (20 px per metre) to a goal 3 m in radius, which holds
     // them all (arrived means inside it now; social force's body forces keep a crowd loose).
-    await page.evaluate((scene) => {
-      window.flockpath.load(scene);
-      window.flockpath.pause();
+    await page.evaluate(async (scene) => {
+      await window.flockpath.load(scene);
+      await window.flockpath.pause();
     }, simpleScene({ goals: [{ position: [700, 250], radius: 60 }] }));
     const offered = await page.$$eval('#planner option', (options) => options.map((o) => o.value));
     for (const { name, slider, unit, value } of BASELINES) {
@@ -36,12 +36,12 @@ test('ORCA and social force are chosen in the panel, run, and every agent arrive
       const set = await page.evaluate((key) => window.flockpath.scene().groups[0].planner.params[key], slider);
       assert.equal(set, Number(value), `${slider} (${unit}) reached the scene`);
 
-      const result = await page.evaluate(() => {
-        window.flockpath.reset();
+      const result = await page.evaluate(async () => {
+        await window.flockpath.reset();
         const shares = [];
         // Social force's last walkers are pressed into the ring by those behind them.
         for (let k = 0; k < 16; k += 1) {
-          window.flockpath.step(250);
+          await window.flockpath.step(250);
           shares.push(window.flockpath.metrics().arrived_share);
         }
         return { shares, metrics: window.flockpath.metrics() };
@@ -52,14 +52,14 @@ test('ORCA and social force are chosen in the panel, run, and every agent arrive
       if (name === 'orca') assert.equal(result.metrics.collisions_agent_agent, 0, 'ORCA kept every pair apart');
     }
     // The link carries the planner: reloading it replays the same run.
-    const replay = await page.evaluate(() => {
+    const replay = await page.evaluate(async () => {
       const link = window.flockpath.sceneString();
-      window.flockpath.reset();
-      window.flockpath.step(200);
+      await window.flockpath.reset();
+      await window.flockpath.step(200);
       const first = window.flockpath.digest();
-      window.flockpath.load(link);
-      window.flockpath.pause();
-      window.flockpath.step(200);
+      await window.flockpath.load(link);
+      await window.flockpath.pause();
+      await window.flockpath.step(200);
       return { first, again: window.flockpath.digest(), kind: window.flockpath.scene().groups[0].planner.kind };
     });
     assert.equal(replay.kind, 'social_force');

@@ -26,8 +26,8 @@ test('a goal too small for its group is named in a notice that goes when the goa
     assert.equal(await noticeText(page), null, 'the default scene fits its goal: no notice');
 
     await page.selectOption('#preset', 'open-field');
-    const openField = await page.evaluate(() => {
-      window.flockpath.pause();
+    const openField = await page.evaluate(async () => {
+      await window.flockpath.pause();
       return window.flockpath.scene();
     });
     assert.equal(openField.name, 'open-field');
@@ -52,8 +52,8 @@ test('a goal too small for its group is named in a notice that goes when the goa
     const role = await page.getAttribute('#capacity-notice', 'role');
     assert.equal(role, 'status');
     // Not a refusal: the scene is loaded and runs.
-    const loaded = await page.evaluate(() => {
-      window.flockpath.step(30);
+    const loaded = await page.evaluate(async () => {
+      await window.flockpath.step(30);
       return { goal: window.flockpath.scene().goals[0].radius, steps: window.flockpath.metrics().steps };
     });
     assert.deepEqual(loaded, { goal: 20, steps: 30 });

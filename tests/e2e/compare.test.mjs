@@ -98,10 +98,10 @@ test('pane A equals the playground run; panes can be added, changed and removed'
   let playgroundDigest;
   let compareHref;
   try {
-    playgroundDigest = await play.page.evaluate((scene) => {
-      window.flockpath.pause();
-      window.flockpath.load(scene);
-      window.flockpath.step(90);
+    playgroundDigest = await play.page.evaluate(async (scene) => {
+      await window.flockpath.pause();
+      await window.flockpath.load(scene);
+      await window.flockpath.step(90);
       return window.flockpath.digest();
     }, simpleScene({ seed: 5 }));
     await frames(play.page, 1);

@@ -99,10 +99,10 @@ describe('the <flock-path> snippet on a page of another origin', () => {
     const page = await context.newPage();
     await page.goto(`${servePy.url}index.html`);
     await page.waitForFunction(() => window.flockpath !== undefined, null, { timeout: 30_000 });
-    playgroundDigest = await page.evaluate((scene) => {
-      window.flockpath.load(scene);
-      window.flockpath.pause();
-      window.flockpath.step(40);
+    playgroundDigest = await page.evaluate(async (scene) => {
+      await window.flockpath.load(scene);
+      await window.flockpath.pause();
+      await window.flockpath.step(40);
       return window.flockpath.digest();
     }, simpleScene());
     await page.locator('#share').click();

@@ -19,11 +19,11 @@ async function downloadVia(page, selector) {
 test('exports download real files and scenes load from files', async () => {
   const { page, errors, close } = await openPage();
   try {
-    await page.evaluate((scene) => {
-      window.flockpath.load(scene);
-      window.flockpath.pause();
-      window.flockpath.reset();
-      window.flockpath.step(30);
+    await page.evaluate(async (scene) => {
+      await window.flockpath.load(scene);
+      await window.flockpath.pause();
+      await window.flockpath.reset();
+      await window.flockpath.step(30);
     }, simpleScene({ name: 'export me' }));
     assert.match(await page.textContent('#recording-info'), /31 frames up to step 30 of 30 agents \(budget 32 MiB/);
 
@@ -99,10 +99,10 @@ test('exports download real files and scenes load from files', async () => {
     assert.equal((await page.evaluate(() => window.flockpath.scene())).name, 'dropped on the canvas');
 
     // Thinning is announced: 20,000 agents fill the 32 MiB budget in about 100 steps.
-    await page.evaluate((scene) => {
-      window.flockpath.load(scene);
-      window.flockpath.pause();
-      window.flockpath.step(220);
+    await page.evaluate(async (scene) => {
+      await window.flockpath.load(scene);
+      await window.flockpath.pause();
+      await window.flockpath.step(220);
     }, simpleScene({ name: 'crowd', width: 4000, height: 4000, goals: [], groups: [{ ...simpleScene().groups[0], count: 20000, goal: null, spawn: { min: [0, 0], max: [4000, 4000] } }] }));
     await page.waitForSelector('#recording-thinned:not([hidden])');
     assert.match(await page.textContent('#recording-thinned'), /reached its 32 MiB budget and now keeps every 4th step/);

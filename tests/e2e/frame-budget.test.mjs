@@ -78,9 +78,9 @@ test('a crowd too big for the requested speed runs fewer steps per frame and say
     await page.evaluate(() => window.flockpath.pause());
     const played = await page.evaluate(() => ({ step: window.flockpath.timeline().step, digest: window.flockpath.digest() }));
     assert.ok(played.step > before);
-    const replayed = await page.evaluate((n) => {
-      window.flockpath.reset();
-      window.flockpath.step(n);
+    const replayed = await page.evaluate(async (n) => {
+      await window.flockpath.reset();
+      await window.flockpath.step(n);
       return window.flockpath.digest();
     }, played.step);
     assert.equal(replayed, played.digest, 'budgeted frames step the same run as step(n)');

@@ -153,9 +153,9 @@ export async function waitReady(page) {
 
 /** Pauses the playground and loads `scene` through its API, in one task (no frame runs between). */
 export async function loadPaused(page, scene) {
-  await page.evaluate((s) => {
-    window.flockpath.pause();
-    window.flockpath.load(s);
+  await page.evaluate(async (s) => {
+    await window.flockpath.pause();
+    await window.flockpath.load(s);
   }, scene);
 }
 

@@ -481,9 +481,9 @@ test('switching language in the menu keeps the scene and the run, and is remembe
     await page.goto(`${url}index.html`);
     await page.waitForFunction(() => window.flockpath !== undefined);
     await page.evaluate((scene) => window.flockpath.load(scene), simpleScene({ seed: 7 }));
-    await page.evaluate(() => {
-      window.flockpath.pause();
-      window.flockpath.step(40);
+    await page.evaluate(async () => {
+      await window.flockpath.pause();
+      await window.flockpath.step(40);
     });
     const before = await page.evaluate(() => ({ scene: window.flockpath.sceneString(), digest: window.flockpath.digest(), steps: window.flockpath.metrics().steps }));
     assert.equal((await page.textContent('#play')).trim(), 'Play');
@@ -539,9 +539,9 @@ test('refused input is worded in Chinese: a field out of range, an unknown scene
 
     // A parameter through the page API keeps the English message on the Error for scripts, and the
     // banner words it in Chinese.
-    const thrown = await page.evaluate(() => {
+    const thrown = await page.evaluate(async () => {
       try {
-        window.flockpath.load('no-such-preset');
+        await window.flockpath.load('no-such-preset');
         return null;
       } catch (error) {
         return { message: error.message, code: error.code };
@@ -592,9 +592,9 @@ test('in Chinese: a per-group compare pane’s label, a refused comparison and p
     // A scene refused by the geometry checks (a polygon whose edges cross), through the page API:
     // the script gets the English message, the banner the Chinese words.
     const crossing = simpleScene({ obstacles: [{ shape: 'polygon', points: [[100, 100], [300, 300], [300, 100], [100, 300]] }] });
-    const thrown = await page.evaluate((scene) => {
+    const thrown = await page.evaluate(async (scene) => {
       try {
-        window.flockpath.load(scene);
+        await window.flockpath.load(scene);
         return null;
       } catch (error) {
         return error.message;

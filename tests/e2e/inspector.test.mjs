@@ -8,15 +8,15 @@ import { assertNoUnexpectedErrors, frames, openPage, sceneToClient, screenshot, 
 test('clicking an agent opens the inspector with its speed', async () => {
   const { page, errors, close } = await openPage();
   try {
-    await page.evaluate((scene) => {
-      window.flockpath.load(scene);
-      window.flockpath.pause();
-      window.flockpath.step(120);
+    await page.evaluate(async (scene) => {
+      await window.flockpath.load(scene);
+      await window.flockpath.pause();
+      await window.flockpath.step(120);
     }, simpleScene({ obstacles: [{ shape: 'circle', center: [400, 250], radius: 40 }] }));
     assert.equal(await page.isHidden('#inspector'), true, 'no inspector before a click');
     // Pick an agent away from the spawn region, so the click selects nothing else.
-    const target = await page.evaluate(() => {
-      const ps = window.flockpath.positions();
+    const target = await page.evaluate(async () => {
+      const ps = await window.flockpath.positions();
       let best = 0;
       ps.forEach((p, i) => {
         if (p[0] > ps[best][0]) best = i;

@@ -16,10 +16,10 @@ const focused = (page) => page.evaluate(() => document.activeElement?.id || docu
 test('playground: Space and Enter act on the focused control; shortcuts on the body and the canvas', async () => {
   const { page, errors, close } = await openPage();
   try {
-    await page.evaluate((s) => {
-      window.flockpath.pause();
-      window.flockpath.load(s);
-      window.flockpath.step(5);
+    await page.evaluate(async (s) => {
+      await window.flockpath.pause();
+      await window.flockpath.load(s);
+      await window.flockpath.step(5);
     }, simpleScene());
 
     // A focused checkbox ticks with Space; play stays as it was.
@@ -28,7 +28,7 @@ test('playground: Space and Enter act on the focused control; shortcuts on the b
     await page.keyboard.press('Space');
     assert.equal(await page.isChecked('#overlay-landscape'), !before, 'Space ticked the focused checkbox');
     assert.equal(await playing(page), false, 'Space did not toggle play');
-    assert.equal(await page.evaluate(() => window.flockpath.overlays().landscape), !before, 'the tick reached the page');
+    assert.equal(await page.evaluate(async () => (await window.flockpath.overlays()).landscape), !before, 'the tick reached the page');
 
     // A focused Reset presses with Space (step 0), and play stays paused.
     await page.focus('#reset');

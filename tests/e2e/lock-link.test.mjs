@@ -46,8 +46,8 @@ async function reopen(page, base, hash) {
 async function withLink(options, body) {
   const { page, server, errors, close } = await openPage();
   try {
-    const fragment = await page.evaluate((scene) => {
-      window.flockpath.load(scene);
+    const fragment = await page.evaluate(async (scene) => {
+      await window.flockpath.load(scene);
       return window.flockpath.sceneString();
     }, SCENE);
     await reopen(page, server.url, `#s=${fragment}${options}`);

@@ -106,10 +106,10 @@ for (const viewport of [
     const { page, errors, close } = await openPage({ viewport: { width: viewport.width, height: viewport.height } });
     try {
       await page.selectOption('#preset', 'two-groups-swap');
-      await page.evaluate(() => {
-        window.flockpath.pause();
-        window.flockpath.reset();
-        window.flockpath.step(120);
+      await page.evaluate(async () => {
+        await window.flockpath.pause();
+        await window.flockpath.reset();
+        await window.flockpath.step(120);
       });
       await frames(page, 3);
       const overall = await shownTerms(page, '#metrics');

@@ -45,9 +45,9 @@ test('pso-circle-target: the goal ring is drawn where the goal is after step(600
   const { page, errors, close } = await openPage({ hash: '' });
   try {
     await page.selectOption('#preset', 'pso-circle-target');
-    await page.evaluate(() => {
-      window.flockpath.pause();
-      window.flockpath.reset();
+    await page.evaluate(async () => {
+      await window.flockpath.pause();
+      await window.flockpath.reset();
     });
     const scene = await page.evaluate(() => window.flockpath.scene());
     assert.equal(scene.name, 'pso-circle-target');

@@ -9,18 +9,18 @@ import { assertNoUnexpectedErrors, openPage, simpleScene } from './helpers.mjs';
 const seedNow = (page) => page.evaluate(() => window.flockpath.scene().seed);
 /** The digest after `n` steps from step 0 of the current scene and seed. */
 const runDigest = (page, n) =>
-  page.evaluate((n) => {
-    window.flockpath.reset();
-    window.flockpath.step(n);
+  page.evaluate(async (n) => {
+    await window.flockpath.reset();
+    await window.flockpath.step(n);
     return window.flockpath.digest();
   }, n);
 
 test('new seed gives a different seed each click, and a seed replays the same run', async () => {
   const { page, errors, close } = await openPage();
   try {
-    await page.evaluate((scene) => {
-      window.flockpath.load(scene);
-      window.flockpath.pause();
+    await page.evaluate(async (scene) => {
+      await window.flockpath.load(scene);
+      await window.flockpath.pause();
     }, simpleScene({ seed: 7 }));
     // The page draws no randomness of its own: Math.random is not how the seed is chosen.
     await page.evaluate(() => {

@@ -18,11 +18,11 @@ test('overlay toggles change the pixels; stuck agents are counted', async () => 
   const { page, errors, close } = await openPage();
   try {
     await page.selectOption('#preset', 'u-trap');
-    await page.evaluate(() => {
-      window.flockpath.pause();
-      window.flockpath.reset();
-      window.flockpath.step(60);
-      window.flockpath.inspect(0);
+    await page.evaluate(async () => {
+      await window.flockpath.pause();
+      await window.flockpath.reset();
+      await window.flockpath.step(60);
+      await window.flockpath.inspect(0);
     });
     await page.uncheck('#trails');
     await frames(page, 2);

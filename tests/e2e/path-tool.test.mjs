@@ -29,15 +29,15 @@ test('a drawn path is followed by the active group and can be deleted', async ()
     // Agents now walk the arc: halfway along it they are well above the straight line (y = 250)
     // to the goal.
     await page.evaluate(() => window.flockpath.step(200));
-    const ys = await page.evaluate(() => window.flockpath.positions().map(([, y]) => y));
+    const ys = await page.evaluate(async () => (await window.flockpath.positions()).map(([, y]) => y));
     const meanY = ys.reduce((a, b) => a + b, 0) / ys.length;
     assert.ok(meanY < 215, `mean y ${meanY.toFixed(1)} px: the flock does not follow the arc`);
 
     // Select the path by clicking its centre line and delete it: the group stops following. First
     // let the flock reach the goal, so no agent on the arc takes the click (agents pick first).
-    await page.evaluate(() => {
-      window.flockpath.pause();
-      window.flockpath.step(1500);
+    await page.evaluate(async () => {
+      await window.flockpath.pause();
+      await window.flockpath.step(1500);
     });
     // Keys go to the editor only when no form field has focus (the group panel re-renders).
     await page.evaluate(() => document.activeElement?.blur());

@@ -96,9 +96,9 @@ test('printing the course notes shows a still of each scene at its current step'
 test('print media alone (no beforeprint) also swaps the playground canvas for a still', async () => {
   const { page, errors, close } = await openPage();
   try {
-    await page.evaluate(() => {
-      window.flockpath.pause();
-      window.flockpath.step(40);
+    await page.evaluate(async () => {
+      await window.flockpath.pause();
+      await window.flockpath.step(40);
     });
     await page.waitForTimeout(100);
     await page.emulateMedia({ media: 'print' });

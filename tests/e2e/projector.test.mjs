@@ -97,11 +97,11 @@ test('the projector theme: readable text in both themes, a toggle and a URL opti
     assert.deepEqual(colours, ['#0072b2'], 'the preset’s group is Okabe–Ito blue');
     const scene = simpleScene();
     delete scene.groups[0].color;
-    const loaded = await page.evaluate((s) => window.flockpath.load(s).groups[0].color, scene);
+    const loaded = await page.evaluate(async (s) => (await window.flockpath.load(s)).groups[0].color, scene);
     assert.equal(loaded, '#0072b2', 'a group without a colour gets the palette’s first');
-    const refused = await page.evaluate(() => {
+    const refused = await page.evaluate(async () => {
       try {
-        window.flockpath.theme('neon');
+        await window.flockpath.theme('neon');
         return null;
       } catch (error) {
         return error.message;

@@ -11,10 +11,10 @@ const STEPS = 240;
 
 /** Runs `STEPS` steps from the start, paused; returns metrics and digest. */
 async function runFromStart(page) {
-  return page.evaluate((n) => {
-    window.flockpath.pause();
-    window.flockpath.reset();
-    window.flockpath.step(n);
+  return page.evaluate(async (n) => {
+    await window.flockpath.pause();
+    await window.flockpath.reset();
+    await window.flockpath.step(n);
     return { metrics: window.flockpath.metrics(), digest: window.flockpath.digest() };
   }, STEPS);
 }

@@ -78,15 +78,15 @@ test('scrubbing the timeline back and forward reproduces the first pass', async 
 test('a hidden tab does not step and does not catch up when it comes back', async () => {
   const { page, errors, close } = await openPage();
   try {
-    await page.evaluate((scene) => {
-      window.flockpath.load(scene);
-      window.flockpath.pause();
+    await page.evaluate(async (scene) => {
+      await window.flockpath.load(scene);
+      await window.flockpath.pause();
     }, simpleScene());
-    await page.evaluate(() => {
+    await page.evaluate(async () => {
       Object.defineProperty(document, 'visibilityState', { value: 'hidden', configurable: true });
       Object.defineProperty(document, 'hidden', { value: true, configurable: true });
       document.dispatchEvent(new Event('visibilitychange'));
-      window.flockpath.play();
+      await window.flockpath.play();
     });
     const before = await page.evaluate(() => window.flockpath.metrics().steps);
     await frames(page, 20);

@@ -32,9 +32,9 @@ async function loadPillars(page) {
     };
   });
   await page.selectOption('#preset', 'pillars');
-  await page.evaluate(() => {
-    window.flockpath.pause();
-    window.flockpath.reset();
+  await page.evaluate(async () => {
+    await window.flockpath.pause();
+    await window.flockpath.reset();
   });
   await frames(page, 2);
 }
@@ -102,8 +102,8 @@ test('after step(2000) in one call no trail lies inside a pillar', async () => {
     assert.equal(shape.circles, 16, 'pillars has 16 circular pillars');
     assert.equal(shape.trails, true, 'trails are on');
     // Reset and step in one go, no frame between: a course note scripting a scene.
-    const steps = await page.evaluate(() => {
-      window.flockpath.reset();
+    const steps = await page.evaluate(async () => {
+      await window.flockpath.reset();
       return window.flockpath.step(2000);
     });
     assert.equal(steps, 2000);

@@ -90,8 +90,10 @@ export function startRemoteLoop(app, remote, canvas, onFrame = () => {}, { reado
 
   // Play and pause go to the worker at once; a pause it leaves unanswered restarts it.
   let watchdog = null;
+  // A hidden tab does not step (Page Visibility), and does not catch up when it comes back.
+  const visible = () => !document.hidden && document.visibilityState !== 'hidden';
   const sendPlaying = () => {
-    const seq = remote.control({ playing: app.playing, stepsPerFrame: app.stepsPerFrame });
+    const seq = remote.control({ playing: app.playing && visible(), stepsPerFrame: app.stepsPerFrame });
     clearTimeout(watchdog);
     if (app.playing) {
       lastFrameAt = performance.now();
@@ -113,6 +115,9 @@ export function startRemoteLoop(app, remote, canvas, onFrame = () => {}, { reado
     }, RESTART_AFTER_MS);
   };
   app.addEventListener('playing', sendPlaying);
+  document.addEventListener('visibilitychange', () => {
+    if (app.playing) sendPlaying();
+  });
   remote.addEventListener('refused', (event) => {
     app.guard(() => {
       throw event.detail;
