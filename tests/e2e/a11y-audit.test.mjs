@@ -104,7 +104,7 @@ test('the description speaks the page language (?lang=zh)', async () => {
   const { page, errors, close } = await openPath('index.html?lang=zh', { ready: () => window.flockpath !== undefined });
   try {
     await page.evaluate(() => window.flockpath.pause());
-    const obstacles = await page.evaluate(() => window.flockpath.scene().obstacles.length);
+    const obstacles = await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.scene().obstacles.length));
     await page.waitForFunction(() => document.getElementById('scene-description').textContent.includes('已暂停'));
     const text = await page.textContent('#scene-description');
     assert.ok(text.includes(`${obstacles} 个障碍物`), text);

@@ -38,23 +38,23 @@ test('a linked activity shows its prompt, asks the prediction before Play and ch
     await there.waitForFunction(() => window.flockpath !== undefined);
     await there.locator(card).waitFor();
     assert.equal(await there.locator(`${card} .fp-prompt`).textContent(), ACTIVITY.prompt);
-    assert.deepEqual(await there.evaluate(() => window.flockpath.scene().activity), ACTIVITY);
+    assert.deepEqual(await there.evaluate(async () => (await window.flockpath.settled(), window.flockpath.scene().activity)), ACTIVITY);
 
     // The page starts paused: the question comes first.
     await frames(there, 5);
-    assert.equal(await there.evaluate(() => window.flockpath.isPlaying()), false);
-    assert.equal(await there.evaluate(() => window.flockpath.metrics().steps), 0);
+    assert.equal(await there.evaluate(async () => (await window.flockpath.settled(), window.flockpath.isPlaying())), false);
+    assert.equal(await there.evaluate(async () => (await window.flockpath.settled(), window.flockpath.metrics().steps)), 0);
     assert.equal(await there.locator(`${card} legend`).textContent(), ACTIVITY.prediction.question);
     assert.deepEqual(await there.locator(`${card} label.fp-choice`).allTextContents(), ACTIVITY.prediction.choices);
 
     // Play asks instead of playing; locking in an answer without a choice is refused.
     await there.click('#play');
     await frames(there, 5);
-    assert.equal(await there.evaluate(() => window.flockpath.isPlaying()), false);
-    assert.equal(await there.evaluate(() => window.flockpath.metrics().steps), 0, 'no step ran before the prediction');
+    assert.equal(await there.evaluate(async () => (await window.flockpath.settled(), window.flockpath.isPlaying())), false);
+    assert.equal(await there.evaluate(async () => (await window.flockpath.settled(), window.flockpath.metrics().steps)), 0, 'no step ran before the prediction');
     assert.equal(await there.locator(`${card} fieldset.fp-ask`).count(), 1, 'the question is highlighted');
     await there.click(`${card} .fp-lock`);
-    assert.equal(await there.evaluate(() => window.flockpath.isPlaying()), false);
+    assert.equal(await there.evaluate(async () => (await window.flockpath.settled(), window.flockpath.isPlaying())), false);
 
     // Answering plays (the Play press asked for it), at the fastest speed.
     await there.$eval('#spf', (el) => {
@@ -63,7 +63,7 @@ test('a linked activity shows its prompt, asks the prediction before Play and ch
     });
     await there.getByRole('radio', { name: 'None', exact: true }).check();
     await there.click(`${card} .fp-lock`);
-    assert.equal(await there.evaluate(() => window.flockpath.isPlaying()), true);
+    assert.equal(await there.evaluate(async () => (await window.flockpath.settled(), window.flockpath.isPlaying())), true);
     assert.equal(await there.locator(`${card} .fp-predicted`).textContent(), 'Your prediction: None');
     assert.match(await there.locator(`${card} .fp-status`).textContent(), /Goal checked until step 1,500/);
 
@@ -87,7 +87,7 @@ test('a linked activity shows its prompt, asks the prediction before Play and ch
       return null;
     }, 1500);
     assert.equal(found?.k, step, 'deciding step');
-    const report = await there.evaluate(() => window.flockpath.activityReport());
+    const report = await there.evaluate(async () => (await window.flockpath.settled(), window.flockpath.activityReport()));
     assert.deepEqual([report.status, report.step, report.conditions[0].measured[0].value], ['met', step, found.share],
       'stepping one at a time through the page API decides the same check at the same step');
     assert.equal(items[0], `Arrived ≥ 90 % — measured: ${Number((100 * found.share).toFixed(1))} %`);
@@ -101,7 +101,7 @@ test('a linked activity shows its prompt, asks the prediction before Play and ch
     await there.click('#reset');
     await there.waitForFunction(() => document.querySelector('#activity .fp-status')?.textContent.includes('now step 0'));
     await there.click('#play');
-    assert.equal(await there.evaluate(() => window.flockpath.isPlaying()), true);
+    assert.equal(await there.evaluate(async () => (await window.flockpath.settled(), window.flockpath.isPlaying())), true);
     assert.deepEqual(thereErrors, []);
     assertNoUnexpectedErrors(errors);
   } finally {

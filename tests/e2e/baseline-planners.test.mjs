@@ -18,14 +18,14 @@ test('ORCA and social force are chosen in the panel, run, and every agent arrive
     // 30 agents cross 28 m of open field (20 px per metre) to a goal 3 m in radius, which holds
     // them all (arrived means inside it now; social force's body forces keep a crowd loose).
     await page.evaluate(async (scene) => {
-      await window.flockpath.load(scene);
       await window.flockpath.pause();
+      await window.flockpath.load(scene);
     }, simpleScene({ goals: [{ position: [700, 250], radius: 60 }] }));
     const offered = await page.$$eval('#planner option', (options) => options.map((o) => o.value));
     for (const { name, slider, unit, value } of BASELINES) {
       assert.ok(offered.includes(name), `${name} is in the planner picker: ${offered}`);
       await page.selectOption('#planner', name);
-      assert.equal(await page.evaluate(() => window.flockpath.scene().groups[0].planner.kind), name);
+      assert.equal(await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.scene().groups[0].planner.kind)), name);
       // The sliders come from the planner's table, with their SI units in the help and label.
       const keys = await page.$$eval('#params .param', (rows) => rows.map((r) => r.dataset.key));
       assert.ok(keys.includes(slider) && keys.includes('guidance'), `${name} sliders: ${keys}`);
@@ -57,8 +57,8 @@ test('ORCA and social force are chosen in the panel, run, and every agent arrive
       await window.flockpath.reset();
       await window.flockpath.step(200);
       const first = window.flockpath.digest();
-      await window.flockpath.load(link);
       await window.flockpath.pause();
+      await window.flockpath.load(link);
       await window.flockpath.step(200);
       return { first, again: window.flockpath.digest(), kind: window.flockpath.scene().groups[0].planner.kind };
     });

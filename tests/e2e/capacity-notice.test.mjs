@@ -8,7 +8,7 @@
 
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { assertNoUnexpectedErrors, bannerText, frames, loadPaused, openPage, screenshot } from './helpers.mjs';
+import { assertNoUnexpectedErrors, bannerText, frames, loadPaused, openPage, screenshot, settled } from './helpers.mjs';
 
 /** The notice's text, or null while it is hidden. */
 async function noticeText(page) {
@@ -21,7 +21,7 @@ async function noticeText(page) {
 test('a goal too small for its group is named in a notice that goes when the goal fits', async () => {
   const { page, errors, close } = await openPage({ hash: '' });
   try {
-    const first = await page.evaluate(() => window.flockpath.scene().name);
+    const first = await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.scene().name));
     assert.equal(first, 'pillars', 'the default scene');
     assert.equal(await noticeText(page), null, 'the default scene fits its goal: no notice');
 
@@ -80,9 +80,10 @@ test('a goal too small for its group is named in a notice that goes when the goa
     const setCount = async (n) => {
       await page.fill('input[name="count"]', String(n));
       await page.dispatchEvent('input[name="count"]', 'change');
+      await settled(page);
     };
     await setCount(13);
-    assert.equal(await page.evaluate(() => window.flockpath.scene().groups[0].count), 13, 'the edit applied');
+    assert.equal(await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.scene().groups[0].count)), 13, 'the edit applied');
     assert.equal(await noticeText(page), null, 'a goal that holds its group exactly: no notice');
     await setCount(14);
     assert.equal(

@@ -100,8 +100,8 @@ describe('the <flock-path> snippet on a page of another origin', () => {
     await page.goto(`${servePy.url}index.html`);
     await page.waitForFunction(() => window.flockpath !== undefined, null, { timeout: 30_000 });
     playgroundDigest = await page.evaluate(async (scene) => {
-      await window.flockpath.load(scene);
       await window.flockpath.pause();
+      await window.flockpath.load(scene);
       await window.flockpath.step(40);
       return window.flockpath.digest();
     }, simpleScene());

@@ -20,8 +20,8 @@ test('exports download real files and scenes load from files', async () => {
   const { page, errors, close } = await openPage();
   try {
     await page.evaluate(async (scene) => {
-      await window.flockpath.load(scene);
       await window.flockpath.pause();
+      await window.flockpath.load(scene);
       await window.flockpath.reset();
       await window.flockpath.step(30);
     }, simpleScene({ name: 'export me' }));
@@ -96,12 +96,12 @@ test('exports download real files and scenes load from files', async () => {
     await page.dispatchEvent('#stage', 'drop', { dataTransfer: bad });
     await page.waitForFunction(() => !document.getElementById('banner').hidden);
     assert.match(await page.textContent('#banner-text'), /The file broken\.json was not loaded: width is "wide"; allowed: a number in 10…20000 px/);
-    assert.equal((await page.evaluate(() => window.flockpath.scene())).name, 'dropped on the canvas');
+    assert.equal((await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.scene()))).name, 'dropped on the canvas');
 
     // Thinning is announced: 20,000 agents fill the 32 MiB budget in about 100 steps.
     await page.evaluate(async (scene) => {
-      await window.flockpath.load(scene);
       await window.flockpath.pause();
+      await window.flockpath.load(scene);
       await window.flockpath.step(220);
     }, simpleScene({ name: 'crowd', width: 4000, height: 4000, goals: [], groups: [{ ...simpleScene().groups[0], count: 20000, goal: null, spawn: { min: [0, 0], max: [4000, 4000] } }] }));
     await page.waitForSelector('#recording-thinned:not([hidden])');

@@ -152,14 +152,14 @@ async function startLoad(page, scene) {
 }
 
 const state = (page) =>
-  page.evaluate(() => ({
+  page.evaluate(async () => (await window.flockpath.settled(), ({
     name: window.flockpath.scene().name,
     steps: window.flockpath.metrics().steps,
     playing: window.flockpath.isPlaying(),
     planning: window.flockpath.planningProgress(),
     bar: document.querySelector('.planning-label')?.textContent ?? null,
     cancel: Boolean(document.querySelector('.planning-cancel:not([hidden])')),
-  }));
+  })));
 
 let opened = null;
 
@@ -265,7 +265,7 @@ test('an IGSA path planned in slices by the page is the path planned in one go',
   }, scene);
   // Slices: the frame loop plans while paused; step only once the path is known.
   await p.evaluate((s) => window.flockpath.load(s), scene);
-  const sliced = await p.evaluate(() => window.flockpath.planningProgress());
+  const sliced = await p.evaluate(async () => (await window.flockpath.settled(), window.flockpath.planningProgress()));
   assert.ok(sliced < 1, 'the load leaves the planning to the frame loop');
   await p.waitForFunction(() => window.flockpath.planningProgress() === 1, null, { timeout: 30_000 });
   const inSlices = await p.evaluate(async () => {

@@ -485,7 +485,7 @@ test('switching language in the menu keeps the scene and the run, and is remembe
       await window.flockpath.pause();
       await window.flockpath.step(40);
     });
-    const before = await page.evaluate(() => ({ scene: window.flockpath.sceneString(), digest: window.flockpath.digest(), steps: window.flockpath.metrics().steps }));
+    const before = await page.evaluate(async () => (await window.flockpath.settled(), ({ scene: window.flockpath.sceneString(), digest: window.flockpath.digest(), steps: window.flockpath.metrics().steps })));
     assert.equal((await page.textContent('#play')).trim(), 'Play');
     assert.ok((await englishLeftovers(page, 'header, .toolbar, .timeline, .panel')).length > 50, 'the scan sees English words');
     await page.waitForFunction((s) => location.hash.includes(s.slice(0, 20)), before.scene);
@@ -498,7 +498,7 @@ test('switching language in the menu keeps the scene and the run, and is remembe
     assert.equal(await page.evaluate(() => document.querySelector('#params .param label').textContent), '感知半径');
     assert.equal(await page.evaluate(() => document.querySelector('#metrics dt').textContent), '步数');
     assert.equal(await page.evaluate(() => document.querySelector('#planner option[value="firefly"]').textContent), '萤火虫算法人群（Zhang 等 2017）');
-    const after = await page.evaluate(() => ({ scene: window.flockpath.sceneString(), digest: window.flockpath.digest(), steps: window.flockpath.metrics().steps }));
+    const after = await page.evaluate(async () => (await window.flockpath.settled(), ({ scene: window.flockpath.sceneString(), digest: window.flockpath.digest(), steps: window.flockpath.metrics().steps })));
     assert.deepEqual(after, before, 'same scene, same state, same step');
     const location = await page.evaluate(() => ({ search: location.search, hash: location.hash }));
     assert.equal(location.search, '?lang=zh');

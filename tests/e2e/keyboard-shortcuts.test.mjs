@@ -9,8 +9,8 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { assertNoUnexpectedErrors, openPage, openPath, simpleScene } from './helpers.mjs';
 
-const playing = (page) => page.evaluate(() => window.flockpath.isPlaying());
-const steps = (page) => page.evaluate(() => window.flockpath.metrics().steps);
+const playing = (page) => page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.isPlaying()));
+const steps = (page) => page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.metrics().steps));
 const focused = (page) => page.evaluate(() => document.activeElement?.id || document.activeElement?.dataset.tool || document.activeElement?.tagName);
 
 test('playground: Space and Enter act on the focused control; shortcuts on the body and the canvas', async () => {
@@ -70,10 +70,10 @@ test('playground: Space and Enter act on the focused control; shortcuts on the b
     await page.keyboard.press('Shift+ArrowRight');
     await page.keyboard.press('Shift+ArrowDown');
     await page.keyboard.press('Enter');
-    assert.equal((await page.evaluate(() => window.flockpath.scene())).obstacles.length, 1, 'a rectangle by keyboard');
+    assert.equal((await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.scene()))).obstacles.length, 1, 'a rectangle by keyboard');
     await page.focus('#step');
     await page.keyboard.press('Control+z');
-    assert.equal((await page.evaluate(() => window.flockpath.scene())).obstacles.length, 0, 'Ctrl+Z undoes with a button focused');
+    assert.equal((await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.scene()))).obstacles.length, 0, 'Ctrl+Z undoes with a button focused');
     assertNoUnexpectedErrors(errors);
   } finally {
     await close();

@@ -92,8 +92,8 @@ for (const viewport of [{ width: 1280, height: 800 }, { width: 390, height: 844 
           groups: [{ ...simpleScene().groups[0], count: 20000, goal: null, spawn: { min: [0, 0], max: [4000, 4000] } }],
         });
         await page.evaluate(async (scene) => {
-          await window.flockpath.load(scene);
           await window.flockpath.pause();
+          await window.flockpath.load(scene);
           await window.flockpath.step(420);
         }, crowd);
         await page.waitForSelector('#timeline-note:not([hidden])');

@@ -68,8 +68,8 @@ for (const viewport of VIEWPORTS) {
     const { page, errors, close } = await openPage({ viewport });
     try {
       await page.evaluate(async (scene) => {
-        await window.flockpath.load(scene);
         await window.flockpath.pause();
+        await window.flockpath.load(scene);
         await window.flockpath.step(400);
       }, wideScene());
       await page.waitForFunction(() => document.querySelectorAll('#metrics-groups tbody tr').length === 4);

@@ -129,7 +129,7 @@ for (const viewport of [
       }
       for (const key of ['arrived_share', 'queue_order', 'fitness']) assert.ok(perGroup.some((t) => t.key === key), `groups show ${key}`);
       // The waiting count shows when the core reports it, and is hidden (not a dash) when not.
-      const metrics = await page.evaluate(() => window.flockpath.metrics());
+      const metrics = await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.metrics()));
       assert.equal(overall.some((t) => t.key === 'waiting_agents'), typeof metrics.waiting_agents === 'number');
 
       // Keyboard: Tab from the first metric name through the names to the card's summary.

@@ -48,7 +48,7 @@ test('overlay toggles change the pixels; stuck agents are counted', async () => 
 
     await page.evaluate(() => window.flockpath.step(840));
     await frames(page, 2);
-    const stuck = await page.evaluate(() => window.flockpath.stuckAgents().length);
+    const stuck = await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.stuckAgents().length));
     assert.ok(stuck > 0, 'agents are stuck in the U');
     assert.equal(await page.textContent('#stuck-count'), `${stuck} agents stuck`);
     await snapshotCanvas(page, 'rings');

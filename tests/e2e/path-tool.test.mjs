@@ -6,7 +6,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { assertNoUnexpectedErrors, loadPaused, openPage, sceneToClient, simpleScene } from './helpers.mjs';
 
-const scene = (page) => page.evaluate(() => window.flockpath.scene());
+const scene = (page) => page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.scene()));
 
 async function clickAt(page, x, y, options) {
   const p = await sceneToClient(page, x, y);
@@ -78,7 +78,7 @@ test('a group given a drawn path short of a new goal walks on into the goal', as
     await page.evaluate(() => window.flockpath.step(2000));
     const positions = await page.evaluate(() => window.flockpath.positions());
     const inside = positions.filter(([x, y]) => Math.hypot(x - goal.position[0], y - goal.position[1]) <= goal.radius);
-    const metrics = await page.evaluate(() => window.flockpath.metrics());
+    const metrics = await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.metrics()));
     assert.ok(inside.length >= 9, `${inside.length} of 10 centres inside the new goal at step 2000`);
     assert.ok(metrics.arrived_share >= 0.9, `arrived_share ${metrics.arrived_share}`);
     assertNoUnexpectedErrors(errors);

@@ -10,8 +10,8 @@ test('changing the planner after arrival restarts the run with the new planner',
   const { page, errors, close } = await openPage();
   try {
     const start = await page.evaluate(async (scene) => {
-      await window.flockpath.load(scene);
       await window.flockpath.pause();
+      await window.flockpath.load(scene);
       await window.flockpath.reset();
       return window.flockpath.positions();
     }, simpleScene());
@@ -56,7 +56,7 @@ test('changing the planner after arrival restarts the run with the new planner',
     assert.deepEqual(fresh, moved, 'the restarted run is the seeded run of the new planner');
 
     await page.click('#undo');
-    assert.equal(await page.evaluate(() => window.flockpath.scene().groups[0].planner.kind), 'boids', 'Undo brings Boids back');
+    assert.equal(await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.scene().groups[0].planner.kind)), 'boids', 'Undo brings Boids back');
     assertNoUnexpectedErrors(errors);
   } finally {
     await close();

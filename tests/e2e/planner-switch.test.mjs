@@ -23,15 +23,15 @@ test('switching the planner in the panel changes where the agents go', async () 
   const { page, errors, close } = await openPage();
   try {
     await page.evaluate(async (scene) => {
-      await window.flockpath.load(scene);
       await window.flockpath.pause();
+      await window.flockpath.load(scene);
     }, simpleScene());
     const boids = await runFromStart(page);
     const again = await runFromStart(page);
     assert.deepEqual(again, boids, 'the same planner replays the same run');
 
     await page.selectOption('#planner', 'pso');
-    assert.equal(await page.evaluate(() => window.flockpath.scene().groups[0].planner.kind), 'pso');
+    assert.equal(await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.scene().groups[0].planner.kind)), 'pso');
     const pso = await runFromStart(page);
     assert.equal(pso.length, boids.length);
     const moved = meanDistance(boids, pso);

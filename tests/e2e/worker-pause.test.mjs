@@ -120,7 +120,7 @@ test('a Pause the worker cannot answer for 1 s restarts it at the step shown, wi
       await window.flockpath.load(scene);
       await window.flockpath.step(1);
     }, HEAVIER);
-    const before = await page.evaluate(() => ({ steps: window.flockpath.metrics().steps, digest: window.flockpath.digest() }));
+    const before = await page.evaluate(async () => (await window.flockpath.settled(), ({ steps: window.flockpath.metrics().steps, digest: window.flockpath.digest() })));
     await page.evaluate(() => window.flockpath.play());
     // Pause while the worker is inside a step (no frame since Play): it cannot answer in 1 s.
     await page.waitForFunction(() => document.getElementById('slow-scene')?.hidden === false, null, { timeout: 30_000 });
@@ -131,11 +131,11 @@ test('a Pause the worker cannot answer for 1 s restarts it at the step shown, wi
     const named = Number((await bannerText(page)).match(/to step ([\d,]+)/)[1].replace(/,/g, ''));
     assert.ok(named >= before.steps, `replays to step ${named} (was ${before.steps} before Play)`);
     await page.waitForFunction((n) => window.flockpath.metrics().steps === n, named, { timeout: 200_000, polling: 500 });
-    const after = await page.evaluate(() => ({ name: window.flockpath.scene().name, playing: window.flockpath.isPlaying() }));
+    const after = await page.evaluate(async () => (await window.flockpath.settled(), ({ name: window.flockpath.scene().name, playing: window.flockpath.isPlaying() })));
     assert.equal(after.name, 'heavy-covering-circles');
     assert.equal(after.playing, false);
     if (named === before.steps) {
-      assert.equal(await page.evaluate(() => window.flockpath.digest()), before.digest, 'the same run, bit for bit');
+      assert.equal(await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.digest())), before.digest, 'the same run, bit for bit');
     }
   } finally {
     await close();

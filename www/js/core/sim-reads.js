@@ -19,6 +19,10 @@ export const FRAME_READS = Object.freeze([
   'capacity_notices_json',
   'history_json',
   'recording_json',
+  // Fitted by the renderer: read after each render (a resize, a new scene size).
+  'view',
+  'width',
+  'height',
 ]);
 
 /** Reads refreshed after a call that may change the scene or the view (not after a step). */
@@ -26,9 +30,6 @@ export const SCENE_READS = Object.freeze([
   'scene_json',
   'scene_string',
   'seed',
-  'view',
-  'width',
-  'height',
   'theme',
   'overlays_json',
   'activity_json',

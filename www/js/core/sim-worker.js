@@ -145,6 +145,8 @@ async function start({ sceneText, linked, width, height, theme }) {
     }
   }
   if (theme) sim.set_theme(theme);
+  // The first state read (the view transform) follows a render, as every later one does.
+  sim.render();
   sceneChanged = true;
   dirty = true;
   return { linkError };
@@ -159,6 +161,8 @@ function answer(id, method, args) {
     if (!PURE_READS.has(method)) {
       dirty = true;
       if (!SCENE_KEEPING.has(method)) sceneChanged = true;
+      // The view transform is fitted when a frame is rendered: render before the state is read.
+      sim.render();
     }
     reply = { type: 'reply', id, ok: true, value: clonable(value), state: snapshot() };
   } catch (error) {

@@ -12,6 +12,7 @@
 // an `Error` carrying a readable message (also shown in the page's banner) and the current scene
 // keeps running.
 
+import { Restarted } from '../core/sim-proxy.js';
 import { seekTo } from './timeline.js';
 
 let app = null;
@@ -49,7 +50,12 @@ export async function load(sceneJsonOrUrlString) {
  */
 async function settledFor(a) {
   do {
-    await a.remote.call('steps');
+    try {
+      await a.remote.call('steps');
+    } catch (error) {
+      // A worker restarted under the call (sim-proxy.js): wait for the new one instead.
+      if (!(error instanceof Restarted)) throw error;
+    }
     // A reply may start the next call of a gesture (the edit after its pick): let it be sent.
     await new Promise((resolve) => setTimeout(resolve, 0));
   } while (a.remote.busy());
