@@ -7,7 +7,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
 import { readFile } from 'node:fs/promises';
-import { assertNoUnexpectedErrors, openPage, screenshot, simpleScene } from './helpers.mjs';
+import { assertNoUnexpectedErrors, openPage, screenshot, settled, simpleScene } from './helpers.mjs';
 
 /** Clicks `selector` and returns the downloaded file's name and bytes. */
 async function downloadVia(page, selector) {
@@ -49,6 +49,7 @@ test('exports download real files and scenes load from files', async () => {
     assert.equal((mel.bytes.toString('utf8').match(/spaceLocator/g) ?? []).length, 30);
     await page.fill('#export-fps', '0');
     await page.click('[data-export="mel"]');
+    await settled(page);
     assert.match(await page.textContent('#export-status'), /frame rate must be 1…240/);
     await page.fill('#export-fps', '24');
     const svg = await downloadVia(page, '[data-export="svg"]');
