@@ -157,14 +157,14 @@ describe('the <flock-path> snippet on a page of another origin', () => {
       assert.ok(stats.width > 100 && stats.height > 100, JSON.stringify(stats));
       assert.ok(stats.colours > 3, `the canvas is not blank: ${JSON.stringify(stats)}`);
       assert.ok(stats.group > 50, `the group's agents are drawn: ${JSON.stringify(stats)}`);
-      const result = await page.evaluate(() => {
+      const result = await page.evaluate(async () => {
         const el = document.querySelector('flock-path');
-        el.pause();
+        await el.pause();
         const before = el.steps;
-        el.step(5);
+        await el.step(5);
         const stepped = el.steps - before;
-        el.reset();
-        el.step(40);
+        await el.reset();
+        await el.step(40);
         return { stepped, name: el.scene().name, digest: el.digest(), arrived: el.metrics().arrived_share, string: el.sceneString() };
       });
       assert.equal(result.stepped, 5);

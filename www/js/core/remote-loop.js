@@ -37,9 +37,11 @@ function rateText(rate) {
 
 /**
  * Starts drawing `remote`'s frames (a RemoteSim) into `canvas` for `app` (a SimHost whose `sim` is
- * `remote.handle`); `onFrame(now)` runs after every animation frame. Returns `stop()`.
+ * `remote.handle`); `onFrame(now)` runs after every animation frame. `readout`: the Speed slider's
+ * frame-budget readout (pages with one); `styleRoot`: where the loop's style goes (a shadow root
+ * for <flock-path>). Returns `stop()`, which removes what the loop added.
  */
-export function startRemoteLoop(app, remote, canvas, onFrame = () => {}, { readout = true } = {}) {
+export function startRemoteLoop(app, remote, canvas, onFrame = () => {}, { readout = true, styleRoot = document.head } = {}) {
   const ctx = canvas.getContext('2d', { alpha: false });
   const pace = readout ? setupPaceReadout(app) : { note() {}, idle() {} };
   const stage = canvas.parentElement;
@@ -47,9 +49,11 @@ export function startRemoteLoop(app, remote, canvas, onFrame = () => {}, { reado
 
   const style = document.createElement('style');
   style.textContent = SLOW_STYLE;
-  document.head.append(style);
-  const slow = Object.assign(document.createElement('output'), { id: 'slow-scene', className: 'slow-scene', hidden: true });
+  styleRoot.append(style);
+  const slow = Object.assign(document.createElement('output'), { className: 'slow-scene', hidden: true });
+  if (styleRoot === document.head) slow.id = 'slow-scene';
   slow.setAttribute('role', 'status');
+  slow.setAttribute('part', 'slow-scene');
   stage.append(slow);
 
   // The planning bar (IGSA): the worker plans in slices; the bar shows the mirrored progress.
@@ -114,21 +118,25 @@ export function startRemoteLoop(app, remote, canvas, onFrame = () => {}, { reado
       app.dirty = true;
     }, RESTART_AFTER_MS);
   };
-  app.addEventListener('playing', sendPlaying);
-  document.addEventListener('visibilitychange', () => {
+  const onVisibility = () => {
     if (app.playing) sendPlaying();
-  });
-  remote.addEventListener('refused', (event) => {
+  };
+  const onRefused = (event) => {
     app.guard(() => {
       throw event.detail;
     });
     app.setPlaying(false);
-  });
-  remote.addEventListener('panic', (event) => app.crash(String(event.detail?.message ?? event.detail)));
-  remote.addEventListener('started', () => {
+  };
+  const onPanic = (event) => app.crash(String(event.detail?.message ?? event.detail));
+  const onStarted = () => {
     // A restarted worker: the page's state goes with it.
     if (remote.restarts > 0) sendPlaying();
-  });
+  };
+  app.addEventListener('playing', sendPlaying);
+  document.addEventListener('visibilitychange', onVisibility);
+  remote.addEventListener('refused', onRefused);
+  remote.addEventListener('panic', onPanic);
+  remote.addEventListener('started', onStarted);
   sendPlaying();
 
   const draw = (frame) => {
@@ -146,7 +154,8 @@ export function startRemoteLoop(app, remote, canvas, onFrame = () => {}, { reado
     const frame = remote.takeFrame();
     if (frame) {
       draw(frame);
-      remote.ack();
+      // putImageData copied the pixels: their buffer goes back to the worker for the next frame.
+      remote.ack(frame.pixels);
       lastFrameAt = now;
       if (frame.done > 0) {
         lastStepMs = frame.stepMs ?? 0;
@@ -173,5 +182,13 @@ export function startRemoteLoop(app, remote, canvas, onFrame = () => {}, { reado
     stopped = true;
     clearTimeout(watchdog);
     cancelAnimationFrame(request);
+    app.removeEventListener('playing', sendPlaying);
+    document.removeEventListener('visibilitychange', onVisibility);
+    remote.removeEventListener('refused', onRefused);
+    remote.removeEventListener('panic', onPanic);
+    remote.removeEventListener('started', onStarted);
+    style.remove();
+    slow.remove();
+    planning.hide();
   };
 }

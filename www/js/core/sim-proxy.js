@@ -210,14 +210,15 @@ export class RemoteSim extends EventTarget {
     return frame;
   }
 
-  /** Lets the worker run its next frame (called once the page has drawn the last one). */
-  ack(extra = {}) {
-    this.worker?.postMessage({
-      type: 'ack',
-      subscriptions: this.subscriptions(),
-      stepsPerFrame: this.stepsPerFrame,
-      ...extra,
-    });
+  /**
+   * Lets the worker run its next frame (called once the page has drawn the last one); the drawn
+   * frame's `pixels` go back to the worker, which fills them again instead of allocating.
+   */
+  ack(pixels = null) {
+    this.worker?.postMessage(
+      { type: 'ack', subscriptions: this.subscriptions(), stepsPerFrame: this.stepsPerFrame, pixels },
+      pixels ? [pixels] : [],
+    );
   }
 
   /** Whether calls are waiting for the worker's answer. */

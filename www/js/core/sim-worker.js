@@ -30,6 +30,8 @@ let dirty = true;
 let sceneChanged = true;
 /** Reads with arguments the page asked for lately (`[method, args]`), e.g. a plot's series. */
 let subscriptions = [];
+/** The pixel buffer of a frame the page has drawn, handed back for the next frame (or null). */
+let spare = null;
 
 // The next frame's work runs in a task of its own, after any request already queued.
 const tickChannel = new MessageChannel();
@@ -81,7 +83,16 @@ function fail(error) {
 function postFrame(extra) {
   sim.render();
   const len = sim.frame_len();
-  const pixels = new Uint8ClampedArray(wasm.memory.buffer, sim.frame_ptr(), len).slice();
+  const frame = new Uint8ClampedArray(wasm.memory.buffer, sim.frame_ptr(), len);
+  // One copy out of wasm memory per frame, into the buffer the page gave back when it fits.
+  let pixels;
+  if (spare !== null && spare.byteLength === len) {
+    pixels = new Uint8ClampedArray(spare);
+    pixels.set(frame);
+  } else {
+    pixels = frame.slice();
+  }
+  spare = null;
   awaitingAck = true;
   dirty = false;
   self.postMessage(
@@ -207,6 +218,7 @@ self.onmessage = async ({ data }) => {
       break;
     case 'ack':
       awaitingAck = false;
+      if (data.pixels) spare = data.pixels;
       if (data.subscriptions) subscriptions = data.subscriptions;
       if ('stepsPerFrame' in data) stepsPerFrame = data.stepsPerFrame;
       if (data.render) dirty = true;

@@ -35,7 +35,8 @@ function paintCanvases() {
   for (const el of document.querySelectorAll('flock-path')) {
     try {
       if (el.host?.sim && !el.host.crashed) {
-        el.host.sim.set_theme(current);
+        // A Promise when the element's simulation runs in a worker.
+        Promise.resolve(el.host.sim.set_theme(current)).catch(() => {});
         el.host.dirty = true;
       }
     } catch {

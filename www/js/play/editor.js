@@ -339,6 +339,8 @@ export class Editor {
         if (item && item.kind === 'group') this.app.setActiveGroup(item.index);
         this.draw();
       });
+      // A key pressed before the pick is answered (Delete) acts on what it picks.
+      this.picking = drag.picked;
     }
     this.draw();
   }
@@ -458,8 +460,9 @@ export class Editor {
     this.draw();
   }
 
-  /** Deletes the selected item (Delete/Backspace). */
-  deleteSelection() {
+  /** Deletes the selected item (Delete/Backspace), once a pick in progress has been answered. */
+  async deleteSelection() {
+    await this.picking;
     const item = this.app.selection;
     if (!item) return;
     if (this.drag?.pointerId === KEYBOARD) this.drag = null;
