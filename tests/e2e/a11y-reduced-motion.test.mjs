@@ -38,8 +38,8 @@ test('reduced motion: the playground and compare start paused; Play plays', asyn
   try {
     const { page } = opened;
     await frames(page, 10);
-    assert.equal(await page.evaluate(() => window.flockpathCompare.isPlaying()), false, 'compare starts paused');
-    assert.deepEqual(await page.evaluate(() => [...new Set(window.flockpathCompare.steps())]), [0]);
+    assert.equal(await page.evaluate(async () => (await window.flockpathCompare.settled(), window.flockpathCompare.isPlaying())), false, 'compare starts paused');
+    assert.deepEqual(await page.evaluate(async () => (await window.flockpathCompare.settled(), [...new Set(window.flockpathCompare.steps())])), [0]);
     await page.click('#play');
     await page.waitForFunction(() => window.flockpathCompare.steps()[0] > 0);
     assertNoUnexpectedErrors(opened.errors);

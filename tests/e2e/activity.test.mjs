@@ -125,9 +125,9 @@ test('the compare page checks "pane B arrives before pane A" over its panes', { 
     await p.locator(box).waitFor();
     assert.equal(await p.locator(`${box} .fp-prompt`).textContent(), activity.prompt);
     await frames(p, 5);
-    assert.equal(await p.evaluate(() => window.flockpathCompare.isPlaying()), false, 'paused for the prediction');
+    assert.equal(await p.evaluate(async () => (await window.flockpathCompare.settled(), window.flockpathCompare.isPlaying())), false, 'paused for the prediction');
     await p.click('#play');
-    assert.equal(await p.evaluate(() => window.flockpathCompare.steps()[0]), 0);
+    assert.equal(await p.evaluate(async () => (await window.flockpathCompare.settled(), window.flockpathCompare.steps()[0])), 0);
     await p.getByLabel('PSO (pane B)').check();
     await p.click(`${box} .fp-lock`);
     await p.$eval('#spf', (el) => {

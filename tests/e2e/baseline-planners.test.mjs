@@ -78,12 +78,12 @@ test('the compare page runs a baseline beside the scene and offers both', async 
     ready: () => window.flockpathCompare !== undefined,
   });
   try {
-    const panes = await page.evaluate(() => window.flockpathCompare.panes());
+    const panes = await page.evaluate(async () => (await window.flockpathCompare.settled(), window.flockpathCompare.panes()));
     assert.deepEqual(panes.map((p) => p.planner), ['scene', 'social_force']);
     const options = await page.$$eval('.pane[data-pane="B"] select option', (o) => o.map((x) => x.value));
     assert.ok(options.includes('orca') && options.includes('social_force'), `compare offers: ${options}`);
     await page.waitForFunction(() => window.flockpathCompare.steps()[0] > 20);
-    const digests = await page.evaluate(() => window.flockpathCompare.digests());
+    const digests = await page.evaluate(async () => (await window.flockpathCompare.settled(), window.flockpathCompare.digests()));
     assert.notEqual(digests[0], digests[1], 'ORCA (the scene) and social force move differently');
     assertNoUnexpectedErrors(errors);
   } finally {

@@ -131,10 +131,10 @@ test('compare and lab: a focused button or checkbox keeps Space; the body gets t
   let opened = await openPath('compare.html', { ready: () => window.flockpathCompare !== undefined });
   try {
     const { page } = opened;
-    const compare = () => page.evaluate(() => ({ playing: window.flockpathCompare.isPlaying(), steps: window.flockpathCompare.steps()[0] }));
-    await page.evaluate(() => {
-      window.flockpathCompare.pause();
-      window.flockpathCompare.step(4);
+    const compare = () => page.evaluate(async () => (await window.flockpathCompare.settled(), ({ playing: window.flockpathCompare.isPlaying(), steps: window.flockpathCompare.steps()[0] })));
+    await page.evaluate(async () => {
+      await window.flockpathCompare.pause();
+      await window.flockpathCompare.step(4);
     });
     await page.focus('#reset');
     await page.keyboard.press('Space');

@@ -35,16 +35,28 @@ function rateText(rate) {
   return formatNumber(Number(rate.toFixed(2)));
 }
 
+/** Draws a frame's one view onto `canvas` (nothing while a resize is on its way). */
+export function drawFrame(canvas, pixels, width, height) {
+  if (width !== canvas.width || height !== canvas.height) return;
+  canvas.getContext('2d', { alpha: false }).putImageData(new ImageData(new Uint8ClampedArray(pixels), width, height), 0, 0);
+}
+
 /**
  * Starts drawing `remote`'s frames (a RemoteSim) into `canvas` for `app` (a SimHost whose `sim` is
  * `remote.handle`); `onFrame(now)` runs after every animation frame. `readout`: the Speed slider's
  * frame-budget readout (pages with one); `styleRoot`: where the loop's style goes (a shadow root
- * for <flock-path>). Returns `stop()`, which removes what the loop added.
+ * for <flock-path>); `stage`: the positioned element the slow-scene rate and the planning bar go
+ * over (the canvas's parent by default); `draw(frame)`: draws a frame (the compare page's panes;
+ * by default its one view onto `canvas`). Returns `stop()`, which removes what the loop added.
  */
-export function startRemoteLoop(app, remote, canvas, onFrame = () => {}, { readout = true, styleRoot = document.head } = {}) {
-  const ctx = canvas.getContext('2d', { alpha: false });
+export function startRemoteLoop(
+  app,
+  remote,
+  canvas,
+  onFrame = () => {},
+  { readout = true, styleRoot = document.head, stage = canvas.parentElement, draw = null } = {},
+) {
   const pace = readout ? setupPaceReadout(app) : { note() {}, idle() {} };
-  const stage = canvas.parentElement;
   let stopped = false;
 
   const style = document.createElement('style');
@@ -54,6 +66,8 @@ export function startRemoteLoop(app, remote, canvas, onFrame = () => {}, { reado
   if (styleRoot === document.head) slow.id = 'slow-scene';
   slow.setAttribute('role', 'status');
   slow.setAttribute('part', 'slow-scene');
+  // The rate sits in the stage's corner: the stage must be its containing block.
+  if (getComputedStyle(stage).position === 'static') stage.style.position = 'relative';
   stage.append(slow);
 
   // The planning bar (IGSA): the worker plans in slices; the bar shows the mirrored progress.
@@ -139,10 +153,7 @@ export function startRemoteLoop(app, remote, canvas, onFrame = () => {}, { reado
   remote.addEventListener('started', onStarted);
   sendPlaying();
 
-  const draw = (frame) => {
-    if (frame.width !== canvas.width || frame.height !== canvas.height) return;
-    ctx.putImageData(new ImageData(new Uint8ClampedArray(frame.pixels), frame.width, frame.height), 0, 0);
-  };
+  const show = draw ?? ((frame) => drawFrame(canvas, frame.pixels, frame.width, frame.height));
 
   const tick = (now) => {
     if (stopped || app.crashed) return;
@@ -153,9 +164,9 @@ export function startRemoteLoop(app, remote, canvas, onFrame = () => {}, { reado
     }
     const frame = remote.takeFrame();
     if (frame) {
-      draw(frame);
+      show(frame);
       // putImageData copied the pixels: their buffer goes back to the worker for the next frame.
-      remote.ack(frame.pixels);
+      remote.ack(frame.panes);
       lastFrameAt = now;
       if (frame.done > 0) {
         lastStepMs = frame.stepMs ?? 0;
@@ -171,6 +182,7 @@ export function startRemoteLoop(app, remote, canvas, onFrame = () => {}, { reado
       noteSteps(now, remote.mirror.get('steps')?.value ?? 0);
     }
     showSlow(now);
+    // Planning ahead (IGSA) is a `Sim`'s: other handles have no progress to show.
     const progress = remote.mirror.get('planning_progress')?.value ?? 1;
     if (progress < 1) planning.show(progress);
     else planning.hide();

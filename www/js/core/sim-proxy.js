@@ -9,7 +9,7 @@
 // replays the run to the step the page last showed (the same steps: the run is deterministic).
 
 import { errorFromData } from './errors.js';
-import { MIRRORED, SUBSCRIBABLE } from './sim-reads.js';
+import { READS } from './sim-reads.js';
 
 /** How long the worker may leave a pause unanswered before it is ended and restarted (ms). */
 export const RESTART_AFTER_MS = 1000;
@@ -59,6 +59,9 @@ export class RemoteSim extends EventTarget {
     this.restarts = 0;
     this.playing = false;
     this.stepsPerFrame = 2;
+    /** The handle's class in the worker and its read tables (core/sim-reads.js). */
+    this.kind = 'Sim';
+    this.reads = READS.Sim;
     /** The stand-in handle: `handle.metrics_json()`, `await handle.step(3)`, … */
     this.handle = new Proxy(
       {},
@@ -74,9 +77,14 @@ export class RemoteSim extends EventTarget {
   /**
    * Starts the worker on `sceneText` (then the link's `linked` text, whose refusal comes back as
    * `linkError`) at `width`×`height`; resolves to `{ linkError }` once the first state arrived.
+   * `kind: 'CompareSim'` starts the compare page's panes instead, from `sceneText` (else
+   * `fallbackText`) and `specText`, and resolves to `{ sceneError, specError }`.
    */
-  start({ sceneText, linked = null, width, height, playing = false, stepsPerFrame = 2, theme = null, replayTo = 0 }) {
-    this.startOptions = { sceneText, width, height, theme };
+  start(options) {
+    const { kind = 'Sim', sceneText, linked = null, width, height, playing = false, stepsPerFrame = 2, theme = null, replayTo = 0 } = options;
+    this.startOptions = { ...options, linked: null };
+    this.kind = kind;
+    this.reads = READS[kind];
     this.playing = playing;
     this.stepsPerFrame = stepsPerFrame;
     this.worker = new Worker(new URL('./sim-worker.js', import.meta.url), { type: 'module' });
@@ -93,7 +101,7 @@ export class RemoteSim extends EventTarget {
       event.preventDefault?.();
       this.onStartFailed?.(new Error(event.message || 'the simulation worker failed to start'));
     };
-    worker.postMessage({ type: 'start', sceneText, linked, width, height, playing, stepsPerFrame, theme, replayTo });
+    worker.postMessage({ ...options, type: 'start', kind, sceneText, linked, width, height, playing, stepsPerFrame, theme, replayTo });
     return started;
   }
 
@@ -101,12 +109,14 @@ export class RemoteSim extends EventTarget {
     this.lastHeard = performance.now();
     if (data.state) this.absorb(data.state);
     switch (data.type) {
-      case 'started':
-        this.onStarted?.({ linkError: data.linkError ? errorFromData(data.linkError) : null });
+      case 'started': {
+        const error = (key) => (data[key] ? errorFromData(data[key]) : null);
+        this.onStarted?.({ linkError: error('linkError'), sceneError: error('sceneError'), specError: error('specError') });
         this.onStarted = null;
         this.onStartFailed = null;
         this.dispatchEvent(new Event('started'));
         break;
+      }
       case 'start-failed':
         this.onStartFailed?.(errorFromData(data.error));
         break;
@@ -145,12 +155,12 @@ export class RemoteSim extends EventTarget {
   }
 
   invoke(method, args) {
-    if (MIRRORED.has(method) && args.length === 0) {
+    if (this.reads.mirrored.has(method) && args.length === 0) {
       const entry = this.mirror.get(method);
       if (!entry) throw new Pending(method);
       return unwrap(entry);
     }
-    if (SUBSCRIBABLE.has(method)) {
+    if (this.reads.subscribable.has(method)) {
       const key = `${method}|${JSON.stringify(args)}`;
       const fresh = !this.wanted.has(key);
       this.wanted.set(key, { method, args, at: performance.now() });
@@ -212,12 +222,12 @@ export class RemoteSim extends EventTarget {
 
   /**
    * Lets the worker run its next frame (called once the page has drawn the last one); the drawn
-   * frame's `pixels` go back to the worker, which fills them again instead of allocating.
+   * frame's pixel `buffers` go back to the worker, which fills them again instead of allocating.
    */
-  ack(pixels = null) {
+  ack(buffers = []) {
     this.worker?.postMessage(
-      { type: 'ack', subscriptions: this.subscriptions(), stepsPerFrame: this.stepsPerFrame, pixels },
-      pixels ? [pixels] : [],
+      { type: 'ack', subscriptions: this.subscriptions(), stepsPerFrame: this.stepsPerFrame, buffers },
+      buffers,
     );
   }
 
@@ -232,18 +242,21 @@ export class RemoteSim extends EventTarget {
    * Resolves to the step it replays to.
    */
   restart(reason) {
-    const sceneText = this.mirror.get('scene_json')?.value ?? this.startOptions.sceneText;
-    const replayTo = this.mirror.get('steps')?.value ?? 0;
-    const theme = this.mirror.get('theme')?.value ?? this.startOptions.theme;
-    const width = this.mirror.get('width')?.value ?? this.startOptions.width;
-    const height = this.mirror.get('height')?.value ?? this.startOptions.height;
+    const known = (method, fallback) => this.mirror.get(method)?.value ?? fallback;
+    const sceneText = known('scene_json', this.startOptions.sceneText);
+    const replayTo = known('steps', 0);
+    const theme = known('theme', this.startOptions.theme);
+    const width = known('width', this.startOptions.width);
+    const height = known('height', this.startOptions.height);
+    // A compare page's panes: the same scene with the same comparison.
+    const compare = { fallbackText: sceneText, specText: known('spec_string', this.startOptions.specText) };
     this.worker.terminate();
     this.worker = null;
     for (const call of this.calls.values()) call.reject(new Restarted(reason));
     this.calls.clear();
     this.frame = null;
     this.restarts += 1;
-    this.start({ sceneText, width, height, playing: false, stepsPerFrame: this.stepsPerFrame, theme, replayTo }).catch(
+    this.start({ ...this.startOptions, ...compare, sceneText, width, height, playing: false, stepsPerFrame: this.stepsPerFrame, theme, replayTo }).catch(
       (error) => this.dispatchEvent(new CustomEvent('panic', { detail: error })),
     );
     return replayTo;

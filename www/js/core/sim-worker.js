@@ -10,7 +10,7 @@
 
 import { loadWasm } from './boot.js';
 import { errorData, isPanic, messageOf } from './errors.js';
-import { FRAME_READS, PURE_READS, SCENE_READS, SCENE_KEEPING } from './sim-reads.js';
+import { READS } from './sim-reads.js';
 
 /** Simulation work per frame (ms) before the frame is shown: the frame rate of a playing scene. */
 const STEP_BUDGET_MS = 10;
@@ -20,6 +20,9 @@ const PLANNING_BUDGET_MS = 24;
 let module = null;
 let wasm = null;
 let sim = null;
+/** The handle's class (`Sim` or `CompareSim`) and its read tables (core/sim-reads.js). */
+let kind = 'Sim';
+let reads = READS.Sim;
 let crashed = false;
 let playing = false;
 let stepsPerFrame = 2;
@@ -30,8 +33,8 @@ let dirty = true;
 let sceneChanged = true;
 /** Reads with arguments the page asked for lately (`[method, args]`), e.g. a plot's series. */
 let subscriptions = [];
-/** The pixel buffer of a frame the page has drawn, handed back for the next frame (or null). */
-let spare = null;
+/** The pixel buffers of a frame the page has drawn, handed back for the next frame. */
+let spare = [];
 
 // The next frame's work runs in a task of its own, after any request already queued.
 const tickChannel = new MessageChannel();
@@ -59,14 +62,14 @@ function read(method, args = []) {
 /** The readable state for the page's mirror: every frame's reads, the scene's when it changed. */
 function snapshot() {
   const values = {};
-  for (const method of FRAME_READS) values[method] = read(method);
+  for (const method of reads.frame) values[method] = read(method);
   if (sceneChanged) {
-    for (const method of SCENE_READS) values[method] = read(method);
+    for (const method of reads.scene) values[method] = read(method);
     sceneChanged = false;
   }
   const subscribed = {};
   for (const [method, args] of subscriptions) {
-    if (PURE_READS.has(method)) subscribed[`${method}|${JSON.stringify(args)}`] = read(method, args);
+    if (reads.subscribable.has(method)) subscribed[`${method}|${JSON.stringify(args)}`] = read(method, args);
   }
   return { values, subscribed };
 }
@@ -80,24 +83,31 @@ function fail(error) {
   return false;
 }
 
+/**
+ * The rendered pixels of view `pane` (a `CompareSim` pane; null: the `Sim`'s one frame), copied
+ * once out of wasm memory into a buffer the page gave back when one fits.
+ */
+function pixelsOf(pane) {
+  const args = pane === null ? [] : [pane];
+  sim.render(...args);
+  const len = sim.frame_len(...args);
+  const frame = new Uint8ClampedArray(wasm.memory.buffer, sim.frame_ptr(...args), len);
+  const reuse = spare.findIndex((buffer) => buffer.byteLength === len);
+  if (reuse < 0) return frame.slice().buffer;
+  const [buffer] = spare.splice(reuse, 1);
+  new Uint8ClampedArray(buffer).set(frame);
+  return buffer;
+}
+
 function postFrame(extra) {
-  sim.render();
-  const len = sim.frame_len();
-  const frame = new Uint8ClampedArray(wasm.memory.buffer, sim.frame_ptr(), len);
-  // One copy out of wasm memory per frame, into the buffer the page gave back when it fits.
-  let pixels;
-  if (spare !== null && spare.byteLength === len) {
-    pixels = new Uint8ClampedArray(spare);
-    pixels.set(frame);
-  } else {
-    pixels = frame.slice();
-  }
-  spare = null;
+  // A `Sim` renders one frame; a `CompareSim` one per pane, all of the same size.
+  const panes = kind === 'CompareSim' ? Array.from({ length: sim.pane_count() }, (_, i) => pixelsOf(i)) : [pixelsOf(null)];
+  spare = [];
   awaitingAck = true;
   dirty = false;
   self.postMessage(
-    { type: 'frame', pixels: pixels.buffer, width: sim.width(), height: sim.height(), state: snapshot(), ...extra },
-    [pixels.buffer],
+    { type: 'frame', pixels: panes[0] ?? null, panes, width: sim.width(), height: sim.height(), state: snapshot(), ...extra },
+    panes,
   );
 }
 
@@ -110,7 +120,7 @@ function tick() {
     let stepMs = null;
     let planning = false;
     const replaying = !playing && sim.steps() < replayTo;
-    if (sim.planning_progress() < 1) {
+    if (kind === 'Sim' && sim.planning_progress() < 1) {
       // Planning runs whether or not the scene plays (the page shows its progress and Cancel).
       planning = true;
       const end = performance.now() + PLANNING_BUDGET_MS;
@@ -143,8 +153,39 @@ function tick() {
   }
 }
 
-async function start({ sceneText, linked, width, height, theme }) {
+/**
+ * A compare page's panes: the linked scene (else `fallbackText`, and why in `sceneError`) with
+ * the linked comparison spec (else the default one, and why in `specError`).
+ */
+function startCompare({ sceneText, fallbackText, specText, width, height }) {
+  let sceneError = null;
+  let specError = null;
+  let scene = sceneText;
+  try {
+    module.scene_from_text(scene);
+  } catch (error) {
+    if (isPanic(error)) throw error;
+    sceneError = errorData(error);
+    scene = fallbackText;
+  }
+  try {
+    sim = new module.CompareSim(scene, specText ?? '', width, height);
+  } catch (error) {
+    if (isPanic(error)) throw error;
+    specError = errorData(error);
+    sim = new module.CompareSim(scene, '', width, height);
+  }
+  sceneChanged = true;
+  dirty = true;
+  return { sceneError, specError };
+}
+
+async function start(options) {
+  const { sceneText, linked, width, height, theme } = options;
   ({ module, wasm } = await loadWasm());
+  kind = options.kind ?? 'Sim';
+  reads = READS[kind];
+  if (kind === 'CompareSim') return startCompare(options);
   sim = new module.Sim(sceneText, width, height);
   let linkError = null;
   if (linked !== null && linked !== undefined) {
@@ -169,11 +210,11 @@ function answer(id, method, args) {
   try {
     if (typeof sim?.[method] !== 'function' || method === 'free') throw new Error(`no such call: ${method}`);
     const value = sim[method](...args);
-    if (!PURE_READS.has(method)) {
+    if (!reads.pure.has(method)) {
       dirty = true;
-      if (!SCENE_KEEPING.has(method)) sceneChanged = true;
+      if (!reads.sceneKeeping.has(method)) sceneChanged = true;
       // The view transform is fitted when a frame is rendered: render before the state is read.
-      sim.render();
+      if (kind === 'Sim') sim.render();
     }
     reply = { type: 'reply', id, ok: true, value: clonable(value), state: snapshot() };
   } catch (error) {
@@ -196,8 +237,8 @@ self.onmessage = async ({ data }) => {
         playing = Boolean(data.playing);
         stepsPerFrame = data.stepsPerFrame ?? stepsPerFrame;
         replayTo = data.replayTo ?? 0;
-        const { linkError } = await start(data);
-        self.postMessage({ type: 'started', linkError, state: snapshot() });
+        const outcome = await start(data);
+        self.postMessage({ type: 'started', ...outcome, state: snapshot() });
         schedule();
       } catch (error) {
         if (!fail(error)) self.postMessage({ type: 'start-failed', error: errorData(error) });
@@ -218,7 +259,7 @@ self.onmessage = async ({ data }) => {
       break;
     case 'ack':
       awaitingAck = false;
-      if (data.pixels) spare = data.pixels;
+      if (Array.isArray(data.buffers)) spare = data.buffers;
       if (data.subscriptions) subscriptions = data.subscriptions;
       if ('stepsPerFrame' in data) stepsPerFrame = data.stepsPerFrame;
       if (data.render) dirty = true;

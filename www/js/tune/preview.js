@@ -115,7 +115,7 @@ export class Preview {
       this.ctx.putImageData(new ImageData(new Uint8ClampedArray(frame.pixels), frame.width, frame.height), 0, 0);
       this.painted += 1;
     }
-    remote.ack(frame.pixels);
+    remote.ack(frame.panes);
   }
 
   /** Steps of the current replay. */
