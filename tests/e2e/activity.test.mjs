@@ -92,6 +92,8 @@ test('a linked activity shows its prompt, asks the prediction before Play and ch
       'stepping one at a time through the page API decides the same check at the same step');
     assert.equal(items[0], `Arrived ≥ 90 % — measured: ${Number((100 * found.share).toFixed(1))} %`);
     assert.equal(items[1], 'Penetrations (agent-steps) = 0 — measured: 0');
+    // The card follows the run on animation frames (the steps above ran between them).
+    await frames(there, 3);
     const after = await there.locator(`${card} .fp-result`).textContent();
     assert.match(after, /You predicted: None/);
     assert.match(after, /The author's answer: None/);

@@ -30,7 +30,10 @@ function coveringCircles(count) {
   });
 }
 
-/** `count` Boids of radius `radius` among the circles (1,000: ~0.4 s a step here; 4,000: ~2.4 s). */
+/**
+ * `count` Boids of radius `radius` among the circles (here, under load: 1,000 ~0.4 s a step,
+ * 4,000 ~2.4 s).
+ */
 const heavy = (count, radius = 4) =>
   simpleScene({
     name: 'heavy-covering-circles',
@@ -42,7 +45,7 @@ const heavy = (count, radius = 4) =>
   });
 const HEAVY = heavy(1_000);
 /** Steps of over a second: a Pause during one waits longer than the worker may take. */
-const HEAVIER = heavy(4_000, 2);
+const HEAVIER = heavy(6_000, 2);
 
 /**
  * Clicks Pause with a real pointer (and the page's own listeners) and measures, in the page, from
@@ -122,8 +125,10 @@ test('a Pause the worker cannot answer for 1 s restarts it at the step shown, wi
     }, HEAVIER);
     const before = await page.evaluate(async () => (await window.flockpath.settled(), ({ steps: window.flockpath.metrics().steps, digest: window.flockpath.digest() })));
     await page.evaluate(() => window.flockpath.play());
-    // Pause while the worker is inside a step (no frame since Play): it cannot answer in 1 s.
-    await page.waitForFunction(() => document.getElementById('slow-scene')?.hidden === false, null, { timeout: 30_000 });
+    // Pause right after a frame arrived: the worker has just begun the next step (over a second
+    // long), so it cannot answer within 1 s.
+    await page.waitForFunction((n) => window.flockpath.metrics().steps > n, before.steps, { timeout: 60_000, polling: 'raf' });
+    await page.waitForSelector('#slow-scene:not([hidden])', { timeout: 5_000 });
     await page.click('#play');
     await page.waitForFunction(() => /restarted/.test(document.getElementById('banner-text')?.textContent ?? ''), null, { timeout: 10_000 });
     assert.match(await bannerText(page), /replays the run to step \d+/);

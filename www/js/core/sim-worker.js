@@ -35,6 +35,8 @@ let sceneChanged = true;
 let subscriptions = [];
 /** The pixel buffers of a frame the page has drawn, handed back for the next frame. */
 let spare = [];
+/** Calls that arrived while the handle was still being made (answered, in order, once it is). */
+let early = [];
 
 // The next frame's work runs in a task of its own, after any request already queued.
 const tickChannel = new MessageChannel();
@@ -239,13 +241,22 @@ self.onmessage = async ({ data }) => {
         replayTo = data.replayTo ?? 0;
         const outcome = await start(data);
         self.postMessage({ type: 'started', ...outcome, state: snapshot() });
+        for (const call of early) answer(call.id, call.method, call.args);
+        early = [];
         schedule();
       } catch (error) {
-        if (!fail(error)) self.postMessage({ type: 'start-failed', error: errorData(error) });
+        if (!fail(error)) {
+          self.postMessage({ type: 'start-failed', error: errorData(error) });
+          // Calls that waited for the handle get the same reason.
+          for (const call of early) self.postMessage({ type: 'reply', id: call.id, ok: false, error: errorData(error) });
+          early = [];
+        }
       }
       break;
     case 'call':
-      answer(data.id, data.method, data.args);
+      // A restarted worker may be asked before its handle exists (wasm still loading).
+      if (sim === null) early.push(data);
+      else answer(data.id, data.method, data.args);
       break;
     case 'control':
       if ('playing' in data) playing = Boolean(data.playing);
