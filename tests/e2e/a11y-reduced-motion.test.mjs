@@ -23,7 +23,7 @@ test('reduced motion: the playground and compare start paused; Play plays', asyn
   try {
     const { page } = opened;
     await frames(page, 10);
-    assert.equal(await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.isPlaying())), false, 'the playground starts paused');
+    assert.equal(await page.evaluate(() => window.flockpath.isPlaying()), false, 'the playground starts paused');
     assert.equal(await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.metrics().steps)), 0, 'no step ran');
     assert.equal(await page.textContent('#play'), 'Play');
     assert.equal(await page.getAttribute('#play', 'aria-pressed'), 'false');
@@ -38,7 +38,7 @@ test('reduced motion: the playground and compare start paused; Play plays', asyn
   try {
     const { page } = opened;
     await frames(page, 10);
-    assert.equal(await page.evaluate(async () => (await window.flockpathCompare.settled(), window.flockpathCompare.isPlaying())), false, 'compare starts paused');
+    assert.equal(await page.evaluate(() => window.flockpathCompare.isPlaying()), false, 'compare starts paused');
     assert.deepEqual(await page.evaluate(async () => (await window.flockpathCompare.settled(), [...new Set(window.flockpathCompare.steps())])), [0]);
     await page.click('#play');
     await page.waitForFunction(() => window.flockpathCompare.steps()[0] > 0);

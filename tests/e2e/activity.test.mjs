@@ -42,7 +42,7 @@ test('a linked activity shows its prompt, asks the prediction before Play and ch
 
     // The page starts paused: the question comes first.
     await frames(there, 5);
-    assert.equal(await there.evaluate(async () => (await window.flockpath.settled(), window.flockpath.isPlaying())), false);
+    assert.equal(await there.evaluate(() => window.flockpath.isPlaying()), false);
     assert.equal(await there.evaluate(async () => (await window.flockpath.settled(), window.flockpath.metrics().steps)), 0);
     assert.equal(await there.locator(`${card} legend`).textContent(), ACTIVITY.prediction.question);
     assert.deepEqual(await there.locator(`${card} label.fp-choice`).allTextContents(), ACTIVITY.prediction.choices);
@@ -50,11 +50,11 @@ test('a linked activity shows its prompt, asks the prediction before Play and ch
     // Play asks instead of playing; locking in an answer without a choice is refused.
     await there.click('#play');
     await frames(there, 5);
-    assert.equal(await there.evaluate(async () => (await window.flockpath.settled(), window.flockpath.isPlaying())), false);
+    assert.equal(await there.evaluate(() => window.flockpath.isPlaying()), false);
     assert.equal(await there.evaluate(async () => (await window.flockpath.settled(), window.flockpath.metrics().steps)), 0, 'no step ran before the prediction');
     assert.equal(await there.locator(`${card} fieldset.fp-ask`).count(), 1, 'the question is highlighted');
     await there.click(`${card} .fp-lock`);
-    assert.equal(await there.evaluate(async () => (await window.flockpath.settled(), window.flockpath.isPlaying())), false);
+    assert.equal(await there.evaluate(() => window.flockpath.isPlaying()), false);
 
     // Answering plays (the Play press asked for it), at the fastest speed.
     await there.$eval('#spf', (el) => {
@@ -63,7 +63,7 @@ test('a linked activity shows its prompt, asks the prediction before Play and ch
     });
     await there.getByRole('radio', { name: 'None', exact: true }).check();
     await there.click(`${card} .fp-lock`);
-    assert.equal(await there.evaluate(async () => (await window.flockpath.settled(), window.flockpath.isPlaying())), true);
+    assert.equal(await there.evaluate(() => window.flockpath.isPlaying()), true);
     assert.equal(await there.locator(`${card} .fp-predicted`).textContent(), 'Your prediction: None');
     assert.match(await there.locator(`${card} .fp-status`).textContent(), /Goal checked until step 1,500/);
 
@@ -103,7 +103,7 @@ test('a linked activity shows its prompt, asks the prediction before Play and ch
     await there.click('#reset');
     await there.waitForFunction(() => document.querySelector('#activity .fp-status')?.textContent.includes('now step 0'));
     await there.click('#play');
-    assert.equal(await there.evaluate(async () => (await window.flockpath.settled(), window.flockpath.isPlaying())), true);
+    assert.equal(await there.evaluate(() => window.flockpath.isPlaying()), true);
     assert.deepEqual(thereErrors, []);
     assertNoUnexpectedErrors(errors);
   } finally {
@@ -127,7 +127,7 @@ test('the compare page checks "pane B arrives before pane A" over its panes', { 
     await p.locator(box).waitFor();
     assert.equal(await p.locator(`${box} .fp-prompt`).textContent(), activity.prompt);
     await frames(p, 5);
-    assert.equal(await p.evaluate(async () => (await window.flockpathCompare.settled(), window.flockpathCompare.isPlaying())), false, 'paused for the prediction');
+    assert.equal(await p.evaluate(() => window.flockpathCompare.isPlaying()), false, 'paused for the prediction');
     await p.click('#play');
     assert.equal(await p.evaluate(async () => (await window.flockpathCompare.settled(), window.flockpathCompare.steps()[0])), 0);
     await p.getByLabel('PSO (pane B)').check();

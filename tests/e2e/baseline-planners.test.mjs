@@ -33,7 +33,8 @@ test('ORCA and social force are chosen in the panel, run, and every agent arrive
       assert.ok(help && help.length > 10, `${slider} has help: ${help}`);
       await page.fill(`#param-${slider}`, value);
       await page.dispatchEvent(`#param-${slider}`, 'change');
-      const set = await page.evaluate((key) => window.flockpath.scene().groups[0].planner.params[key], slider);
+      // The slider's change goes to the simulation worker: read once it has answered.
+      const set = await page.evaluate(async (key) => (await window.flockpath.settled(), window.flockpath.scene().groups[0].planner.params[key]), slider);
       assert.equal(set, Number(value), `${slider} (${unit}) reached the scene`);
 
       const result = await page.evaluate(async () => {

@@ -9,7 +9,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { assertNoUnexpectedErrors, openPage, openPath, simpleScene } from './helpers.mjs';
 
-const playing = (page) => page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.isPlaying()));
+const playing = (page) => page.evaluate(() => window.flockpath.isPlaying());
 const steps = (page) => page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.metrics().steps));
 const focused = (page) => page.evaluate(() => document.activeElement?.id || document.activeElement?.dataset.tool || document.activeElement?.tagName);
 
