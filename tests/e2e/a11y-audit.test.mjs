@@ -104,7 +104,7 @@ test('the description speaks the page language (?lang=zh)', async () => {
   const { page, errors, close } = await openPath('index.html?lang=zh', { ready: () => window.flockpath !== undefined });
   try {
     await page.evaluate(() => window.flockpath.pause());
-    const obstacles = await page.evaluate(() => window.flockpath.scene().obstacles.length);
+    const obstacles = await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.scene().obstacles.length));
     await page.waitForFunction(() => document.getElementById('scene-description').textContent.includes('已暂停'));
     const text = await page.textContent('#scene-description');
     assert.ok(text.includes(`${obstacles} 个障碍物`), text);
@@ -120,12 +120,12 @@ test('compare: a polite, visually hidden description names each pane and matches
   for (const lang of ['en', 'zh']) {
     const { page, errors, close } = await openPath(`compare.html?lang=${lang}`, { ready });
     try {
-      await page.evaluate(() => {
-        window.flockpathCompare.pause();
-        window.flockpathCompare.reset();
-        window.flockpathCompare.step(600);
+      await page.evaluate(async () => {
+        await window.flockpathCompare.pause();
+        await window.flockpathCompare.reset();
+        await window.flockpathCompare.step(600);
       });
-      const steps = await page.evaluate(() => window.flockpathCompare.steps());
+      const steps = await page.evaluate(async () => (await window.flockpathCompare.settled(), window.flockpathCompare.steps()));
       assert.deepEqual([...new Set(steps)], [600]);
       // Rewritten at most every few seconds: wait for the words of step 600 (arrivals and collisions by then).
       const stepWords = lang === 'en' ? 'Step 600, paused.' : '第 600 步，已暂停。';

@@ -24,7 +24,7 @@ test('reduced motion: the playground and compare start paused; Play plays', asyn
     const { page } = opened;
     await frames(page, 10);
     assert.equal(await page.evaluate(() => window.flockpath.isPlaying()), false, 'the playground starts paused');
-    assert.equal(await page.evaluate(() => window.flockpath.metrics().steps), 0, 'no step ran');
+    assert.equal(await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.metrics().steps)), 0, 'no step ran');
     assert.equal(await page.textContent('#play'), 'Play');
     assert.equal(await page.getAttribute('#play', 'aria-pressed'), 'false');
     await page.click('#play');
@@ -39,7 +39,7 @@ test('reduced motion: the playground and compare start paused; Play plays', asyn
     const { page } = opened;
     await frames(page, 10);
     assert.equal(await page.evaluate(() => window.flockpathCompare.isPlaying()), false, 'compare starts paused');
-    assert.deepEqual(await page.evaluate(() => [...new Set(window.flockpathCompare.steps())]), [0]);
+    assert.deepEqual(await page.evaluate(async () => (await window.flockpathCompare.settled(), [...new Set(window.flockpathCompare.steps())])), [0]);
     await page.click('#play');
     await page.waitForFunction(() => window.flockpathCompare.steps()[0] > 0);
     assertNoUnexpectedErrors(opened.errors);

@@ -6,7 +6,7 @@
 
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { assertNoUnexpectedErrors, openPage, screenshot } from './helpers.mjs';
+import { assertNoUnexpectedErrors, openPage, screenshot, settled } from './helpers.mjs';
 
 async function openShare(page) {
   await page.evaluate(() => document.getElementById('share').click());
@@ -41,6 +41,7 @@ test('the authoring form writes an activity into a link that round-trips', { tim
     await second.locator('.activity-share').fill('0.5');
     await screenshot(page, 'activity-authoring');
     await page.click('#activity-apply');
+    await settled(page);
     assert.equal(await page.textContent('#activity-form-status'), 'The activity is in the link (Share dialog).');
 
     const expected = {
@@ -54,7 +55,7 @@ test('the authoring form writes an activity into a link that round-trips', { tim
         ],
       },
     };
-    assert.deepEqual(await page.evaluate(() => window.flockpath.scene().activity), expected);
+    assert.deepEqual(await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.scene().activity)), expected);
     // The card on this page follows at once.
     assert.equal(await page.locator('#activity .fp-prompt').textContent(), prompt);
 
@@ -63,13 +64,13 @@ test('the authoring form writes an activity into a link that round-trips', { tim
     await page.locator('#activity-dialog:not([open])').waitFor({ state: 'attached' });
     assert.equal(await page.locator('#share-dialog[open]').count(), 1, 'back in the Share dialog');
     const link = await page.inputValue('#share-link');
-    const sceneString = await page.evaluate(() => window.flockpath.sceneString());
+    const sceneString = await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.sceneString()));
     assert.ok(link.endsWith(`#s=${sceneString}`), link);
     const there = await context.newPage();
     await there.goto(link);
     await there.waitForFunction(() => window.flockpath !== undefined);
-    assert.deepEqual(await there.evaluate(() => window.flockpath.scene().activity), expected);
-    assert.equal(await there.evaluate(() => window.flockpath.sceneString()), sceneString);
+    assert.deepEqual(await there.evaluate(async () => (await window.flockpath.settled(), window.flockpath.scene().activity)), expected);
+    assert.equal(await there.evaluate(async () => (await window.flockpath.settled(), window.flockpath.sceneString())), sceneString);
     assert.equal(await there.locator('#activity .fp-prompt').textContent(), prompt);
     assert.deepEqual(await there.locator('#activity label.fp-choice').allTextContents(), expected.prediction.choices);
     // The form there is filled from the link's activity.
@@ -83,17 +84,19 @@ test('the authoring form writes an activity into a link that round-trips', { tim
     await page.click('#share-activity-open');
     await page.fill('#activity-choices', 'a\nb\nc\nd\ne\nf\ng');
     await page.click('#activity-apply');
+    await settled(page);
     const refusal = await page.textContent('#activity-form-status');
     assert.match(refusal, /activity\.prediction\.choices is a list of 7; allowed: 2…6 choices/);
-    assert.deepEqual(await page.evaluate(() => window.flockpath.scene().activity), expected);
+    assert.deepEqual(await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.scene().activity)), expected);
 
     // Removing it: the link has no activity, and is the scene's link without one.
     await page.click('#activity-clear');
-    assert.equal(await page.evaluate(() => window.flockpath.scene().activity), undefined);
+    await settled(page);
+    assert.equal(await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.scene().activity)), undefined);
     assert.equal(await page.locator('#activity .fp-activity').isHidden(), true);
-    const plain = await page.evaluate(() => {
+    const plain = await page.evaluate(async () => {
       const s = window.flockpath.sceneString();
-      window.flockpath.load('two-groups-swap');
+      await window.flockpath.load('two-groups-swap');
       return s === window.flockpath.sceneString();
     });
     assert.equal(plain, true, 'without the activity the link is the preset link again');

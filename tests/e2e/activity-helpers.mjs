@@ -3,9 +3,9 @@
 /** The link (fragment value) of preset `preset` with `activity` added, made by the page's API. */
 export async function linkWithActivity(page, activity, preset = 'pillars') {
   return page.evaluate(
-    ([a, name]) => {
-      window.flockpath.load(name);
-      window.flockpath.load({ ...window.flockpath.scene(), activity: a });
+    async ([a, name]) => {
+      await window.flockpath.load(name);
+      await window.flockpath.load({ ...window.flockpath.scene(), activity: a });
       return window.flockpath.sceneString();
     },
     [activity, preset],

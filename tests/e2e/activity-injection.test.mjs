@@ -51,11 +51,11 @@ test('markup in every activity text field is shown as text on every page that sh
   let compare = null;
   try {
     const value = await page.evaluate(
-      ([a, name]) => {
-        window.flockpath.load('pillars');
+      async ([a, name]) => {
+        await window.flockpath.load('pillars');
         const scene = window.flockpath.scene();
         scene.groups[0].name = name;
-        window.flockpath.load({ ...scene, activity: a });
+        await window.flockpath.load({ ...scene, activity: a });
         return window.flockpath.sceneString();
       },
       [EVIL, GROUP_NAME],

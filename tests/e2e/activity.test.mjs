@@ -38,12 +38,12 @@ test('a linked activity shows its prompt, asks the prediction before Play and ch
     await there.waitForFunction(() => window.flockpath !== undefined);
     await there.locator(card).waitFor();
     assert.equal(await there.locator(`${card} .fp-prompt`).textContent(), ACTIVITY.prompt);
-    assert.deepEqual(await there.evaluate(() => window.flockpath.scene().activity), ACTIVITY);
+    assert.deepEqual(await there.evaluate(async () => (await window.flockpath.settled(), window.flockpath.scene().activity)), ACTIVITY);
 
     // The page starts paused: the question comes first.
     await frames(there, 5);
     assert.equal(await there.evaluate(() => window.flockpath.isPlaying()), false);
-    assert.equal(await there.evaluate(() => window.flockpath.metrics().steps), 0);
+    assert.equal(await there.evaluate(async () => (await window.flockpath.settled(), window.flockpath.metrics().steps)), 0);
     assert.equal(await there.locator(`${card} legend`).textContent(), ACTIVITY.prediction.question);
     assert.deepEqual(await there.locator(`${card} label.fp-choice`).allTextContents(), ACTIVITY.prediction.choices);
 
@@ -51,7 +51,7 @@ test('a linked activity shows its prompt, asks the prediction before Play and ch
     await there.click('#play');
     await frames(there, 5);
     assert.equal(await there.evaluate(() => window.flockpath.isPlaying()), false);
-    assert.equal(await there.evaluate(() => window.flockpath.metrics().steps), 0, 'no step ran before the prediction');
+    assert.equal(await there.evaluate(async () => (await window.flockpath.settled(), window.flockpath.metrics().steps)), 0, 'no step ran before the prediction');
     assert.equal(await there.locator(`${card} fieldset.fp-ask`).count(), 1, 'the question is highlighted');
     await there.click(`${card} .fp-lock`);
     assert.equal(await there.evaluate(() => window.flockpath.isPlaying()), false);
@@ -77,21 +77,23 @@ test('a linked activity shows its prompt, asks the prediction before Play and ch
     assert.equal(await there.locator(`${card} li.fp-pass`).count(), 2, items.join(' | '));
 
     // An independent stepping of the same scene finds the same deciding step and values.
-    const found = await there.evaluate((limit) => {
-      window.flockpath.reset();
+    const found = await there.evaluate(async (limit) => {
+      await window.flockpath.reset();
       for (let k = 1; k <= limit; k += 1) {
-        window.flockpath.step(1);
+        await window.flockpath.step(1);
         const m = window.flockpath.metrics();
         if (m.arrived_share >= 0.9 && m.penetrations_agent_obstacle === 0) return { k, share: m.arrived_share };
       }
       return null;
     }, 1500);
     assert.equal(found?.k, step, 'deciding step');
-    const report = await there.evaluate(() => window.flockpath.activityReport());
+    const report = await there.evaluate(async () => (await window.flockpath.settled(), window.flockpath.activityReport()));
     assert.deepEqual([report.status, report.step, report.conditions[0].measured[0].value], ['met', step, found.share],
       'stepping one at a time through the page API decides the same check at the same step');
     assert.equal(items[0], `Arrived ≥ 90 % — measured: ${Number((100 * found.share).toFixed(1))} %`);
     assert.equal(items[1], 'Penetrations (agent-steps) = 0 — measured: 0');
+    // The card follows the run on animation frames (the steps above ran between them).
+    await frames(there, 3);
     const after = await there.locator(`${card} .fp-result`).textContent();
     assert.match(after, /You predicted: None/);
     assert.match(after, /The author's answer: None/);
@@ -127,7 +129,7 @@ test('the compare page checks "pane B arrives before pane A" over its panes', { 
     await frames(p, 5);
     assert.equal(await p.evaluate(() => window.flockpathCompare.isPlaying()), false, 'paused for the prediction');
     await p.click('#play');
-    assert.equal(await p.evaluate(() => window.flockpathCompare.steps()[0]), 0);
+    assert.equal(await p.evaluate(async () => (await window.flockpathCompare.settled(), window.flockpathCompare.steps()[0])), 0);
     await p.getByLabel('PSO (pane B)').check();
     await p.click(`${box} .fp-lock`);
     await p.$eval('#spf', (el) => {

@@ -14,9 +14,9 @@ async function stepsIncrease(page, than) {
 
 /** Calls load() in the page; returns the thrown message and its details (or null if it loaded). */
 async function tryLoad(page, input) {
-  return page.evaluate((value) => {
+  return page.evaluate(async (value) => {
     try {
-      window.flockpath.load(value);
+      await window.flockpath.load(value);
       return null;
     } catch (error) {
       return { message: error instanceof Error ? error.message : String(error), details: error?.details ?? null };
@@ -41,7 +41,7 @@ test('a garbled #s= link shows a message and the default preset runs', async () 
     assert.match(text, /scene in the link could not be loaded/i);
     assert.match(text, /base64|damaged|truncated|cannot read/);
     const defaultPreset = await page.$eval('#preset option', (o) => o.value);
-    assert.equal((await page.evaluate(() => window.flockpath.scene())).name, defaultPreset);
+    assert.equal((await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.scene()))).name, defaultPreset);
     assert.equal(await page.evaluate(() => window.flockpath.isPlaying()), true);
     await stepsIncrease(page, 10);
     await page.click('#banner-close');
@@ -57,7 +57,7 @@ test('refused scenes keep the previous scene running unchanged', async () => {
   try {
     const good = simpleScene({ name: 'good' });
     await page.evaluate((scene) => window.flockpath.load(scene), good);
-    const loaded = await page.evaluate(() => window.flockpath.scene());
+    const loaded = await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.scene()));
     await stepsIncrease(page, 5);
 
     const nanRadius = simpleScene({ obstacles: [{ shape: 'circle', center: [400, 100], radius: 'NaN' }] });
@@ -81,7 +81,7 @@ test('refused scenes keep the previous scene running unchanged', async () => {
       ['broken JSON text', '{"width": 800, "height":', /cannot read the scene/, null],
     ];
     for (const [what, input, expected, details] of cases) {
-      const stepsBefore = await page.evaluate(() => window.flockpath.metrics().steps);
+      const stepsBefore = await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.metrics().steps));
       const thrown = await tryLoad(page, input);
       assert.ok(thrown, `${what}: load() throws`);
       const { message } = thrown;
@@ -105,22 +105,22 @@ test('refused scenes keep the previous scene running unchanged', async () => {
       } else {
         assert.equal(disclosure, null, `${what}: no details to offer`);
       }
-      assert.deepEqual(await page.evaluate(() => window.flockpath.scene()), loaded, `${what}: scene unchanged`);
+      assert.deepEqual(await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.scene())), loaded, `${what}: scene unchanged`);
       await stepsIncrease(page, stepsBefore);
     }
     // A link pasted into the address bar of the running page: same rules.
     await page.click('#banner-close');
-    const stepsBefore = await page.evaluate(() => window.flockpath.metrics().steps);
+    const stepsBefore = await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.metrics().steps));
     await page.evaluate(() => {
       location.hash = 's=1.garbled~link';
     });
     await page.waitForFunction(() => !document.getElementById('banner').hidden);
     assert.match(await bannerText(page), /scene in the link could not be loaded.*previous scene keeps running/i);
-    assert.deepEqual(await page.evaluate(() => window.flockpath.scene()), loaded, 'link: scene unchanged');
+    assert.deepEqual(await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.scene())), loaded, 'link: scene unchanged');
     await stepsIncrease(page, stepsBefore);
 
     // A good link loads.
-    const goodLink = await page.evaluate(() => window.flockpath.sceneString());
+    const goodLink = await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.sceneString()));
     await page.evaluate((value) => window.flockpath.load(value), simpleScene({ name: 'other' }));
     // Wait for the address bar to follow the load (it is rewritten 300 ms after a change): setting
     // the hash to the value it already holds fires no hashchange, and a write still pending from

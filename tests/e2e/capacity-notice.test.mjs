@@ -8,7 +8,7 @@
 
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { assertNoUnexpectedErrors, bannerText, frames, loadPaused, openPage, screenshot } from './helpers.mjs';
+import { assertNoUnexpectedErrors, bannerText, frames, loadPaused, openPage, screenshot, settled } from './helpers.mjs';
 
 /** The notice's text, or null while it is hidden. */
 async function noticeText(page) {
@@ -21,13 +21,13 @@ async function noticeText(page) {
 test('a goal too small for its group is named in a notice that goes when the goal fits', async () => {
   const { page, errors, close } = await openPage({ hash: '' });
   try {
-    const first = await page.evaluate(() => window.flockpath.scene().name);
+    const first = await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.scene().name));
     assert.equal(first, 'pillars', 'the default scene');
     assert.equal(await noticeText(page), null, 'the default scene fits its goal: no notice');
 
     await page.selectOption('#preset', 'open-field');
-    const openField = await page.evaluate(() => {
-      window.flockpath.pause();
+    const openField = await page.evaluate(async () => {
+      await window.flockpath.pause();
       return window.flockpath.scene();
     });
     assert.equal(openField.name, 'open-field');
@@ -52,8 +52,8 @@ test('a goal too small for its group is named in a notice that goes when the goa
     const role = await page.getAttribute('#capacity-notice', 'role');
     assert.equal(role, 'status');
     // Not a refusal: the scene is loaded and runs.
-    const loaded = await page.evaluate(() => {
-      window.flockpath.step(30);
+    const loaded = await page.evaluate(async () => {
+      await window.flockpath.step(30);
       return { goal: window.flockpath.scene().goals[0].radius, steps: window.flockpath.metrics().steps };
     });
     assert.deepEqual(loaded, { goal: 20, steps: 30 });
@@ -80,9 +80,10 @@ test('a goal too small for its group is named in a notice that goes when the goa
     const setCount = async (n) => {
       await page.fill('input[name="count"]', String(n));
       await page.dispatchEvent('input[name="count"]', 'change');
+      await settled(page);
     };
     await setCount(13);
-    assert.equal(await page.evaluate(() => window.flockpath.scene().groups[0].count), 13, 'the edit applied');
+    assert.equal(await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.scene().groups[0].count)), 13, 'the edit applied');
     assert.equal(await noticeText(page), null, 'a goal that holds its group exactly: no notice');
     await setCount(14);
     assert.equal(

@@ -33,22 +33,22 @@ test('a comparison URL opens both panes, which animate in lockstep with one tabl
       assert.match(sceneWords, /pane/i, `pane ${i}: the scene's paragraph (${sceneWords})`);
       assert.match(paneWords, new RegExp(`^Pane ${'AB'[i]}\\b`), `pane ${i}: its own paragraph (${paneWords})`);
     }
-    const panes = await page.evaluate(() => window.flockpathCompare.panes());
+    const panes = await page.evaluate(async () => (await window.flockpathCompare.settled(), window.flockpathCompare.panes()));
     assert.deepEqual(panes.map((p) => p.planner), ['scene', 'pso']);
     await page.waitForFunction(() => window.flockpathCompare.steps()[0] > 20);
     const first = await paneHashes(page);
     await page.waitForFunction((n) => window.flockpathCompare.steps()[0] > n + 30,
-      (await page.evaluate(() => window.flockpathCompare.steps()[0])));
+      (await page.evaluate(async () => (await window.flockpathCompare.settled(), window.flockpathCompare.steps()[0]))));
     await frames(page, 2);
     const second = await paneHashes(page);
     assert.notEqual(first[0], second[0], 'pane A animates');
     assert.notEqual(first[1], second[1], 'pane B animates');
 
     await page.click('#play');
-    const steps = await page.evaluate(() => window.flockpathCompare.steps());
+    const steps = await page.evaluate(async () => (await window.flockpathCompare.settled(), window.flockpathCompare.steps()));
     assert.equal(steps[0], steps[1], 'the panes step in lockstep');
     await page.click('#step');
-    assert.deepEqual(await page.evaluate(() => window.flockpathCompare.steps()), [steps[0] + 1, steps[1] + 1]);
+    assert.deepEqual(await page.evaluate(async () => (await window.flockpathCompare.settled(), window.flockpathCompare.steps())), [steps[0] + 1, steps[1] + 1]);
 
     await frames(page, 2);
     const header = await page.$$eval('#metrics-table thead th', (ths) => ths.map((t) => t.textContent));
@@ -57,12 +57,12 @@ test('a comparison URL opens both panes, which animate in lockstep with one tabl
     // The row's name is its heading (th scope=row); the cells are the panes' values.
     assert.deepEqual(row, [String(steps[0] + 1), String(steps[0] + 1)]);
     assert.equal(await page.$$eval('.plot canvas', (c) => c.length), 5, 'five overlaid plots');
-    const series = await page.evaluate(() => window.flockpathCompare.series());
+    const series = await page.evaluate(async () => (await window.flockpathCompare.settled(), window.flockpathCompare.series()));
     assert.equal(series.panes.length, 2);
     assert.notEqual(series.panes[0].color, series.panes[1].color);
 
     // Pane A runs the scene's planners: the playground's run, digest for digest.
-    const digests = await page.evaluate(() => window.flockpathCompare.digests());
+    const digests = await page.evaluate(async () => (await window.flockpathCompare.settled(), window.flockpathCompare.digests()));
 
     // The summary CSV: one row per pane.
     const [download] = await Promise.all([page.waitForEvent('download'), page.click('#export-csv')]);
@@ -74,19 +74,19 @@ test('a comparison URL opens both panes, which animate in lockstep with one tabl
     assert.match(lines[2], /^B,PSO/);
 
     // The link reopens the same comparison.
-    const link = await page.evaluate(() => window.flockpathCompare.link());
-    const spec = await page.evaluate(() => window.flockpathCompare.specString());
+    const link = await page.evaluate(async () => (await window.flockpathCompare.settled(), window.flockpathCompare.link()));
+    const spec = await page.evaluate(async () => (await window.flockpathCompare.settled(), window.flockpathCompare.specString()));
     assert.ok(link.includes(`c=${spec}`), link);
     await page.goto('about:blank');
     await page.goto(link);
     await page.waitForFunction(ready);
-    await page.evaluate(() => {
-      window.flockpathCompare.pause();
-      window.flockpathCompare.reset();
+    await page.evaluate(async () => {
+      await window.flockpathCompare.pause();
+      await window.flockpathCompare.reset();
     });
-    assert.equal(await page.evaluate(() => window.flockpathCompare.specString()), spec);
+    assert.equal(await page.evaluate(async () => (await window.flockpathCompare.settled(), window.flockpathCompare.specString())), spec);
     await page.evaluate((n) => window.flockpathCompare.step(n), steps[0] + 1);
-    assert.deepEqual(await page.evaluate(() => window.flockpathCompare.digests()), digests, 'same runs from the link');
+    assert.deepEqual(await page.evaluate(async () => (await window.flockpathCompare.settled(), window.flockpathCompare.digests())), digests, 'same runs from the link');
     assertNoUnexpectedErrors(errors);
   } finally {
     await close();
@@ -98,10 +98,10 @@ test('pane A equals the playground run; panes can be added, changed and removed'
   let playgroundDigest;
   let compareHref;
   try {
-    playgroundDigest = await play.page.evaluate((scene) => {
-      window.flockpath.pause();
-      window.flockpath.load(scene);
-      window.flockpath.step(90);
+    playgroundDigest = await play.page.evaluate(async (scene) => {
+      await window.flockpath.pause();
+      await window.flockpath.load(scene);
+      await window.flockpath.step(90);
       return window.flockpath.digest();
     }, simpleScene({ seed: 5 }));
     await frames(play.page, 1);
@@ -113,21 +113,21 @@ test('pane A equals the playground run; panes can be added, changed and removed'
   }
   const { page, errors, close } = await openPath(compareHref, { ready });
   try {
-    await page.evaluate(() => {
-      window.flockpathCompare.pause();
-      window.flockpathCompare.reset();
-      window.flockpathCompare.step(90);
+    await page.evaluate(async () => {
+      await window.flockpathCompare.pause();
+      await window.flockpathCompare.reset();
+      await window.flockpathCompare.step(90);
     });
-    const digests = await page.evaluate(() => window.flockpathCompare.digests());
+    const digests = await page.evaluate(async () => (await window.flockpathCompare.settled(), window.flockpathCompare.digests()));
     assert.equal(digests[0], playgroundDigest, 'pane A (the scene as linked) is the playground run');
 
     await page.click('#add-pane');
     await page.waitForFunction(() => document.querySelectorAll('.pane').length === 3);
     await page.selectOption('.pane[data-pane="C"] select', 'firefly');
     await frames(page, 2);
-    const panes = await page.evaluate(() => window.flockpathCompare.panes());
+    const panes = await page.evaluate(async () => (await window.flockpathCompare.settled(), window.flockpathCompare.panes()));
     assert.deepEqual(panes.map((p) => p.planner), ['scene', 'pso', 'firefly']);
-    assert.match(await page.evaluate(() => window.flockpathCompare.specString()), /^1\.scene~pso\(.*\)~firefly\(/);
+    assert.match(await page.evaluate(async () => (await window.flockpathCompare.settled(), window.flockpathCompare.specString())), /^1\.scene~pso\(.*\)~firefly\(/);
     await page.click('.pane[data-pane="B"] .pane-head button');
     await page.waitForFunction(() => document.querySelectorAll('.pane').length === 2);
     // The table follows on the next metrics refresh, not with the panes.
@@ -142,7 +142,7 @@ test('pane A equals the playground run; panes can be added, changed and removed'
 test('a link that changes the scene and the spec together applies both (one group → two)', async () => {
   const { page, errors, close } = await openPath(`compare.html#s=${encodeURIComponent(JSON.stringify(simpleScene()))}&c=1.scene~firefly`, { ready });
   try {
-    assert.deepEqual(await page.evaluate(() => window.flockpathCompare.panes().map((p) => [p.planner, p.groups.length])), [['scene', 1], ['firefly', 1]]);
+    assert.deepEqual(await page.evaluate(async () => (await window.flockpathCompare.settled(), window.flockpathCompare.panes().map((p) => [p.planner, p.groups.length]))), [['scene', 1], ['firefly', 1]]);
     // The new spec sets group 2: checked against the old one-group scene alone it is refused,
     // and the new scene alone would keep the old spec. Only both together are the link.
     const two = simpleScene({ seed: 9 });
@@ -151,7 +151,7 @@ test('a link that changes the scene and the spec together applies both (one grou
       location.hash = `s=${encodeURIComponent(JSON.stringify(scene))}&c=1.scene~1=pso;2=boids`;
     }, two);
     await page.waitForFunction(() => window.flockpathCompare.panes()[0]?.groups.length === 2);
-    const panes = await page.evaluate(() => window.flockpathCompare.panes());
+    const panes = await page.evaluate(async () => (await window.flockpathCompare.settled(), window.flockpathCompare.panes()));
     assert.deepEqual(panes.map((p) => p.per_group), [false, true]);
     assert.deepEqual(panes[1].groups.map((g) => g.planner), ['pso', 'boids']);
     assert.equal(await page.evaluate(() => document.getElementById('banner').hidden), true, 'no refusal shown');

@@ -5,7 +5,17 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { assertNoUnexpectedErrors, frames, loadPaused, openPage, sceneToClient, screenshot, simpleScene } from './helpers.mjs';
 
-const steps = (page) => page.evaluate(() => window.flockpath.metrics().steps);
+// Read once the simulation worker has answered the clicks and keys before (settled()).
+const steps = (page) =>
+  page.evaluate(async () => {
+    await window.flockpath.settled();
+    return window.flockpath.metrics().steps;
+  });
+const sceneNow = (page) =>
+  page.evaluate(async () => {
+    await window.flockpath.settled();
+    return window.flockpath.scene();
+  });
 
 test('play, pause, step and reset by button and by key', async () => {
   const { page, errors, close } = await openPage();
@@ -64,7 +74,7 @@ test('undo and redo an edit; a slider changes the group parameters live', async 
   const { page, errors, close } = await openPage();
   try {
     await loadPaused(page, simpleScene());
-    const original = await page.evaluate(() => window.flockpath.scene());
+    const original = await sceneNow(page);
 
     // Draw a rectangle with the mouse.
     await page.keyboard.press('3');
@@ -74,18 +84,18 @@ test('undo and redo an edit; a slider changes the group parameters live', async 
     await page.mouse.down();
     await page.mouse.move(b.x, b.y, { steps: 6 });
     await page.mouse.up();
-    const edited = await page.evaluate(() => window.flockpath.scene());
+    const edited = await sceneNow(page);
     assert.equal(edited.obstacles.length, 1);
     assert.equal(edited.obstacles[0].shape, 'rect');
 
     await page.keyboard.press('Control+z');
-    assert.deepEqual(await page.evaluate(() => window.flockpath.scene()), original, 'Ctrl+Z undoes');
+    assert.deepEqual(await sceneNow(page), original, 'Ctrl+Z undoes');
     await page.keyboard.press('Control+Shift+z');
-    assert.deepEqual(await page.evaluate(() => window.flockpath.scene()), edited, 'Ctrl+Shift+Z redoes');
+    assert.deepEqual(await sceneNow(page), edited, 'Ctrl+Shift+Z redoes');
     await page.click('#undo');
-    assert.deepEqual(await page.evaluate(() => window.flockpath.scene()), original, 'Undo button');
+    assert.deepEqual(await sceneNow(page), original, 'Undo button');
     await page.keyboard.press('Control+y');
-    assert.deepEqual(await page.evaluate(() => window.flockpath.scene()), edited, 'Ctrl+Y redoes');
+    assert.deepEqual(await sceneNow(page), edited, 'Ctrl+Y redoes');
 
     // Select the rectangle and delete it with the Delete key; undo brings it back.
     await page.focus('#overlay-canvas');
@@ -93,16 +103,16 @@ test('undo and redo an edit; a slider changes the group parameters live', async 
     const inside = await sceneToClient(page, 360, 100);
     await page.mouse.click(inside.x, inside.y);
     await page.keyboard.press('Delete');
-    assert.equal((await page.evaluate(() => window.flockpath.scene())).obstacles.length, 0, 'Delete removes');
+    assert.equal((await sceneNow(page)).obstacles.length, 0, 'Delete removes');
     await page.click('#undo');
-    assert.deepEqual(await page.evaluate(() => window.flockpath.scene()), edited);
+    assert.deepEqual(await sceneNow(page), edited);
 
     // Parameter sliders are generated from the planner table, with label, value and unit.
     const slider = '#param-max_speed';
     assert.ok(await page.$(slider), 'a max speed slider exists');
     const label = await page.$eval(slider, (el) => el.closest('.param').textContent);
     assert.match(label, /px\/step/, 'the unit is shown');
-    const before = (await page.evaluate(() => window.flockpath.scene())).groups[0].planner.params.max_speed;
+    const before = (await sceneNow(page)).groups[0].planner.params.max_speed;
     const target = await page.$eval(slider, (el) => {
       const value = Number(el.max) - Number(el.step);
       el.value = String(value);
@@ -111,11 +121,11 @@ test('undo and redo an edit; a slider changes the group parameters live', async 
       return Number(el.value);
     });
     assert.notEqual(target, before);
-    const after = (await page.evaluate(() => window.flockpath.scene())).groups[0].planner.params.max_speed;
+    const after = (await sceneNow(page)).groups[0].planner.params.max_speed;
     assert.ok(Math.abs(after - target) < 1e-6, `max_speed ${before} → ${after}, slider ${target}`);
     assert.match(await page.$eval(slider, (el) => el.closest('.param').querySelector('output').textContent), /px\/step/);
     await page.click('#undo');
-    const undone = (await page.evaluate(() => window.flockpath.scene())).groups[0].planner.params.max_speed;
+    const undone = (await sceneNow(page)).groups[0].planner.params.max_speed;
     assert.ok(Math.abs(undone - before) < 1e-6, 'undo restores the parameter');
     assertNoUnexpectedErrors(errors);
   } finally {
@@ -135,10 +145,10 @@ test('HiDPI backing store and resizing keep the scene', async () => {
     const first = await size();
     assert.ok(Math.abs(first.width - 2 * first.cssWidth) <= 1, `backing ${first.width} vs CSS ${first.cssWidth}`);
     assert.ok(Math.abs(first.height - 2 * first.cssHeight) <= 1, `backing ${first.height} vs CSS ${first.cssHeight}`);
-    assert.deepEqual(await page.evaluate(() => [window.flockpath.view().canvasWidth, window.flockpath.view().canvasHeight]),
+    assert.deepEqual(await page.evaluate(async () => (await window.flockpath.settled(), [window.flockpath.view().canvasWidth, window.flockpath.view().canvasHeight])),
       [first.width, first.height], 'the simulation renders at the backing-store size');
 
-    const scene = await page.evaluate(() => window.flockpath.scene());
+    const scene = await sceneNow(page);
     const stepsBefore = await steps(page);
     await page.setViewportSize({ width: 1000, height: 640 });
     await page.waitForFunction((w) => document.getElementById('scene-canvas').width !== w, first.width);
@@ -146,9 +156,9 @@ test('HiDPI backing store and resizing keep the scene', async () => {
     const second = await size();
     assert.ok(second.width < first.width, 'the canvas followed the viewport');
     assert.ok(Math.abs(second.width - 2 * second.cssWidth) <= 1);
-    assert.deepEqual(await page.evaluate(() => window.flockpath.scene()), scene, 'same scene after resizing');
+    assert.deepEqual(await sceneNow(page), scene, 'same scene after resizing');
     assert.ok((await steps(page)) >= stepsBefore, 'the run was not restarted');
-    assert.deepEqual(await page.evaluate(() => [window.flockpath.view().canvasWidth, window.flockpath.view().canvasHeight]),
+    assert.deepEqual(await page.evaluate(async () => (await window.flockpath.settled(), [window.flockpath.view().canvasWidth, window.flockpath.view().canvasHeight])),
       [second.width, second.height]);
     await screenshot(page, 'controls-hidpi-resized');
     assertNoUnexpectedErrors(errors);

@@ -29,9 +29,9 @@ test('the course-notes page runs three independent embedded scenes', async () =>
     await page.waitForFunction((n) => document.getElementById('swap').steps > n + 20, before);
     assert.equal(await page.evaluate(() => document.getElementById('pillars').steps), stopped, 'paused one stays');
     // Stepping one by hand does not move the other.
-    const swapNow = await page.evaluate(() => {
+    const swapNow = await page.evaluate(async () => {
       const swap = document.getElementById('swap');
-      swap.pause();
+      await swap.pause();
       return swap.steps;
     });
     await page.evaluate(() => document.getElementById('pillars').step(7));

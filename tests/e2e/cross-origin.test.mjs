@@ -99,10 +99,10 @@ describe('the <flock-path> snippet on a page of another origin', () => {
     const page = await context.newPage();
     await page.goto(`${servePy.url}index.html`);
     await page.waitForFunction(() => window.flockpath !== undefined, null, { timeout: 30_000 });
-    playgroundDigest = await page.evaluate((scene) => {
-      window.flockpath.load(scene);
-      window.flockpath.pause();
-      window.flockpath.step(40);
+    playgroundDigest = await page.evaluate(async (scene) => {
+      await window.flockpath.pause();
+      await window.flockpath.load(scene);
+      await window.flockpath.step(40);
       return window.flockpath.digest();
     }, simpleScene());
     await page.locator('#share').click();
@@ -157,14 +157,14 @@ describe('the <flock-path> snippet on a page of another origin', () => {
       assert.ok(stats.width > 100 && stats.height > 100, JSON.stringify(stats));
       assert.ok(stats.colours > 3, `the canvas is not blank: ${JSON.stringify(stats)}`);
       assert.ok(stats.group > 50, `the group's agents are drawn: ${JSON.stringify(stats)}`);
-      const result = await page.evaluate(() => {
+      const result = await page.evaluate(async () => {
         const el = document.querySelector('flock-path');
-        el.pause();
+        await el.pause();
         const before = el.steps;
-        el.step(5);
+        await el.step(5);
         const stepped = el.steps - before;
-        el.reset();
-        el.step(40);
+        await el.reset();
+        await el.step(40);
         return { stepped, name: el.scene().name, digest: el.digest(), arrived: el.metrics().arrived_share, string: el.sceneString() };
       });
       assert.equal(result.stepped, 5);

@@ -30,7 +30,7 @@ test('draw a circle obstacle and a goal, then the crowd walks to the new goal ar
   try {
     await loadPaused(page, simpleScene());
     await frames(page);
-    const start = await page.evaluate(() => window.flockpath.scene());
+    const start = await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.scene()));
     assert.equal(start.obstacles.length, 0);
     assert.equal(start.goals.length, 1);
 
@@ -49,11 +49,11 @@ test('draw a circle obstacle and a goal, then the crowd walks to the new goal ar
     const goal = await sceneToClient(page, ...NEW_GOAL);
     await page.mouse.click(goal.x, goal.y);
 
-    const edited = await page.evaluate(() => window.flockpath.scene());
+    const edited = await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.scene()));
     assert.equal(edited.obstacles.length, 1, 'the drawn obstacle is in the scene');
     const circle = edited.obstacles[0];
     assert.equal(circle.shape, 'circle');
-    const pixel = 1 / (await page.evaluate(() => window.flockpath.view().scale));
+    const pixel = 1 / (await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.view().scale)));
     assert.ok(Math.abs(circle.center[0] - OBSTACLE.center[0]) <= 2 * pixel, `centre x ${circle.center[0]}`);
     assert.ok(Math.abs(circle.center[1] - OBSTACLE.center[1]) <= 2 * pixel, `centre y ${circle.center[1]}`);
     assert.ok(Math.abs(circle.radius - OBSTACLE.radius) <= 2 * pixel, `radius ${circle.radius}`);
@@ -75,7 +75,7 @@ test('draw a circle obstacle and a goal, then the crowd walks to the new goal ar
       if (chunk === 15) midway = await page.evaluate(() => window.flockpath.positions());
       await frames(page);
     }
-    const metrics = await page.evaluate(() => window.flockpath.metrics());
+    const metrics = await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.metrics()));
     const endDistance = meanDistance(await page.evaluate(() => window.flockpath.positions()), placed);
     assert.ok(endDistance < startDistance * 0.6, `mean distance to the new goal ${startDistance} → ${endDistance}`);
     assert.equal(metrics.steps, 500);

@@ -6,7 +6,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { assertNoUnexpectedErrors, loadPaused, openPage, sceneToClient, screenshot, simpleScene } from './helpers.mjs';
 
-const scene = (page) => page.evaluate(() => window.flockpath.scene());
+const scene = (page) => page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.scene()));
 
 async function clickAt(page, x, y, options) {
   const p = await sceneToClient(page, x, y);
@@ -26,7 +26,7 @@ test('polygon, group and move tools edit the scene through the page', async () =
   const { page, errors, close } = await openPage();
   try {
     await loadPaused(page, simpleScene());
-    const pixel = 1 / (await page.evaluate(() => window.flockpath.view().scale));
+    const pixel = 1 / (await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.view().scale)));
     const near = (a, b) => Math.abs(a - b) <= 2 * pixel;
 
     // Polygon closed by clicking its first point.
@@ -73,7 +73,7 @@ test('polygon, group and move tools edit the scene through the page', async () =
     await page.keyboard.press('Tab');
     s = await scene(page);
     assert.equal(s.groups[1].count, 12);
-    assert.equal((await page.evaluate(() => window.flockpath.metrics())).agents, 30 + 12);
+    assert.equal((await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.metrics()))).agents, 30 + 12);
 
     // The planner picker lists the planners from the Rust table.
     const planners = await page.$$eval('#planner option', (os) => os.map((o) => o.value));

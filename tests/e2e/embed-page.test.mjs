@@ -7,7 +7,8 @@ import assert from 'node:assert/strict';
 import { assertNoUnexpectedErrors, openPath, screenshot, simpleScene } from './helpers.mjs';
 
 const ready = () => window.flockpathEmbed !== undefined;
-const steps = (page) => page.evaluate(() => window.flockpathEmbed.steps);
+// Read once the element's simulation worker has answered the clicks before (settled()).
+const steps = (page) => page.evaluate(async () => (await window.flockpathEmbed.settled(), window.flockpathEmbed.steps));
 const shadow = (page, selector) =>
   page.evaluate((sel) => {
     const el = window.flockpathEmbed.shadowRoot.querySelector(sel);
@@ -16,12 +17,12 @@ const shadow = (page, selector) =>
 
 /** The fragment value of a scene, made by the page under test's own codec. */
 async function fragmentOf(page, scene) {
-  return page.evaluate((s) => {
+  return page.evaluate(async (s) => {
     const el = window.flockpathEmbed;
     const before = el.sceneString();
-    el.load(s);
+    await el.load(s);
     const value = el.sceneString();
-    el.load(before);
+    await el.load(before);
     return value;
   }, scene);
 }

@@ -7,7 +7,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
 import { readFile } from 'node:fs/promises';
-import { assertNoUnexpectedErrors, openPage, screenshot, simpleScene } from './helpers.mjs';
+import { assertNoUnexpectedErrors, openPage, screenshot, settled, simpleScene } from './helpers.mjs';
 
 /** Clicks `selector` and returns the downloaded file's name and bytes. */
 async function downloadVia(page, selector) {
@@ -19,11 +19,11 @@ async function downloadVia(page, selector) {
 test('exports download real files and scenes load from files', async () => {
   const { page, errors, close } = await openPage();
   try {
-    await page.evaluate((scene) => {
-      window.flockpath.load(scene);
-      window.flockpath.pause();
-      window.flockpath.reset();
-      window.flockpath.step(30);
+    await page.evaluate(async (scene) => {
+      await window.flockpath.pause();
+      await window.flockpath.load(scene);
+      await window.flockpath.reset();
+      await window.flockpath.step(30);
     }, simpleScene({ name: 'export me' }));
     assert.match(await page.textContent('#recording-info'), /31 frames up to step 30 of 30 agents \(budget 32 MiB/);
 
@@ -49,6 +49,7 @@ test('exports download real files and scenes load from files', async () => {
     assert.equal((mel.bytes.toString('utf8').match(/spaceLocator/g) ?? []).length, 30);
     await page.fill('#export-fps', '0');
     await page.click('[data-export="mel"]');
+    await settled(page);
     assert.match(await page.textContent('#export-status'), /frame rate must be 1…240/);
     await page.fill('#export-fps', '24');
     const svg = await downloadVia(page, '[data-export="svg"]');
@@ -96,13 +97,13 @@ test('exports download real files and scenes load from files', async () => {
     await page.dispatchEvent('#stage', 'drop', { dataTransfer: bad });
     await page.waitForFunction(() => !document.getElementById('banner').hidden);
     assert.match(await page.textContent('#banner-text'), /The file broken\.json was not loaded: width is "wide"; allowed: a number in 10…20000 px/);
-    assert.equal((await page.evaluate(() => window.flockpath.scene())).name, 'dropped on the canvas');
+    assert.equal((await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.scene()))).name, 'dropped on the canvas');
 
     // Thinning is announced: 20,000 agents fill the 32 MiB budget in about 100 steps.
-    await page.evaluate((scene) => {
-      window.flockpath.load(scene);
-      window.flockpath.pause();
-      window.flockpath.step(220);
+    await page.evaluate(async (scene) => {
+      await window.flockpath.pause();
+      await window.flockpath.load(scene);
+      await window.flockpath.step(220);
     }, simpleScene({ name: 'crowd', width: 4000, height: 4000, goals: [], groups: [{ ...simpleScene().groups[0], count: 20000, goal: null, spawn: { min: [0, 0], max: [4000, 4000] } }] }));
     await page.waitForSelector('#recording-thinned:not([hidden])');
     assert.match(await page.textContent('#recording-thinned'), /reached its 32 MiB budget and now keeps every 4th step/);

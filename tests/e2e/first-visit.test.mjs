@@ -37,35 +37,35 @@ test('a first visit: pillars runs 20 s and the page’s numbers, recount and pix
   const { page, errors, close } = await openPage({ hash: '' });
   try {
     // What the visitor gets without choosing anything: the first preset, playing.
-    const opened = await page.evaluate(() => ({
+    const opened = await page.evaluate(async () => (await window.flockpath.settled(), ({
       name: window.flockpath.scene().name,
       menu: document.getElementById('preset').value,
       playing: window.flockpath.isPlaying(),
-    }));
+    })));
     assert.deepEqual(opened, { name: 'pillars', menu: 'pillars', playing: true }, 'the default scene plays');
     await page.waitForFunction(() => window.flockpath.metrics().steps >= 30, null, { timeout: 30_000 });
 
     // Take over from the frame loop, then step exactly to 1,199 and 1,200.
-    const played = await page.evaluate((n) => {
+    const played = await page.evaluate(async (n) => {
       const api = window.flockpath;
-      api.pause();
+      await api.pause();
       const from = api.metrics().steps;
-      api.step(n - 1 - from);
-      const before = api.positions();
-      const step = api.step(1);
-      return { from, step, before, after: api.positions(), digest: api.digest() };
+      await api.step(n - 1 - from);
+      const before = await api.positions();
+      const step = await api.step(1);
+      return { from, step, before, after: await api.positions(), digest: api.digest() };
     }, STEPS);
     assert.equal(played.step, STEPS);
     assert.ok(played.from < STEPS - 1, `the page played ${played.from} steps before the test paused it`);
 
     // The same run from step 0 by the API alone: played or stepped, the state is the same.
-    const stepped = await page.evaluate((n) => {
+    const stepped = await page.evaluate(async (n) => {
       const api = window.flockpath;
-      api.reset();
-      api.step(n);
+      await api.reset();
+      await api.step(n);
       return {
         digest: api.digest(),
-        positions: api.positions(),
+        positions: await api.positions(),
         goals: api.goals(),
         scene: api.scene(),
         metrics: api.metrics(),

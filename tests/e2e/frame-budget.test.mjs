@@ -44,7 +44,7 @@ test('a crowd too big for the requested speed runs fewer steps per frame and say
     const boxBefore = await canvasBox();
     await setSpeed(page, 20);
     assert.equal(await page.textContent('#spf-value'), '20×');
-    const before = await page.evaluate(() => window.flockpath.timeline().step);
+    const before = await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.timeline().step));
     await page.evaluate(() => window.flockpath.play());
     await page.waitForFunction(() => document.getElementById('spf-actual').dataset.limited === 'true', null, {
       timeout: 60_000,
@@ -76,11 +76,11 @@ test('a crowd too big for the requested speed runs fewer steps per frame and say
 
     // The frames ran the same fixed steps: pausing and replaying from the start gives the same run.
     await page.evaluate(() => window.flockpath.pause());
-    const played = await page.evaluate(() => ({ step: window.flockpath.timeline().step, digest: window.flockpath.digest() }));
+    const played = await page.evaluate(async () => (await window.flockpath.settled(), ({ step: window.flockpath.timeline().step, digest: window.flockpath.digest() })));
     assert.ok(played.step > before);
-    const replayed = await page.evaluate((n) => {
-      window.flockpath.reset();
-      window.flockpath.step(n);
+    const replayed = await page.evaluate(async (n) => {
+      await window.flockpath.reset();
+      await window.flockpath.step(n);
       return window.flockpath.digest();
     }, played.step);
     assert.equal(replayed, played.digest, 'budgeted frames step the same run as step(n)');

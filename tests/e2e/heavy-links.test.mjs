@@ -127,9 +127,9 @@ async function startLoad(page, scene) {
   await page.evaluate((s) => {
     window.__loadError = undefined;
     window.__planningShown = null;
-    setTimeout(() => {
+    setTimeout(async () => {
       try {
-        window.flockpath.load(s);
+        await window.flockpath.load(s);
         window.__progressAfterLoad = window.flockpath.planningProgress();
         // What the page shows the first time the progress bar appears.
         const seen = new MutationObserver(() => {
@@ -152,14 +152,14 @@ async function startLoad(page, scene) {
 }
 
 const state = (page) =>
-  page.evaluate(() => ({
+  page.evaluate(async () => (await window.flockpath.settled(), ({
     name: window.flockpath.scene().name,
     steps: window.flockpath.metrics().steps,
     playing: window.flockpath.isPlaying(),
     planning: window.flockpath.planningProgress(),
     bar: document.querySelector('.planning-label')?.textContent ?? null,
     cancel: Boolean(document.querySelector('.planning-cancel:not([hidden])')),
-  }));
+  })));
 
 let opened = null;
 
@@ -186,7 +186,7 @@ for (const c of CASES) {
   test(`heavy link: ${c.name}`, { timeout: 60_000 }, async () => {
     const p = await page();
     try {
-      await answered(p.evaluate(() => window.flockpath.load(window.flockpath.scene()) && window.flockpath.play()), 'a reload of the running scene');
+      await answered(p.evaluate(async () => (await window.flockpath.load(window.flockpath.scene())) && window.flockpath.play()), 'a reload of the running scene');
       const previous = (await state(p)).name;
       const trace = await traceMainThreadTasks(p);
       await startLoad(p, c.scene);
@@ -257,19 +257,19 @@ test('an IGSA path planned in slices by the page is the path planned in one go',
     groups: [igsaGroup({ iterations: 200 })],
   });
   // One go: step() right after load() plans in the same task.
-  const oneGo = await p.evaluate((s) => {
-    window.flockpath.pause();
-    window.flockpath.load(s);
-    window.flockpath.step(50);
+  const oneGo = await p.evaluate(async (s) => {
+    await window.flockpath.pause();
+    await window.flockpath.load(s);
+    await window.flockpath.step(50);
     return window.flockpath.digest();
   }, scene);
   // Slices: the frame loop plans while paused; step only once the path is known.
   await p.evaluate((s) => window.flockpath.load(s), scene);
-  const sliced = await p.evaluate(() => window.flockpath.planningProgress());
+  const sliced = await p.evaluate(async () => (await window.flockpath.settled(), window.flockpath.planningProgress()));
   assert.ok(sliced < 1, 'the load leaves the planning to the frame loop');
   await p.waitForFunction(() => window.flockpath.planningProgress() === 1, null, { timeout: 30_000 });
-  const inSlices = await p.evaluate(() => {
-    window.flockpath.step(50);
+  const inSlices = await p.evaluate(async () => {
+    await window.flockpath.step(50);
     return window.flockpath.digest();
   });
   assert.equal(inSlices, oneGo);

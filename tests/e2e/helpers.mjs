@@ -151,12 +151,20 @@ export async function waitReady(page) {
   await page.waitForFunction(() => window.flockpath !== undefined, null, { timeout: 30_000 });
 }
 
-/** Pauses the playground and loads `scene` through its API, in one task (no frame runs between). */
+/** Pauses the playground and loads `scene` through its API (no step runs between: the pause is sent first). */
 export async function loadPaused(page, scene) {
-  await page.evaluate((s) => {
-    window.flockpath.pause();
-    window.flockpath.load(s);
+  await page.evaluate(async (s) => {
+    await window.flockpath.pause();
+    await window.flockpath.load(s);
   }, scene);
+}
+
+/**
+ * Waits until the playground's simulation worker has answered everything sent so far (a click, a
+ * key, a slider's edit): the page API's reads then show its effect.
+ */
+export async function settled(page) {
+  await page.evaluate(() => window.flockpath.settled());
 }
 
 /** Waits until the page has painted `n` more animation frames. */

@@ -537,11 +537,11 @@ test('switching language in the menu keeps the scene and the run, and is remembe
     await page.goto(`${url}index.html`);
     await page.waitForFunction(() => window.flockpath !== undefined);
     await page.evaluate((scene) => window.flockpath.load(scene), simpleScene({ seed: 7 }));
-    await page.evaluate(() => {
-      window.flockpath.pause();
-      window.flockpath.step(40);
+    await page.evaluate(async () => {
+      await window.flockpath.pause();
+      await window.flockpath.step(40);
     });
-    const before = await page.evaluate(() => ({ scene: window.flockpath.sceneString(), digest: window.flockpath.digest(), steps: window.flockpath.metrics().steps }));
+    const before = await page.evaluate(async () => (await window.flockpath.settled(), ({ scene: window.flockpath.sceneString(), digest: window.flockpath.digest(), steps: window.flockpath.metrics().steps })));
     assert.equal((await page.textContent('#play')).trim(), 'Play');
     assert.ok((await englishLeftovers(page, 'header, .toolbar, .timeline, .panel')).length > 50, 'the scan sees English words');
     await page.waitForFunction((s) => location.hash.includes(s.slice(0, 20)), before.scene);
@@ -554,7 +554,7 @@ test('switching language in the menu keeps the scene and the run, and is remembe
     assert.equal(await page.evaluate(() => document.querySelector('#params .param label').textContent), '感知半径');
     assert.equal(await page.evaluate(() => document.querySelector('#metrics dt').textContent), '步数');
     assert.equal(await page.evaluate(() => document.querySelector('#planner option[value="firefly"]').textContent), '萤火虫算法人群（Zhang 等 2017）');
-    const after = await page.evaluate(() => ({ scene: window.flockpath.sceneString(), digest: window.flockpath.digest(), steps: window.flockpath.metrics().steps }));
+    const after = await page.evaluate(async () => (await window.flockpath.settled(), ({ scene: window.flockpath.sceneString(), digest: window.flockpath.digest(), steps: window.flockpath.metrics().steps })));
     assert.deepEqual(after, before, 'same scene, same state, same step');
     const location = await page.evaluate(() => ({ search: location.search, hash: location.hash }));
     assert.equal(location.search, '?lang=zh');
@@ -595,9 +595,9 @@ test('refused input is worded in Chinese: a field out of range, an unknown scene
 
     // A parameter through the page API keeps the English message on the Error for scripts, and the
     // banner words it in Chinese.
-    const thrown = await page.evaluate(() => {
+    const thrown = await page.evaluate(async () => {
       try {
-        window.flockpath.load('no-such-preset');
+        await window.flockpath.load('no-such-preset');
         return null;
       } catch (error) {
         return { message: error.message, code: error.code };
@@ -648,9 +648,9 @@ test('in Chinese: a per-group compare pane’s label, a refused comparison and p
     // A scene refused by the geometry checks (a polygon whose edges cross), through the page API:
     // the script gets the English message, the banner the Chinese words.
     const crossing = simpleScene({ obstacles: [{ shape: 'polygon', points: [[100, 100], [300, 300], [300, 100], [100, 300]] }] });
-    const thrown = await page.evaluate((scene) => {
+    const thrown = await page.evaluate(async (scene) => {
       try {
-        window.flockpath.load(scene);
+        await window.flockpath.load(scene);
         return null;
       } catch (error) {
         return error.message;

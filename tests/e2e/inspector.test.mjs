@@ -3,20 +3,20 @@
 
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { assertNoUnexpectedErrors, frames, openPage, sceneToClient, screenshot, simpleScene } from './helpers.mjs';
+import { assertNoUnexpectedErrors, frames, openPage, sceneToClient, screenshot, settled, simpleScene } from './helpers.mjs';
 
 test('clicking an agent opens the inspector with its speed', async () => {
   const { page, errors, close } = await openPage();
   try {
-    await page.evaluate((scene) => {
-      window.flockpath.load(scene);
-      window.flockpath.pause();
-      window.flockpath.step(120);
+    await page.evaluate(async (scene) => {
+      await window.flockpath.pause();
+      await window.flockpath.load(scene);
+      await window.flockpath.step(120);
     }, simpleScene({ obstacles: [{ shape: 'circle', center: [400, 250], radius: 40 }] }));
     assert.equal(await page.isHidden('#inspector'), true, 'no inspector before a click');
     // Pick an agent away from the spawn region, so the click selects nothing else.
-    const target = await page.evaluate(() => {
-      const ps = window.flockpath.positions();
+    const target = await page.evaluate(async () => {
+      const ps = await window.flockpath.positions();
       let best = 0;
       ps.forEach((p, i) => {
         if (p[0] > ps[best][0]) best = i;
@@ -26,9 +26,10 @@ test('clicking an agent opens the inspector with its speed', async () => {
     await page.click('[data-tool="select"]');
     const client = await sceneToClient(page, target.at[0], target.at[1]);
     await page.mouse.click(client.x, client.y);
+    await settled(page);
     await frames(page, 2);
     assert.equal(await page.isVisible('#inspector'), true, 'the inspector opens');
-    const explained = await page.evaluate(() => window.flockpath.explanation());
+    const explained = await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.explanation()));
     assert.ok(explained !== null, 'an agent is inspected');
     const picked = await page.evaluate(([x, y]) => window.flockpath.agentAt(x, y, 3), target.at);
     assert.equal(explained.agent, picked, 'the clicked agent is the nearest one');
@@ -47,6 +48,7 @@ test('clicking an agent opens the inspector with its speed', async () => {
     // Clicking empty ground closes it.
     const empty = await sceneToClient(page, 780, 20);
     await page.mouse.click(empty.x, empty.y);
+    await settled(page);
     assert.equal(await page.isHidden('#inspector'), true, 'the inspector closes');
     assertNoUnexpectedErrors(errors);
   } finally {

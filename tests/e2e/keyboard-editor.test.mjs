@@ -8,10 +8,14 @@
 
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { assertNoUnexpectedErrors, loadPaused, openPage, screenshot, simpleScene } from './helpers.mjs';
+import { assertNoUnexpectedErrors, loadPaused, openPage, screenshot, settled, simpleScene } from './helpers.mjs';
 
-const scene = (page) => page.evaluate(() => window.flockpath.scene());
-const cursorText = (page) => page.textContent('#canvas-cursor');
+const scene = (page) => page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.scene()));
+// Read once the simulation worker has answered the keys before (a pick, an edit).
+const cursorText = async (page) => {
+  await settled(page);
+  return page.textContent('#canvas-cursor');
+};
 
 /** The cursor position the live region announces ("Cursor at 400, 250. …"). */
 async function cursorAt(page) {
@@ -125,7 +129,7 @@ test('keyboard only: draw obstacles, place a goal, add a group, play, read the d
     });
     assert.equal(region.live, 'polite');
     assert.ok(region.width <= 1 && region.height <= 1, `visually hidden: ${JSON.stringify(region)}`);
-    const metrics = await page.evaluate(() => window.flockpath.metrics());
+    const metrics = await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.metrics()));
     const step = metrics.steps.toLocaleString('en-US');
     await page.waitForFunction((want) => document.getElementById('scene-description').textContent.includes(want), `Step ${step}, paused.`);
     const text = await page.textContent('#scene-description');

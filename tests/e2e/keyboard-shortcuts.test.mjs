@@ -10,16 +10,16 @@ import assert from 'node:assert/strict';
 import { assertNoUnexpectedErrors, openPage, openPath, simpleScene } from './helpers.mjs';
 
 const playing = (page) => page.evaluate(() => window.flockpath.isPlaying());
-const steps = (page) => page.evaluate(() => window.flockpath.metrics().steps);
+const steps = (page) => page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.metrics().steps));
 const focused = (page) => page.evaluate(() => document.activeElement?.id || document.activeElement?.dataset.tool || document.activeElement?.tagName);
 
 test('playground: Space and Enter act on the focused control; shortcuts on the body and the canvas', async () => {
   const { page, errors, close } = await openPage();
   try {
-    await page.evaluate((s) => {
-      window.flockpath.pause();
-      window.flockpath.load(s);
-      window.flockpath.step(5);
+    await page.evaluate(async (s) => {
+      await window.flockpath.pause();
+      await window.flockpath.load(s);
+      await window.flockpath.step(5);
     }, simpleScene());
 
     // A focused checkbox ticks with Space; play stays as it was.
@@ -28,7 +28,7 @@ test('playground: Space and Enter act on the focused control; shortcuts on the b
     await page.keyboard.press('Space');
     assert.equal(await page.isChecked('#overlay-landscape'), !before, 'Space ticked the focused checkbox');
     assert.equal(await playing(page), false, 'Space did not toggle play');
-    assert.equal(await page.evaluate(() => window.flockpath.overlays().landscape), !before, 'the tick reached the page');
+    assert.equal(await page.evaluate(async () => (await window.flockpath.overlays()).landscape), !before, 'the tick reached the page');
 
     // A focused Reset presses with Space (step 0), and play stays paused.
     await page.focus('#reset');
@@ -70,10 +70,10 @@ test('playground: Space and Enter act on the focused control; shortcuts on the b
     await page.keyboard.press('Shift+ArrowRight');
     await page.keyboard.press('Shift+ArrowDown');
     await page.keyboard.press('Enter');
-    assert.equal((await page.evaluate(() => window.flockpath.scene())).obstacles.length, 1, 'a rectangle by keyboard');
+    assert.equal((await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.scene()))).obstacles.length, 1, 'a rectangle by keyboard');
     await page.focus('#step');
     await page.keyboard.press('Control+z');
-    assert.equal((await page.evaluate(() => window.flockpath.scene())).obstacles.length, 0, 'Ctrl+Z undoes with a button focused');
+    assert.equal((await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.scene()))).obstacles.length, 0, 'Ctrl+Z undoes with a button focused');
     assertNoUnexpectedErrors(errors);
   } finally {
     await close();
@@ -131,10 +131,10 @@ test('compare and lab: a focused button or checkbox keeps Space; the body gets t
   let opened = await openPath('compare.html', { ready: () => window.flockpathCompare !== undefined });
   try {
     const { page } = opened;
-    const compare = () => page.evaluate(() => ({ playing: window.flockpathCompare.isPlaying(), steps: window.flockpathCompare.steps()[0] }));
-    await page.evaluate(() => {
-      window.flockpathCompare.pause();
-      window.flockpathCompare.step(4);
+    const compare = () => page.evaluate(async () => (await window.flockpathCompare.settled(), ({ playing: window.flockpathCompare.isPlaying(), steps: window.flockpathCompare.steps()[0] })));
+    await page.evaluate(async () => {
+      await window.flockpathCompare.pause();
+      await window.flockpathCompare.step(4);
     });
     await page.focus('#reset');
     await page.keyboard.press('Space');

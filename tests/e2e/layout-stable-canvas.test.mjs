@@ -46,9 +46,9 @@ for (const viewport of [{ width: 1280, height: 800 }, { width: 390, height: 844 
       }
 
       // A message in the banner overlays the page.
-      await page.evaluate(() => {
+      await page.evaluate(async () => {
         try {
-          window.flockpath.load('{"width": "wide"}');
+          await window.flockpath.load('{"width": "wide"}');
         } catch {
           // The refusal is shown in the banner; that is what this checks.
         }
@@ -91,10 +91,10 @@ for (const viewport of [{ width: 1280, height: 800 }, { width: 390, height: 844 
           goals: [],
           groups: [{ ...simpleScene().groups[0], count: 20000, goal: null, spawn: { min: [0, 0], max: [4000, 4000] } }],
         });
-        await page.evaluate((scene) => {
-          window.flockpath.load(scene);
-          window.flockpath.pause();
-          window.flockpath.step(420);
+        await page.evaluate(async (scene) => {
+          await window.flockpath.pause();
+          await window.flockpath.load(scene);
+          await window.flockpath.step(420);
         }, crowd);
         await page.waitForSelector('#timeline-note:not([hidden])');
         await frames(page, 2);

@@ -67,10 +67,10 @@ for (const viewport of VIEWPORTS) {
   test(`at ${viewport.width}×${viewport.height} the per-group table is not clipped`, async () => {
     const { page, errors, close } = await openPage({ viewport });
     try {
-      await page.evaluate((scene) => {
-        window.flockpath.load(scene);
-        window.flockpath.pause();
-        window.flockpath.step(400);
+      await page.evaluate(async (scene) => {
+        await window.flockpath.pause();
+        await window.flockpath.load(scene);
+        await window.flockpath.step(400);
       }, wideScene());
       await page.waitForFunction(() => document.querySelectorAll('#metrics-groups tbody tr').length === 4);
       await frames(page, 2);

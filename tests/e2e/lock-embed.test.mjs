@@ -21,8 +21,8 @@ const bar = (page, selector = '#embedded') =>
 
 test('the iframe shows only the controls named and carries the options to the playground', async () => {
   const first = await openPath('embed.html', { ready });
-  const fragment = await first.page.evaluate((scene) => {
-    window.flockpathEmbed.load(scene);
+  const fragment = await first.page.evaluate(async (scene) => {
+    await window.flockpathEmbed.load(scene);
     return window.flockpathEmbed.sceneString();
   }, simpleScene({ name: 'embedded-lock' }));
   assert.deepEqual(await bar(first.page), { bar: true, '.play': true, '.step': true, '.reset': true, '.planner': true },

@@ -46,8 +46,8 @@ async function reopen(page, base, hash) {
 async function withLink(options, body) {
   const { page, server, errors, close } = await openPage();
   try {
-    const fragment = await page.evaluate((scene) => {
-      window.flockpath.load(scene);
+    const fragment = await page.evaluate(async (scene) => {
+      await window.flockpath.load(scene);
       return window.flockpath.sceneString();
     }, SCENE);
     await reopen(page, server.url, `#s=${fragment}${options}`);
@@ -83,7 +83,7 @@ test('a locked link shows only its controls; locked obstacles and goals resist t
 
     // The pointer: dragging the obstacle or the goal does nothing; keys cannot pick their tools;
     // Delete on a selected locked item does nothing.
-    const before = await page.evaluate(() => window.flockpath.scene());
+    const before = await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.scene()));
     await page.keyboard.press('1');
     await drag(page, OBSTACLE.center, [OBSTACLE.center[0] + 120, OBSTACLE.center[1] + 80]);
     assert.match(await page.textContent('#hint'), /Obstacles are locked/, 'the hint says why');
@@ -95,14 +95,14 @@ test('a locked link shows only its controls; locked obstacles and goals resist t
     const goalPoint = await sceneToClient(page, 200, 100);
     await page.mouse.click(goalPoint.x, goalPoint.y);
     await frames(page);
-    const after = await page.evaluate(() => window.flockpath.scene());
+    const after = await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.scene()));
     assert.deepEqual(after.obstacles, before.obstacles, 'the locked obstacle did not move');
     assert.deepEqual(after.goals, before.goals, 'the locked goal did not move');
 
     // An unlocked part (a group) is still drawn with the pointer, and the address bar keeps the options.
     await page.keyboard.press('6');
     await drag(page, [100, 380], [180, 460]);
-    const groups = await page.evaluate(() => window.flockpath.scene().groups.length);
+    const groups = await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.scene().groups.length));
     assert.equal(groups, before.groups.length + 1, 'a new group was drawn');
     await page.waitForFunction(() => location.hash.startsWith(`#s=${window.flockpath.sceneString()}&`), null, { timeout: 5_000 });
     const rewritten = await page.evaluate(() => location.hash);
@@ -127,7 +127,7 @@ test('keys of controls not given do nothing; those given still work', () =>
   withLink('&controls=step', async ({ page, server, fragment }) => {
     await page.evaluate(() => window.flockpath.pause());
     await page.evaluate(() => document.activeElement?.blur());
-    const steps = () => page.evaluate(() => window.flockpath.metrics().steps);
+    const steps = () => page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.metrics().steps));
     const start = await steps();
     await page.keyboard.press(' ');
     await page.keyboard.press('r');
@@ -172,7 +172,7 @@ test('an unknown name is refused by field with the allowed names; an old link sh
     await page.evaluate(() => window.flockpath.pause());
     await page.keyboard.press('1');
     await drag(page, OBSTACLE.center, [OBSTACLE.center[0] + 100, OBSTACLE.center[1]]);
-    const center = await page.evaluate(() => window.flockpath.scene().obstacles[0].center);
+    const center = await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.scene().obstacles[0].center));
     assert.ok(center[0] > OBSTACLE.center[0] + 50, `the obstacle moved to ${center}`);
   }));
 
@@ -184,7 +184,7 @@ test('with groups locked the Groups panel is read-only and a new goal leaves the
     assert.ok(fields.length >= 5 && fields.every(Boolean), `every group field is read-only: ${fields}`);
     assert.equal(await page.evaluate(() => document.querySelector('[data-tool="group"]').getClientRects().length), 0);
 
-    const before = await page.evaluate(() => window.flockpath.scene());
+    const before = await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.scene()));
     // The spawn region cannot be dragged; a goal can be placed, and the group keeps heading for its own.
     await page.keyboard.press('1');
     const spawn = before.groups[0].spawn;
@@ -192,12 +192,12 @@ test('with groups locked the Groups panel is read-only and a new goal leaves the
     await page.keyboard.press('5');
     const click = await sceneToClient(page, 600, 420);
     await page.mouse.click(click.x, click.y);
-    const after = await page.evaluate(() => window.flockpath.scene());
+    const after = await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.scene()));
     assert.deepEqual(after.groups, before.groups, 'the groups are unchanged');
     assert.equal(after.goals.length, before.goals.length + 1, 'the goal was added');
     // An unlocked part still moves.
     await page.keyboard.press('1');
     await drag(page, OBSTACLE.center, [OBSTACLE.center[0], OBSTACLE.center[1] + 100]);
-    const center = await page.evaluate(() => window.flockpath.scene().obstacles[0].center);
+    const center = await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.scene().obstacles[0].center));
     assert.ok(center[1] > OBSTACLE.center[1] + 50, `the obstacle moved to ${center}`);
   }));

@@ -11,8 +11,8 @@ const shown = (page, selector) => page.evaluate((s) => document.querySelector(s)
 test('the Share dialog ticks produce a link, iframe and element that reproduce them', async () => {
   const { page, errors, close } = await openPage();
   try {
-    const scene = await page.evaluate((s) => {
-      window.flockpath.load(s);
+    const scene = await page.evaluate(async (s) => {
+      await window.flockpath.load(s);
       return window.flockpath.sceneString();
     }, simpleScene({ name: 'shared-lock', obstacles: [{ shape: 'circle', center: [400, 250], radius: 40 }] }));
     await page.click('#share');

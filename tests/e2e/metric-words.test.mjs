@@ -106,10 +106,10 @@ for (const viewport of [
     const { page, errors, close } = await openPage({ viewport: { width: viewport.width, height: viewport.height } });
     try {
       await page.selectOption('#preset', 'two-groups-swap');
-      await page.evaluate(() => {
-        window.flockpath.pause();
-        window.flockpath.reset();
-        window.flockpath.step(120);
+      await page.evaluate(async () => {
+        await window.flockpath.pause();
+        await window.flockpath.reset();
+        await window.flockpath.step(120);
       });
       await frames(page, 3);
       const overall = await shownTerms(page, '#metrics');
@@ -129,7 +129,7 @@ for (const viewport of [
       }
       for (const key of ['arrived_share', 'queue_order', 'fitness']) assert.ok(perGroup.some((t) => t.key === key), `groups show ${key}`);
       // The waiting count shows when the core reports it, and is hidden (not a dash) when not.
-      const metrics = await page.evaluate(() => window.flockpath.metrics());
+      const metrics = await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.metrics()));
       assert.equal(overall.some((t) => t.key === 'waiting_agents'), typeof metrics.waiting_agents === 'number');
 
       // Keyboard: Tab from the first metric name through the names to the card's summary.

@@ -24,10 +24,10 @@ test('the metrics panel shows per-group rows and plots over time', async () => {
   const { page, errors, close } = await openPage({ viewport: { width: 1280, height: 1400 } });
   try {
     await page.selectOption('#preset', 'two-groups-swap');
-    await page.evaluate(() => {
-      window.flockpath.pause();
-      window.flockpath.reset();
-      window.flockpath.step(400);
+    await page.evaluate(async () => {
+      await window.flockpath.pause();
+      await window.flockpath.reset();
+      await window.flockpath.step(400);
     });
     await frames(page, 3);
     const rows = await page.$$eval('#metrics-groups tbody tr', (trs) => trs.map((tr) => tr.cells[0].textContent));

@@ -45,11 +45,11 @@ test('pso-circle-target: the goal ring is drawn where the goal is after step(600
   const { page, errors, close } = await openPage({ hash: '' });
   try {
     await page.selectOption('#preset', 'pso-circle-target');
-    await page.evaluate(() => {
-      window.flockpath.pause();
-      window.flockpath.reset();
+    await page.evaluate(async () => {
+      await window.flockpath.pause();
+      await window.flockpath.reset();
     });
-    const scene = await page.evaluate(() => window.flockpath.scene());
+    const scene = await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.scene()));
     assert.equal(scene.name, 'pso-circle-target');
     const goal = scene.goals[0];
     assert.equal(goal.motion?.kind, 'circle', 'the preset’s goal moves on a circle');
@@ -64,7 +64,7 @@ test('pso-circle-target: the goal ring is drawn where the goal is after step(600
     ]) {
       assert.equal(await page.evaluate(act), step, how);
       await frames(page, 3);
-      const [shown] = await page.evaluate(() => window.flockpath.goals());
+      const [shown] = await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.goals()));
       const expected = onCircle(goal, step);
       assert.ok(distance([shown.x, shown.y], expected) < 0.01, `${how}: goals() says (${shown.x}, ${shown.y}), the motion (${expected})`);
       assert.equal(shown.radius, goal.radius);

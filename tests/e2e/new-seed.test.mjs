@@ -6,21 +6,21 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { assertNoUnexpectedErrors, openPage, simpleScene } from './helpers.mjs';
 
-const seedNow = (page) => page.evaluate(() => window.flockpath.scene().seed);
+const seedNow = (page) => page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.scene().seed));
 /** The digest after `n` steps from step 0 of the current scene and seed. */
 const runDigest = (page, n) =>
-  page.evaluate((n) => {
-    window.flockpath.reset();
-    window.flockpath.step(n);
+  page.evaluate(async (n) => {
+    await window.flockpath.reset();
+    await window.flockpath.step(n);
     return window.flockpath.digest();
   }, n);
 
 test('new seed gives a different seed each click, and a seed replays the same run', async () => {
   const { page, errors, close } = await openPage();
   try {
-    await page.evaluate((scene) => {
-      window.flockpath.load(scene);
-      window.flockpath.pause();
+    await page.evaluate(async (scene) => {
+      await window.flockpath.pause();
+      await window.flockpath.load(scene);
     }, simpleScene({ seed: 7 }));
     // The page draws no randomness of its own: Math.random is not how the seed is chosen.
     await page.evaluate(() => {
@@ -39,7 +39,7 @@ test('new seed gives a different seed each click, and a seed replays the same ru
       assert.ok(Number.isInteger(seed) && seed >= 0 && seed <= 0xffffffff, `a 32-bit seed, got ${seed}`);
       assert.ok(!seeds.includes(seed), `click ${click + 1} gave a seed seen before: ${seed} in ${seeds}`);
       assert.equal(await page.inputValue('#seed'), String(seed), 'the seed field shows the new seed');
-      assert.equal(await page.evaluate(() => window.flockpath.metrics().steps), 0, 'a new seed restarts');
+      assert.equal(await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.metrics().steps)), 0, 'a new seed restarts');
       seeds.push(seed);
     }
     const fresh = seeds[seeds.length - 1];

@@ -84,7 +84,7 @@ async function versionIn(dir) {
 
 const playgroundRuns = async (page) => {
   await waitReady(page);
-  const before = await page.evaluate(() => window.flockpath.metrics().steps);
+  const before = await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.metrics().steps));
   await page.evaluate(() => window.flockpath.play());
   await page.waitForFunction((n) => window.flockpath.metrics().steps > n + 10, before, { timeout: 20_000 });
 };

@@ -18,11 +18,11 @@ test('overlay toggles change the pixels; stuck agents are counted', async () => 
   const { page, errors, close } = await openPage();
   try {
     await page.selectOption('#preset', 'u-trap');
-    await page.evaluate(() => {
-      window.flockpath.pause();
-      window.flockpath.reset();
-      window.flockpath.step(60);
-      window.flockpath.inspect(0);
+    await page.evaluate(async () => {
+      await window.flockpath.pause();
+      await window.flockpath.reset();
+      await window.flockpath.step(60);
+      await window.flockpath.inspect(0);
     });
     await page.uncheck('#trails');
     await frames(page, 2);
@@ -48,7 +48,7 @@ test('overlay toggles change the pixels; stuck agents are counted', async () => 
 
     await page.evaluate(() => window.flockpath.step(840));
     await frames(page, 2);
-    const stuck = await page.evaluate(() => window.flockpath.stuckAgents().length);
+    const stuck = await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.stuckAgents().length));
     assert.ok(stuck > 0, 'agents are stuck in the U');
     assert.equal(await page.textContent('#stuck-count'), `${stuck} agents stuck`);
     await snapshotCanvas(page, 'rings');

@@ -31,7 +31,7 @@ test('dragging a waypoint edits the path; through a wall it turns red and warns;
     await page.mouse.up();
     await frames(page, 3);
 
-    const waypoints = await page.evaluate(() => window.flockpath.scene().groups[0].planner.params.waypoints);
+    const waypoints = await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.scene().groups[0].planner.params.waypoints));
     assert.equal(waypoints.length, 2);
     assert.ok(Math.abs(waypoints[0][0] - 400) < 2 && Math.abs(waypoints[0][1] - 430) < 2, JSON.stringify(waypoints));
     assert.deepEqual(waypoints[1], [500, 100], 'the other waypoint stays');
@@ -46,7 +46,7 @@ test('dragging a waypoint edits the path; through a wall it turns red and warns;
     await screenshot(page, 'path-edit-crossing');
 
     // The link carries the edit.
-    const link = await page.evaluate(() => window.flockpath.sceneString());
+    const link = await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.sceneString()));
     const back = await page.evaluate(async (s) => {
       const module = await import('./pkg/flockpath.js');
       return JSON.parse(module.scene_from_text(s)).groups[0].planner.params.waypoints;
@@ -54,7 +54,7 @@ test('dragging a waypoint edits the path; through a wall it turns red and warns;
     assert.deepEqual(back, waypoints);
 
     await page.keyboard.press('Control+z');
-    const undone = await page.evaluate(() => window.flockpath.scene().groups[0].planner.params.waypoints);
+    const undone = await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.scene().groups[0].planner.params.waypoints));
     assert.deepEqual(undone, [[300, 100], [500, 100]]);
     assertNoUnexpectedErrors(errors);
   } finally {

@@ -6,7 +6,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { assertNoUnexpectedErrors, loadPaused, openPage, sceneToClient, simpleScene } from './helpers.mjs';
 
-const scene = (page) => page.evaluate(() => window.flockpath.scene());
+const scene = (page) => page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.scene()));
 
 async function clickAt(page, x, y, options) {
   const p = await sceneToClient(page, x, y);
@@ -29,15 +29,15 @@ test('a drawn path is followed by the active group and can be deleted', async ()
     // Agents now walk the arc: halfway along it they are well above the straight line (y = 250)
     // to the goal.
     await page.evaluate(() => window.flockpath.step(200));
-    const ys = await page.evaluate(() => window.flockpath.positions().map(([, y]) => y));
+    const ys = await page.evaluate(async () => (await window.flockpath.positions()).map(([, y]) => y));
     const meanY = ys.reduce((a, b) => a + b, 0) / ys.length;
     assert.ok(meanY < 215, `mean y ${meanY.toFixed(1)} px: the flock does not follow the arc`);
 
     // Select the path by clicking its centre line and delete it: the group stops following. First
     // let the flock reach the goal, so no agent on the arc takes the click (agents pick first).
-    await page.evaluate(() => {
-      window.flockpath.pause();
-      window.flockpath.step(1500);
+    await page.evaluate(async () => {
+      await window.flockpath.pause();
+      await window.flockpath.step(1500);
     });
     // Keys go to the editor only when no form field has focus (the group panel re-renders).
     await page.evaluate(() => document.activeElement?.blur());
@@ -78,7 +78,7 @@ test('a group given a drawn path short of a new goal walks on into the goal', as
     await page.evaluate(() => window.flockpath.step(2000));
     const positions = await page.evaluate(() => window.flockpath.positions());
     const inside = positions.filter(([x, y]) => Math.hypot(x - goal.position[0], y - goal.position[1]) <= goal.radius);
-    const metrics = await page.evaluate(() => window.flockpath.metrics());
+    const metrics = await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.metrics()));
     assert.ok(inside.length >= 9, `${inside.length} of 10 centres inside the new goal at step 2000`);
     assert.ok(metrics.arrived_share >= 0.9, `arrived_share ${metrics.arrived_share}`);
     assertNoUnexpectedErrors(errors);

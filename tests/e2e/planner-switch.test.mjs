@@ -9,9 +9,9 @@ import { assertNoUnexpectedErrors, openPage, simpleScene } from './helpers.mjs';
 const STEPS = 150;
 
 async function runFromStart(page) {
-  return page.evaluate((n) => {
-    window.flockpath.reset();
-    window.flockpath.step(n);
+  return page.evaluate(async (n) => {
+    await window.flockpath.reset();
+    await window.flockpath.step(n);
     return window.flockpath.positions();
   }, STEPS);
 }
@@ -22,16 +22,16 @@ const meanDistance = (a, b) =>
 test('switching the planner in the panel changes where the agents go', async () => {
   const { page, errors, close } = await openPage();
   try {
-    await page.evaluate((scene) => {
-      window.flockpath.load(scene);
-      window.flockpath.pause();
+    await page.evaluate(async (scene) => {
+      await window.flockpath.pause();
+      await window.flockpath.load(scene);
     }, simpleScene());
     const boids = await runFromStart(page);
     const again = await runFromStart(page);
     assert.deepEqual(again, boids, 'the same planner replays the same run');
 
     await page.selectOption('#planner', 'pso');
-    assert.equal(await page.evaluate(() => window.flockpath.scene().groups[0].planner.kind), 'pso');
+    assert.equal(await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.scene().groups[0].planner.kind)), 'pso');
     const pso = await runFromStart(page);
     assert.equal(pso.length, boids.length);
     const moved = meanDistance(boids, pso);

@@ -78,7 +78,8 @@ test('a host page scripts the embed through postMessage', async () => {
 });
 
 test('when the embed cannot load (its wasm missing), waiting and later requests answer ok: false with the reason', { timeout: 90_000 }, async () => {
-  // Ready once the notes' own scenes have their wasm: a fetch still in flight when they are
+  // Ready once the notes' own scenes have their wasm, in the page and in each simulation worker
+  // (an element's `sim` exists once its worker started): a fetch still in flight when they are
   // removed below would be aborted (a "request failed" that is not the one this test makes).
   const { page, context, errors, close } = await openPath('examples/course-notes.html', {
     ready: () => {
@@ -87,7 +88,7 @@ test('when the embed cannot load (its wasm missing), waiting and later requests 
       return (
         document.getElementById('corridor') !== null &&
         [...document.querySelectorAll('flock-path')].every((el) => el.sim) &&
-        frames.every((f) => f.contentWindow && loaded(f.contentWindow))
+        frames.every((f) => f.contentWindow && loaded(f.contentWindow) && f.contentWindow.flockpathEmbed?.sim)
       );
     },
   });

@@ -4,7 +4,7 @@
 
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { assertNoUnexpectedErrors, openPage, openPath, screenshot } from './helpers.mjs';
+import { assertNoUnexpectedErrors, frames, openPage, openPath, screenshot } from './helpers.mjs';
 
 /**
  * For each canvas (found by `find`, evaluated in the page): the still next to it, whether it and
@@ -59,7 +59,8 @@ test('printing the course notes shows a still of each scene at its current step'
   });
   try {
     // Paused, so the canvas and the still can be compared pixel for pixel.
-    await page.evaluate(() => document.querySelectorAll('flock-path').forEach((el) => el.pause()));
+    await page.evaluate(() => Promise.all([...document.querySelectorAll('flock-path')].map((el) => el.pause())));
+    await frames(page, 2);
     await page.evaluate(() => window.dispatchEvent(new Event('beforeprint')));
     const onScreen = await page.evaluate(`(${inspectStills})(${courseCanvases}, true)`);
     assert.equal(onScreen.length, 2);
@@ -96,9 +97,9 @@ test('printing the course notes shows a still of each scene at its current step'
 test('print media alone (no beforeprint) also swaps the playground canvas for a still', async () => {
   const { page, errors, close } = await openPage();
   try {
-    await page.evaluate(() => {
-      window.flockpath.pause();
-      window.flockpath.step(40);
+    await page.evaluate(async () => {
+      await window.flockpath.pause();
+      await window.flockpath.step(40);
     });
     await page.waitForTimeout(100);
     await page.emulateMedia({ media: 'print' });

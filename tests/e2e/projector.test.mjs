@@ -49,7 +49,7 @@ function luminance([r, g, b]) {
 async function sample(page, name) {
   await frames(page, 3);
   await snapshotCanvas(page, name);
-  const scene = await page.evaluate(() => window.flockpath.scene());
+  const scene = await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.scene()));
   const obstacle = scene.obstacles.find((o) => o.shape === 'circle');
   const points = [await sceneToCanvasPixel(page, 3, 3), await sceneToCanvasPixel(page, ...obstacle.center)];
   const [field, pillar] = await pixelsAt(page, name, points);
@@ -63,7 +63,7 @@ test('the projector theme: readable text in both themes, a toggle and a URL opti
     assert.equal(await page.evaluate(() => window.flockpath.theme()), 'standard');
     assert.deepEqual(await contrastProblems(page), [], 'standard theme: no serious/critical contrast violation');
     const standard = await sample(page, 'standard');
-    const sceneBefore = await page.evaluate(() => window.flockpath.sceneString());
+    const sceneBefore = await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.sceneString()));
     const textBefore = await page.evaluate(() => parseFloat(getComputedStyle(document.body).fontSize));
 
     const toggle = page.locator('#theme-toggle');
@@ -83,7 +83,7 @@ test('the projector theme: readable text in both themes, a toggle and a URL opti
     // Larger text; the scene itself is untouched.
     const textAfter = await page.evaluate(() => parseFloat(getComputedStyle(document.body).fontSize));
     assert.ok(textAfter >= textBefore * 1.15, `text ${textBefore}px → ${textAfter}px`);
-    assert.equal(await page.evaluate(() => window.flockpath.sceneString()), sceneBefore);
+    assert.equal(await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.sceneString())), sceneBefore);
     assert.deepEqual(await contrastProblems(page), [], 'projector theme: no serious/critical contrast violation');
 
     // And back.
@@ -93,15 +93,15 @@ test('the projector theme: readable text in both themes, a toggle and a URL opti
     assert.deepEqual(again, standard, 'the standard look comes back exactly');
 
     // Okabe–Ito: the preset's group is its blue, and so is a group that names no colour.
-    const colours = await page.evaluate(() => window.flockpath.scene().groups.map((g) => g.color));
+    const colours = await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.scene().groups.map((g) => g.color)));
     assert.deepEqual(colours, ['#0072b2'], 'the preset’s group is Okabe–Ito blue');
     const scene = simpleScene();
     delete scene.groups[0].color;
-    const loaded = await page.evaluate((s) => window.flockpath.load(s).groups[0].color, scene);
+    const loaded = await page.evaluate(async (s) => (await window.flockpath.load(s)).groups[0].color, scene);
     assert.equal(loaded, '#0072b2', 'a group without a colour gets the palette’s first');
-    const refused = await page.evaluate(() => {
+    const refused = await page.evaluate(async () => {
       try {
-        window.flockpath.theme('neon');
+        await window.flockpath.theme('neon');
         return null;
       } catch (error) {
         return error.message;

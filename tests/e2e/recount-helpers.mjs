@@ -124,17 +124,17 @@ export function disagreements(label, counted, metrics) {
  * between the two reads).
  */
 export async function runAndRead(page, steps) {
-  return page.evaluate((n) => {
+  return page.evaluate(async (n) => {
     const api = window.flockpath;
-    api.pause();
-    api.reset();
-    api.step(n - 1);
-    const before = api.positions();
-    const step = api.step(1);
+    await api.pause();
+    await api.reset();
+    await api.step(n - 1);
+    const before = await api.positions();
+    const step = await api.step(1);
     return {
       step,
       before,
-      after: api.positions(),
+      after: await api.positions(),
       goals: api.goals(),
       scene: api.scene(),
       metrics: api.metrics(),
@@ -146,7 +146,7 @@ export async function runAndRead(page, steps) {
 /** The scene of preset `name` as the page loads it from its Scene menu. */
 export async function presetScene(page, name) {
   await page.selectOption('#preset', name);
-  return page.evaluate(() => window.flockpath.scene());
+  return page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.scene()));
 }
 
 /** Loads `scene` through the page API, runs it to `steps` and recounts; returns [recount, read]. */

@@ -11,10 +11,10 @@ const STEPS = 240;
 
 /** Runs `STEPS` steps from the start, paused; returns metrics and digest. */
 async function runFromStart(page) {
-  return page.evaluate((n) => {
-    window.flockpath.pause();
-    window.flockpath.reset();
-    window.flockpath.step(n);
+  return page.evaluate(async (n) => {
+    await window.flockpath.pause();
+    await window.flockpath.reset();
+    await window.flockpath.step(n);
     return { metrics: window.flockpath.metrics(), digest: window.flockpath.digest() };
   }, STEPS);
 }
@@ -42,14 +42,14 @@ test('an edited scene survives the round trip through the URL', async () => {
       el.value = '0.05';
       el.dispatchEvent(new Event('input', { bubbles: true }));
     });
-    const edited = await page.evaluate(() => window.flockpath.scene());
+    const edited = await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.scene()));
     assert.equal(edited.obstacles.length, 1, 'the drawn obstacle is in the scene');
     assert.equal(edited.seed, 4242);
     assert.equal(edited.groups[0].planner.params.arbitration, 'priority');
     assert.deepEqual(edited.view, { trails: false, trail_fade: 0.05 });
 
     // The address bar catches up after the debounce and holds exactly this scene.
-    const expected = await page.evaluate(() => window.flockpath.sceneString());
+    const expected = await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.sceneString()));
     await page.waitForFunction((s) => location.hash === `#s=${s}`, expected, { timeout: 5_000 });
     const url = page.url();
     assert.ok(url.length < 1000, `URL of ${url.length} characters`);
@@ -58,7 +58,7 @@ test('an edited scene survives the round trip through the URL', async () => {
     const there = await context.newPage();
     await there.goto(url);
     await there.waitForFunction(() => window.flockpath !== undefined);
-    assert.deepEqual(await there.evaluate(() => window.flockpath.scene()), edited, 'same scene');
+    assert.deepEqual(await there.evaluate(async () => (await window.flockpath.settled(), window.flockpath.scene())), edited, 'same scene');
     assert.equal(await there.isChecked('#trails'), false, 'the trail checkbox follows the link');
     assert.equal(await there.inputValue('#fade'), '0.05');
 

@@ -20,13 +20,13 @@ test('scrubbing the timeline back and forward reproduces the first pass', async 
   const { page, errors, close } = await openPage();
   try {
     const checkpoints = [0, 1, 99, 100, 101, 250, 437, 600];
-    const firstPass = await page.evaluate(([scene, ks]) => {
+    const firstPass = await page.evaluate(async ([scene, ks]) => {
       const api = window.flockpath;
-      api.pause();
-      api.load(scene);
+      await api.pause();
+      await api.load(scene);
       const digests = {};
       for (const k of ks) {
-        api.step(k - api.metrics().steps);
+        await api.step(k - api.metrics().steps);
         digests[k] = api.digest();
       }
       return digests;
@@ -36,28 +36,28 @@ test('scrubbing the timeline back and forward reproduces the first pass', async 
 
     for (const k of [250, 0, 437, 101, 600, 99, 1, 100]) {
       await scrubTo(page, k);
-      const now = await page.evaluate(() => ({ steps: window.flockpath.metrics().steps, digest: window.flockpath.digest() }));
+      const now = await page.evaluate(async () => (await window.flockpath.settled(), ({ steps: window.flockpath.metrics().steps, digest: window.flockpath.digest() })));
       assert.equal(now.steps, k, `the slider moved the run to step ${k}`);
       assert.equal(now.digest, firstPass[k], `digest at step ${k} after scrubbing`);
       assert.equal(await page.$eval('#timeline', (el) => Number(el.value)), k);
     }
     // The page API jumps the same way.
     assert.equal(await page.evaluate(() => window.flockpath.seek(437)), 437);
-    assert.equal(await page.evaluate(() => window.flockpath.digest()), firstPass[437]);
+    assert.equal(await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.digest())), firstPass[437]);
 
     // Play on from a scrubbed step: the same run as the first pass.
     await scrubTo(page, 100);
     await page.evaluate(() => window.flockpath.step(150));
-    assert.equal(await page.evaluate(() => window.flockpath.digest()), firstPass[250], 'stepping on from 100 reaches the same 250');
+    assert.equal(await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.digest())), firstPass[250], 'stepping on from 100 reaches the same 250');
     await scrubTo(page, 250);
     await page.evaluate(() => window.flockpath.play());
     await page.waitForFunction(() => window.flockpath.metrics().steps > 260);
     await page.evaluate(() => window.flockpath.pause());
-    const t = await page.evaluate(() => window.flockpath.timeline());
+    const t = await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.timeline()));
     assert.equal(t.end_step, 600, 'the recorded future is kept when nothing changed');
     assert.equal(t.diverged, 0);
     await page.evaluate(() => window.flockpath.seek(437));
-    assert.equal(await page.evaluate(() => window.flockpath.digest()), firstPass[437]);
+    assert.equal(await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.digest())), firstPass[437]);
 
     // A live parameter change starts a new future from there.
     await page.evaluate(() => window.flockpath.seek(300));
@@ -66,7 +66,7 @@ test('scrubbing the timeline back and forward reproduces the first pass', async 
       el.dispatchEvent(new Event('input', { bubbles: true }));
       el.dispatchEvent(new Event('change', { bubbles: true }));
     });
-    const edited = await page.evaluate(() => window.flockpath.timeline());
+    const edited = await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.timeline()));
     assert.equal(edited.end_step, 300, 'the future after an edit is dropped');
     assert.deepEqual(edited.edits, [300]);
     assertNoUnexpectedErrors(errors);
@@ -78,19 +78,19 @@ test('scrubbing the timeline back and forward reproduces the first pass', async 
 test('a hidden tab does not step and does not catch up when it comes back', async () => {
   const { page, errors, close } = await openPage();
   try {
-    await page.evaluate((scene) => {
-      window.flockpath.load(scene);
-      window.flockpath.pause();
+    await page.evaluate(async (scene) => {
+      await window.flockpath.pause();
+      await window.flockpath.load(scene);
     }, simpleScene());
-    await page.evaluate(() => {
+    await page.evaluate(async () => {
       Object.defineProperty(document, 'visibilityState', { value: 'hidden', configurable: true });
       Object.defineProperty(document, 'hidden', { value: true, configurable: true });
       document.dispatchEvent(new Event('visibilitychange'));
-      window.flockpath.play();
+      await window.flockpath.play();
     });
-    const before = await page.evaluate(() => window.flockpath.metrics().steps);
+    const before = await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.metrics().steps));
     await frames(page, 20);
-    assert.equal(await page.evaluate(() => window.flockpath.metrics().steps), before, 'no steps while hidden');
+    assert.equal(await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.metrics().steps)), before, 'no steps while hidden');
     await page.evaluate(() => new Promise((resolve) => setTimeout(resolve, 500)));
     await page.evaluate(() => {
       delete document.visibilityState;
@@ -98,10 +98,10 @@ test('a hidden tab does not step and does not catch up when it comes back', asyn
       document.dispatchEvent(new Event('visibilitychange'));
     });
     const spf = await page.$eval('#spf', (el) => Number(el.value));
-    const after = await page.evaluate(() => new Promise((resolve) => {
+    const after = await page.evaluate(async () => (await window.flockpath.settled(), new Promise((resolve) => {
       const start = window.flockpath.metrics().steps;
       requestAnimationFrame(() => requestAnimationFrame(() => resolve(window.flockpath.metrics().steps - start)));
-    }));
+    })));
     assert.ok(after > 0 && after <= 2 * spf, `back in view: ${after} steps in two frames, not a catch-up of the hidden time`);
     assertNoUnexpectedErrors(errors);
   } finally {
@@ -118,18 +118,18 @@ test('figure: a scrub jump across 2,000 steps of 1,000 agents', async () => {
       goals: [{ position: [1450, 500], radius: 120 }],
       groups: [{ ...simpleScene().groups[0], count: 1000, spawn: { min: [40, 200], max: [640, 800] } }],
     });
-    const figures = await page.evaluate((s) => {
+    const figures = await page.evaluate(async (s) => {
       const api = window.flockpath;
-      api.pause();
-      api.load(s);
+      await api.pause();
+      await api.load(s);
       const t0 = performance.now();
-      api.step(2000);
+      await api.step(2000);
       const recordMs = performance.now() - t0;
       const jumps = [];
       for (const k of [0, 1999, 37, 1950, 1000, 1999]) {
         const from = api.metrics().steps;
         const t = performance.now();
-        api.seek(k);
+        await api.seek(k);
         jumps.push({ from, to: k, ms: performance.now() - t });
       }
       return { recordMs, jumps, timeline: api.timeline() };

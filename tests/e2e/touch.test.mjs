@@ -30,11 +30,11 @@ test('a touch drag with the rectangle tool adds a rectangle obstacle', async () 
 
     const types = await page.evaluate(() => [...window.seenPointerTypes]);
     assert.deepEqual(types, ['touch'], 'the page saw touch pointer events');
-    const scene = await page.evaluate(() => window.flockpath.scene());
+    const scene = await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.scene()));
     assert.equal(scene.obstacles.length, 1, 'the rectangle is in the scene');
     const rect = scene.obstacles[0];
     assert.equal(rect.shape, 'rect');
-    const pixel = 1 / (await page.evaluate(() => window.flockpath.view().scale));
+    const pixel = 1 / (await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.view().scale)));
     const near = (a, b) => Math.abs(a - b) <= 2 * pixel;
     assert.ok(near(rect.min[0], 320) && near(rect.min[1], 80), `min ${rect.min}`);
     assert.ok(near(rect.max[0], 460) && near(rect.max[1], 170), `max ${rect.max}`);
@@ -47,7 +47,7 @@ test('a touch drag with the rectangle tool adds a rectangle obstacle', async () 
     assert.equal(await page.evaluate(() => window.scrollY), 0);
     await screenshot(page, 'touch');
     await page.keyboard.press('Delete');
-    assert.equal((await page.evaluate(() => window.flockpath.scene())).obstacles.length, 0, 'tap selected it');
+    assert.equal((await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.scene()))).obstacles.length, 0, 'tap selected it');
     assertNoUnexpectedErrors(errors);
   } finally {
     await close();

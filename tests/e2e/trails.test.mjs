@@ -32,9 +32,9 @@ async function loadPillars(page) {
     };
   });
   await page.selectOption('#preset', 'pillars');
-  await page.evaluate(() => {
-    window.flockpath.pause();
-    window.flockpath.reset();
+  await page.evaluate(async () => {
+    await window.flockpath.pause();
+    await window.flockpath.reset();
   });
   await frames(page, 2);
 }
@@ -102,8 +102,8 @@ test('after step(2000) in one call no trail lies inside a pillar', async () => {
     assert.equal(shape.circles, 16, 'pillars has 16 circular pillars');
     assert.equal(shape.trails, true, 'trails are on');
     // Reset and step in one go, no frame between: a course note scripting a scene.
-    const steps = await page.evaluate(() => {
-      window.flockpath.reset();
+    const steps = await page.evaluate(async () => {
+      await window.flockpath.reset();
       return window.flockpath.step(2000);
     });
     assert.equal(steps, 2000);
@@ -126,11 +126,11 @@ test('a timeline jump redraws the trails of the recorded steps before it', async
   const { page, errors, close } = await openPage();
   try {
     await loadPillars(page);
-    const before = await page.evaluate(() => {
+    const before = await page.evaluate(async () => {
       const api = window.flockpath;
-      api.step(200);
-      const positions = api.positions();
-      api.step(400);
+      await api.step(200);
+      const positions = await api.positions();
+      await api.step(400);
       return positions;
     });
     await frames(page, 2);
@@ -155,7 +155,7 @@ test('a timeline jump redraws the trails of the recorded steps before it', async
       el.dispatchEvent(new Event('change', { bubbles: true }));
     });
     await frames(page, 2);
-    assert.equal(await page.evaluate(() => window.flockpath.metrics().steps), 250);
+    assert.equal(await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.metrics().steps)), 250);
     await snapshotCanvas(page, 'now');
     const scrubbed = await count();
     assert.ok(scrubbed >= 0.8 * before.length, `after scrubbing ${scrubbed}/${before.length} step-200 positions have a trail`);

@@ -120,7 +120,7 @@ test('the playground’s scene is tuned through the header link', async () => {
     // Wait until the address bar holds the scene (written 300 ms after a change, or at boot).
     await page.evaluate(() => window.flockpath.load(window.flockpath.scene()));
     await page.waitForFunction(() => location.hash.startsWith('#s='), null, { timeout: 10_000 });
-    const original = await page.evaluate(() => window.flockpath.scene());
+    const original = await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.scene()));
     await page.click('#tune-link');
     await page.waitForURL(/tune\.html#s=/, { timeout: 30_000 });
     await page.waitForFunction(() => window.flocktune !== undefined, null, { timeout: 30_000 });
@@ -137,7 +137,7 @@ test('the playground’s scene is tuned through the header link', async () => {
     await page.click('#apply');
     await page.waitForURL(/index\.html#s=/, { timeout: 30_000 });
     await waitReady(page);
-    const tuned = await page.evaluate(() => window.flockpath.scene());
+    const tuned = await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.scene()));
     assert.equal(tuned.obstacles.length, original.obstacles.length, 'same obstacles');
     assert.equal(tuned.groups.length, original.groups.length, 'same groups');
     for (const g of await playgroundWeights(page)) {

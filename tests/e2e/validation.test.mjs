@@ -63,7 +63,7 @@ test('a subset runs in a worker, the table shows pass/fail, a link opens the sce
     // The link opens the test's scene in the playground.
     await page.goto(new URL(t1.href, page.url()).href);
     await waitReady(page);
-    const scene = await page.evaluate(() => window.flockpath.scene());
+    const scene = await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.scene()));
     assert.equal(scene.name, 'validate-t1-free-walking');
     assert.equal(scene.groups[0].count, 1);
     assert.equal(scene.groups[0].planner.kind, 'boids');

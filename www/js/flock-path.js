@@ -20,7 +20,12 @@
 // reader sees if it never loads (the Share dialog's snippet carries "Loading…" and a link there).
 //
 // Methods mirror the page API: load(text), play(), pause(), step(n), reset(), metrics(), scene(),
-// sceneString(), digest(); property `playing`, `steps`. Events: `flockpath-ready`,
+// sceneString(), digest(), settled(); property `playing`, `steps`. The simulation runs in a Web
+// Worker (js/core/sim-worker.js; issue 24) so a costly scene never blocks the host page: load,
+// play, pause, step and reset return Promises (await them, then read), the reads answer at once
+// from the state of the last frame or call. Where the browser refuses the worker (the module on
+// another site: a worker must come from the page's own origin) the simulation runs in the page,
+// and the same methods resolve at once. Events: `flockpath-ready`,
 // `flockpath-error` (detail: message; also when the wasm cannot be loaded, shown in the box too).
 // For screen readers the canvas is an image named "Simulated crowd", described by a visually
 // hidden polite live region in the shadow root (core/describe.js: the scene and the run in
@@ -31,7 +36,9 @@ import { loadWasm } from './core/boot.js';
 import { readClassroom } from './core/classroom.js';
 import { messageOf } from './core/errors.js';
 import { startLoop } from './core/loop.js';
+import { startRemoteLoop } from './core/remote-loop.js';
 import { SimHost } from './core/sim-host.js';
+import { RemoteSim } from './core/sim-proxy.js';
 import { setupDescription } from './core/describe.js';
 import { prefersReducedMotion } from './core/motion.js';
 import { onLanguageChange, t, translatePage, tOr } from './core/i18n.js';
@@ -190,7 +197,8 @@ export class FlockPathElement extends HTMLElement {
         this.description?.stop();
         this.description?.element.remove();
         this.description = null;
-        this.host.sim.free();
+        if (this.host.remote) this.host.remote.worker?.terminate();
+        else this.host.sim.free();
         this.host = null;
         this.booting = null;
       }
@@ -231,12 +239,31 @@ export class FlockPathElement extends HTMLElement {
     const { width, height } = measure(canvas);
     canvas.width = width;
     canvas.height = height;
+    const first = this.module.preset_scene_json(this.presets[0].name);
+    const attribute = (this.getAttribute('scene') ?? '').trim();
+    // The simulation in a worker, the link's scene loaded there; in the page where no worker runs.
+    let remote = null;
+    let linkError = null;
     let sim;
     try {
-      sim = new this.module.Sim(this.module.preset_scene_json(this.presets[0].name), width, height);
-    } catch (error) {
-      this.fail(messageOf(error));
+      remote = new RemoteSim();
+      ({ linkError } = await remote.start({ sceneText: first, linked: attribute ? this.sceneText(attribute) : null, width, height }));
+      sim = remote.handle;
+    } catch {
+      remote?.worker?.terminate();
+      remote = null;
+    }
+    if (!this.isConnected) {
+      remote?.worker?.terminate();
       return;
+    }
+    if (remote === null) {
+      try {
+        sim = new this.module.Sim(first, width, height);
+      } catch (error) {
+        this.fail(messageOf(error));
+        return;
+      }
     }
     // Errors and crashes speak in this element's box and events, not in the host page's banner.
     const event = (message) =>
@@ -248,12 +275,14 @@ export class FlockPathElement extends HTMLElement {
         event(message);
       },
     });
+    this.host.remote = remote;
     // `autoplay` waits for Play when the reader asked for less motion; a script's play() does not.
     this.host.playing = this.wantPlaying || (this.hasAttribute('autoplay') && !prefersReducedMotion());
     this.host.afterLoad = () => this.afterLoad();
     this.host.addEventListener('playing', () => this.refreshBar());
     this.host.addEventListener('stepped', () => this.refreshSteps());
-    this.tryLoad(this.getAttribute('scene') ?? '', { fallback: true });
+    if (remote) this.linkLoaded(attribute, linkError);
+    else this.tryLoad(attribute, { fallback: true });
     this.mountActivity();
     this.$('.loading').hidden = true;
     // The scene and the run in words for screen readers, beside the canvas (core/describe.js).
@@ -292,7 +321,11 @@ export class FlockPathElement extends HTMLElement {
   /** The core's frame loop on this element's canvas (no Speed readout: the element has no slider). */
   startLoop() {
     if (this.stopLoop || !this.host) return;
-    this.stopLoop = startLoop(this.host, this.$('canvas'), () => this.refreshSteps(), { readout: false });
+    const canvas = this.$('canvas');
+    const onFrame = () => this.refreshSteps();
+    this.stopLoop = this.host.remote
+      ? startRemoteLoop(this.host, this.host.remote, canvas, onFrame, { readout: false, styleRoot: this.shadowRoot })
+      : startLoop(this.host, canvas, onFrame, { readout: false });
   }
 
   /**
@@ -331,18 +364,30 @@ export class FlockPathElement extends HTMLElement {
   }
 
   /** Loads from an attribute: on failure shows the message and keeps (or falls back to) a scene. */
-  tryLoad(text, { fallback }) {
+  async tryLoad(text, { fallback }) {
     if (!text.trim()) {
       this.afterLoad();
       return;
     }
+    let error = null;
     try {
-      this.call((sim) => sim.load(this.sceneText(text)));
-      this.hideMessage();
-    } catch (error) {
+      await this.call((sim) => sim.load(this.sceneText(text)));
+    } catch (thrown) {
+      error = thrown;
+    }
+    this.linkLoaded(text, error, { fallback });
+  }
+
+  /** Says how loading the `scene` attribute went (`error` null: loaded) and shows the scene. */
+  linkLoaded(text, error, { fallback = true } = {}) {
+    if (error === null) {
+      if (text.trim()) this.hideMessage();
+    } else {
       const reason = messageOf(error).replace(/[.?!。]$/, '');
       const name = tOr(`preset.${this.presets[0].name}`, this.presets[0].name);
       this.showMessage(t(fallback ? 'element.load_failed_fallback' : 'element.load_failed_kept', { reason, name }));
+      // The worker refused it quietly (a start option): the page's listeners still hear of it.
+      if (this.host?.remote && fallback) this.host.say.error(messageOf(error));
     }
     this.afterLoad();
   }
@@ -363,7 +408,9 @@ export class FlockPathElement extends HTMLElement {
    */
   call(fn) {
     if (!this.host) throw new Error('flock-path is still loading');
-    return this.host.guard(fn, { rethrow: true }).value;
+    const result = this.host.guard(fn, { rethrow: true });
+    // A call answered by the worker: a Promise of its value.
+    return typeof result?.then === 'function' ? result.then((settled) => settled.value) : result.value;
   }
 
   /** The element cannot run: says why in its box and tells the host page. */
@@ -397,7 +444,7 @@ export class FlockPathElement extends HTMLElement {
     if (canvas.width === width && canvas.height === height) return;
     canvas.width = width;
     canvas.height = height;
-    this.call((sim) => sim.resize(width, height));
+    this.host.guard((sim) => sim.resize(width, height));
     this.host.dirty = true;
   }
 
@@ -420,21 +467,38 @@ export class FlockPathElement extends HTMLElement {
 
   // ---- the page API, per element ----
 
-  /** Loads a scene (JSON text or object, fragment value, URL, preset name); throws and keeps the current one. */
-  load(scene) {
+  /**
+   * Loads a scene (JSON text or object, fragment value, URL, preset name); resolves to the scene;
+   * rejects and keeps the current one.
+   */
+  async load(scene) {
     const text = scene !== null && typeof scene === 'object' ? JSON.stringify(scene) : String(scene);
-    this.call((sim) => sim.load(this.sceneText(text)));
+    await this.call((sim) => sim.load(this.sceneText(text)));
     this.hideMessage();
     this.afterLoad();
     return this.scene();
   }
 
+  /** Plays; resolves once the simulation plays. */
   play() {
     this.setPlaying(true);
+    return this.settled();
   }
 
+  /** Pauses; resolves once the simulation stopped, the reads showing the step it stopped at. */
   pause() {
     this.setPlaying(false);
+    return this.settled();
+  }
+
+  /** Resolves once the simulation has answered every call so far (at once without a worker). */
+  async settled() {
+    const remote = this.host?.remote;
+    if (!remote) return;
+    do {
+      await remote.call('steps').catch(() => {});
+      await new Promise((resolve) => setTimeout(resolve, 0));
+    } while (remote.busy());
   }
 
   setPlaying(playing) {
@@ -443,19 +507,20 @@ export class FlockPathElement extends HTMLElement {
     this.refreshBar();
   }
 
-  /** Advances `n` steps now; returns the step count. */
-  step(n = 1) {
+  /** Advances `n` steps now; resolves to the step count. */
+  async step(n = 1) {
     const count = Number(n);
     if (!Number.isInteger(count) || count < 0 || count > 0xffffffff) {
       throw new RangeError(`step(n) takes a whole number of steps ≥ 0, not ${n}`);
     }
     if (!this.host) throw new Error('flock-path is still loading');
-    return this.host.stepNow(count, { rethrow: true }).value;
+    return (await this.host.stepNow(count, { rethrow: true })).value;
   }
 
-  reset() {
+  /** Back to step 0; resolves once it is. */
+  async reset() {
     if (!this.host) throw new Error('flock-path is still loading');
-    this.host.reset({ rethrow: true });
+    await this.host.reset({ rethrow: true });
   }
 
   get steps() {

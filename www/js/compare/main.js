@@ -1,15 +1,19 @@
 // The compare page: boot, the lockstep frame loop, playback controls, the URL
 // (`compare.html#s=<scene>&c=<comparison>`) and the page API `window.flockpathCompare`.
 // Rust owns the panes, their runs, metrics, series and summary; this shell only draws and wires.
+// The panes (`CompareSim`) run in a Web Worker (core/sim-worker.js, issue 24): calls that change
+// them return Promises, reads answer from the mirror of the last frame or reply.
 
 import { bootPage } from '../core/boot.js';
-import { isPanic, messageOf, showMessage } from '../core/errors.js';
+import { messageOf, showMessage } from '../core/errors.js';
 import { fragmentValue } from '../core/fragment.js';
 import { setupPlayback } from '../core/playback.js';
 import { onPage } from '../core/keys.js';
 import { prefersReducedMotion } from '../core/motion.js';
-import { SimHost } from '../core/sim-host.js';
-import { buildPanes, blitPanes, measurePane } from './panes.js';
+import { SimHost, after } from '../core/sim-host.js';
+import { RemoteSim } from '../core/sim-proxy.js';
+import { startRemoteLoop } from '../core/remote-loop.js';
+import { buildPanes, drawPanes, measurePane } from './panes.js';
 import { drawPlots, drawTable, explainTable } from './plots.js';
 import { download } from '../core/download.js';
 import { setupActivity } from './activity.js';
@@ -30,14 +34,16 @@ export function parseHash(hash = location.hash) {
 
 /** The compare page's state: the wasm handle of the panes behind the shared guarded door. */
 class CompareApp extends SimHost {
-  /** A change of the panes or the scene (restarts every pane): redraw everything, rewrite the URL. */
+  /**
+   * A change of the panes or the scene (restarts every pane): redraw everything, rewrite the URL.
+   * A Promise of the guarded result (the worker answers it).
+   */
   change(fn, options = {}) {
-    const result = this.guard(fn, options);
-    if (result.ok) {
+    return after(this.guard(fn, options), (result) => {
+      if (!result.ok) return;
       this.dirty = true;
       this.dispatchEvent(new Event('panes'));
-    }
-    return result;
+    });
   }
 
   /** The link that reopens this comparison. */
@@ -65,8 +71,8 @@ function setupControls(app) {
   app.addEventListener('panes', refreshAdd);
   refreshAdd();
 
-  $('export-csv').addEventListener('click', () => {
-    const csv = app.guard((sim) => sim.summary_csv());
+  $('export-csv').addEventListener('click', async () => {
+    const csv = await app.guard((sim) => sim.summary_csv());
     if (csv.ok) download('flockpath-comparison.csv', csv.value, 'text/csv');
   });
   $('copy-link').addEventListener('click', async () => {
@@ -134,31 +140,28 @@ function keepLocationInSync(app) {
   write();
 }
 
-/** The frame loop: every pane steps the same fixed steps per frame; hidden tabs do not step. */
+/**
+ * The frame loop: the worker steps every pane the same fixed steps per frame (hidden tabs do not
+ * step) and renders them; each animation frame draws the newest panes and refreshes the table.
+ */
 function startLoop(app, canvases) {
   let lastRefresh = -Infinity;
   let forced = true;
   const force = () => (forced = true);
   app.addEventListener('stepped', force);
   app.addEventListener('panes', force);
-  const frame = (now) => {
-    if (app.crashed) return;
-    if (app.playing && document.visibilityState !== 'hidden') {
-      if (!app.guard((sim) => sim.step(app.stepsPerFrame)).ok) app.setPlaying(false);
-      app.dirty = true;
-    }
-    if (app.dirty) {
-      app.dirty = false;
-      app.guard(() => blitPanes(app, canvases()));
-    }
+  const onFrame = (now) => {
     if (forced || (app.playing && now - lastRefresh >= REFRESH_MS)) {
       forced = false;
       lastRefresh = now;
       refresh(app);
     }
-    requestAnimationFrame(frame);
   };
-  requestAnimationFrame(frame);
+  startRemoteLoop(app, app.remote, null, onFrame, {
+    readout: false,
+    stage: $('panes').parentElement,
+    draw: (frame) => drawPanes(frame, canvases()),
+  });
 }
 
 function refresh(app) {
@@ -176,31 +179,30 @@ function refresh(app) {
   drawPlots($('plots'), series);
 }
 
-bootPage(t('boot.what_compare'), ({ module, wasm }) => {
+bootPage(t('boot.what_compare'), async ({ module, wasm }) => {
   const presets = JSON.parse(module.presets_json());
   const fallback = module.preset_scene_json(presets[0].name);
   const linked = parseHash();
   const problems = [];
   const { width, height } = measurePane();
 
-  let sim = null;
-  let sceneText = linked.s ?? fallback;
-  try {
-    module.scene_from_text(sceneText);
-  } catch (error) {
-    if (isPanic(error)) throw error;
-    problems.push(t('compare.link_scene_failed', { reason: messageOf(error), name: tOr(`preset.${presets[0].name}`, presets[0].name) }));
-    sceneText = fallback;
+  // The link's scene and comparison are checked and loaded in the worker (a big one takes time).
+  const remote = new RemoteSim();
+  const { sceneError, specError } = await remote.start({
+    kind: 'CompareSim',
+    sceneText: linked.s ?? fallback,
+    fallbackText: fallback,
+    specText: linked.c ?? '',
+    width,
+    height,
+  });
+  if (sceneError) {
+    problems.push(t('compare.link_scene_failed', { reason: messageOf(sceneError), name: tOr(`preset.${presets[0].name}`, presets[0].name) }));
   }
-  try {
-    sim = new module.CompareSim(sceneText, linked.c ?? '', width, height);
-  } catch (error) {
-    if (isPanic(error)) throw error;
-    problems.push(t('compare.link_spec_failed', { reason: messageOf(error) }));
-    sim = new module.CompareSim(sceneText, '', width, height);
-  }
+  if (specError) problems.push(t('compare.link_spec_failed', { reason: messageOf(specError) }));
 
-  const app = new CompareApp(wasm, module, sim);
+  const app = new CompareApp(wasm, module, remote.handle);
+  app.remote = remote;
   // A reader who asked for less motion starts paused (Play plays).
   if (prefersReducedMotion()) app.playing = false;
   app.watchPanics();
@@ -224,12 +226,27 @@ bootPage(t('boot.what_compare'), ({ module, wasm }) => {
     else if (sceneChanged) app.change((s) => s.load(next.s));
   });
 
+  /** Resolves once the worker has answered every call so far (the reads then show it). */
+  const settled = async () => {
+    do {
+      await remote.call('steps').catch(() => {});
+      await new Promise((resolve) => setTimeout(resolve, 0));
+    } while (remote.busy());
+  };
+  // Calls that change the panes resolve once the worker did it; reads answer at once.
   window.flockpathCompare = Object.freeze({
-    play: () => app.setPlaying(true),
-    pause: () => app.setPlaying(false),
+    play: () => {
+      app.setPlaying(true);
+      return settled();
+    },
+    pause: () => {
+      app.setPlaying(false);
+      return settled();
+    },
+    settled,
     isPlaying: () => app.playing,
-    step: (n = 1) => app.stepNow(n, { rethrow: true }).value,
-    reset: () => void app.reset({ rethrow: true }),
+    step: async (n = 1) => (await app.stepNow(n, { rethrow: true })).value,
+    reset: async () => void (await app.reset({ rethrow: true })),
     steps: () => JSON.parse(app.guard((s) => s.pane_steps_json(), { rethrow: true }).value),
     metrics: () => JSON.parse(app.guard((s) => s.metrics_json(), { rethrow: true }).value),
     panes: () => JSON.parse(app.guard((s) => s.panes_json(), { rethrow: true }).value),
@@ -239,8 +256,8 @@ bootPage(t('boot.what_compare'), ({ module, wasm }) => {
     summaryCsv: () => app.guard((s) => s.summary_csv(), { rethrow: true }).value,
     specString: () => app.guard((s) => s.spec_string(), { rethrow: true }).value,
     sceneString: () => app.guard((s) => s.scene_string(), { rethrow: true }).value,
-    setSpec: (text) => void app.change((s) => s.set_spec(text), { rethrow: true }),
-    load: (text) => void app.change((s) => s.load(typeof text === 'string' ? text : JSON.stringify(text)), { rethrow: true }),
+    setSpec: async (text) => void (await app.change((s) => s.set_spec(text), { rethrow: true })),
+    load: async (text) => void (await app.change((s) => s.load(typeof text === 'string' ? text : JSON.stringify(text)), { rethrow: true })),
     link: () => app.link(),
   });
   window.dispatchEvent(new Event('flockpath-compare-ready'));

@@ -1,8 +1,9 @@
 // The compare page's panes: one canvas each with a header (name, planner picker, label, remove)
 // and a parameter form generated from the planner table (`planners_json`), plus the pane's spec
-// text for per-group planners. Blitting copies each pane's wasm frame to its canvas.
+// text for per-group planners. Each pane's frame comes from the simulation worker as pixels
+// (drawPanes).
 
-import { blit } from '../core/blit.js';
+import { drawFrame } from '../core/remote-loop.js';
 import { paramControl, paramLabel, paramReadout } from '../core/params-form.js';
 import { language, onLanguageChange, t, tOr } from '../core/i18n.js';
 import { backingSize } from '../core/view.js';
@@ -21,18 +22,19 @@ export function measurePane() {
   return backingSize(cssWidth, cssWidth / 1.6, null);
 }
 
-/** Copies every pane's frame into its canvas (views rebuilt: wasm memory may have grown). */
-export function blitPanes(app, canvases) {
-  const { sim, wasm } = app;
-  const width = sim.width();
-  const height = sim.height();
+/**
+ * Draws a frame of the simulation worker into the pane canvases: one view per pane, all of the
+ * frame's size (a canvas whose pane was just added or resized takes that size).
+ */
+export function drawPanes(frame, canvases) {
   canvases.forEach((canvas, i) => {
-    sim.render(i);
-    if (canvas.width !== width || canvas.height !== height) {
-      canvas.width = width;
-      canvas.height = height;
+    const pixels = frame.panes[i];
+    if (!pixels) return;
+    if (canvas.width !== frame.width || canvas.height !== frame.height) {
+      canvas.width = frame.width;
+      canvas.height = frame.height;
     }
-    blit(canvas.getContext('2d', { alpha: false }), wasm, sim.frame_ptr(i), sim.frame_len(i), width, height);
+    drawFrame(canvas, pixels, frame.width, frame.height);
   });
 }
 

@@ -61,7 +61,7 @@ export function stepWithinBudget(app, wanted, budgetMs = SIM_BUDGET_MS) {
  * than Speed asks for. It floats over the page (absolute), so showing it never moves the layout.
  * `app.pace` holds the last window's figures.
  */
-function setupPaceReadout(app) {
+export function setupPaceReadout(app) {
   const style = document.createElement('style');
   style.textContent = STYLE;
   document.head.append(style);

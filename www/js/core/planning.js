@@ -83,9 +83,11 @@ export class PlanningSlices {
 
   /** Goes back to the scene shown before the planning began. */
   cancel() {
-    if (this.call((sim) => sim.cancel_planning())) {
+    // A simulation in a worker answers with a Promise (core/remote-loop.js).
+    Promise.resolve(this.call((sim) => sim.cancel_planning())).then((cancelled) => {
+      if (!cancelled) return;
       this.hide();
       this.onCancelled();
-    }
+    });
   }
 }

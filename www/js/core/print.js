@@ -41,6 +41,8 @@ function adopt(root) {
 function renderNow(el, canvas) {
   const host = el.host;
   try {
+    // A simulation in a worker: the canvas already shows the newest frame it rendered.
+    if (host?.remote) return;
     if (host?.sim && !host.crashed && host.wasm) {
       host.sim.render();
       blitSim(canvas.getContext('2d'), host.wasm, host.sim);

@@ -27,14 +27,16 @@ let current = 'standard';
 /** Draws every simulation of the page in `current` (the playground and <flock-path> elements). */
 function paintCanvases() {
   try {
-    if (window.flockpath?.theme) window.flockpath.theme(current);
+    // The playground's simulation runs in a worker: the theme is set there (a Promise).
+    if (window.flockpath?.theme) Promise.resolve(window.flockpath.theme(current)).catch(() => {});
   } catch {
     // Still booting or crashed: boot applies it (below) or nothing can.
   }
   for (const el of document.querySelectorAll('flock-path')) {
     try {
       if (el.host?.sim && !el.host.crashed) {
-        el.host.sim.set_theme(current);
+        // A Promise when the element's simulation runs in a worker.
+        Promise.resolve(el.host.sim.set_theme(current)).catch(() => {});
         el.host.dirty = true;
       }
     } catch {

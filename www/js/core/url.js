@@ -42,13 +42,11 @@ export function watchLocation(app) {
     const value = sceneFromLocation();
     if (value === null || app.crashed) return;
     if (value === app.guard((sim) => sim.scene_string()).value) return;
-    try {
-      app.load(value, { rethrow: true });
-    } catch (error) {
-      if (!app.crashed) {
-        showMessage(t('error.link_kept', { reason: messageOf(error) }));
-      }
-    }
+    Promise.resolve()
+      .then(() => app.load(value, { rethrow: true }))
+      .catch((error) => {
+        if (!app.crashed) showMessage(t('error.link_kept', { reason: messageOf(error) }));
+      });
   });
 }
 

@@ -9,7 +9,8 @@
 //   //                   or { flockpath: 1, id: 7, ok: false, error: 'readable message' }
 //
 // Methods: load(scene), play(), pause(), step(n), reset(), metrics(), scene(), sceneString(),
-// digest(), isPlaying(), classroom(). When it is ready the embed posts { flockpath: 1, event: 'ready' } to
+// digest(), isPlaying(), classroom(). The reply to load, play, pause, step and reset comes once
+// the simulation (in a worker) did it, so a read sent after it shows its effect. When it is ready the embed posts { flockpath: 1, event: 'ready' } to
 // its parent; when it cannot load (wasm missing or refused) it posts { flockpath: 1, event:
 // 'error', error } instead, and answers every request, waiting or new, with ok: false and that
 // message.
@@ -88,7 +89,8 @@ window.addEventListener('message', async (event) => {
   }
   try {
     await booted;
-    const result = method(el, ...(Array.isArray(data.args) ? data.args : []));
+    // The element's simulation runs in a worker: calls that change it resolve once it did.
+    const result = await method(el, ...(Array.isArray(data.args) ? data.args : []));
     if (data.method === 'load') refreshOpenLink();
     reply({ ok: true, result: result === undefined ? null : result });
   } catch (error) {

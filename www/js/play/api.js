@@ -2,11 +2,17 @@
 //
 //   import flockpath from './js/play/api.js';
 //   await flockpath.ready;
-//   flockpath.load(sceneJson); flockpath.step(600); flockpath.metrics().arrived_share;
+//   await flockpath.load(sceneJson); await flockpath.step(600); flockpath.metrics().arrived_share;
 //
-// Every call goes through the same guarded path as the UI: a refused input throws an `Error` with
-// a readable message (also shown in the page's banner) and the current scene keeps running.
+// The simulation runs in a worker (core/sim-worker.js), so calls that advance or change it return
+// a Promise, settled once the worker did it; reads (`metrics()`, `digest()`, `scene()`, …) answer
+// at once with the state after the last settled call (or the last frame shown while playing).
+// `positions()`, `agentAt()` and `metricsHistory()` ask the worker and return a Promise too.
+// Every call goes through the same guarded path as the UI: a refused input rejects (throws) with
+// an `Error` carrying a readable message (also shown in the page's banner) and the current scene
+// keeps running.
 
+import { Restarted } from '../core/sim-proxy.js';
 import { seekTo } from './timeline.js';
 
 let app = null;
@@ -27,25 +33,54 @@ function booted() {
  * a whole URL. Returns the loaded scene object; throws a readable Error and keeps the current
  * scene when the input is refused.
  */
-export function load(sceneJsonOrUrlString) {
+export async function load(sceneJsonOrUrlString) {
   const a = booted();
   let text = sceneJsonOrUrlString;
   if (text !== null && typeof text === 'object') text = JSON.stringify(text);
   if (typeof text !== 'string') {
     throw new TypeError(`load() takes scene JSON text, a scene object or a URL string, not ${typeof text}`);
   }
-  a.load(text, { rethrow: true });
+  await a.load(text, { rethrow: true });
   return scene();
 }
 
-/** Starts the frame loop stepping. */
-export function play() {
-  booted().setPlaying(true);
+/**
+ * Resolves once the simulation worker has answered everything the page sent it, including what a
+ * click or a key sent (an edit after a pick): the reads then show the state it left.
+ */
+async function settledFor(a) {
+  do {
+    try {
+      await a.remote.call('steps');
+    } catch (error) {
+      // A worker restarted under the call (sim-proxy.js): wait for the new one instead.
+      if (!(error instanceof Restarted)) throw error;
+    }
+    // A reply may start the next call of a gesture (the edit after its pick): let it be sent.
+    await new Promise((resolve) => setTimeout(resolve, 0));
+  } while (a.remote.busy());
 }
 
-/** Stops the frame loop stepping (the canvas keeps showing the current state). */
+/** Resolves once the page's simulation has caught up with every call, click and key so far. */
+export function settled() {
+  return settledFor(booted());
+}
+
+/** Starts the frame loop stepping; resolves once the worker plays. */
+export function play() {
+  const a = booted();
+  a.setPlaying(true);
+  return settledFor(a);
+}
+
+/**
+ * Stops the frame loop stepping (the canvas keeps showing the current state); resolves once the
+ * worker stopped, with the reads showing the step it stopped at.
+ */
 export function pause() {
-  booted().setPlaying(false);
+  const a = booted();
+  a.setPlaying(false);
+  return settledFor(a);
 }
 
 /** Whether the frame loop is stepping. */
@@ -53,18 +88,18 @@ export function isPlaying() {
   return booted().playing;
 }
 
-/** Advances `n` fixed steps now, synchronously; returns the step count afterwards. */
-export function step(n = 1) {
+/** Advances `n` fixed steps now; resolves to the step count afterwards. */
+export async function step(n = 1) {
   const count = Number(n);
   if (!Number.isInteger(count) || count < 0 || count > 0xffffffff) {
     throw new RangeError(`step(n) takes a whole number of steps ≥ 0, not ${n}`);
   }
-  return booted().stepNow(count, { rethrow: true }).value;
+  return (await booted().stepNow(count, { rethrow: true })).value;
 }
 
-/** Restarts the current scene from step 0 with its seed. */
-export function reset() {
-  booted().reset({ rethrow: true });
+/** Restarts the current scene from step 0 with its seed; resolves once it did. */
+export async function reset() {
+  await booted().reset({ rethrow: true });
 }
 
 /** The metrics object (DESIGN §4 keys: steps, agents, arrived_share, …, groups). */
@@ -99,13 +134,12 @@ export function planningProgress() {
  * Agent positions as `[[x, y], …]` in scene px, in agent order (groups in scene order), for
  * tests and course notes that want to measure something the metrics do not cover.
  */
-export function positions() {
-  return booted().guard((sim) => {
-    const flat = JSON.parse(sim.positions_json());
-    const pairs = [];
-    for (let i = 0; i + 1 < flat.length; i += 2) pairs.push([flat[i], flat[i + 1]]);
-    return pairs;
-  }, { rethrow: true }).value;
+export async function positions() {
+  const result = await booted().guard((sim) => sim.positions_json(), { rethrow: true });
+  const flat = JSON.parse(result.value);
+  const pairs = [];
+  for (let i = 0; i + 1 < flat.length; i += 2) pairs.push([flat[i], flat[i + 1]]);
+  return pairs;
 }
 
 /**
@@ -132,13 +166,13 @@ export function view() {
  * and re-simulated, so the state is bit-identical to the original run at `k`; play goes on from
  * there. Returns the step count afterwards.
  */
-export function seek(k) {
+export async function seek(k) {
   const target = Number(k);
   if (!Number.isInteger(target) || target < 0 || target > 0xffffffff) {
     throw new RangeError(`seek(k) takes a whole step number ≥ 0, not ${k}`);
   }
   const a = booted();
-  seekTo(a, target, { rethrow: true });
+  await seekTo(a, target, { rethrow: true });
   return a.guard((sim) => sim.steps(), { rethrow: true }).value;
 }
 
@@ -150,15 +184,15 @@ export function timeline() {
 /**
  * The agent at scene point (x, y) within `tolerance` px of its body (the nearest), or null.
  */
-export function agentAt(x, y, tolerance = 0) {
-  const id = booted().guard((sim) => sim.agent_at(Number(x), Number(y), Number(tolerance)), { rethrow: true }).value;
-  return id < 0 ? null : id;
+export async function agentAt(x, y, tolerance = 0) {
+  const result = await booted().guard((sim) => sim.agent_at(Number(x), Number(y), Number(tolerance)), { rethrow: true });
+  return result.value < 0 ? null : result.value;
 }
 
 /** Inspects agent `id` (null: nobody): the inspector opens and its forces are drawn. */
-export function inspect(id) {
+export async function inspect(id) {
   const a = booted();
-  a.guard((sim) => sim.inspect(id === null || id === undefined ? -1 : Number(id)), { rethrow: true });
+  await a.guard((sim) => sim.inspect(id === null || id === undefined ? -1 : Number(id)), { rethrow: true });
   a.dirty = true;
   a.dispatchEvent(new Event('inspection'));
 }
@@ -180,49 +214,54 @@ export function stuckAgents() {
  * Switches overlays: `{stuck, explanation, landscape, fireflies}` (missing keys keep their
  * state); returns the overlays now on.
  */
-export function overlays(changes = {}) {
+export async function overlays(changes = {}) {
   const a = booted();
-  return a.guard((sim) => {
+  await a.guard((sim) => {
     const on = { ...JSON.parse(sim.overlays_json()), ...changes };
-    sim.set_overlays(Boolean(on.stuck), Boolean(on.explanation), Boolean(on.landscape), Boolean(on.fireflies));
-    a.dirty = true;
-    a.dispatchEvent(new Event('overlays'));
-    return JSON.parse(sim.overlays_json());
-  }, { rethrow: true }).value;
+    return sim.set_overlays(Boolean(on.stuck), Boolean(on.explanation), Boolean(on.landscape), Boolean(on.fireflies));
+  }, { rethrow: true });
+  a.dirty = true;
+  a.dispatchEvent(new Event('overlays'));
+  return a.guard((sim) => JSON.parse(sim.overlays_json()), { rethrow: true }).value;
 }
 
 /**
  * The metrics over time from the core: `{steps, every, thinned, series: {key: {label, unit,
  * overall: [...], groups: [[...], ...]}}}`; missing values are null.
  */
-export function metricsHistory() {
-  return booted().guard((sim) => {
+export async function metricsHistory() {
+  const a = booted();
+  // One worker call per series, answered in order: every one is of the same step.
+  const asked = a.guard((sim) => {
     const meta = JSON.parse(sim.history_json());
-    const list = (values) => Array.from(values, (v) => (Number.isFinite(v) ? v : null));
-    const series = {};
-    for (const s of meta.series) {
-      series[s.key] = {
-        label: s.label,
-        unit: s.unit,
-        overall: list(sim.history_series(s.key, -1)),
-        groups: meta.groups.map((_, i) => list(sim.history_series(s.key, i))),
-      };
-    }
-    return { steps: Array.from(sim.history_steps()), every: meta.every, thinned: meta.thinned, series };
-  }, { rethrow: true }).value;
+    const remote = a.remote;
+    const series = meta.series.map((s) => ({
+      s,
+      overall: remote.call('history_series', [s.key, -1]),
+      groups: meta.groups.map((_, i) => remote.call('history_series', [s.key, i])),
+    }));
+    return { meta, steps: remote.call('history_steps'), series };
+  }, { rethrow: true });
+  const { meta, steps, series: pending } = asked.value ?? (await asked).value;
+  const list = (values) => Array.from(values, (v) => (Number.isFinite(v) ? v : null));
+  const series = {};
+  for (const { s, overall, groups } of pending) {
+    series[s.key] = { label: s.label, unit: s.unit, overall: list(await overall), groups: (await Promise.all(groups)).map(list) };
+  }
+  return { steps: Array.from(await steps), every: meta.every, thinned: meta.thinned, series };
 }
 
 /**
  * The render theme: with a name ('standard' or 'projector') draws in it from the next frame on
- * (a page option, not part of the scene); returns the theme's name. js/core/theme.js drives it.
+ * (a page option, not part of the scene) and resolves to the theme's name; without, returns it. js/core/theme.js drives it.
  */
 export function theme(name) {
   const a = booted();
-  if (name !== undefined) {
-    a.guard((sim) => sim.set_theme(String(name)), { rethrow: true });
+  if (name === undefined) return a.guard((sim) => sim.theme(), { rethrow: true }).value;
+  return a.guard((sim) => sim.set_theme(String(name)), { rethrow: true }).then(() => {
     a.dirty = true;
-  }
-  return a.guard((sim) => sim.theme(), { rethrow: true }).value;
+    return a.guard((sim) => sim.theme(), { rethrow: true }).value;
+  });
 }
 
 /**
@@ -246,6 +285,7 @@ export function activityReport() {
 /** The API object: `window.flockpath` and this module's default export. */
 export const flockpath = Object.freeze({
   ready,
+  settled,
   load,
   play,
   pause,

@@ -1,8 +1,10 @@
-// The shell's shared state: the wasm `Sim` handle, what the UI shows, and the one door every
-// wasm call goes through (so every thrown error reaches the banner and a panic reaches the panel).
+// The shell's shared state: the simulation (a `Sim` handle in a worker, reached through
+// core/sim-proxy.js), what the UI shows, and the one door every call goes through (so every thrown
+// error reaches the banner and a panic reaches the panel). A call that changes the simulation
+// returns a Promise settled once the worker answered; reads answer from the mirror at once.
 
 import { History } from './history.js';
-import { SimHost } from '../core/sim-host.js';
+import { SimHost, after } from '../core/sim-host.js';
 
 /** Colours handed to new groups, in order: Okabe–Ito, colour-blind safe (src/model/palette.rs). */
 export const PALETTE = ['#0072b2', '#d55e00', '#009e73', '#cc79a7', '#e69f00', '#56b4e9', '#000000', '#f0e442'];
@@ -11,16 +13,17 @@ export class App extends SimHost {
   /**
    * @param {object} wasm   the instance exports returned by `init()` (for `memory`)
    * @param {object} module the JS bindings (`presets_json`, `preset_scene_json`, …)
-   * @param {object} sim    the `Sim` handle
+   * @param {object} remote the RemoteSim whose `handle` stands for the `Sim`
    */
-  constructor(wasm, module, sim) {
-    super(wasm, module, sim);
+  constructor(wasm, module, remote) {
+    super(wasm, module, remote.handle);
+    this.remote = remote;
     this.history = new History(200);
     this.activeGroup = 0;
     this.selection = null;
     this.trails = true;
     this.trailFade = 0.01;
-    this.scene = JSON.parse(sim.scene_json());
+    this.scene = JSON.parse(this.sim.scene_json());
   }
 
   /**
@@ -30,22 +33,22 @@ export class App extends SimHost {
    */
   change(fn, { rethrow = false, record = true, clearSelection = true } = {}) {
     const before = this.crashed ? null : this.sim.scene_json();
-    const result = this.guard(fn, { rethrow });
-    if (!result.ok) return result;
-    if (record && before !== null) {
-      this.history.record(before);
-      this.dispatchEvent(new Event('history'));
-    }
-    if (clearSelection) this.select(null);
-    this.sceneChanged();
-    return result;
+    return after(this.guard(fn, { rethrow }), (result) => {
+      if (!result.ok) return;
+      if (record && before !== null) {
+        this.history.record(before);
+        this.dispatchEvent(new Event('history'));
+      }
+      if (clearSelection) this.select(null);
+      this.sceneChanged();
+    });
   }
 
-  /** Loads scene text (JSON or fragment) as one undoable change. */
+  /** Loads scene text (JSON or fragment) as one undoable change; a Promise of the result. */
   load(text, options = {}) {
-    const result = this.change((sim) => sim.load(text), options);
-    if (result.ok) this.afterLoad();
-    return result;
+    return after(this.change((sim) => sim.load(text), options), (result) => {
+      if (result.ok) this.afterLoad();
+    });
   }
 
   /**
@@ -54,7 +57,7 @@ export class App extends SimHost {
    * are kept instead.
    */
   afterLoad({ keepView = false } = {}) {
-    this.guard((sim) => {
+    const result = this.guard((sim) => {
       if (keepView) {
         sim.set_trails(this.trails);
         sim.set_trail_fade(this.trailFade);
@@ -62,7 +65,9 @@ export class App extends SimHost {
       // A different run with as many agents would otherwise draw jumps from the old positions.
       sim.clear_trails();
     });
+    // Told at once (the scene the mirror holds) and again once the view options are applied.
     this.sceneChanged();
+    return after(result, () => this.sceneChanged());
   }
 
   /** Changes the view options (saved in the scene, so the link keeps them; not an undo step). */
@@ -71,8 +76,7 @@ export class App extends SimHost {
       sim.set_trails(trails);
       sim.set_trail_fade(trailFade);
     });
-    this.sceneChanged();
-    return result;
+    return after(result, () => this.sceneChanged());
   }
 
   /** Refreshes the cached scene and tells the panels. */
@@ -117,17 +121,18 @@ export class App extends SimHost {
   }
 
   travel(from, to) {
-    if (from.length === 0 || this.crashed) return;
+    if (from.length === 0 || this.crashed) return undefined;
     const target = from.pop();
     const current = this.sim.scene_json();
-    const result = this.change((sim) => sim.load(target), { record: false });
-    if (result.ok) {
-      to.push(current);
-      this.afterLoad({ keepView: true });
-    } else {
-      from.push(target);
-    }
-    this.dispatchEvent(new Event('history'));
+    return after(this.change((sim) => sim.load(target), { record: false }), (result) => {
+      if (result.ok) {
+        to.push(current);
+        this.afterLoad({ keepView: true });
+      } else {
+        from.push(target);
+      }
+      this.dispatchEvent(new Event('history'));
+    });
   }
 
   /** The next palette colour no group uses yet. */

@@ -219,7 +219,7 @@ export class Editor {
   }
 
   /** Enter with the keyboard cursor: the current tool's pointer gesture, at the cursor. */
-  place() {
+  async place() {
     const p = [...this.cursor];
     const before = this.countItems();
     this.lastEdit = null;
@@ -235,8 +235,8 @@ export class Editor {
       return;
     }
     if (this.tool === 'select') {
-      const picked = this.app.guard((sim) => JSON.parse(sim.pick(p[0], p[1], this.units(PICK_TOLERANCE_CSS))));
-      const item = picked.ok ? picked.value : null;
+      const picked = await this.app.guard((sim) => sim.pick(p[0], p[1], this.units(PICK_TOLERANCE_CSS)));
+      const item = picked.ok ? JSON.parse(picked.value) : null;
       this.app.select(item);
       if (item && item.kind === 'group') this.app.setActiveGroup(item.index);
       const detail = { x: p[0], y: p[1], tolerance: this.units(PICK_TOLERANCE_CSS) };
@@ -271,6 +271,8 @@ export class Editor {
       drag.current = p;
       this.finish(drag);
     }
+    // The edit runs in the simulation worker: count once it was answered.
+    await this.editDone;
     const after = this.countItems();
     const added = Object.keys(after).find((key) => after[key] > before[key]);
     // A refused edit is explained by the banner (an alert); say only that nothing was added.
@@ -320,15 +322,25 @@ export class Editor {
       this.polygonClick(p);
       return;
     }
-    this.overlay.setPointerCapture(e.pointerId);
-    this.drag = { pointerId: e.pointerId, start: p, current: p, item: null };
+    try {
+      this.overlay.setPointerCapture(e.pointerId);
+    } catch {
+      // Handed over late (path-edit.js held it while a pick was answered): already released.
+    }
+    this.drag = { pointerId: e.pointerId, start: p, current: p, item: null, picked: null };
     if (this.tool === 'select') {
-      const picked = this.app.guard((sim) => JSON.parse(sim.pick(p[0], p[1], this.units(PICK_TOLERANCE_CSS))));
-      const item = picked.ok ? picked.value : null;
-      // A locked item can be selected (and its agents inspected), not dragged.
-      this.drag.item = item && this.lock.movable(item) ? item : null;
-      this.app.select(item);
-      if (item && item.kind === 'group') this.app.setActiveGroup(item.index);
+      // The pick is answered by the simulation worker; the pointer-up waits for it (pointerUp).
+      const drag = this.drag;
+      drag.picked = Promise.resolve(this.app.guard((sim) => sim.pick(p[0], p[1], this.units(PICK_TOLERANCE_CSS)))).then((picked) => {
+        const item = picked.ok ? JSON.parse(picked.value) : null;
+        // A locked item can be selected (and its agents inspected), not dragged.
+        drag.item = item && this.lock.movable(item) ? item : null;
+        this.app.select(item);
+        if (item && item.kind === 'group') this.app.setActiveGroup(item.index);
+        this.draw();
+      });
+      // A key pressed before the pick is answered (Delete) acts on what it picks.
+      this.picking = drag.picked;
     }
     this.draw();
   }
@@ -350,6 +362,13 @@ export class Editor {
     drag.current = this.point(e);
     this.drag = null;
     if (this.overlay.hasPointerCapture(e.pointerId)) this.overlay.releasePointerCapture(e.pointerId);
+    if (drag.picked) {
+      drag.picked.then(() => {
+        this.finish(drag);
+        this.draw();
+      });
+      return;
+    }
     this.finish(drag);
     this.draw();
   }
@@ -407,9 +426,9 @@ export class Editor {
       agent_radius: model ? model.agent_radius : 4,
       planner: model ? structuredClone(model.planner) : this.app.defaultPlanner(),
     };
-    if (this.edit({ op: 'add_group', group })) {
-      this.app.setActiveGroup((this.app.scene.groups?.length ?? 1) - 1);
-    }
+    this.edit({ op: 'add_group', group }).then((added) => {
+      if (added) this.app.setActiveGroup((this.app.scene.groups?.length ?? 1) - 1);
+    });
   }
 
   polygonClick(p) {
@@ -441,24 +460,32 @@ export class Editor {
     this.draw();
   }
 
-  /** Deletes the selected item (Delete/Backspace). */
-  deleteSelection() {
+  /** Deletes the selected item (Delete/Backspace), once a pick in progress has been answered. */
+  async deleteSelection() {
+    await this.picking;
     const item = this.app.selection;
     if (!item) return;
     if (this.drag?.pointerId === KEYBOARD) this.drag = null;
     this.edit({ op: 'delete', item });
   }
 
-  /** One undoable `edit`; errors show in the banner and leave the scene unchanged. */
+  /**
+   * One undoable `edit`; errors show in the banner and leave the scene unchanged. Resolves to
+   * whether it was applied (the simulation worker answers it); `editDone` is the last one's.
+   */
   edit(op, options = {}) {
     // The teacher's link may refuse it (lock.js says why in the hint line).
     const allowed = this.lock.permit(op);
     if (!allowed) {
       this.lastEdit = { ok: false };
-      return false;
+      this.editDone = Promise.resolve(false);
+      return this.editDone;
     }
-    this.lastEdit = this.app.change((sim) => sim.edit(JSON.stringify(allowed)), options);
-    return this.lastEdit.ok;
+    this.editDone = Promise.resolve(this.app.change((sim) => sim.edit(JSON.stringify(allowed)), options)).then((result) => {
+      this.lastEdit = result;
+      return result.ok;
+    });
+    return this.editDone;
   }
 
   /** Redraws the rubber-band previews. */

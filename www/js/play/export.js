@@ -71,7 +71,7 @@ export function setupExport(app, canvas) {
   });
 
   for (const button of dialog.querySelectorAll('[data-export]')) {
-    button.addEventListener('click', () => {
+    button.addEventListener('click', async () => {
       const kind = button.dataset.export;
       const stem = fileStem(app.scene);
       if (kind === 'png') {
@@ -88,7 +88,8 @@ export function setupExport(app, canvas) {
         return;
       }
       const spec = PATH_EXPORTS[kind];
-      const result = app.guard((sim) => spec.make(sim, options()));
+      // Made by the simulation worker (it holds the recording).
+      const result = await app.guard((sim) => spec.make(sim, options()));
       if (!result.ok) {
         status.textContent = t('export.not_exported', { reason: messageOf(result.error) });
         return;

@@ -99,14 +99,14 @@ export function setupInspector(app) {
     }
   };
 
-  const inspect = (id) => {
-    app.guard((sim) => sim.inspect(id));
+  const inspect = async (id) => {
+    await app.guard((sim) => sim.inspect(id));
     app.dirty = true;
     refresh();
   };
-  app.addEventListener('canvas-click', (event) => {
+  app.addEventListener('canvas-click', async (event) => {
     const { x, y, tolerance } = event.detail;
-    const picked = app.guard((sim) => sim.agent_at(x, y, tolerance));
+    const picked = await app.guard((sim) => sim.agent_at(x, y, tolerance));
     if (picked.ok) inspect(picked.value);
   });
   app.addEventListener('inspection', refresh);

@@ -8,9 +8,10 @@ import { setupControls } from './controls.js';
 import { setupDescription } from '../core/describe.js';
 import { Editor } from './editor.js';
 import { bootPage } from '../core/boot.js';
-import { isPanic, messageOf, showMessage } from '../core/errors.js';
+import { messageOf, showMessage } from '../core/errors.js';
 import { setupHistoryButtons } from './history.js';
-import { startLoop } from '../core/loop.js';
+import { startRemoteLoop } from '../core/remote-loop.js';
+import { RemoteSim } from '../core/sim-proxy.js';
 import { setupMetrics } from './metrics.js';
 import { setupCapacityNotice } from './capacity-notice.js';
 import { setupInspector } from './inspector.js';
@@ -26,7 +27,7 @@ import { measure, setupView } from '../core/view.js';
 import { prefersReducedMotion } from '../core/motion.js';
 import { t, tOr } from '../core/i18n.js';
 
-bootPage(t('boot.what_play'), ({ module, wasm }) => {
+bootPage(t('boot.what_play'), async ({ module, wasm }) => {
   const canvas = document.getElementById('scene-canvas');
   const overlay = document.getElementById('overlay-canvas');
   const { width, height } = measure(canvas);
@@ -36,20 +37,18 @@ bootPage(t('boot.what_play'), ({ module, wasm }) => {
   overlay.height = height;
 
   const presets = JSON.parse(module.presets_json());
-  const sim = new module.Sim(module.preset_scene_json(presets[0].name), width, height);
+  // The simulation runs in a worker (core/sim-worker.js): a link that steps for seconds never
+  // blocks this page. The link's scene is loaded there too (a big one takes seconds to load).
+  const remote = new RemoteSim();
+  const { linkError: linkRefusal } = await remote.start({
+    sceneText: module.preset_scene_json(presets[0].name),
+    linked: sceneFromLocation(),
+    width,
+    height,
+  });
+  const linkError = linkRefusal === null ? null : messageOf(linkRefusal);
 
-  const linked = sceneFromLocation();
-  let linkError = null;
-  if (linked !== null) {
-    try {
-      sim.load(linked);
-    } catch (error) {
-      if (isPanic(error)) throw error;
-      linkError = messageOf(error);
-    }
-  }
-
-  const app = new App(wasm, module, sim);
+  const app = new App(wasm, module, remote);
   // A reader who asked for less motion starts paused (Play plays).
   if (prefersReducedMotion()) app.playing = false;
   app.watchPanics();
@@ -78,7 +77,7 @@ bootPage(t('boot.what_play'), ({ module, wasm }) => {
   }), { id: 'scene-description' });
   // Last: the teacher's link hides and locks what the modules above built.
   setupLock(app, editor);
-  startLoop(app, canvas, onFrame);
+  startRemoteLoop(app, remote, canvas, onFrame);
   document.getElementById('loading').hidden = true;
   if (linkError !== null) {
     const name = tOr(`preset.${presets[0].name}`, presets[0].name);

@@ -44,11 +44,12 @@ export class Panel {
       const name = this.plannerSelect.value;
       // A new planner restarts the run from the seed, as any other group edit does: agents that
       // had already arrived would otherwise show nothing of it until Reset.
-      const result = this.app.change((sim) => {
+      Promise.resolve(this.app.change((sim) => {
         sim.set_group_planner(index, name);
         sim.reset();
-      }, { clearSelection: false });
-      if (result.ok) this.app.dispatchEvent(new Event('stepped'));
+      }, { clearSelection: false })).then((result) => {
+        if (result.ok) this.app.dispatchEvent(new Event('stepped'));
+      });
     });
     this.defaults.addEventListener('click', () => this.resetParams());
     app.addEventListener('scene', () => this.render());
@@ -104,8 +105,9 @@ export class Panel {
     const group = this.group();
     if (!group) return;
     const op = { op: 'set_group', index, group: { ...group, ...patch } };
-    const result = this.app.change((sim) => sim.edit(JSON.stringify(op)), { clearSelection: false });
-    if (!result.ok) this.fillValues();
+    Promise.resolve(this.app.change((sim) => sim.edit(JSON.stringify(op)), { clearSelection: false })).then((result) => {
+      if (!result.ok) this.fillValues();
+    });
   }
 
   buildGroupForm() {
@@ -187,18 +189,21 @@ export class Panel {
   setParam(spec, value, endOfGesture) {
     const index = this.app.activeGroup;
     if (this.pendingUndo === null) this.pendingUndo = this.app.sim.scene_json();
-    const result = this.app.change((sim) => sim.set_group_param(index, spec.key, JSON.stringify(value)), {
+    const pending = this.app.change((sim) => sim.set_group_param(index, spec.key, JSON.stringify(value)), {
       record: false,
       clearSelection: false,
     });
-    if (endOfGesture || !result.ok) {
-      if (result.ok && this.pendingUndo !== this.app.sim.scene_json()) {
-        this.app.history.record(this.pendingUndo);
-        this.app.dispatchEvent(new Event('history'));
+    // The simulation worker answers in order: the gesture's end sees every value it sent applied.
+    Promise.resolve(pending).then((result) => {
+      if (endOfGesture || !result.ok) {
+        if (result.ok && this.pendingUndo !== null && this.pendingUndo !== this.app.sim.scene_json()) {
+          this.app.history.record(this.pendingUndo);
+          this.app.dispatchEvent(new Event('history'));
+        }
+        this.pendingUndo = null;
       }
-      this.pendingUndo = null;
-    }
-    this.showParam(spec.key);
+      this.showParam(spec.key);
+    });
   }
 
   /** Puts every parameter of the active group back to its table default (one undo step). */

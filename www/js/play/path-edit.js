@@ -31,26 +31,58 @@ export class PathEditor {
     return clientToScene(this.app, this.canvas, e.clientX, e.clientY);
   }
 
-  /** The handle under the pointer: `{ group, index }` or null. */
-  pick(e) {
+  /** Whether the scene draws waypoint handles (an IGSA group's path): only then are picks asked. */
+  hasHandles() {
+    return (this.app.scene.groups ?? []).some((g) => g.planner?.kind === 'igsa');
+  }
+
+  /** The handle under the pointer: a Promise of `{ group, index }` or null. */
+  async pick(e) {
     if (this.editor.tool !== 'select' || this.app.crashed || !this.editor.lock.movable({ kind: 'waypoint' })) return null;
     const [x, y] = this.point(e);
     const tolerance = HANDLE_TOLERANCE_CSS * sceneUnitsPerCssPixel(this.app, this.canvas);
-    const result = this.app.guard((sim) => JSON.parse(sim.pick_waypoint(x, y, tolerance)));
-    return result.ok ? result.value : null;
+    const result = await this.app.guard((sim) => sim.pick_waypoint(x, y, tolerance));
+    return result.ok ? JSON.parse(result.value) : null;
   }
 
+  /**
+   * The simulation worker answers the pick, so the gesture is held meanwhile: a miss hands the
+   * pointer-down (and a pointer-up that came in the meantime) to the editor's own tools.
+   */
   pointerDown(e) {
     if (e.pointerType === 'mouse' && e.button !== 0) return;
-    const hit = this.pick(e);
-    if (!hit) return;
-    const path = this.app.guard((sim) => JSON.parse(sim.group_path_json(hit.group)));
-    if (!path.ok || !path.value) return;
+    if (this.editor.tool !== 'select' || !this.hasHandles()) return;
     e.preventDefault();
     e.stopImmediatePropagation();
-    this.overlay.setPointerCapture(e.pointerId);
-    this.drag = { pointerId: e.pointerId, group: hit.group, index: hit.index, points: path.value.points };
+    const held = { down: e, up: null };
+    this.held = held;
+    this.pickHandle(e).then((taken) => {
+      if (this.held !== held) return;
+      this.held = null;
+      if (taken) {
+        if (held.up) this.pointerUp(held.up);
+        return;
+      }
+      this.editor.pointerDown(held.down);
+      if (held.up) this.editor.pointerUp(held.up);
+    });
+  }
+
+  /** Starts a waypoint drag when `e` is on a handle; resolves to whether it did. */
+  async pickHandle(e) {
+    const hit = await this.pick(e);
+    if (!hit) return false;
+    const path = await this.app.guard((sim) => sim.group_path_json(hit.group));
+    const value = path.ok ? JSON.parse(path.value) : null;
+    if (!value) return false;
+    try {
+      this.overlay.setPointerCapture(e.pointerId);
+    } catch {
+      // The pointer was released while the pick was answered: the drag ends at once.
+    }
+    this.drag = { pointerId: e.pointerId, group: hit.group, index: hit.index, points: value.points };
     this.app.setActiveGroup(hit.group);
+    return true;
   }
 
   pointerMove(e) {
@@ -61,6 +93,11 @@ export class PathEditor {
   }
 
   pointerUp(e) {
+    if (this.held && this.held.down.pointerId === e.pointerId) {
+      this.held.up = e;
+      e.stopImmediatePropagation();
+      return;
+    }
     if (!this.drag || e.pointerId !== this.drag.pointerId) return;
     e.stopImmediatePropagation();
     const drag = this.drag;
@@ -73,23 +110,22 @@ export class PathEditor {
   }
 
   /** Double-click on a handle: forget the edits and plan the path again. */
-  replan(e) {
-    const hit = this.pick(e);
-    if (!hit) return;
-    e.preventDefault();
-    e.stopImmediatePropagation();
-    this.apply(hit.group, []);
+  async replan(e) {
+    if (!this.hasHandles()) return;
+    const hit = await this.pick(e);
+    if (hit) this.apply(hit.group, []);
   }
 
   /** Sends the waypoints (one undo step) and warns when the path crosses an obstacle. */
-  apply(group, waypoints) {
-    const result = this.app.change((sim) => JSON.parse(sim.set_group_waypoints(group, JSON.stringify(waypoints))), {
+  async apply(group, waypoints) {
+    const result = await this.app.change((sim) => sim.set_group_waypoints(group, JSON.stringify(waypoints)), {
       clearSelection: false,
     });
     this.editor.draw();
     if (!result.ok) return;
     // A path planned again (no waypoints) is null until the frame loop has planned it.
-    const crossing = (result.value?.crossing ?? []).map((c, i) => (c ? i + 1 : 0)).filter((i) => i > 0);
+    const checked = JSON.parse(result.value);
+    const crossing = (checked?.crossing ?? []).map((c, i) => (c ? i + 1 : 0)).filter((i) => i > 0);
     if (crossing.length) {
       showMessage(t('path.crossing', { group: group + 1, segments: crossing.join(', ') }));
     }

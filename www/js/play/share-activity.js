@@ -208,14 +208,15 @@ export function setupShareActivity(app) {
     return activity;
   };
 
-  const set = (json, done) => {
-    const result = app.change((sim) => sim.set_activity(json), { clearSelection: false });
+  /** Resolves to whether the simulation worker took the activity. */
+  const set = async (json, done) => {
+    const result = await app.change((sim) => sim.set_activity(json), { clearSelection: false });
     status.textContent = result.ok ? done : t('activity.form.refused', { reason: messageOf(result.error) });
     return result.ok;
   };
   apply.addEventListener('click', () => set(JSON.stringify(read()), t('activity.form.applied')));
-  clear.addEventListener('click', () => {
-    if (set('', t('activity.form.cleared'))) fill();
+  clear.addEventListener('click', async () => {
+    if (await set('', t('activity.form.cleared'))) fill();
   });
   open.addEventListener('click', () => {
     fill();

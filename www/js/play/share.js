@@ -77,7 +77,7 @@ async function loadFile(app, file) {
     showMessage(t('share.file_unreadable', { name: file.name, reason: messageOf(error) }));
     return false;
   }
-  const result = app.load(text);
+  const result = await app.load(text);
   if (!result.ok) showMessage(t('share.file_refused', { name: file.name, reason: messageOf(result.error) }));
   return result.ok;
 }

@@ -24,11 +24,11 @@ export function timelineInfo(app) {
 }
 
 /**
- * Jumps to `step` (clamped to the recorded history) and tells the UI. Returns the number of
- * steps re-simulated. `rethrow` as in `app.guard`.
+ * Jumps to `step` (clamped to the recorded history) and tells the UI. Resolves to the guarded
+ * result (the number of steps re-simulated). `rethrow` as in `app.guard`.
  */
-export function seekTo(app, step, options = {}) {
-  const result = app.guard((sim) => sim.seek(step), options);
+export async function seekTo(app, step, options = {}) {
+  const result = await app.guard((sim) => sim.seek(step), options);
   if (!result.ok) return result;
   app.dirty = true;
   // An edit made during the run (an obstacle, a parameter) is part of the history: the scene

@@ -86,12 +86,11 @@ function showBest(best) {
 }
 
 function showPreview(sceneString, label, vars) {
-  try {
-    preview.show(sceneString, state.frames || undefined);
-    setText($('preview-label'), label, vars);
-  } catch (error) {
-    showMessage(t('tune.preview_failed', { reason: messageOf(error) }));
-  }
+  // The preview's simulation runs in a worker: a refused scene is answered later.
+  preview
+    .show(sceneString, state.frames || undefined)
+    .then(() => setText($('preview-label'), label, vars))
+    .catch((error) => showMessage(t('tune.preview_failed', { reason: messageOf(error) })));
 }
 
 function fail(message, panic) {

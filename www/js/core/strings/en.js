@@ -1376,4 +1376,8 @@ export default {
   "reason.kind.array_of": "an array of length {n}",
   "reason.invalid_length": "invalid length {n}, expected {type}",
   "error.no_speed_param": "{planner} has no speed parameter to set",
+  // — the simulation worker (core/remote-loop.js, core/sim-proxy.js) —
+  'slow.scene': 'slow scene: {rate} steps/s',
+  'slow.title': 'Each step of this scene takes long ({ms} ms for the last one); it runs on in the background and the page stays responsive.',
+  'worker.restarted': 'A step was still running {seconds} s after Pause: the simulation was restarted from the scene and replays the run to step {steps}.',
 };

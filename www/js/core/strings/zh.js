@@ -1376,4 +1376,8 @@ export default {
   "reason.kind.array_of": "长度为 {n} 的数组",
   "reason.invalid_length": "长度 {n} 无效，应为 {type}",
   "error.no_speed_param": "{planner} 没有可设置的速度参数",
+  // — 模拟线程（core/remote-loop.js、core/sim-proxy.js）—
+  'slow.scene': '场景较慢：每秒 {rate} 步',
+  'slow.title': '此场景每一步都很耗时（上一步 {ms} 毫秒）；它在后台继续运行，页面保持响应。',
+  'worker.restarted': '暂停 {seconds} 秒后仍有一步在运行：模拟已从场景重新启动，正在重放到第 {steps} 步。',
 };
