@@ -8,7 +8,7 @@
 
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { assertNoUnexpectedErrors, bannerText, frames, loadPaused, openPage, screenshot, settled } from './helpers.mjs';
+import { assertNoUnexpectedErrors, bannerText, frames, loadPaused, openPage, openPath, screenshot, settled } from './helpers.mjs';
 
 /** The notice's text, or null while it is hidden. */
 async function noticeText(page) {
@@ -96,6 +96,47 @@ test('a goal too small for its group is named in a notice that goes when the goa
     roomy.goals[0].radius = 60;
     await loadPaused(page, JSON.stringify(roomy));
     assert.equal(await noticeText(page), null, 'a goal that holds its group: no notice');
+    assertNoUnexpectedErrors(errors);
+  } finally {
+    await close();
+  }
+});
+
+test('the <flock-path> element of course notes says the same notice under its canvas', async () => {
+  const ready = () => { const el = document.getElementById('pillars'); return Boolean(el?.sim) && el.steps > 0; };
+  const { page, errors, close } = await openPath('examples/course-notes.html', { ready, viewport: { width: 1000, height: 900 } });
+  const notice = (id) =>
+    page.evaluate((id) => {
+      const box = document.getElementById(id).shadowRoot.querySelector('.notice');
+      return box && !box.hidden ? box.textContent : null;
+    }, id);
+  try {
+    assert.equal(await notice('pillars'), null, 'pillars fits its goal: no notice in the element');
+    // A second element whose goal holds about 13 of its 60 bodies.
+    const expected = await page.evaluate(async () => {
+      const scene = document.getElementById('pillars').scene();
+      scene.goals[0].radius = 20;
+      const el = document.createElement('flock-path');
+      el.id = 'small';
+      el.setAttribute('scene', JSON.stringify(scene));
+      document.body.append(el);
+      await el.settled();
+      return { count: scene.groups[0].count };
+    });
+    await page.waitForFunction(() => {
+      const box = document.getElementById('small')?.shadowRoot?.querySelector('.notice');
+      return box && !box.hidden;
+    });
+    const text = await notice('small');
+    assert.match(text, /^Goal 1 holds about \d+ bodies of radius \d+ px; group .+ has (\d+): (\d+) will wait outside\.$/, text);
+    const [, has, wait] = text.match(/has (\d+): (\d+) will wait/);
+    assert.equal(Number(has), expected.count, "the group's size");
+    assert.ok(Number(wait) > 0 && Number(wait) < expected.count, text);
+    // The same words as the playground's notice for the same scene (one wording, core/capacity-words.js).
+    const held = Number(text.match(/about (\d+) bodies/)[1]);
+    assert.equal(Number(wait), expected.count - held, text);
+    await page.evaluate(() => document.getElementById('small').scrollIntoView({ block: 'end' }));
+    await screenshot(page, 'capacity-notice-element');
     assertNoUnexpectedErrors(errors);
   } finally {
     await close();

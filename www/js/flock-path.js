@@ -33,6 +33,7 @@
 
 import { mountActivityCard } from './core/activity-card.js';
 import { loadWasm } from './core/boot.js';
+import { noticeText } from './core/capacity-words.js';
 import { readClassroom } from './core/classroom.js';
 import { messageOf } from './core/errors.js';
 import { startLoop } from './core/loop.js';
@@ -80,6 +81,8 @@ button.play { background: #2f6fdf; border-color: #2f6fdf; color: #fff; min-width
   border-left: 5px solid #b3261e; border-radius: 6px; color: #17202c; }
 .message[hidden] { display: none; }
 .message.fatal { position: relative; left: 0; right: 0; top: 0; margin: 8px; cursor: auto; }
+.notice { margin: 0; padding: 4px 8px; border-top: 1px solid #d5dbe3; background: #fff8e1; color: #17202c; font-size: 13px; }
+.notice[hidden] { display: none; }
 .loading { position: absolute; inset: 0; display: flex; align-items: center; justify-content: center; color: #5a6676; }
 .loading[hidden] { display: none; }
 ::slotted(a) { color: #2f6fdf; }
@@ -137,7 +140,10 @@ export class FlockPathElement extends HTMLElement {
       this.refreshBar();
       this.shownSteps = -1;
       this.refreshSteps();
+      this.refreshNotice();
     };
+    /** The scene's capacity notices (goals too small for their crowd), as the core gave them. */
+    this.notices = [];
     /** The simulation behind the core's guarded door (a SimHost), once booted. */
     this.host = null;
     this.module = null;
@@ -309,6 +315,12 @@ export class FlockPathElement extends HTMLElement {
     slot.className = 'activity';
     slot.setAttribute('part', 'activity');
     this.$('.bar').before(slot);
+    // The scene check's notice that a goal cannot hold its crowd, under the activity card.
+    const notice = Object.assign(document.createElement('p'), { className: 'notice', hidden: true });
+    notice.setAttribute('part', 'notice');
+    notice.setAttribute('role', 'status');
+    this.$('.bar').before(notice);
+    this.refreshNotice();
     const read = (fn) => (this.host && !this.crashed ? JSON.parse(this.call(fn)) : null);
     this.activity = mountActivityCard(this.host, slot, {
       readActivity: () => read((sim) => sim.activity_json()),
@@ -400,6 +412,20 @@ export class FlockPathElement extends HTMLElement {
     this.activity?.refresh();
     this.refreshBar();
     this.description?.update();
+    try {
+      this.notices = JSON.parse(this.call((sim) => sim.capacity_notices_json()));
+    } catch {
+      this.notices = [];
+    }
+    this.refreshNotice();
+  }
+
+  /** Says, under the canvas, which goals cannot hold the crowd heading for them (none: hidden). */
+  refreshNotice() {
+    const box = this.$('.notice');
+    if (!box) return;
+    box.textContent = this.notices.map(noticeText).join(' ');
+    box.hidden = this.notices.length === 0;
   }
 
   /**
