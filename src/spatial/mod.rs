@@ -967,7 +967,7 @@ mod tests {
     fn agents_left_out_are_met_by_no_query_pair_or_block() {
         let (w, h, cell) = (300.0, 200.0, 20.0);
         let points = scattered_points(5, 800, (w, h), cell);
-        let present = |i: usize| i % 3 != 0;
+        let present = |i: usize| !i.is_multiple_of(3);
         let mut grid = SpatialGrid::new(w, h, cell, points.len());
         grid.rebuild_present(&points, &[], present);
         // The same as a grid of the present agents alone (ids mapped back).
