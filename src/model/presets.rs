@@ -125,7 +125,7 @@ pub const ALL: &[Preset] = &[
     },
     Preset {
         name: "pso-hills",
-        description: "PSO (§5.6): watch 300 people cross to the wide target on the right, walking over the lowest hill and going round the highest one, never climbing it.",
+        description: "PSO (§5.6): watch 300 people cross to the wide target on the right, walking over the lowest hill and going round the highest one, never climbing it; a few are held up at the hills (some flagged stuck).",
         build: pso_hills,
     },
     Preset {

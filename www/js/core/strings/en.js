@@ -968,7 +968,7 @@ export default {
   "preset.boids-predator": "boids-predator",
   "preset.boids-predator.description": "Boids predator/prey: watch the green flock graze in its ring, then scatter and close ranks again whenever one of the two red predators comes near.",
   "preset.pso-hills": "pso-hills",
-  "preset.pso-hills.description": "PSO (§5.6): watch 300 people cross to the wide target on the right, walking over the lowest hill and going round the highest one, never climbing it.",
+  "preset.pso-hills.description": "PSO (§5.6): watch 300 people cross to the wide target on the right, walking over the lowest hill and going round the highest one, never climbing it; a few are held up at the hills (some flagged stuck).",
   "preset.igsa-path-1": "igsa-path-1",
   "preset.igsa-path-1.description": "IGSA group path (Liu & Liu, Figs. 8–9): watch the dashed planned path thread between four pillars and 40 agents follow it to the goal; drag a waypoint to change it.",
   "preset.igsa-path-2": "igsa-path-2",

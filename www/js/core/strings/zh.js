@@ -968,7 +968,7 @@ export default {
   "preset.boids-predator": "Boids 捕食者与猎物",
   "preset.boids-predator.description": "Boids 捕食者/猎物：看绿色鸟群在目标圈里吃草，每当两个红色捕食者之一靠近时就四散逃开，随后又收紧队形。",
   "preset.pso-hills": "PSO 山丘",
-  "preset.pso-hills.description": "PSO（§5.6）：看 300 人走向右侧宽大的目标，从最低的山丘上直接走过，绕开最高的山丘而从不攀登。",
+  "preset.pso-hills.description": "PSO（§5.6）：看 300 人走向右侧宽大的目标，从最低的山丘上直接走过，绕开最高的山丘而从不攀登；有几人被山丘拦住（有的标为卡住）。",
   "preset.igsa-path-1": "IGSA 路径 1",
   "preset.igsa-path-1.description": "IGSA 群体路径（Liu & Liu，图 8–9）：看虚线规划路径从四根立柱之间穿过，40 个个体沿它走到目标；拖动路径点可以改变它。",
   "preset.igsa-path-2": "IGSA 路径 2",
