@@ -762,13 +762,7 @@ impl World {
                     if d >= contact {
                         continue;
                     }
-                    let away = if d > 0.0 {
-                        (pi - pj) / d
-                    } else if i < j {
-                        Vec2::NEG_X
-                    } else {
-                        Vec2::X
-                    };
+                    let away = away_from(pi, pj, d, i, j);
                     let overlap = contact - d + SHOULDER_MARGIN;
                     // Wedged for long, the two are parted into bodies at rest as well: the
                     // next step pushes whoever that leaves overlapping one out of it (or on to
@@ -1114,13 +1108,7 @@ impl World {
             let d = p.distance(q);
             if d < contact {
                 // Already overlapping: step out of it; moving closer is not allowed.
-                let away = if d > 0.0 {
-                    (p - q) / d
-                } else if i < j {
-                    Vec2::NEG_X
-                } else {
-                    Vec2::X
-                };
+                let away = away_from(p, q, d, i, j);
                 apart += away * (contact - d) * 0.5;
                 held |= wanted.dot(q - p) > 0.0;
                 return;
@@ -1487,4 +1475,16 @@ fn ring_directions(ring: u32) -> &'static [Vec2] {
             .collect()
     });
     table.get(ring as usize).map_or(&[], Vec::as_slice)
+}
+
+/// The unit direction from `q` (agent `j`) to `p` (agent `i`), `d` apart: agents on the same
+/// point part along x, the lower id to the left, so the two choose opposite ways.
+fn away_from(p: Vec2, q: Vec2, d: f32, i: usize, j: usize) -> Vec2 {
+    if d > 0.0 {
+        (p - q) / d
+    } else if i < j {
+        Vec2::NEG_X
+    } else {
+        Vec2::X
+    }
 }
