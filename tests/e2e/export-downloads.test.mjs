@@ -95,7 +95,11 @@ test('exports download real files and scenes load from files', async () => {
       return dt;
     });
     await page.dispatchEvent('#stage', 'drop', { dataTransfer: bad });
-    await page.waitForFunction(() => !document.getElementById('banner').hidden);
+    // The banner may still say the refused export above: wait for this file's message (the
+    // worker answers the load a moment later).
+    await page.waitForFunction(
+      () => !document.getElementById('banner').hidden && document.getElementById('banner-text').textContent.includes('broken.json'),
+    );
     assert.match(await page.textContent('#banner-text'), /The file broken\.json was not loaded: width is "wide"; allowed: a number in 10…20000 px/);
     assert.equal((await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.scene()))).name, 'dropped on the canvas');
 
