@@ -14,6 +14,22 @@ async function changedPixels(page, a, b) {
   }, [a, b]);
 }
 
+/**
+ * Snapshots the canvas as `name` once its change from snapshot `base` satisfies `enough(n)`
+ * (the worker draws a toggled overlay a frame or more after the click), or after 60 frames;
+ * returns the last count.
+ */
+async function snapshotWhen(page, name, base, enough) {
+  let n = 0;
+  for (let tries = 0; tries < 30; tries += 1) {
+    await frames(page, 2);
+    await snapshotCanvas(page, name);
+    n = await changedPixels(page, base, name);
+    if (enough(n)) break;
+  }
+  return n;
+}
+
 test('overlay toggles change the pixels; stuck agents are counted', async () => {
   const { page, errors, close } = await openPage();
   try {
@@ -29,22 +45,17 @@ test('overlay toggles change the pixels; stuck agents are counted', async () => 
     await snapshotCanvas(page, 'plain');
 
     await page.check('#overlay-landscape');
-    await frames(page, 2);
-    await snapshotCanvas(page, 'landscape');
-    const heat = await changedPixels(page, 'plain', 'landscape');
+    const heat = await snapshotWhen(page, 'landscape', 'plain', (n) => n > 5000);
     assert.ok(heat > 5000, `the heat map changed ${heat} px`);
     await screenshot(page, 'overlay-landscape');
     await page.uncheck('#overlay-landscape');
 
     await page.check('#overlay-fireflies');
-    await frames(page, 2);
-    await snapshotCanvas(page, 'fireflies');
-    const feelers = await changedPixels(page, 'plain', 'fireflies');
+    const feelers = await snapshotWhen(page, 'fireflies', 'plain', (n) => n > 300);
     assert.ok(feelers > 300, `feelers and brightness changed ${feelers} px`);
     await page.uncheck('#overlay-fireflies');
-    await frames(page, 2);
-    await snapshotCanvas(page, 'off-again');
-    assert.equal(await changedPixels(page, 'plain', 'off-again'), 0, 'switching off restores the frame');
+    const left = await snapshotWhen(page, 'off-again', 'plain', (n) => n === 0);
+    assert.equal(left, 0, 'switching off restores the frame');
 
     await page.evaluate(() => window.flockpath.step(840));
     await frames(page, 2);
@@ -53,9 +64,8 @@ test('overlay toggles change the pixels; stuck agents are counted', async () => 
     assert.equal(await page.textContent('#stuck-count'), `${stuck} agents stuck`);
     await snapshotCanvas(page, 'rings');
     await page.uncheck('#overlay-stuck');
-    await frames(page, 2);
-    await snapshotCanvas(page, 'no-rings');
-    assert.ok((await changedPixels(page, 'rings', 'no-rings')) > 100, 'rings mark the stuck agents');
+    const rings = await snapshotWhen(page, 'no-rings', 'rings', (n) => n > 100);
+    assert.ok(rings > 100, `rings mark the stuck agents (${rings} px)`);
     await page.check('#overlay-stuck');
     await frames(page, 2);
     await screenshot(page, 'overlay-stuck');
