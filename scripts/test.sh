@@ -5,7 +5,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 export PATH="$HOME/.cargo/bin:$PATH"
 
-section() { printf '\n=== %s ===\n' "$*"; }
+# Each section says when it starts (seconds since the run began), so a slow phase shows in the log.
+section() { printf '\n=== %s (at %d s) ===\n' "$*" "$SECONDS"; }
 
 section "setup"
 bash scripts/setup.sh
@@ -24,3 +25,5 @@ bash scripts/test-wasm.sh
 
 section "end-to-end tests (headless Chromium)"
 bash scripts/test-e2e.sh
+
+section "all tests passed"
