@@ -21,10 +21,16 @@ const SETTLE_MS = 20_000;
 /** The most agents a scene may hold in all (`MAX_AGENTS`): the count that probes a planner's limit. */
 const ALL_AGENTS = 200_000;
 /**
- * Room per agent (px) in the planner-limit scenes: 20 px apart, a fill of 0.16 of the density
- * limit, so a parking planner is charged its open-crowd figure, not the jam's.
+ * Room per agent (px) in the planner-limit scenes: 10 px apart, bodies of radius 4 px fill 0.64
+ * of the density limit (a dense crowd: many neighbours within each agent's reach).
  */
-const SPACING = 20;
+const SPACING = 10;
+/**
+ * How far the goal lies beyond the crowd's corner (px, each axis): beyond the parking pass's
+ * reach, so a crowd of a parking planner (Boids, forces) is charged its crowd figure, not the
+ * jam's (`can_jam` in src/sim/cost.rs).
+ */
+const GOAL_BEYOND = 440;
 
 /** The planners' parameter tables (`planners_json()` of the page's wasm module). */
 let planners = [];
@@ -53,15 +59,19 @@ function largest(kind) {
 
 const group = (overrides) => ({ ...simpleScene().groups[0], ...overrides });
 
-/** `count` agents of `kind` at its largest parameters, spread over a world with room for `room` of them. */
+/**
+ * `count` agents of `kind` at its largest parameters packed SPACING px apart in a square that
+ * would hold `room` of them, heading for a goal GOAL_BEYOND px past its far corner.
+ */
 function plannerScene(kind, count, room) {
-  const side = Math.min(20_000, Math.ceil(Math.sqrt(room) * SPACING));
+  const square = Math.ceil(Math.sqrt(room) * SPACING);
+  const side = square + GOAL_BEYOND + 160;
   return simpleScene({
     name: `limit-${kind}`,
     width: side,
     height: side,
-    goals: [{ position: [side / 2, side / 2], radius: 100 }],
-    groups: [group({ count, spawn: { min: [10, 10], max: [side - 10, side - 10] }, planner: { kind, params: largest(kind).params } })],
+    goals: [{ position: [side - 150, side - 150], radius: 100 }],
+    groups: [group({ count, spawn: { min: [10, 10], max: [10 + square, 10 + square] }, planner: { kind, params: largest(kind).params } })],
   });
 }
 
@@ -210,7 +220,7 @@ const settle = (page, api) =>
  * others 300 ms after Play. Returns the answer times (ms) and the readout's step time (ms, or null
  * when the scene is not slow).
  */
-async function pauseWhileStepping(page, api) {
+async function pauseWhileStepping(page, api, { planning = false } = {}) {
   const times = [];
   let stepMs = null;
   for (let round = 0; round < ROUNDS; round += 1) {
@@ -221,6 +231,7 @@ async function pauseWhileStepping(page, api) {
     } else {
       await page.waitForTimeout(300);
     }
+    if (planning) assert.ok((await page.evaluate(() => window.flockpath.planningProgress())) < 1, 'IGSA is still planning');
     times.push(await timedPause(page, api));
     assert.equal(await page.getAttribute('#play', 'aria-pressed'), 'false', 'the button shows Play again');
     assert.equal(await page.evaluate((name) => window[name].isPlaying(), api), false, 'the page is paused');
@@ -237,7 +248,7 @@ function report(name, { times, stepMs }) {
 }
 
 /** Loads `scene` in a fresh playground and checks Pause while it steps, or its refusal. */
-async function playgroundCase(name, scene) {
+async function playgroundCase(name, scene, options = {}) {
   const { page, errors, close } = await openPage();
   try {
     const refusal = await page.evaluate(async (s) => {
@@ -255,7 +266,7 @@ async function playgroundCase(name, scene) {
       return;
     }
     assert.equal(await page.evaluate(() => window.flockpath.scene().name), scene.name, 'the scene is loaded');
-    report(name, await pauseWhileStepping(page, 'flockpath'));
+    report(name, await pauseWhileStepping(page, 'flockpath', options));
   } finally {
     await close();
   }
@@ -292,28 +303,21 @@ async function plannerLimit(kind) {
 for (const kind of ['boids', 'pso', 'firefly', 'forces', 'igsa', 'orca', 'social_force']) {
   test(`heavy link: ${kind} at its agent limit with its largest parameters answers Pause`, { timeout: 180_000 }, async () => {
     const limit = await plannerLimit(kind);
-    await playgroundCase(`${kind} × ${limit}`, plannerScene(kind, limit, ALL_AGENTS));
+    await playgroundCase(`${kind} × ${limit}`, plannerScene(kind, limit, limit));
   });
 }
 
 for (const c of SCENES) {
   test(`heavy link: ${c.name} answers Pause`, { timeout: 180_000 }, async () => {
-    await playgroundCase(c.name, c.scene);
+    await playgroundCase(c.name, c.scene, { planning: c.planning });
   });
 }
 
 test('heavy link: the compare page with four heavy panes answers Pause', { timeout: 180_000 }, async () => {
   // One crowd, four planners each just under its own agent limit (ORCA's 85,714 is the lowest
   // of the four), the three named panes at their largest parameters.
-  const count = 85_000;
-  const side = Math.ceil(Math.sqrt(ALL_AGENTS) * SPACING);
-  const scene = simpleScene({
-    name: 'heavy-compare',
-    width: side,
-    height: side,
-    goals: [{ position: [side / 2, side / 2], radius: 100 }],
-    groups: [group({ count, spawn: { min: [10, 10], max: [side - 10, side - 10] }, planner: { kind: 'orca', params: {} } })],
-  });
+  const scene = { ...plannerScene('orca', 85_000, 85_000), name: 'heavy-compare' };
+  scene.groups[0].planner = { kind: 'orca', params: {} };
   const spec = `1.${['orca', 'boids', 'firefly'].map((k) => `${k}(${largest(k).values})`).join('~')}~scene`;
   const { page, errors, close } = await openPath(`compare.html#s=${encodeURIComponent(JSON.stringify(scene))}&c=${encodeURIComponent(spec)}`, {
     ready: () => window.flockpathCompare !== undefined,
