@@ -120,7 +120,8 @@ const SCENES = [
         height: side,
         obstacles: Array.from({ length: 50 }, (_, k) => frame(c, 150 + 40 * k, 160 + 40 * k, 756, k * 2.4)),
         goals: [{ position: c, radius: 60 }],
-        groups: [group({ count: 1_000, spawn: { min: [10, 10], max: [side - 10, 200] } })],
+        // Spread over the world: most agents stand among the frames, inside their bounding boxes.
+        groups: [group({ count: 1_000, spawn: { min: [10, 10], max: [side - 10, side - 10] } })],
       });
     })(),
   },
@@ -150,6 +151,47 @@ const SCENES = [
             spawn: { min: [side / 2 - 500, side / 2 - 500], max: [side / 2 + 500, side / 2 + 500] },
             planner: { kind: 'orca', params: {} },
           })),
+      });
+    })(),
+  },
+  {
+    name: '10 flow-field agents among 5,000 circles with a moving goal',
+    scene: (() => {
+      // The covering circles: every cell of the goal's flow field tests every circle, and the
+      // goal moves to another cell every step, so the field is rebuilt every step.
+      const side = 1_000;
+      const unit = seeded(5);
+      const free = () => 800 + unit() * 150;
+      return simpleScene({
+        name: 'heavy-moving-goal',
+        width: side,
+        height: side,
+        obstacles: coveringCircles(5_000, side),
+        goals: [{ position: [950, 950], radius: 20, motion: { kind: 'polyline', points: Array.from({ length: 1000 }, () => [free(), free()]), speed: 100 } }],
+        groups: [group({ count: 10, spawn: { min: [900, 900], max: [990, 990] }, planner: { kind: 'orca', params: {} } })],
+      });
+    })(),
+  },
+  {
+    name: '100,000 Boids in four squares 95 px from a 5 px goal',
+    scene: (() => {
+      // Four squares of 25,000 packed 10 px apart, their near corners 95 px from the goal
+      // (beyond the jam reach of 5 + 80 px: not charged as a jam).
+      const square = Math.ceil(Math.sqrt(25_000) * SPACING);
+      const gap = 95;
+      const side = 2 * (square + gap) + 40;
+      const c = side / 2;
+      const at = [[-1, -1], [1, -1], [-1, 1], [1, 1]];
+      return simpleScene({
+        name: 'heavy-four-squares',
+        width: side,
+        height: side,
+        goals: [{ position: [c, c], radius: 5 }],
+        groups: at.map(([sx, sy], k) => {
+          const x = sx < 0 ? c - gap - square : c + gap;
+          const y = sy < 0 ? c - gap - square : c + gap;
+          return group({ name: `square ${k + 1}`, count: 25_000, spawn: { min: [x, y], max: [x + square, y + square] } });
+        }),
       });
     })(),
   },
@@ -300,9 +342,16 @@ async function plannerLimit(kind) {
   }
 }
 
+/** Each planner's limit, probed once. */
+const limits = new Map();
+async function limitOf(kind) {
+  if (!limits.has(kind)) limits.set(kind, await plannerLimit(kind));
+  return limits.get(kind);
+}
+
 for (const kind of ['boids', 'pso', 'firefly', 'forces', 'igsa', 'orca', 'social_force']) {
   test(`heavy link: ${kind} at its agent limit with its largest parameters answers Pause`, { timeout: 180_000 }, async () => {
-    const limit = await plannerLimit(kind);
+    const limit = await limitOf(kind);
     await playgroundCase(`${kind} × ${limit}`, plannerScene(kind, limit, limit));
   });
 }
@@ -312,6 +361,15 @@ for (const c of SCENES) {
     await playgroundCase(c.name, c.scene, { planning: c.planning });
   });
 }
+
+test('heavy link: PSO at its agent limit among 256 hills answers Pause', { timeout: 180_000 }, async () => {
+  const limit = await limitOf('pso');
+  const scene = { ...plannerScene('pso', limit, limit), name: 'heavy-pso-hills' };
+  scene.groups[0].planner = { kind: 'pso', params: {} };
+  const unit = seeded(256);
+  scene.hills = Array.from({ length: 256 }, () => ({ center: [unit() * scene.width, unit() * scene.height], radius: 100 + unit() * 400, height: 50 + unit() * 500 }));
+  await playgroundCase(`pso × ${limit} among 256 hills`, scene);
+});
 
 test('heavy link: the compare page with four heavy panes answers Pause', { timeout: 180_000 }, async () => {
   // One crowd, four planners each just under its own agent limit (ORCA's 85,714 is the lowest
