@@ -3,11 +3,15 @@
 
 /**
  * Clicks Pause with a real pointer (and the page's own listeners) and measures, in the page, from
- * the button's release (the click follows it in the same task) until the button says "not
- * pressed", the page API `window[api]` says paused, and a requestAnimationFrame callback ran
- * after that. `api`: `flockpath` (playground) or `flockpathCompare` (compare page).
+ * the moment the browser took the button's release (the pointerup event's `timeStamp`: a click
+ * that waits behind a busy main thread counts its wait) until the button says "not pressed", the
+ * page API `window[api]` says paused, and a requestAnimationFrame callback ran after that.
+ * `api`: `flockpath` (playground) or `flockpathCompare` (compare page). The pointer goes to the
+ * button's centre, found beforehand, without Playwright's actionability checks (they wait for
+ * the page's main thread, which would hide a blocked page from the measure).
  */
 export async function timedPause(page, api = 'flockpath') {
+  const box = await (await page.$('#play')).boundingBox();
   await page.evaluate((name) => {
     const button = document.getElementById('play');
     window.__pause = null;
@@ -23,14 +27,14 @@ export async function timedPause(page, api = 'flockpath') {
     };
     button.addEventListener(
       'pointerup',
-      () => {
-        down = performance.now();
+      (event) => {
+        down = event.timeStamp;
         requestAnimationFrame(watch);
       },
       { once: true },
     );
   }, api);
-  await page.click('#play');
+  await page.mouse.click(box.x + box.width / 2, box.y + box.height / 2);
   await page.waitForFunction(() => window.__pause !== null, null, { timeout: 10_000 });
   return page.evaluate(() => window.__pause);
 }
