@@ -26,7 +26,7 @@
 //! The step budget was set so that a click waits for at most one step on the page's main
 //! thread. The playground, the compare page, `<flock-path>` and the tune preview now step in a
 //! Web Worker, and `tests/e2e/heavy-pause.test.mjs` shows every heavy link of the issue (steps
-//! of 0.2–7.7 s) answering Pause in 14–71 ms (median of three clicks). So:
+//! of up to 7 s) answering Pause in 20–36 ms (median of three clicks, 2026-11-27). So:
 //!
 //! - No longer protecting the page: [`STEP_BUDGET_NS`] and everything that only feeds the step
 //!   estimate ([`wasm_factor`], [`native_ns_per_agent_step`], [`SMALL_BODY_FIGURES`],
