@@ -20,6 +20,37 @@
 //! IGSA plans its path once per group (and again on edits): population × iterations objective
 //! evaluations, each checking `waypoint_count + 1` segments against the obstacles. The page
 //! plans in slices, so planning never blocks it; this limit keeps the total finite.
+//!
+//! # What these limits still protect now that the simulation runs in a worker (issue 24)
+//!
+//! The step budget was set so that a click waits for at most one step on the page's main
+//! thread. The playground, the compare page, `<flock-path>` and the tune preview now step in a
+//! Web Worker, and `tests/e2e/heavy-pause.test.mjs` shows every heavy link of the issue (steps
+//! of up to 7 s) answering Pause in 20–36 ms (median of three clicks, 2026-11-27). So:
+//!
+//! - No longer protecting the page: [`STEP_BUDGET_NS`] and everything that only feeds the step
+//!   estimate ([`wasm_factor`], [`native_ns_per_agent_step`], [`SMALL_BODY_FIGURES`],
+//!   [`MEASURED_RADII`], [`crowd_radius`], the jam figure with [`can_jam`], [`JAM_FILL`] and
+//!   [`JAM_REACH_DIAMETERS`]). They never bounded memory (that is per agent, bounded by
+//!   `MAX_AGENTS` in `model/scene.rs`) nor the recording (the timeline's byte budget).
+//! - Still depending on them before they can go: `<flock-path>` steps on the main thread where
+//!   no worker can start (`www/js/flock-path.js`), and there this estimate is the only guard;
+//!   a worker restart after an unanswered Pause, and a timeline seek, replay steps in the
+//!   worker, so a scene of seconds per step answers again only after steps × step time (the
+//!   page stays free, the scene does not); `flockpath run` refuses the same scenes as the page;
+//!   `tests/fuzz_codec.rs` and `tests/world_bounds.rs` assert on the budget and
+//!   [`max_agents`].
+//! - [`MAX_PLANNING_SEGMENT_CHECKS`] no longer protects the page either (planning runs in
+//!   slices in the worker), but it still bounds how long a scene waits before its first step:
+//!   the per-group parameter maxima allow 5.4 million segment checks per group and the number
+//!   of groups is bounded only by the scene's size. Its slices are one iteration, not a time,
+//!   so among thousands of obstacles one slice can outlast the worker's 1 s Pause deadline.
+//! - Not covered here, and a memory limit is what is left to add: each group guided by a flow
+//!   field (ORCA and social force by default, Boids with `flow_field: goal`) keeps its own
+//!   field of up to `MAX_CELLS` cells. Natively, 500 one-agent ORCA groups among 20 circles in a
+//!   20,000 px world take 927 MB and 14.9 s to load and step twice (`flockpath run`), for an
+//!   estimated step cost of 1 ms; a few
+//!   thousand such groups exceed wasm32's 4 GiB.
 
 use crate::model::params::{PlannerConfig, PlannerKind};
 use crate::model::scene::{Group, Scene, SceneError};

@@ -9,26 +9,11 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { assertNoUnexpectedErrors, bannerText, openPage, screenshot, simpleScene } from './helpers.mjs';
+import { coveringCircles, timedPause } from './pause-helpers.mjs';
 
 /** Longest a Pause click may take to be answered on the page (ms). */
 const ANSWER_MS = 100;
 const WORLD = 1000;
-
-/**
- * 5,000 circles centred beyond the world's top-left corner, each reaching past its bottom and
- * right edges (its bounding box covers the world) while the bottom-right part stays free.
- */
-function coveringCircles(count) {
-  let state = 2024;
-  const unit = () => {
-    state = (Math.imul(state, 1664525) + 1013904223) >>> 0;
-    return (state >>> 8) / (1 << 24);
-  };
-  return Array.from({ length: count }, () => {
-    const a = 2000 + Math.round(unit() * 1000);
-    return { shape: 'circle', center: [-a, -a], radius: WORLD + a + 1 };
-  });
-}
 
 /**
  * `count` Boids of radius `radius` among the circles (here, under load: 1,000 ~0.4 s a step,
@@ -39,46 +24,13 @@ const heavy = (count, radius = 4) =>
     name: 'heavy-covering-circles',
     width: WORLD,
     height: WORLD,
-    obstacles: coveringCircles(5_000),
+    obstacles: coveringCircles(5_000, WORLD),
     goals: [{ position: [900, 900], radius: 60 }],
     groups: [{ ...simpleScene().groups[0], count, agent_radius: radius, spawn: { min: [600, 600], max: [980, 980] } }],
   });
 const HEAVY = heavy(1_000);
 /** Steps of over a second: a Pause during one waits longer than the worker may take. */
 const HEAVIER = heavy(6_000, 2);
-
-/**
- * Clicks Pause with a real pointer (and the page's own listeners) and measures, in the page, from
- * the button's release (the click follows it in the same task) until the button says "not
- * pressed", the API says paused, and a requestAnimationFrame callback ran after that.
- */
-async function timedPause(page) {
-  await page.evaluate(() => {
-    const button = document.getElementById('play');
-    window.__pause = null;
-    let down = null;
-    const watch = () => {
-      if (button.getAttribute('aria-pressed') === 'false' && !window.flockpath.isPlaying()) {
-        requestAnimationFrame(() => {
-          window.__pause = performance.now() - down;
-        });
-        return;
-      }
-      requestAnimationFrame(watch);
-    };
-    button.addEventListener(
-      'pointerup',
-      () => {
-        down = performance.now();
-        requestAnimationFrame(watch);
-      },
-      { once: true },
-    );
-  });
-  await page.click('#play');
-  await page.waitForFunction(() => window.__pause !== null, null, { timeout: 10_000 });
-  return page.evaluate(() => window.__pause);
-}
 
 test('Pause is answered within 100 ms while a step of seconds runs, and the slow rate shows', { timeout: 300_000 }, async () => {
   const { page, errors, close } = await openPage();

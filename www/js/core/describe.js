@@ -12,8 +12,13 @@ import { language, t } from './i18n.js';
 /** The shortest time between two rewrites of a description (ms): a screen reader keeps up. */
 export const DESCRIBE_EVERY_MS = 4000;
 
+/** The number format of each language, built once: a scene of thousands of groups counts every one. */
+const formats = new Map();
+
 function numbers() {
-  return new Intl.NumberFormat(language() === 'zh' ? 'zh-CN' : 'en-US');
+  const locale = language() === 'zh' ? 'zh-CN' : 'en-US';
+  if (!formats.has(locale)) formats.set(locale, new Intl.NumberFormat(locale));
+  return formats.get(locale);
 }
 
 /** `t(key.one | key.other, { n })` by count (Chinese has one form; both keys exist). */

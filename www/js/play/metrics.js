@@ -50,15 +50,18 @@ function setText(node, text) {
   if (node.textContent !== text) node.textContent = text;
 }
 
+/** Whole numbers with thousands separators; one format for every cell (each toLocaleString builds its own). */
+const WHOLE = new Intl.NumberFormat('en-US');
+
 /**
  * Per-group table columns: [key, heading key, format, optional]; the heading's hover explains the
  * key. An optional column shows only when the groups' metrics have its key.
  */
 const GROUP_COLUMNS = [
   ['arrived_share', 'metrics.col.arrived', (v) => `${Math.round(100 * v)}%`],
-  ['waiting_agents', 'metrics.col.waiting', (v) => v.toLocaleString('en-US'), true],
-  ['collisions_agent_agent', 'metrics.col.collisions', (v) => v.toLocaleString('en-US')],
-  ['penetrations_agent_obstacle', 'metrics.col.penetrations', (v) => v.toLocaleString('en-US')],
+  ['waiting_agents', 'metrics.col.waiting', (v) => WHOLE.format(v), true],
+  ['collisions_agent_agent', 'metrics.col.collisions', (v) => WHOLE.format(v)],
+  ['penetrations_agent_obstacle', 'metrics.col.penetrations', (v) => WHOLE.format(v)],
   ['stuck_agents', 'metrics.col.stuck', (v) => String(v)],
   ['queue_order', 'metrics.col.queue', (v) => (v === null ? '–' : v.toFixed(2))],
   ['fitness', 'metrics.col.gsum', (v) => (v ? v.gsum.toFixed(1) : '–')],
