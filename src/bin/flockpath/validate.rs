@@ -45,7 +45,7 @@ pub struct ValidateArgs {
     #[arg(long, value_name = "DIR")]
     csv_dir: Option<PathBuf>,
     /// Write the T4 corridor's trajectories in PedPy's text format, one file per planner and
-    /// density: DIR/t4-<planner>-rho<density>.txt (x periodic over 0…20 m; a walker that wraps
+    /// density: DIR/t4-<planner>-rho<density>.txt (x periodic over 10…30 m; a walker that wraps
     /// gets a new id)
     #[arg(long, value_name = "DIR")]
     pedpy_dir: Option<PathBuf>,

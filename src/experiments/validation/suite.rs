@@ -8,7 +8,7 @@ use super::record::{record, Recorded};
 use super::report::{Curve, Outcome, Row};
 use super::scenes::{
     bottleneck, counter_flow, demographics, free_walking, head_on, large_room, periodic_corridor, small_room,
-    straight, turned_walk, Corner, AGE_GROUPS, BOTTLENECK,
+    straight, turned_walk, Corner, AGE_GROUPS, BOTTLENECK, PERIODIC_BAND_START,
 };
 use super::units::{config_at_speed, SetupError, BODY_RADIUS_M, FREE_SPEED, PX_PER_METRE};
 use crate::model::codec::scene_to_fragment;
@@ -217,7 +217,7 @@ fn world(scene: &Scene, starts: Option<Vec<Vec2>>) -> Result<World, Failure> {
 }
 
 /// Steps per second.
-const HZ: u32 = 60;
+pub const HZ: u32 = 60;
 
 fn pct(x: f64) -> String {
     format!("{:.1}%", 100.0 * x)
@@ -241,8 +241,9 @@ fn t1(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
 pub const T4_DENSITIES: &[f32] = &[0.5, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0];
 /// T4's corridor (m): periodic length, width.
 pub const T4_CORRIDOR: (f32, f32) = (20.0, 2.0);
-/// The measurement area of T4 and T16 (x range, m): the middle of the periodic corridor.
-pub const MEASUREMENT_X: (f32, f32) = (5.0, 15.0);
+/// The measurement area of T4 and T16 (x range, m): the middle 10 m of the periodic band
+/// `[10, 30)` m ([`PERIODIC_BAND_START`]).
+pub const MEASUREMENT_X: (f32, f32) = (PERIODIC_BAND_START + 5.0, PERIODIC_BAND_START + 15.0);
 /// Warm-up and measured time of the periodic runs (s).
 pub const WARM_UP_S: u32 = 10;
 /// Measured time after the warm-up (s).
