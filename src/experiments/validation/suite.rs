@@ -115,8 +115,8 @@ pub const TESTS: &[TestSpec] = &[
         id: "t4-fundamental-diagram",
         title: "T4 fundamental diagram: periodic 20 m × 2 m corridor at 0.5…6 persons/m²",
         setup: "periodic corridor 20 m × 2 m at 0.5, 1, 2, 3, 4, 5, 6 persons/m²",
-        measurement: "after a 10 s warm-up, 20 s in the area x 5…15 m: classic density (head count / area), mean x-speed v, specific flow J_s = ρ·v (1/(m·s))",
-        criterion: "mean |v − v_Weidmann| over the 7 densities ≤ 0.2 m/s",
+        measurement: "after a 10 s warm-up, 20 s in the area x 15…25 m (the middle of the periodic band x 10…30 m): classic density (head count / area), mean x-speed v, specific flow J_s = ρ·v (1/(m·s)); each point compared with the reference speed and flow at its measured density",
+        criterion: "mean |v − v_Weidmann(ρ measured)| over the 7 densities ≤ 0.2 m/s",
         run: t4,
     },
     TestSpec {
@@ -196,7 +196,7 @@ pub const TESTS: &[TestSpec] = &[
         title: "T16 single file: periodic 20 m ring corridor 0.5 m wide",
         setup: "periodic ring corridor 20 m × 0.5 m at 0.5…2.5 persons/m",
         measurement: "as T4, density per metre of line",
-        criterion: "mean |v − v_Seyfried| over the 5 line densities ≤ 0.2 m/s",
+        criterion: "mean |v − v_Seyfried(ρ measured)| over the 5 line densities ≤ 0.2 m/s",
         run: t16,
     },
 ];
@@ -278,8 +278,13 @@ pub fn periodic_point(traj: &Trajectories, width: f32) -> Option<FdPoint> {
     traj.area_fundamental(area, (WARM_UP_S * HZ / PERIODIC_EVERY) as usize)
 }
 
-/// T4 and T16: a fundamental diagram over `densities` against `reference`; `per_metre`
-/// turns the area density into persons per metre of line (single file).
+/// T4 and T16: a fundamental diagram over `densities` against `reference`, each point compared
+/// with the reference at the density MEASURED in the area (a crowd that is not homogeneous,
+/// or not all in the area, has another density there than the nominal count over the
+/// corridor: compared at the nominal one, a speed would be judged against the wrong reference
+/// value); `per_metre` turns the area density into persons per metre of line (single file).
+/// Reports the speed–density deviation (the criterion) and the flow–density diagram: the mean
+/// flow deviation from the reference's `ρ·v(ρ)` and the measured flow's peak.
 #[allow(clippy::too_many_arguments, reason = "the two diagrams differ in these settings only")]
 fn diagram(
     spec: &TestSpec,
@@ -300,16 +305,24 @@ fn diagram(
             shown = Some(scene);
         }
         let scale = if per_metre { f64::from(width) } else { 1.0 };
-        let (d, v, flow) = periodic_point(&rec.traj, width)
-            .map_or((f64::NAN, f64::NAN, f64::NAN), |p| (p.density * scale, p.speed, p.flow * scale));
-        let v_ref = reference(f64::from(rho));
-        rows.push(vec![f64::from(rho), d, v, flow, v_ref, f64::from(rho) * v_ref, v - v_ref]);
+        let point = periodic_point(&rec.traj, width).map(|p| FdPoint {
+            density: p.density * scale,
+            speed: p.speed,
+            flow: p.flow * scale,
+        });
+        rows.push(diagram_row(f64::from(rho), point, reference));
     }
-    let devs: Vec<f64> = rows.iter().map(|r| r[6].abs()).collect();
-    let mean = devs.iter().sum::<f64>() / devs.len() as f64;
-    let (worst, at) =
-        rows.iter().map(|r| (r[6].abs(), r[0])).fold((0.0, 0.0), |a, b| if b.0 > a.0 { b } else { a });
-    let measured = format!("mean |Δv| {mean:.2} m/s (largest {worst:.2} at {at} {name})");
+    let mean_abs = |column: usize| rows.iter().map(|r| r[column].abs()).sum::<f64>() / rows.len() as f64;
+    let (mean, mean_flow) = (mean_abs(6), mean_abs(7));
+    let largest = |column: usize, by: fn(f64) -> f64| {
+        rows.iter().map(|r| (by(r[column]), r[1])).fold((0.0, f64::NAN), |a, b| if b.0 > a.0 { b } else { a })
+    };
+    let (worst, at) = largest(6, f64::abs);
+    let (peak, peak_at) = largest(3, |f| f);
+    let flow_unit = if per_metre { "persons/s" } else { "persons/(m·s)" };
+    let measured = format!(
+        "mean |Δv| {mean:.2} m/s (largest {worst:.2} at {at:.2} {name}); mean |ΔJ| {mean_flow:.2} {flow_unit}, peak J {peak:.2} at {peak_at:.2} {name}"
+    );
     let unit = if per_metre { "persons_per_m" } else { "persons_per_m2" };
     let columns = [
         &format!("density_nominal_{unit}") as &str,
@@ -319,6 +332,7 @@ fn diagram(
         "reference_speed_m_s",
         if per_metre { "reference_flow_persons_s" } else { "reference_specific_flow_persons_m_s" },
         "speed_deviation_m_s",
+        if per_metre { "flow_deviation_persons_s" } else { "specific_flow_deviation_persons_m_s" },
     ];
     Ok(Outcome {
         rows: vec![spec.row(
@@ -331,6 +345,17 @@ fn diagram(
         )],
         curves: vec![spec.curve(kind, "fd", &columns, rows)],
     })
+}
+
+/// One row of a fundamental diagram's curve: nominal density, measured density, speed, flow,
+/// the reference speed and flow AT THE MEASURED DENSITY, and the speed and flow deviations from
+/// them (NaN throughout the measured part when nothing was measured).
+pub fn diagram_row(nominal: f64, point: Option<FdPoint>, reference: fn(f64) -> f64) -> Vec<f64> {
+    let FdPoint { density: d, speed: v, flow } =
+        point.unwrap_or(FdPoint { density: f64::NAN, speed: f64::NAN, flow: f64::NAN });
+    let v_ref = if d.is_finite() { reference(d) } else { f64::NAN };
+    let flow_ref = d * v_ref;
+    vec![nominal, d, v, flow, v_ref, flow_ref, v - v_ref, flow - flow_ref]
 }
 
 fn t4(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
@@ -603,4 +628,25 @@ fn t15(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
         rows: vec![spec.row(kind, t_corner.map(f64::from), "s", measured, pass, Some(&corner_scene))],
         curves: vec![],
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::experiments::validation::measure::weidmann_speed;
+
+    /// Regression (issue 25 §1): T4 compared every point with Weidmann at the NOMINAL density.
+    /// A crowd of nominal 2 persons/m² measured at 3 in the area, walking at Weidmann's speed
+    /// for 3, deviates by nothing; judged at 2 it deviated by v(3) − v(2) = −0.28 m/s.
+    #[test]
+    fn a_diagram_point_is_compared_at_its_measured_density() {
+        let v3 = weidmann_speed(3.0);
+        let row = diagram_row(2.0, Some(FdPoint { density: 3.0, speed: v3, flow: 3.0 * v3 }), weidmann_speed);
+        assert_eq!(row[0], 2.0, "nominal density kept");
+        assert_eq!(row[4], v3, "reference speed at the measured density");
+        assert!(row[6].abs() < 1e-12 && row[7].abs() < 1e-12, "{row:?}");
+        assert!((row[5] - 3.0 * v3).abs() < 1e-12, "reference flow ρ·v(ρ) at the measured ρ");
+        let none = diagram_row(2.0, None, weidmann_speed);
+        assert!(none[1..].iter().all(|x| x.is_nan()), "{none:?}");
+    }
 }
