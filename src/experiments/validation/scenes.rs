@@ -359,15 +359,23 @@ pub fn turned_walk(cfg: &PlannerConfig, angle: f32) -> (Scene, Vec<Vec2>) {
     (s, starts)
 }
 
-/// Jülich check: two walkers 16 m apart on one line in a 20 m × 6 m field, each heading for
-/// the other's start. Returns the scene and their exact starts (px).
+/// The head-on walkers' lateral offset (m): the west walker walks on a line 1 cm below the
+/// east walker's. From exactly collinear starts the check tests a symmetric model's
+/// tie-breaking, not its avoidance: JuPedSim's collision-free speed and social force models
+/// deadlock there too, and pass with this offset (issue 25).
+pub const HEAD_ON_OFFSET_M: f32 = 0.01;
+
+/// Jülich check: two walkers 16 m apart in a 20 m × 6 m field, on lines [`HEAD_ON_OFFSET_M`]
+/// apart, each heading for the other's start (its line's far end). Returns the scene and
+/// their exact starts (px).
 pub fn head_on(cfg: &PlannerConfig) -> (Scene, Vec<Vec2>) {
+    let (east, west) = (3.0, 3.0 + HEAD_ON_OFFSET_M);
     let mut s = world("validate-head-on", 20.0, 6.0);
-    s.goals.push(goal([18.0, 3.0], 0.5));
-    s.goals.push(goal([2.0, 3.0], 0.5));
+    s.goals.push(goal([18.0, east], 0.5));
+    s.goals.push(goal([2.0, west], 0.5));
     s.groups.push(walkers("east", 0, 1, [1.5, 2.5], [2.5, 3.5], 0, cfg));
     s.groups.push(walkers("west", 1, 1, [17.5, 2.5], [18.5, 3.5], 1, cfg));
-    (s, vec![Vec2::new(px(2.0), px(3.0)), Vec2::new(px(18.0), px(3.0))])
+    (s, vec![Vec2::new(px(2.0), px(east)), Vec2::new(px(18.0), px(west))])
 }
 
 #[cfg(test)]

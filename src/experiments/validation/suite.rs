@@ -8,7 +8,7 @@ use super::record::{record, Recorded};
 use super::report::{Curve, Outcome, Row};
 use super::scenes::{
     bottleneck, counter_flow, demographics, free_walking, head_on, large_room, periodic_corridor, small_room,
-    straight, turned_walk, Corner, AGE_GROUPS, BOTTLENECK, PERIODIC_BAND_START,
+    straight, turned_walk, Corner, AGE_GROUPS, BOTTLENECK, HEAD_ON_OFFSET_M, PERIODIC_BAND_START,
 };
 use super::units::{config_at_speed, SetupError, BODY_RADIUS_M, FREE_SPEED, PX_PER_METRE};
 use crate::model::codec::scene_to_fragment;
@@ -138,7 +138,7 @@ pub const TESTS: &[TestSpec] = &[
     TestSpec {
         id: "juelich-head-on",
         title: "Jülich: two walkers head-on",
-        setup: "two walkers 16 m apart on one line walk at each other",
+        setup: "two walkers 16 m apart walk at each other on lines 1 cm apart (a small lateral offset: exactly collinear starts test only a symmetric model's tie-breaking)",
         measurement: "smallest gap between bodies (distance − both radii)",
         criterion: "both arrive and their bodies never overlap (gap ≥ 0)",
         run: head_on_test,
@@ -424,7 +424,7 @@ fn rotation(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
 
 fn head_on_test(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
     let (scene, starts) = head_on(&config_at_speed(kind, FREE_SPEED)?);
-    let goals = [Vec2::new(18.0, 3.0), Vec2::new(2.0, 3.0)];
+    let goals = [Vec2::new(18.0, 3.0), Vec2::new(2.0, 3.0 + HEAD_ON_OFFSET_M)];
     let at_goal = |f: &super::measure::Frame| (0..2).all(|i| f.pos[i].distance(goals[i]) < 0.5);
     let rec = record(world(&scene, Some(starts))?, 30 * HZ, 1, at_goal);
     let gap = rec.traj.min_gap(0, 1, BODY_RADIUS_M, BODY_RADIUS_M).map(f64::from);
@@ -648,5 +648,27 @@ mod tests {
         assert!((row[5] - 3.0 * v3).abs() < 1e-12, "reference flow ρ·v(ρ) at the measured ρ");
         let none = diagram_row(2.0, None, weidmann_speed);
         assert!(none[1..].iter().all(|x| x.is_nan()), "{none:?}");
+    }
+
+    /// Regression (issue 25 §1): the head-on walkers started on one line, so the check tested
+    /// tie-breaking: social force's two walkers pressed into each other and neither arrived
+    /// (closest gap −0.043 m). They walk on lines 1 cm apart; the row reports the smallest gap
+    /// and whether both arrived, and social force passes.
+    #[test]
+    fn head_on_walkers_start_a_centimetre_apart_and_social_force_passes() {
+        let cfg =
+            crate::experiments::validation::units::config_at_speed(PlannerKind::SocialForce, FREE_SPEED)
+                .expect("a speed");
+        let (_, starts) = head_on(&cfg);
+        let offset = (starts[1].y - starts[0].y) / PX_PER_METRE;
+        assert!((offset - 0.01).abs() < 1e-5, "lateral offset {offset} m");
+        let spec = find_test("juelich-head-on").expect("the head-on test");
+        let row = &spec.run(PlannerKind::SocialForce).rows[0];
+        assert!(
+            row.measured.contains("closest gap") && row.measured.contains("both arrived"),
+            "{}",
+            row.measured
+        );
+        assert!(row.pass, "{}", row.measured);
     }
 }

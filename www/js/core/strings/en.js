@@ -666,7 +666,7 @@ export default {
   'validation.test.t6-corner.measurement': 'agents whose centre was ever inside a wall; arrivals in the last 2 m',
   'validation.test.juelich-rotation.setup': '10 walkers pass a pillar to a goal 16 m away; the same scene turned by 45°',
   'validation.test.juelich-rotation.measurement': 'mean and last arrival time in the goal (sampled every step)',
-  'validation.test.juelich-head-on.setup': 'two walkers 16 m apart on one line walk at each other',
+  'validation.test.juelich-head-on.setup': "two walkers 16 m apart walk at each other on lines 1 cm apart (a small lateral offset: exactly collinear starts test only a symmetric model's tie-breaking)",
   'validation.test.juelich-head-on.measurement': 'smallest gap between bodies (distance − both radii)',
   'validation.test.counter-flow-lanes.setup': '40 + 40 walkers mixed in a periodic 20 m × 4 m corridor, opposite directions',
   'validation.test.counter-flow-lanes.measurement': 'Rex & Löwen lane order: per walker ((s − o)/(s + o))² over neighbours within 4 m along and 0.25 m across, averaged; every second',

@@ -666,7 +666,7 @@ export default {
   'validation.test.t6-corner.measurement': '中心曾进入墙内的个体数；最后 2 m 内的到达人数',
   'validation.test.juelich-rotation.setup': '10 名行人绕过一根柱子走向 16 m 外的目标；同一场景再旋转 45°',
   'validation.test.juelich-rotation.measurement': '到达目标的平均时刻和最后时刻（每步采样）',
-  'validation.test.juelich-head-on.setup': '两名行人在同一直线上相距 16 m，相向而行',
+  'validation.test.juelich-head-on.setup': '两名行人相距 16 m，沿相隔 1 cm 的两条直线相向而行（微小的横向偏移：完全共线的起点只检验对称模型如何打破僵持）',
   'validation.test.juelich-head-on.measurement': '身体之间的最小间隙（距离 − 两人半径之和）',
   'validation.test.counter-flow-lanes.setup': '40 + 40 名行人混合在 20 m × 4 m 的周期性走廊里，方向相反',
   'validation.test.counter-flow-lanes.measurement': 'Rex & Löwen 车道序：对每名行人，在前后 4 m、左右 0.25 m 内的邻居上计算 ((s − o)/(s + o))²，再取平均；每秒一次',
