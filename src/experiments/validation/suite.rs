@@ -31,7 +31,44 @@ pub struct TestSpec {
     pub measurement: &'static str,
     /// The criterion in words.
     pub criterion: &'static str,
-    run: fn(&TestSpec, PlannerKind) -> Result<Outcome, Failure>,
+    run: fn(&TestSpec, PlannerKind, &mut Runs) -> Result<Outcome, Failure>,
+}
+
+/// One recorded run of a test, for writing out (`flockpath validate --pedpy-dir`): its name,
+/// the periodic band's length in x when it has one, and its trajectories.
+#[derive(Clone, Debug)]
+pub struct Run {
+    /// `<test id>-<planner>` and, for a test of several runs, which one (`-rho2`, `-45deg`, …).
+    pub name: String,
+    /// The periodic band's length (m), for a run in a periodic corridor: a walker that wraps
+    /// round is a new pedestrian to PedPy.
+    pub period: Option<f32>,
+    /// The run's trajectories.
+    pub traj: Trajectories,
+}
+
+/// Where a test puts the runs it recorded: kept when asked for, else dropped at once (the
+/// table alone needs none of them).
+pub struct Runs {
+    keep: bool,
+    runs: Vec<Run>,
+}
+
+impl Runs {
+    /// Keeps a copy of `traj` as run `<test>-<planner><variant>` when runs are kept.
+    fn keep(
+        &mut self,
+        spec: &TestSpec,
+        kind: PlannerKind,
+        variant: &str,
+        period: Option<f32>,
+        traj: &Trajectories,
+    ) {
+        if self.keep {
+            let name = format!("{}-{}{variant}", spec.id, kind.name());
+            self.runs.push(Run { name, period, traj: traj.clone() });
+        }
+    }
 }
 
 /// A run that could not be measured: the message, and the scene when one was built.
@@ -56,7 +93,18 @@ impl TestSpec {
     /// Runs the test with `kind` driving every group. A run that cannot be measured (a scene
     /// the world refuses) gives a failing row that says why.
     pub fn run(&self, kind: PlannerKind) -> Outcome {
-        (self.run)(self, kind).unwrap_or_else(|f| Outcome {
+        self.run_keeping(kind, false).0
+    }
+
+    /// [`TestSpec::run`] and every run it recorded (trajectories from the start, in metres), in
+    /// the order it made them.
+    pub fn run_with_trajectories(&self, kind: PlannerKind) -> (Outcome, Vec<Run>) {
+        self.run_keeping(kind, true)
+    }
+
+    fn run_keeping(&self, kind: PlannerKind, keep: bool) -> (Outcome, Vec<Run>) {
+        let mut runs = Runs { keep, runs: vec![] };
+        let outcome = (self.run)(self, kind, &mut runs).unwrap_or_else(|f| Outcome {
             rows: vec![self.row(
                 kind,
                 None,
@@ -66,7 +114,8 @@ impl TestSpec {
                 f.scene.as_deref(),
             )],
             curves: vec![],
-        })
+        });
+        (outcome, runs.runs)
     }
 
     fn row(
@@ -223,9 +272,10 @@ fn pct(x: f64) -> String {
     format!("{:.1}%", 100.0 * x)
 }
 
-fn t1(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
+fn t1(spec: &TestSpec, kind: PlannerKind, runs: &mut Runs) -> Result<Outcome, Failure> {
     let scene = free_walking(&config_at_speed(kind, FREE_SPEED)?);
     let rec = record(world(&scene, None)?, 50 * HZ, 3, |f| f.pos[0].x > 36.0);
+    runs.keep(spec, kind, "", None, &rec.traj);
     let v = rec.traj.section_speed(0, 5.0, 35.0).map(f64::from);
     let (measured, pass) = match v {
         Some(v) => {
@@ -294,6 +344,7 @@ fn diagram(
     per_metre: bool,
     reference: fn(f64) -> f64,
     name: &str,
+    runs: &mut Runs,
 ) -> Result<Outcome, Failure> {
     let length = T4_CORRIDOR.0;
     let mut rows = vec![];
@@ -301,6 +352,7 @@ fn diagram(
     for &rho in densities {
         let count = (rho * length * if per_metre { 1.0 } else { width }).round() as u32;
         let (rec, scene) = periodic_run(kind, count, length, width)?;
+        runs.keep(spec, kind, &format!("-rho{rho}"), Some(length), &rec.traj);
         if shown.is_none() || rho == 2.0 {
             shown = Some(scene);
         }
@@ -358,15 +410,15 @@ pub fn diagram_row(nominal: f64, point: Option<FdPoint>, reference: fn(f64) -> f
     vec![nominal, d, v, flow, v_ref, flow_ref, v - v_ref, flow - flow_ref]
 }
 
-fn t4(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
-    diagram(spec, kind, T4_DENSITIES, T4_CORRIDOR.1, false, weidmann_speed, "persons/m²")
+fn t4(spec: &TestSpec, kind: PlannerKind, runs: &mut Runs) -> Result<Outcome, Failure> {
+    diagram(spec, kind, T4_DENSITIES, T4_CORRIDOR.1, false, weidmann_speed, "persons/m²", runs)
 }
 
 /// T16's line densities (persons/m).
 pub const T16_DENSITIES: &[f32] = &[0.5, 1.0, 1.5, 2.0, 2.5];
 
-fn t16(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
-    diagram(spec, kind, T16_DENSITIES, 0.5, true, seyfried_speed, "persons/m")
+fn t16(spec: &TestSpec, kind: PlannerKind, runs: &mut Runs) -> Result<Outcome, Failure> {
+    diagram(spec, kind, T16_DENSITIES, 0.5, true, seyfried_speed, "persons/m", runs)
 }
 
 /// Whether `p` (m) is inside an obstacle of `scene`.
@@ -374,10 +426,11 @@ fn in_wall(scene: &Scene, p: Vec2) -> bool {
     scene.obstacles.iter().any(|o| o.contains(p * PX_PER_METRE))
 }
 
-fn t6(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
+fn t6(spec: &TestSpec, kind: PlannerKind, runs: &mut Runs) -> Result<Outcome, Failure> {
     let corner = Corner { leg: 12.0, width: 2.0 };
     let scene = corner.scene("validate-t6-corner", &config_at_speed(kind, FREE_SPEED)?, 20, 6.0);
     let rec = record(world(&scene, None)?, 40 * HZ, 3, |f| f.pos.iter().all(|&p| corner.arrived(p)));
+    runs.keep(spec, kind, "", None, &rec.traj);
     let crossings = rec.traj.agents_ever_inside(|p| in_wall(&scene, p));
     let arrived = rec.traj.arrival_times(|p| corner.arrived(p)).iter().flatten().count();
     let measured = format!("{arrived}/20 arrived, {crossings} crossed a wall");
@@ -388,7 +441,7 @@ fn t6(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
     })
 }
 
-fn rotation(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
+fn rotation(spec: &TestSpec, kind: PlannerKind, runs: &mut Runs) -> Result<Outcome, Failure> {
     let cfg = config_at_speed(kind, FREE_SPEED)?;
     let mut stats = vec![];
     let mut first = None;
@@ -398,6 +451,7 @@ fn rotation(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
         let goal = Vec2::new(g[0], g[1]) / PX_PER_METRE;
         let reached = move |p: Vec2| p.distance(goal) < 1.0;
         let rec = record(world(&scene, Some(starts))?, 40 * HZ, 1, |f| f.pos.iter().all(|&p| reached(p)));
+        runs.keep(spec, kind, &format!("-{:.0}deg", angle.to_degrees()), None, &rec.traj);
         let times: Vec<Option<f32>> = rec.traj.arrival_times(reached);
         let arrived: Vec<f64> = times.iter().flatten().map(|&t| f64::from(t)).collect();
         let mean = arrived.iter().sum::<f64>() / arrived.len().max(1) as f64;
@@ -422,11 +476,12 @@ fn rotation(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
     Ok(Outcome { rows: vec![spec.row(kind, value, "%", measured, pass, first.as_ref())], curves: vec![] })
 }
 
-fn head_on_test(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
+fn head_on_test(spec: &TestSpec, kind: PlannerKind, runs: &mut Runs) -> Result<Outcome, Failure> {
     let (scene, starts) = head_on(&config_at_speed(kind, FREE_SPEED)?);
     let goals = [Vec2::new(18.0, 3.0), Vec2::new(2.0, 3.0 + HEAD_ON_OFFSET_M)];
     let at_goal = |f: &super::measure::Frame| (0..2).all(|i| f.pos[i].distance(goals[i]) < 0.5);
     let rec = record(world(&scene, Some(starts))?, 30 * HZ, 1, at_goal);
+    runs.keep(spec, kind, "", None, &rec.traj);
     let gap = rec.traj.min_gap(0, 1, BODY_RADIUS_M, BODY_RADIUS_M).map(f64::from);
     let arrived = (0..2).all(|i| rec.traj.arrival_times(|p| p.distance(goals[i]) < 0.5)[i].is_some());
     let gap_text = gap.map_or("?".into(), |g| format!("{g:.3} m"));
@@ -438,11 +493,12 @@ fn head_on_test(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> 
     Ok(Outcome { rows: vec![spec.row(kind, gap, "m", measured, pass, Some(&scene))], curves: vec![] })
 }
 
-fn lanes(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
+fn lanes(spec: &TestSpec, kind: PlannerKind, runs: &mut Runs) -> Result<Outcome, Failure> {
     let (scene, band) = counter_flow(&config_at_speed(kind, FREE_SPEED)?, 40);
     let mut w = world(&scene, None)?;
     w.set_periodic_x(Some(band));
     let rec = record(w, 60 * HZ, 6, |_| false);
+    runs.keep(spec, kind, "", Some((band.1 - band.0) / PX_PER_METRE), &rec.traj);
     let per_second = (HZ / 6) as usize;
     let series: Vec<Vec<f64>> = (0..rec.traj.frames.len())
         .step_by(per_second)
@@ -466,7 +522,7 @@ pub const T9_AGENTS: u32 = 1000;
 /// T9's simulated time (s): the flows are measured while the room empties.
 pub const T9_SECONDS: u32 = 30;
 
-fn t9(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
+fn t9(spec: &TestSpec, kind: PlannerKind, runs: &mut Runs) -> Result<Outcome, Failure> {
     let cfg = config_at_speed(kind, FREE_SPEED)?;
     let mut flows = vec![];
     let mut shown = None;
@@ -475,6 +531,7 @@ fn t9(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
         let (scene, room) = large_room(&cfg, four, T9_AGENTS);
         let rec =
             record(world(&scene, None)?, T9_SECONDS * HZ, 6, |f| f.pos.iter().all(|&p| !room.inside(p)));
+        runs.keep(spec, kind, if four { "-4-exits" } else { "-2-exits" }, None, &rec.traj);
         let exits = rec.traj.arrival_times(|p| !room.inside(p));
         cumulative.push(
             (0..rec.traj.frames.len())
@@ -515,10 +572,11 @@ fn t9(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
     })
 }
 
-fn t12(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
+fn t12(spec: &TestSpec, kind: PlannerKind, runs: &mut Runs) -> Result<Outcome, Failure> {
     let scene = bottleneck(&config_at_speed(kind, FREE_SPEED)?, 150);
     let goal = Vec2::new(23.0, 5.0);
     let rec = record(world(&scene, None)?, 90 * HZ, 6, |f| f.pos.iter().all(|&p| p.distance(goal) < 2.0));
+    runs.keep(spec, kind, "", None, &rec.traj);
     let (x_in, x_out, _) = BOTTLENECK;
     let zones = rec.traj.jam_samples(0.2, x_in, x_out, |p| p.distance(goal) < 3.0);
     let jammed: u32 = zones.iter().sum();
@@ -538,9 +596,10 @@ fn t12(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
     })
 }
 
-fn t7(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
+fn t7(spec: &TestSpec, kind: PlannerKind, runs: &mut Runs) -> Result<Outcome, Failure> {
     let (scene, speeds) = demographics(kind)?;
     let rec = record(world(&scene, None)?, 70 * HZ, 3, |f| f.pos.iter().all(|p| p.x > 36.0));
+    runs.keep(spec, kind, "", None, &rec.traj);
     let mut rows = vec![];
     let mut inside = 0;
     for a in 0..rec.traj.agents() {
@@ -570,12 +629,13 @@ fn t7(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
 /// T8's desired speeds (m/s).
 pub const T8_SPEEDS: &[f32] = &[0.8, 1.0, 1.2, 1.34, 1.6];
 
-fn t8(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
+fn t8(spec: &TestSpec, kind: PlannerKind, runs: &mut Runs) -> Result<Outcome, Failure> {
     let mut rows = vec![];
     let mut shown = None;
     for &v in T8_SPEEDS {
         let (scene, room) = small_room(&config_at_speed(kind, v)?, 40);
         let rec = record(world(&scene, None)?, 60 * HZ, 6, |f| f.pos.iter().all(|&p| !room.inside(p)));
+        runs.keep(spec, kind, &format!("-v{v}"), None, &rec.traj);
         let exits = rec.traj.arrival_times(|p| !room.inside(p));
         let out = exits.iter().flatten().count();
         rows.push(vec![f64::from(v), evacuation_time(&exits).map_or(f64::NAN, f64::from), out as f64]);
@@ -602,20 +662,22 @@ fn t8(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
     })
 }
 
-fn t15(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
+fn t15(spec: &TestSpec, kind: PlannerKind, runs: &mut Runs) -> Result<Outcome, Failure> {
     let cfg = config_at_speed(kind, FREE_SPEED)?;
     let corner = Corner { leg: 15.0, width: 3.0 };
     let (n, start) = (100, 8.0);
     let corner_scene = corner.scene("validate-t15-corner", &cfg, n, start);
-    let evac = |scene: &Scene, arrived: &dyn Fn(Vec2) -> bool| -> Result<Option<f32>, Failure> {
-        let rec = record(world(scene, None)?, 60 * HZ, 6, |f| f.pos.iter().all(|&p| arrived(p)));
-        Ok(evacuation_time(&rec.traj.arrival_times(arrived)))
-    };
-    let t_corner = evac(&corner_scene, &|p| corner.arrived(p))?;
+    let mut evac =
+        |scene: &Scene, variant: &str, arrived: &dyn Fn(Vec2) -> bool| -> Result<Option<f32>, Failure> {
+            let rec = record(world(scene, None)?, 60 * HZ, 6, |f| f.pos.iter().all(|&p| arrived(p)));
+            runs.keep(spec, kind, variant, None, &rec.traj);
+            Ok(evacuation_time(&rec.traj.arrival_times(arrived)))
+        };
+    let t_corner = evac(&corner_scene, "-corner", &|p| corner.arrived(p))?;
     let mut straights = vec![];
     for length in [24.0, 30.0] {
         let scene = straight("validate-t15-straight", &cfg, n, length, 3.0, start);
-        straights.push(evac(&scene, &move |p: Vec2| p.x > length - 2.0)?);
+        straights.push(evac(&scene, &format!("-straight{length}"), &move |p: Vec2| p.x > length - 2.0)?);
     }
     let fmt = |t: Option<f32>| t.map_or("not all out in 60 s".into(), |t| format!("{t:.1} s"));
     let measured =
