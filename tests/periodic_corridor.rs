@@ -24,7 +24,10 @@ fn a_periodic_crowd_has_the_same_density_in_every_2_m_bin() {
             let profile = rec.traj.density_profile(PERIODIC_BAND_START, 2.0, bins, width, warm_up);
             assert_eq!(profile.len(), bins, "frames after the warm-up");
             let total: f64 = profile.iter().sum::<f64>() * 2.0 * f64::from(width);
-            assert!((total - f64::from(count)).abs() < 1e-6, "{kind:?} at {rho}: every walker in the band");
+            assert!(
+                (total - f64::from(count)).abs() < 1e-6,
+                "{kind:?} at {rho}: every walker in the band ({total} of {count} per frame)"
+            );
             let worst = profile.iter().map(|d| (d / f64::from(rho) - 1.0).abs()).fold(0.0, f64::max);
             let shown: Vec<String> = profile.iter().map(|d| format!("{d:.2}")).collect();
             println!("{kind:?} at {rho} persons/m²: {} (worst {:.1}%)", shown.join(" "), 100.0 * worst);

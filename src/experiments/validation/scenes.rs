@@ -78,7 +78,12 @@ pub fn periodic_corridor(
     let start = PERIODIC_BAND_START;
     let mut s = world(name, start + length + 20.0, width);
     s.goals.push(goal([start + length + 19.0, width * 0.5], (width * 0.5).min(0.5)));
-    s.groups.push(walkers("crowd", 0, count, [start, 0.0], [start + length, width], 0, cfg));
+    // Centres in [start, start + length − one body diameter]: none on the band's end (the
+    // world wraps a centre that leaves the band, not one that starts outside it: a walker
+    // spawned at x = 30 m walked on outside the band), and the seam's gap to the first
+    // walker's image is at least a body diameter, so no two bodies start overlapping there.
+    let last = start + length - 2.0 * BODY_RADIUS_M;
+    s.groups.push(walkers("crowd", 0, count, [start, 0.0], [last, width], 0, cfg));
     (s, (px(start), px(start + length)))
 }
 
