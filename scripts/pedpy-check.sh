@@ -3,8 +3,9 @@
 # installs PedPy from PyPI into a local venv (.pedpy-venv/, gitignored; needs the network the
 # first time), writes the T4 periodic corridor's trajectories with
 # `flockpath validate --tests t4 --pedpy-dir`, and lets PedPy compute the classic density and
-# the mean speed along the corridor in the same measurement area (x 5…15 m, the whole 2 m
-# width, frames after the 10 s warm-up). Prints PedPy's figures beside ours.
+# the mean speed along the corridor in the same measurement area (x 15…25 m, the middle of the
+# periodic band x 10…30 m; the whole 2 m width; frames after the 10 s warm-up). Prints PedPy's
+# figures beside ours.
 #
 # Not part of scripts/test.sh: it needs PyPI. Usage:
 #   bash scripts/pedpy-check.sh [PLANNERS]     (default: boids; a comma-separated list or all)
@@ -46,13 +47,13 @@ for curve in report["curves"]:
         for row in curve["rows"]:
             ours[(curve["planner"], row[0])] = (row[1], row[2])
 
-area = pedpy.MeasurementArea([(5, 0), (15, 0), (15, 2), (5, 2)])
+area = pedpy.MeasurementArea([(15, 0), (25, 0), (25, 2), (15, 2)])
 warm_up_frames = 100  # 10 s at 10 frames/s, as in the suite
-print(f"PedPy {pedpy.__version__}: measurement area x 5..15 m, y 0..2 m, frames >= {warm_up_frames}")
+print(f"PedPy {pedpy.__version__}: measurement area x 15..25 m, y 0..2 m, frames >= {warm_up_frames}")
 print(f"{'planner':<9} {'rho':>4} | {'density ours':>12} {'PedPy':>7} | {'speed ours':>10} {'PedPy':>7} {'diff':>6}")
 worst = 0.0
-for path in sorted(out.glob("t4-*-rho*.txt")):
-    planner, rho = path.stem[3:].rsplit("-rho", 1)
+for path in sorted(out.glob("t4-fundamental-diagram-*-rho*.txt")):
+    planner, rho = path.stem[len("t4-fundamental-diagram-"):].rsplit("-rho", 1)
     rho = float(rho)
     traj = pedpy.load_trajectory_from_txt(trajectory_file=path)
     density = pedpy.compute_classic_density(traj_data=traj, measurement_area=area)

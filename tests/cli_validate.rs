@@ -64,6 +64,44 @@ fn validate_writes_the_table_the_json_and_the_csv_files() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// Regression (issue 25 §1): `--pedpy-dir` wrote T4's runs only (re-running T4 whatever
+/// `--tests` said), so no other test could be recounted outside the project. Now every test's
+/// runs are written, one file each, named by test, planner and variant.
+#[test]
+fn pedpy_dir_writes_every_tests_runs() {
+    let dir = temp("pedpy-dir");
+    let out = flockpath(&[
+        "validate",
+        "--tests",
+        "t1,juelich-rotation,juelich-head-on",
+        "--planners",
+        "orca",
+        "--pedpy-dir",
+        dir.to_str().expect("utf-8 path"),
+    ]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let mut names: Vec<String> = std::fs::read_dir(&dir)
+        .expect("the directory is written")
+        .filter_map(|e| e.ok()?.file_name().into_string().ok())
+        .collect();
+    names.sort();
+    assert_eq!(
+        names,
+        [
+            "juelich-head-on-orca.txt",
+            "juelich-rotation-orca-0deg.txt",
+            "juelich-rotation-orca-45deg.txt",
+            "t1-free-walking-orca.txt",
+        ]
+    );
+    // The head-on file: both walkers at frame 0 where the scene starts them (m), 1 cm apart.
+    let text = std::fs::read_to_string(dir.join("juelich-head-on-orca.txt")).expect("written");
+    assert!(text.contains("# framerate: 60.0000"), "{text:.200}");
+    let first: Vec<&str> = text.lines().filter(|l| !l.starts_with('#')).take(2).collect();
+    assert_eq!(first, ["1 0 2.0000 3.0000 0", "2 0 18.0000 3.0100 0"]);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 #[test]
 fn validate_refuses_unknown_names_with_usage_errors() {
     let out = flockpath(&["validate", "--tests", "t99"]);

@@ -10,7 +10,7 @@ use crate::sim::gather::{Arrival, GoalPlaces};
 use crate::sim::metrics::{Metrics, MetricsRecorder};
 use crate::sim::spawn::{centre_bounds, spawn, Spawn};
 use crate::sim::sweep::{path_enters, Terrain, PUSH_EPSILON};
-use crate::spatial::{ObstacleIndex, QueryCap, SpatialGrid};
+use crate::spatial::{periodic_images, ObstacleIndex, PeriodicImage, QueryCap, SpatialGrid};
 use glam::Vec2;
 use std::ops::Range;
 
@@ -111,6 +111,11 @@ pub struct World {
     /// A periodic band `[start, end)` of x (px): an agent whose centre leaves it at one end
     /// re-enters at the other ([`World::set_periodic_x`]).
     periodic_x: Option<(f32, f32)>,
+    /// With a periodic band, the grid the planners query: the agents plus their images across
+    /// the seam ([`SpatialGrid::rebuild_with_images`]), so neighbours are seen across it.
+    image_grid: Option<SpatialGrid>,
+    /// Scratch: the images of the last rebuild.
+    images: Vec<PeriodicImage>,
     /// Whether groups whose planner parks do park at their fixed goal ([`World::set_parking`]).
     parking: bool,
 }
@@ -216,6 +221,8 @@ impl World {
             previous: Vec::new(),
             parked_in_cell: Vec::new(),
             periodic_x: None,
+            image_grid: None,
+            images: Vec::new(),
             parking: true,
         };
         world.update_parking_rules();
@@ -336,7 +343,7 @@ impl World {
             positions: &self.pos,
             velocities: &self.vel,
             radii: &self.radius,
-            grid: &self.grid,
+            grid: self.planning_grid(),
             obstacles: &self.obstacles,
             bounds: Vec2::new(self.scene.width, self.scene.height),
             step: self.step,
@@ -460,12 +467,20 @@ impl World {
 
     /// Makes x periodic over `[start, end)` px (`None`: off, the default): an agent whose centre
     /// leaves the band at one end re-enters at the other, as in the periodic corridor of the
-    /// validation suite's fundamental diagram. Neighbours are not seen across the seam, and the
-    /// path-length metric counts the jump. Not part of the scene (a link cannot ask for it).
-    /// An empty or non-finite band is ignored.
+    /// validation suite's fundamental diagram. The planners see neighbours across the seam
+    /// where they stand relative to them (the minimum image: the grid they query holds copies
+    /// of the agents near either end beyond the other); the world's borders stay walls, so a
+    /// band should lie away from them. Not part of the scene (a link cannot ask for it). An
+    /// empty or non-finite band is ignored.
     pub fn set_periodic_x(&mut self, band: Option<(f32, f32)>) {
         self.periodic_x = band.filter(|(a, b)| a.is_finite() && b.is_finite() && b > a);
         self.recorder.set_periodic_x(self.periodic_x);
+        self.rebuild_grid();
+    }
+
+    /// The grid the planners query: with a periodic band, the one holding the images.
+    fn planning_grid(&self) -> &SpatialGrid {
+        self.image_grid.as_ref().unwrap_or(&self.grid)
     }
 
     /// Takes the fitness measures of the metrics every `every` steps from now on (0 = never;
@@ -554,7 +569,7 @@ impl World {
             positions: &self.pos,
             velocities: &self.vel,
             radii: &self.radius,
-            grid: &self.grid,
+            grid: self.image_grid.as_ref().unwrap_or(&self.grid),
             obstacles: &self.obstacles,
             bounds,
             step: self.step,
@@ -807,7 +822,21 @@ impl World {
     /// the scene.
     fn rebuild_grid(&mut self) {
         let arrival = &self.arrival;
-        self.grid.rebuild_present(&self.pos, &self.vel, |i| arrival[i] != Arrival::Exited);
+        let present = |i: usize| arrival[i] != Arrival::Exited;
+        self.grid.rebuild_present(&self.pos, &self.vel, present);
+        let Some(band) = self.periodic_x else {
+            self.image_grid = None;
+            return;
+        };
+        // The grid's cell is at least every planner's query radius: the images reach as far.
+        let reach = self.grid.cell_size();
+        periodic_images(&self.pos, present, band, reach, &mut self.images);
+        let grid = match self.image_grid.take() {
+            Some(g) if g.cell_size() == self.grid.cell_size() => g,
+            _ => self.grid.clone(),
+        };
+        let grid = self.image_grid.insert(grid);
+        grid.rebuild_with_images(&self.pos, &self.vel, present, &self.images);
     }
 
     /// The centre of the goal group `g` gathers at, once its places are laid out.

@@ -29,10 +29,52 @@ pub struct SpatialGrid {
     scratch_cell: Vec<u32>,
     /// Scratch: the next free slot of each cell while scattering.
     scratch_next: Vec<u32>,
+    /// Scratch: the entry (agent id, or `agents + k` for image `k`) of each storage slot.
+    scratch_entry: Vec<u32>,
     /// Position x, y and velocity x, y in storage order (padding: NaN).
     columns: [Vec<f32>; 4],
     /// Most agents in one cell at the last rebuild.
     max_occupancy: u32,
+}
+
+/// A copy of agent `id` at `pos` for the neighbour queries ([`SpatialGrid::rebuild_with_images`]):
+/// in a periodic band, an agent near one end as seen from beyond the other end.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PeriodicImage {
+    /// The agent's id.
+    pub id: u32,
+    /// Where the copy stands (px).
+    pub pos: Vec2,
+}
+
+/// Into `out`, the images of the agents within `reach` of either end of the periodic band
+/// `[start, end)` (px, in x): each shifted by the band's length to just beyond the other end,
+/// so a query of radius up to `reach` finds its neighbours across the seam (the minimum image
+/// while `reach` is below half the band). Agents for which `present` is false have none.
+pub fn periodic_images(
+    positions: &[Vec2],
+    present: impl Fn(usize) -> bool,
+    (start, end): (f32, f32),
+    reach: f32,
+    out: &mut Vec<PeriodicImage>,
+) {
+    out.clear();
+    let length = end - start;
+    if length.is_nan() || length <= 0.0 || !reach.is_finite() {
+        return;
+    }
+    let reach = reach.min(0.5 * length);
+    for (i, &p) in positions.iter().enumerate() {
+        if !present(i) {
+            continue;
+        }
+        if p.x < start + reach {
+            out.push(PeriodicImage { id: i as u32, pos: Vec2::new(p.x + length, p.y) });
+        }
+        if p.x >= end - reach {
+            out.push(PeriodicImage { id: i as u32, pos: Vec2::new(p.x - length, p.y) });
+        }
+    }
 }
 
 /// How a capped scan ended: the visitor asked to stop, a cap cut it short, or every agent within
@@ -210,6 +252,7 @@ impl SpatialGrid {
             ids: Vec::new(),
             scratch_cell: Vec::new(),
             scratch_next: Vec::new(),
+            scratch_entry: Vec::new(),
             columns: Default::default(),
             max_occupancy: 0,
         }
@@ -251,12 +294,35 @@ impl SpatialGrid {
         velocities: &[Vec2],
         present: impl Fn(usize) -> bool,
     ) {
+        self.rebuild_with_images(positions, velocities, present, &[]);
+    }
+
+    /// [`Self::rebuild_present`] plus `images`: copies of agents at other positions (a periodic
+    /// band's agents shifted by its length, [`periodic_images`]), stored under their agent's id.
+    /// A query near one end of the band then finds the agents at the other end where they stand
+    /// relative to it (the minimum image), so every planner that reads positions from the grid
+    /// sees across the seam. An agent's own image is a band's length away: beyond any shorter
+    /// neighbour query. [`Self::ids_in_cell_order`] then lists an agent once per image as well;
+    /// [`Self::cell_of_agent`] is the agent's own cell.
+    pub fn rebuild_with_images(
+        &mut self,
+        positions: &[Vec2],
+        velocities: &[Vec2],
+        present: impl Fn(usize) -> bool,
+        images: &[PeriodicImage],
+    ) {
         let n = positions.len();
+        let entries = n + images.len();
         let nowhere = self.cols * self.rows;
         self.cell_start.iter_mut().for_each(|c| *c = 0);
         self.scratch_cell.clear();
         for (i, &p) in positions.iter().enumerate() {
             let c = if present(i) { self.cell_of(p) } else { nowhere };
+            self.scratch_cell.push(c);
+            self.cell_start[c as usize + 1] += 1;
+        }
+        for image in images {
+            let c = self.cell_of(image.pos);
             self.scratch_cell.push(c);
             self.cell_start[c as usize + 1] += 1;
         }
@@ -268,12 +334,22 @@ impl SpatialGrid {
             self.cell_start[c] += self.cell_start[c - 1];
         }
         self.max_occupancy = max_occupancy;
-        // Scatter in id order: stable, so each cell lists its agents by increasing id.
+        // Scatter in entry order (agents by id, then the images): stable, so each cell lists
+        // its agents by increasing id, then the images in it.
         self.scratch_next.clear();
         self.scratch_next.extend_from_slice(&self.cell_start);
+        let mut entry_of_slot = std::mem::take(&mut self.scratch_entry);
+        entry_of_slot.clear();
+        entry_of_slot.resize(entries, 0);
+        let next = &mut self.scratch_next;
+        for (e, &c) in self.scratch_cell.iter().enumerate() {
+            let slot = next[c as usize] as usize;
+            next[c as usize] += 1;
+            entry_of_slot[slot] = e as u32;
+        }
         // Every slot is written below; the padding after them stays.
-        let padded = n + CANDIDATE_LANES;
-        self.len = n;
+        let padded = entries + CANDIDATE_LANES;
+        self.len = entries;
         self.ids.clear();
         self.ids.resize(padded, u32::MAX);
         let [x, y, vx, vy] = &mut self.columns;
@@ -281,18 +357,19 @@ impl SpatialGrid {
             c.clear();
             c.resize(padded, f32::NAN);
         }
-        let next = &mut self.scratch_next;
-        for (i, &c) in self.scratch_cell.iter().enumerate() {
-            let slot = next[c as usize] as usize;
-            next[c as usize] += 1;
-            self.ids[slot] = i as u32;
-        }
         // Then the columns in storage order: one scattered write per agent above instead of
         // five (at 100,000 agents the columns do not fit in the cache).
-        for (slot, &i) in self.ids[..n].iter().enumerate() {
-            let (p, v) = (positions[i as usize], velocities.get(i as usize).copied().unwrap_or(Vec2::ZERO));
+        for (slot, &e) in entry_of_slot.iter().enumerate() {
+            let e = e as usize;
+            let (id, p) = match e.checked_sub(n).and_then(|k| images.get(k)) {
+                Some(image) => (image.id, image.pos),
+                None => (e as u32, positions[e]),
+            };
+            let v = velocities.get(id as usize).copied().unwrap_or(Vec2::ZERO);
+            self.ids[slot] = id;
             (x[slot], y[slot], vx[slot], vy[slot]) = (p.x, p.y, v.x, v.y);
         }
+        self.scratch_entry = entry_of_slot;
     }
 
     /// Most agents in one cell at the last rebuild: a scan of a cell's agents costs up to this.
@@ -909,6 +986,40 @@ impl ObstacleIndex {
 mod tests {
     use super::*;
     use rand_core::{Rng, SeedableRng};
+
+    #[test]
+    fn periodic_images_are_found_across_the_seam_under_their_agents_id() {
+        // Band [100, 500) px; agent 0 near its left end, agent 1 near its right end, agent 2 in
+        // the middle, agent 3 gone (not present).
+        let pos =
+            [Vec2::new(105.0, 50.0), Vec2::new(490.0, 50.0), Vec2::new(300.0, 50.0), Vec2::new(101.0, 10.0)];
+        let vel = [Vec2::X, Vec2::Y, Vec2::ZERO, Vec2::ZERO];
+        let present = |i: usize| i != 3;
+        let mut images = vec![];
+        periodic_images(&pos, present, (100.0, 500.0), 30.0, &mut images);
+        assert_eq!(
+            images,
+            vec![
+                PeriodicImage { id: 0, pos: Vec2::new(505.0, 50.0) },
+                PeriodicImage { id: 1, pos: Vec2::new(90.0, 50.0) },
+            ]
+        );
+        let mut grid = SpatialGrid::new(600.0, 100.0, 30.0, 4);
+        grid.rebuild_with_images(&pos, &vel, present, &images);
+        // From agent 0, agent 1 stands 15 px behind it across the seam, with its own velocity.
+        let mut found = vec![];
+        grid.for_each_within(pos[0], 30.0, |n| found.push((n.id, n.pos, n.vel)));
+        found.sort_by_key(|f| f.0);
+        assert_eq!(found, vec![(0, pos[0], Vec2::X), (1, Vec2::new(90.0, 50.0), Vec2::Y)]);
+        // The agent's own cell is where it stands, not its image's.
+        assert_eq!(grid.cell_of_agent(0), Some(grid.cell_of(pos[0]) as usize));
+        // Without images the same grid is the plain one.
+        let mut plain = SpatialGrid::new(600.0, 100.0, 30.0, 4);
+        plain.rebuild_present(&pos, &vel, present);
+        grid.rebuild_with_images(&pos, &vel, present, &[]);
+        assert_eq!(grid.ids_in_cell_order(), plain.ids_in_cell_order());
+        assert_eq!(grid.ids_in_cell_order().len(), 4);
+    }
 
     fn brute(points: &[Vec2], p: Vec2, r: f32) -> Vec<(f32, u32)> {
         let mut v: Vec<(f32, u32)> = points

@@ -1,12 +1,13 @@
 //! `flockpath validate`: the validation suite of `flockpath::experiments::validation` (RiMEA
 //! tests, Jülich checks, counter-flow lanes) as a table on stdout, a JSON report, the curves as
-//! CSV files and, on request, the T4 corridor's trajectories for PedPy.
+//! CSV files and, on request, every run's trajectories for PedPy.
 
 use crate::progress::Progress;
 use crate::{failed, out, usage, write_file, CliError};
 use flockpath::experiments::validation::pedpy::trajectory_text;
-use flockpath::experiments::validation::suite::{periodic_run, T4_CORRIDOR, T4_DENSITIES};
-use flockpath::experiments::validation::{find_test, run_suite, Curve, Report, TestSpec, TESTS};
+use flockpath::experiments::validation::suite::Run;
+use flockpath::experiments::validation::units::PX_PER_METRE;
+use flockpath::experiments::validation::{find_test, Curve, Outcome, Report, TestSpec, TESTS};
 use flockpath::PlannerKind;
 use rayon::prelude::*;
 use std::fmt::Write as _;
@@ -44,9 +45,10 @@ pub struct ValidateArgs {
     /// sweep, T7 speeds, T9 exits) and the table as DIR/table.csv
     #[arg(long, value_name = "DIR")]
     csv_dir: Option<PathBuf>,
-    /// Write the T4 corridor's trajectories in PedPy's text format, one file per planner and
-    /// density: DIR/t4-<planner>-rho<density>.txt (x periodic over 0…20 m; a walker that wraps
-    /// gets a new id)
+    /// Write every run's trajectories in PedPy's text format, one file per run:
+    /// DIR/<test>-<planner>[-<variant>].txt, e.g. t4-fundamental-diagram-orca-rho2.txt,
+    /// juelich-rotation-orca-45deg.txt (in the periodic corridors, x 10…30 m, a walker that
+    /// wraps gets a new id)
     #[arg(long, value_name = "DIR")]
     pedpy_dir: Option<PathBuf>,
 }
@@ -114,23 +116,27 @@ pub fn validate(args: &ValidateArgs) -> Result<(), CliError> {
     let progress = Progress::new(pairs.len(), "runs");
     let started = std::time::Instant::now();
     // One (test, planner) pair per task; each is deterministic, so the order of finishing does
-    // not matter and the report is assembled in table order.
-    let reports: Vec<Report> = pairs
+    // not matter and the report is assembled in table order. With --pedpy-dir a task writes its
+    // runs' files as it finishes (so no run's trajectories wait in memory for the others).
+    let outcomes: Vec<Outcome> = pairs
         .par_iter()
         .map(|&(t, k)| {
-            let r = run_suite(&[t], &[k], |_, _, _, _| {});
+            let outcome = match &args.pedpy_dir {
+                Some(dir) => {
+                    let (outcome, runs) = t.run_with_trajectories(k);
+                    write_pedpy(dir, &runs)?;
+                    outcome
+                }
+                None => t.run(k),
+            };
             progress.inc();
-            r
+            Ok(outcome)
         })
-        .collect();
-    let mut report = Report {
-        px_per_metre: reports.first().map_or(20.0, |r| r.px_per_metre),
-        rows: vec![],
-        curves: vec![],
-    };
-    for r in reports {
-        report.rows.extend(r.rows);
-        report.curves.extend(r.curves);
+        .collect::<Result<_, CliError>>()?;
+    let mut report = Report { px_per_metre: PX_PER_METRE, rows: vec![], curves: vec![] };
+    for o in outcomes {
+        report.rows.extend(o.rows);
+        report.curves.extend(o.curves);
     }
     drop(progress);
     if let Some(file) = &args.json {
@@ -144,9 +150,6 @@ pub fn validate(args: &ValidateArgs) -> Result<(), CliError> {
             write_file("curve", dir.join(format!("{}.csv", c.name)), &curve_csv(c))?;
         }
     }
-    if let Some(dir) = &args.pedpy_dir {
-        write_pedpy(dir, &kinds)?;
-    }
     let passed = report.rows.iter().filter(|r| r.pass).count();
     out(&format!(
         "{}\n{passed} of {} passed in {:.1} s\n",
@@ -156,18 +159,12 @@ pub fn validate(args: &ValidateArgs) -> Result<(), CliError> {
     ))
 }
 
-/// The T4 runs' trajectories as PedPy files.
-fn write_pedpy(dir: &Path, kinds: &[PlannerKind]) -> Result<(), CliError> {
-    let (length, width) = T4_CORRIDOR;
-    for &kind in kinds {
-        for &rho in T4_DENSITIES {
-            let count = (rho * length * width).round() as u32;
-            let (rec, _) = periodic_run(kind, count, length, width).map_err(failed)?;
-            let title =
-                format!("T4 periodic corridor {length} m x {width} m, {rho} persons/m2, {}", kind.name());
-            let file = dir.join(format!("t4-{}-rho{rho}.txt", kind.name()));
-            write_file("--pedpy-dir file", file, &trajectory_text(&rec.traj, Some(length), &title))?;
-        }
+/// `runs` as PedPy files, DIR/<run name>.txt.
+fn write_pedpy(dir: &Path, runs: &[Run]) -> Result<(), CliError> {
+    for run in runs {
+        let title = format!("flockpath validate run {}", run.name);
+        let file = dir.join(format!("{}.txt", run.name));
+        write_file("--pedpy-dir file", file, &trajectory_text(&run.traj, run.period, &title))?;
     }
     Ok(())
 }

@@ -132,6 +132,28 @@ impl Trajectories {
         Some(FdPoint { density, speed, flow: density * speed })
     }
 
+    /// The density profile along x (persons/m²): the mean head count per frame from frame
+    /// `from` on in each of `bins` bins `bin` metres long from `x0`, across the whole `width`,
+    /// over the bin's area. Empty when no frame is left. A homogeneous periodic crowd has the
+    /// same density in every bin.
+    pub fn density_profile(&self, x0: f32, bin: f32, bins: usize, width: f32, from: usize) -> Vec<f64> {
+        let frames = self.frames.get(from..).unwrap_or_default();
+        if frames.is_empty() || bin <= 0.0 || width <= 0.0 {
+            return vec![];
+        }
+        let mut heads = vec![0usize; bins];
+        for f in frames {
+            for p in &f.pos {
+                let k = ((p.x - x0) / bin).floor();
+                if k >= 0.0 && (k as usize) < bins {
+                    heads[k as usize] += 1;
+                }
+            }
+        }
+        let area = f64::from(bin) * f64::from(width);
+        heads.iter().map(|&h| h as f64 / frames.len() as f64 / area).collect()
+    }
+
     /// Rex & Löwen's lane order at frame `k`: for each agent, its neighbours in a band
     /// `|Δy| < lane/2`, `|Δx| < reach` (x distances taken round `period` when given) count as
     /// `s` of its group and `o` of others; the order is the mean of `((s − o)/(s + o))²` over
@@ -313,6 +335,15 @@ mod tests {
         assert!((fd.speed - 0.8).abs() < 1e-5, "{fd:?}");
         assert!((fd.flow - fd.density * fd.speed).abs() < 1e-12);
         assert_eq!(t.area_fundamental(area, 50), None, "no frame left");
+    }
+
+    #[test]
+    fn density_profile_counts_heads_per_bin() {
+        // 3 agents in the first 2 m bin, 1 in the second, none in the third, on a 1 m strip.
+        let starts = [0.5, 1.0, 1.9, 2.5].map(|x| Vec2::new(x, 0.5));
+        let t = walk(&starts, Vec2::ZERO, 4, 0.1);
+        assert_eq!(t.density_profile(0.0, 2.0, 3, 1.0, 1), vec![1.5, 0.5, 0.0]);
+        assert!(t.density_profile(0.0, 2.0, 3, 1.0, 4).is_empty(), "no frame left");
     }
 
     #[test]

@@ -8,7 +8,7 @@ use super::record::{record, Recorded};
 use super::report::{Curve, Outcome, Row};
 use super::scenes::{
     bottleneck, counter_flow, demographics, free_walking, head_on, large_room, periodic_corridor, small_room,
-    straight, turned_walk, Corner, AGE_GROUPS, BOTTLENECK,
+    straight, turned_walk, Corner, AGE_GROUPS, BOTTLENECK, HEAD_ON_OFFSET_M, PERIODIC_BAND_START,
 };
 use super::units::{config_at_speed, SetupError, BODY_RADIUS_M, FREE_SPEED, PX_PER_METRE};
 use crate::model::codec::scene_to_fragment;
@@ -31,7 +31,44 @@ pub struct TestSpec {
     pub measurement: &'static str,
     /// The criterion in words.
     pub criterion: &'static str,
-    run: fn(&TestSpec, PlannerKind) -> Result<Outcome, Failure>,
+    run: fn(&TestSpec, PlannerKind, &mut Runs) -> Result<Outcome, Failure>,
+}
+
+/// One recorded run of a test, for writing out (`flockpath validate --pedpy-dir`): its name,
+/// the periodic band's length in x when it has one, and its trajectories.
+#[derive(Clone, Debug)]
+pub struct Run {
+    /// `<test id>-<planner>` and, for a test of several runs, which one (`-rho2`, `-45deg`, …).
+    pub name: String,
+    /// The periodic band's length (m), for a run in a periodic corridor: a walker that wraps
+    /// round is a new pedestrian to PedPy.
+    pub period: Option<f32>,
+    /// The run's trajectories.
+    pub traj: Trajectories,
+}
+
+/// Where a test puts the runs it recorded: kept when asked for, else dropped at once (the
+/// table alone needs none of them).
+pub struct Runs {
+    keep: bool,
+    runs: Vec<Run>,
+}
+
+impl Runs {
+    /// Keeps a copy of `traj` as run `<test>-<planner><variant>` when runs are kept.
+    fn keep(
+        &mut self,
+        spec: &TestSpec,
+        kind: PlannerKind,
+        variant: &str,
+        period: Option<f32>,
+        traj: &Trajectories,
+    ) {
+        if self.keep {
+            let name = format!("{}-{}{variant}", spec.id, kind.name());
+            self.runs.push(Run { name, period, traj: traj.clone() });
+        }
+    }
 }
 
 /// A run that could not be measured: the message, and the scene when one was built.
@@ -56,7 +93,18 @@ impl TestSpec {
     /// Runs the test with `kind` driving every group. A run that cannot be measured (a scene
     /// the world refuses) gives a failing row that says why.
     pub fn run(&self, kind: PlannerKind) -> Outcome {
-        (self.run)(self, kind).unwrap_or_else(|f| Outcome {
+        self.run_keeping(kind, false).0
+    }
+
+    /// [`TestSpec::run`] and every run it recorded (trajectories from the start, in metres), in
+    /// the order it made them.
+    pub fn run_with_trajectories(&self, kind: PlannerKind) -> (Outcome, Vec<Run>) {
+        self.run_keeping(kind, true)
+    }
+
+    fn run_keeping(&self, kind: PlannerKind, keep: bool) -> (Outcome, Vec<Run>) {
+        let mut runs = Runs { keep, runs: vec![] };
+        let outcome = (self.run)(self, kind, &mut runs).unwrap_or_else(|f| Outcome {
             rows: vec![self.row(
                 kind,
                 None,
@@ -66,7 +114,8 @@ impl TestSpec {
                 f.scene.as_deref(),
             )],
             curves: vec![],
-        })
+        });
+        (outcome, runs.runs)
     }
 
     fn row(
@@ -115,8 +164,8 @@ pub const TESTS: &[TestSpec] = &[
         id: "t4-fundamental-diagram",
         title: "T4 fundamental diagram: periodic 20 m × 2 m corridor at 0.5…6 persons/m²",
         setup: "periodic corridor 20 m × 2 m at 0.5, 1, 2, 3, 4, 5, 6 persons/m²",
-        measurement: "after a 10 s warm-up, 20 s in the area x 5…15 m: classic density (head count / area), mean x-speed v, specific flow J_s = ρ·v (1/(m·s))",
-        criterion: "mean |v − v_Weidmann| over the 7 densities ≤ 0.2 m/s",
+        measurement: "after a 10 s warm-up, 20 s in the area x 15…25 m (the middle of the periodic band x 10…30 m): classic density (head count / area), mean x-speed v, specific flow J_s = ρ·v (1/(m·s)); each point compared with the reference speed and flow at its measured density",
+        criterion: "mean |v − v_Weidmann(ρ measured)| over the 7 densities ≤ 0.2 m/s",
         run: t4,
     },
     TestSpec {
@@ -138,7 +187,7 @@ pub const TESTS: &[TestSpec] = &[
     TestSpec {
         id: "juelich-head-on",
         title: "Jülich: two walkers head-on",
-        setup: "two walkers 16 m apart on one line walk at each other",
+        setup: "two walkers 16 m apart walk at each other on lines 1 cm apart (a small lateral offset: exactly collinear starts test only a symmetric model's tie-breaking)",
         measurement: "smallest gap between bodies (distance − both radii)",
         criterion: "both arrive and their bodies never overlap (gap ≥ 0)",
         run: head_on_test,
@@ -196,7 +245,7 @@ pub const TESTS: &[TestSpec] = &[
         title: "T16 single file: periodic 20 m ring corridor 0.5 m wide",
         setup: "periodic ring corridor 20 m × 0.5 m at 0.5…2.5 persons/m",
         measurement: "as T4, density per metre of line",
-        criterion: "mean |v − v_Seyfried| over the 5 line densities ≤ 0.2 m/s",
+        criterion: "mean |v − v_Seyfried(ρ measured)| over the 5 line densities ≤ 0.2 m/s",
         run: t16,
     },
 ];
@@ -217,15 +266,16 @@ fn world(scene: &Scene, starts: Option<Vec<Vec2>>) -> Result<World, Failure> {
 }
 
 /// Steps per second.
-const HZ: u32 = 60;
+pub const HZ: u32 = 60;
 
 fn pct(x: f64) -> String {
     format!("{:.1}%", 100.0 * x)
 }
 
-fn t1(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
+fn t1(spec: &TestSpec, kind: PlannerKind, runs: &mut Runs) -> Result<Outcome, Failure> {
     let scene = free_walking(&config_at_speed(kind, FREE_SPEED)?);
     let rec = record(world(&scene, None)?, 50 * HZ, 3, |f| f.pos[0].x > 36.0);
+    runs.keep(spec, kind, "", None, &rec.traj);
     let v = rec.traj.section_speed(0, 5.0, 35.0).map(f64::from);
     let (measured, pass) = match v {
         Some(v) => {
@@ -241,8 +291,9 @@ fn t1(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
 pub const T4_DENSITIES: &[f32] = &[0.5, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0];
 /// T4's corridor (m): periodic length, width.
 pub const T4_CORRIDOR: (f32, f32) = (20.0, 2.0);
-/// The measurement area of T4 and T16 (x range, m): the middle of the periodic corridor.
-pub const MEASUREMENT_X: (f32, f32) = (5.0, 15.0);
+/// The measurement area of T4 and T16 (x range, m): the middle 10 m of the periodic band
+/// `[10, 30)` m ([`PERIODIC_BAND_START`]).
+pub const MEASUREMENT_X: (f32, f32) = (PERIODIC_BAND_START + 5.0, PERIODIC_BAND_START + 15.0);
 /// Warm-up and measured time of the periodic runs (s).
 pub const WARM_UP_S: u32 = 10;
 /// Measured time after the warm-up (s).
@@ -277,8 +328,13 @@ pub fn periodic_point(traj: &Trajectories, width: f32) -> Option<FdPoint> {
     traj.area_fundamental(area, (WARM_UP_S * HZ / PERIODIC_EVERY) as usize)
 }
 
-/// T4 and T16: a fundamental diagram over `densities` against `reference`; `per_metre`
-/// turns the area density into persons per metre of line (single file).
+/// T4 and T16: a fundamental diagram over `densities` against `reference`, each point compared
+/// with the reference at the density MEASURED in the area (a crowd that is not homogeneous,
+/// or not all in the area, has another density there than the nominal count over the
+/// corridor: compared at the nominal one, a speed would be judged against the wrong reference
+/// value); `per_metre` turns the area density into persons per metre of line (single file).
+/// Reports the speed–density deviation (the criterion) and the flow–density diagram: the mean
+/// flow deviation from the reference's `ρ·v(ρ)` and the measured flow's peak.
 #[allow(clippy::too_many_arguments, reason = "the two diagrams differ in these settings only")]
 fn diagram(
     spec: &TestSpec,
@@ -288,6 +344,7 @@ fn diagram(
     per_metre: bool,
     reference: fn(f64) -> f64,
     name: &str,
+    runs: &mut Runs,
 ) -> Result<Outcome, Failure> {
     let length = T4_CORRIDOR.0;
     let mut rows = vec![];
@@ -295,20 +352,29 @@ fn diagram(
     for &rho in densities {
         let count = (rho * length * if per_metre { 1.0 } else { width }).round() as u32;
         let (rec, scene) = periodic_run(kind, count, length, width)?;
+        runs.keep(spec, kind, &format!("-rho{rho}"), Some(length), &rec.traj);
         if shown.is_none() || rho == 2.0 {
             shown = Some(scene);
         }
         let scale = if per_metre { f64::from(width) } else { 1.0 };
-        let (d, v, flow) = periodic_point(&rec.traj, width)
-            .map_or((f64::NAN, f64::NAN, f64::NAN), |p| (p.density * scale, p.speed, p.flow * scale));
-        let v_ref = reference(f64::from(rho));
-        rows.push(vec![f64::from(rho), d, v, flow, v_ref, f64::from(rho) * v_ref, v - v_ref]);
+        let point = periodic_point(&rec.traj, width).map(|p| FdPoint {
+            density: p.density * scale,
+            speed: p.speed,
+            flow: p.flow * scale,
+        });
+        rows.push(diagram_row(f64::from(rho), point, reference));
     }
-    let devs: Vec<f64> = rows.iter().map(|r| r[6].abs()).collect();
-    let mean = devs.iter().sum::<f64>() / devs.len() as f64;
-    let (worst, at) =
-        rows.iter().map(|r| (r[6].abs(), r[0])).fold((0.0, 0.0), |a, b| if b.0 > a.0 { b } else { a });
-    let measured = format!("mean |Δv| {mean:.2} m/s (largest {worst:.2} at {at} {name})");
+    let mean_abs = |column: usize| rows.iter().map(|r| r[column].abs()).sum::<f64>() / rows.len() as f64;
+    let (mean, mean_flow) = (mean_abs(6), mean_abs(7));
+    let largest = |column: usize, by: fn(f64) -> f64| {
+        rows.iter().map(|r| (by(r[column]), r[1])).fold((0.0, f64::NAN), |a, b| if b.0 > a.0 { b } else { a })
+    };
+    let (worst, at) = largest(6, f64::abs);
+    let (peak, peak_at) = largest(3, |f| f);
+    let flow_unit = if per_metre { "persons/s" } else { "persons/(m·s)" };
+    let measured = format!(
+        "mean |Δv| {mean:.2} m/s (largest {worst:.2} at {at:.2} {name}); mean |ΔJ| {mean_flow:.2} {flow_unit}, peak J {peak:.2} at {peak_at:.2} {name}"
+    );
     let unit = if per_metre { "persons_per_m" } else { "persons_per_m2" };
     let columns = [
         &format!("density_nominal_{unit}") as &str,
@@ -318,6 +384,7 @@ fn diagram(
         "reference_speed_m_s",
         if per_metre { "reference_flow_persons_s" } else { "reference_specific_flow_persons_m_s" },
         "speed_deviation_m_s",
+        if per_metre { "flow_deviation_persons_s" } else { "specific_flow_deviation_persons_m_s" },
     ];
     Ok(Outcome {
         rows: vec![spec.row(
@@ -332,15 +399,26 @@ fn diagram(
     })
 }
 
-fn t4(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
-    diagram(spec, kind, T4_DENSITIES, T4_CORRIDOR.1, false, weidmann_speed, "persons/m²")
+/// One row of a fundamental diagram's curve: nominal density, measured density, speed, flow,
+/// the reference speed and flow AT THE MEASURED DENSITY, and the speed and flow deviations from
+/// them (NaN throughout the measured part when nothing was measured).
+pub fn diagram_row(nominal: f64, point: Option<FdPoint>, reference: fn(f64) -> f64) -> Vec<f64> {
+    let FdPoint { density: d, speed: v, flow } =
+        point.unwrap_or(FdPoint { density: f64::NAN, speed: f64::NAN, flow: f64::NAN });
+    let v_ref = if d.is_finite() { reference(d) } else { f64::NAN };
+    let flow_ref = d * v_ref;
+    vec![nominal, d, v, flow, v_ref, flow_ref, v - v_ref, flow - flow_ref]
+}
+
+fn t4(spec: &TestSpec, kind: PlannerKind, runs: &mut Runs) -> Result<Outcome, Failure> {
+    diagram(spec, kind, T4_DENSITIES, T4_CORRIDOR.1, false, weidmann_speed, "persons/m²", runs)
 }
 
 /// T16's line densities (persons/m).
 pub const T16_DENSITIES: &[f32] = &[0.5, 1.0, 1.5, 2.0, 2.5];
 
-fn t16(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
-    diagram(spec, kind, T16_DENSITIES, 0.5, true, seyfried_speed, "persons/m")
+fn t16(spec: &TestSpec, kind: PlannerKind, runs: &mut Runs) -> Result<Outcome, Failure> {
+    diagram(spec, kind, T16_DENSITIES, 0.5, true, seyfried_speed, "persons/m", runs)
 }
 
 /// Whether `p` (m) is inside an obstacle of `scene`.
@@ -348,10 +426,11 @@ fn in_wall(scene: &Scene, p: Vec2) -> bool {
     scene.obstacles.iter().any(|o| o.contains(p * PX_PER_METRE))
 }
 
-fn t6(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
+fn t6(spec: &TestSpec, kind: PlannerKind, runs: &mut Runs) -> Result<Outcome, Failure> {
     let corner = Corner { leg: 12.0, width: 2.0 };
     let scene = corner.scene("validate-t6-corner", &config_at_speed(kind, FREE_SPEED)?, 20, 6.0);
     let rec = record(world(&scene, None)?, 40 * HZ, 3, |f| f.pos.iter().all(|&p| corner.arrived(p)));
+    runs.keep(spec, kind, "", None, &rec.traj);
     let crossings = rec.traj.agents_ever_inside(|p| in_wall(&scene, p));
     let arrived = rec.traj.arrival_times(|p| corner.arrived(p)).iter().flatten().count();
     let measured = format!("{arrived}/20 arrived, {crossings} crossed a wall");
@@ -362,7 +441,7 @@ fn t6(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
     })
 }
 
-fn rotation(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
+fn rotation(spec: &TestSpec, kind: PlannerKind, runs: &mut Runs) -> Result<Outcome, Failure> {
     let cfg = config_at_speed(kind, FREE_SPEED)?;
     let mut stats = vec![];
     let mut first = None;
@@ -372,6 +451,7 @@ fn rotation(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
         let goal = Vec2::new(g[0], g[1]) / PX_PER_METRE;
         let reached = move |p: Vec2| p.distance(goal) < 1.0;
         let rec = record(world(&scene, Some(starts))?, 40 * HZ, 1, |f| f.pos.iter().all(|&p| reached(p)));
+        runs.keep(spec, kind, &format!("-{:.0}deg", angle.to_degrees()), None, &rec.traj);
         let times: Vec<Option<f32>> = rec.traj.arrival_times(reached);
         let arrived: Vec<f64> = times.iter().flatten().map(|&t| f64::from(t)).collect();
         let mean = arrived.iter().sum::<f64>() / arrived.len().max(1) as f64;
@@ -396,11 +476,12 @@ fn rotation(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
     Ok(Outcome { rows: vec![spec.row(kind, value, "%", measured, pass, first.as_ref())], curves: vec![] })
 }
 
-fn head_on_test(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
+fn head_on_test(spec: &TestSpec, kind: PlannerKind, runs: &mut Runs) -> Result<Outcome, Failure> {
     let (scene, starts) = head_on(&config_at_speed(kind, FREE_SPEED)?);
-    let goals = [Vec2::new(18.0, 3.0), Vec2::new(2.0, 3.0)];
+    let goals = [Vec2::new(18.0, 3.0), Vec2::new(2.0, 3.0 + HEAD_ON_OFFSET_M)];
     let at_goal = |f: &super::measure::Frame| (0..2).all(|i| f.pos[i].distance(goals[i]) < 0.5);
     let rec = record(world(&scene, Some(starts))?, 30 * HZ, 1, at_goal);
+    runs.keep(spec, kind, "", None, &rec.traj);
     let gap = rec.traj.min_gap(0, 1, BODY_RADIUS_M, BODY_RADIUS_M).map(f64::from);
     let arrived = (0..2).all(|i| rec.traj.arrival_times(|p| p.distance(goals[i]) < 0.5)[i].is_some());
     let gap_text = gap.map_or("?".into(), |g| format!("{g:.3} m"));
@@ -412,11 +493,12 @@ fn head_on_test(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> 
     Ok(Outcome { rows: vec![spec.row(kind, gap, "m", measured, pass, Some(&scene))], curves: vec![] })
 }
 
-fn lanes(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
+fn lanes(spec: &TestSpec, kind: PlannerKind, runs: &mut Runs) -> Result<Outcome, Failure> {
     let (scene, band) = counter_flow(&config_at_speed(kind, FREE_SPEED)?, 40);
     let mut w = world(&scene, None)?;
     w.set_periodic_x(Some(band));
     let rec = record(w, 60 * HZ, 6, |_| false);
+    runs.keep(spec, kind, "", Some((band.1 - band.0) / PX_PER_METRE), &rec.traj);
     let per_second = (HZ / 6) as usize;
     let series: Vec<Vec<f64>> = (0..rec.traj.frames.len())
         .step_by(per_second)
@@ -440,7 +522,7 @@ pub const T9_AGENTS: u32 = 1000;
 /// T9's simulated time (s): the flows are measured while the room empties.
 pub const T9_SECONDS: u32 = 30;
 
-fn t9(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
+fn t9(spec: &TestSpec, kind: PlannerKind, runs: &mut Runs) -> Result<Outcome, Failure> {
     let cfg = config_at_speed(kind, FREE_SPEED)?;
     let mut flows = vec![];
     let mut shown = None;
@@ -449,6 +531,7 @@ fn t9(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
         let (scene, room) = large_room(&cfg, four, T9_AGENTS);
         let rec =
             record(world(&scene, None)?, T9_SECONDS * HZ, 6, |f| f.pos.iter().all(|&p| !room.inside(p)));
+        runs.keep(spec, kind, if four { "-4-exits" } else { "-2-exits" }, None, &rec.traj);
         let exits = rec.traj.arrival_times(|p| !room.inside(p));
         cumulative.push(
             (0..rec.traj.frames.len())
@@ -489,10 +572,11 @@ fn t9(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
     })
 }
 
-fn t12(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
+fn t12(spec: &TestSpec, kind: PlannerKind, runs: &mut Runs) -> Result<Outcome, Failure> {
     let scene = bottleneck(&config_at_speed(kind, FREE_SPEED)?, 150);
     let goal = Vec2::new(23.0, 5.0);
     let rec = record(world(&scene, None)?, 90 * HZ, 6, |f| f.pos.iter().all(|&p| p.distance(goal) < 2.0));
+    runs.keep(spec, kind, "", None, &rec.traj);
     let (x_in, x_out, _) = BOTTLENECK;
     let zones = rec.traj.jam_samples(0.2, x_in, x_out, |p| p.distance(goal) < 3.0);
     let jammed: u32 = zones.iter().sum();
@@ -512,9 +596,10 @@ fn t12(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
     })
 }
 
-fn t7(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
+fn t7(spec: &TestSpec, kind: PlannerKind, runs: &mut Runs) -> Result<Outcome, Failure> {
     let (scene, speeds) = demographics(kind)?;
     let rec = record(world(&scene, None)?, 70 * HZ, 3, |f| f.pos.iter().all(|p| p.x > 36.0));
+    runs.keep(spec, kind, "", None, &rec.traj);
     let mut rows = vec![];
     let mut inside = 0;
     for a in 0..rec.traj.agents() {
@@ -544,12 +629,13 @@ fn t7(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
 /// T8's desired speeds (m/s).
 pub const T8_SPEEDS: &[f32] = &[0.8, 1.0, 1.2, 1.34, 1.6];
 
-fn t8(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
+fn t8(spec: &TestSpec, kind: PlannerKind, runs: &mut Runs) -> Result<Outcome, Failure> {
     let mut rows = vec![];
     let mut shown = None;
     for &v in T8_SPEEDS {
         let (scene, room) = small_room(&config_at_speed(kind, v)?, 40);
         let rec = record(world(&scene, None)?, 60 * HZ, 6, |f| f.pos.iter().all(|&p| !room.inside(p)));
+        runs.keep(spec, kind, &format!("-v{v}"), None, &rec.traj);
         let exits = rec.traj.arrival_times(|p| !room.inside(p));
         let out = exits.iter().flatten().count();
         rows.push(vec![f64::from(v), evacuation_time(&exits).map_or(f64::NAN, f64::from), out as f64]);
@@ -576,20 +662,22 @@ fn t8(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
     })
 }
 
-fn t15(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
+fn t15(spec: &TestSpec, kind: PlannerKind, runs: &mut Runs) -> Result<Outcome, Failure> {
     let cfg = config_at_speed(kind, FREE_SPEED)?;
     let corner = Corner { leg: 15.0, width: 3.0 };
     let (n, start) = (100, 8.0);
     let corner_scene = corner.scene("validate-t15-corner", &cfg, n, start);
-    let evac = |scene: &Scene, arrived: &dyn Fn(Vec2) -> bool| -> Result<Option<f32>, Failure> {
-        let rec = record(world(scene, None)?, 60 * HZ, 6, |f| f.pos.iter().all(|&p| arrived(p)));
-        Ok(evacuation_time(&rec.traj.arrival_times(arrived)))
-    };
-    let t_corner = evac(&corner_scene, &|p| corner.arrived(p))?;
+    let mut evac =
+        |scene: &Scene, variant: &str, arrived: &dyn Fn(Vec2) -> bool| -> Result<Option<f32>, Failure> {
+            let rec = record(world(scene, None)?, 60 * HZ, 6, |f| f.pos.iter().all(|&p| arrived(p)));
+            runs.keep(spec, kind, variant, None, &rec.traj);
+            Ok(evacuation_time(&rec.traj.arrival_times(arrived)))
+        };
+    let t_corner = evac(&corner_scene, "-corner", &|p| corner.arrived(p))?;
     let mut straights = vec![];
     for length in [24.0, 30.0] {
         let scene = straight("validate-t15-straight", &cfg, n, length, 3.0, start);
-        straights.push(evac(&scene, &move |p: Vec2| p.x > length - 2.0)?);
+        straights.push(evac(&scene, &format!("-straight{length}"), &move |p: Vec2| p.x > length - 2.0)?);
     }
     let fmt = |t: Option<f32>| t.map_or("not all out in 60 s".into(), |t| format!("{t:.1} s"));
     let measured =
@@ -602,4 +690,47 @@ fn t15(spec: &TestSpec, kind: PlannerKind) -> Result<Outcome, Failure> {
         rows: vec![spec.row(kind, t_corner.map(f64::from), "s", measured, pass, Some(&corner_scene))],
         curves: vec![],
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::experiments::validation::measure::weidmann_speed;
+
+    /// Regression (issue 25 §1): T4 compared every point with Weidmann at the NOMINAL density.
+    /// A crowd of nominal 2 persons/m² measured at 3 in the area, walking at Weidmann's speed
+    /// for 3, deviates by nothing; judged at 2 it deviated by v(3) − v(2) = −0.28 m/s.
+    #[test]
+    fn a_diagram_point_is_compared_at_its_measured_density() {
+        let v3 = weidmann_speed(3.0);
+        let row = diagram_row(2.0, Some(FdPoint { density: 3.0, speed: v3, flow: 3.0 * v3 }), weidmann_speed);
+        assert_eq!(row[0], 2.0, "nominal density kept");
+        assert_eq!(row[4], v3, "reference speed at the measured density");
+        assert!(row[6].abs() < 1e-12 && row[7].abs() < 1e-12, "{row:?}");
+        assert!((row[5] - 3.0 * v3).abs() < 1e-12, "reference flow ρ·v(ρ) at the measured ρ");
+        let none = diagram_row(2.0, None, weidmann_speed);
+        assert!(none[1..].iter().all(|x| x.is_nan()), "{none:?}");
+    }
+
+    /// Regression (issue 25 §1): the head-on walkers started on one line, so the check tested
+    /// tie-breaking: social force's two walkers pressed into each other and neither arrived
+    /// (closest gap −0.043 m). They walk on lines 1 cm apart; the row reports the smallest gap
+    /// and whether both arrived, and social force passes.
+    #[test]
+    fn head_on_walkers_start_a_centimetre_apart_and_social_force_passes() {
+        let cfg =
+            crate::experiments::validation::units::config_at_speed(PlannerKind::SocialForce, FREE_SPEED)
+                .expect("a speed");
+        let (_, starts) = head_on(&cfg);
+        let offset = (starts[1].y - starts[0].y) / PX_PER_METRE;
+        assert!((offset - 0.01).abs() < 1e-5, "lateral offset {offset} m");
+        let spec = find_test("juelich-head-on").expect("the head-on test");
+        let row = &spec.run(PlannerKind::SocialForce).rows[0];
+        assert!(
+            row.measured.contains("closest gap") && row.measured.contains("both arrived"),
+            "{}",
+            row.measured
+        );
+        assert!(row.pass, "{}", row.measured);
+    }
 }

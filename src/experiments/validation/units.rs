@@ -48,15 +48,18 @@ pub fn mps(px_per_step: f32) -> f32 {
 const DESIRED_KEYS: &[&str] = &["desired_speed", "preferred_speed", "pref_speed"];
 const LIMIT_KEYS: &[&str] = &["max_speed", "max_velocity"];
 
-/// How much faster than desired a planner with both a desired speed and a limit may go (the
-/// social force model's 1.3, Helbing & Molnár 1995).
-const LIMIT_OVER_DESIRED: f32 = 1.3;
-
-/// `kind`'s default configuration walking at `speed` m/s: its desired-speed parameter set to
-/// `speed` (and its limit to 1.3 × that), or, for the swarm planners that only have a speed
-/// limit, the limit set to `speed`; each in its parameter's own unit (m/s for the baseline
-/// models, px/step for the swarm planners). Refuses a planner with neither, or a speed out of
-/// range.
+/// `kind`'s default configuration walking at `speed` m/s, each baseline with the speed limit
+/// its own paper gives, in its parameter's own unit (m/s for the baseline models, px/step for
+/// the swarm planners):
+/// - a desired speed and a limit as a factor of it (social force): the desired speed set to
+///   `speed`, the factor left at its default (Helbing & Molnár 1995: `v_max = 1.3 v⁰`);
+/// - a desired speed and a limit of its own (ORCA's `pref_speed` and `max_speed`): both set to
+///   `speed`, as in RVO2, where the preferred velocity is the velocity an agent walks at and
+///   the disc of allowed velocities no larger (the suite gave ORCA social force's 1.3 × until
+///   issue 25: RVO2's fallback then walked on the edge of the larger disc, 1.72 m/s in a jam);
+/// - only a limit (the swarm planners): the limit set to `speed`.
+///
+/// Refuses a planner with neither, or a speed out of range.
 pub fn config_at_speed(kind: PlannerKind, speed: f32) -> Result<PlannerConfig, SetupError> {
     let mut config = kind.default_config();
     let specs = kind.param_specs();
@@ -70,7 +73,7 @@ pub fn config_at_speed(kind: PlannerKind, speed: f32) -> Result<PlannerConfig, S
     match (find(DESIRED_KEYS), find(LIMIT_KEYS)) {
         (Some((d, d_m_s)), l) => {
             if let Some((l, l_m_s)) = l {
-                config.set_param(l, value(speed * LIMIT_OVER_DESIRED, l_m_s))?;
+                config.set_param(l, value(speed, l_m_s))?;
             }
             config.set_param(d, value(speed, d_m_s))?;
         }
@@ -90,6 +93,21 @@ mod tests {
         assert!((px_per_step(1.34) - 1.34 * 20.0 / 60.0).abs() < 1e-6);
         assert!((mps(px_per_step(0.9)) - 0.9).abs() < 1e-6);
         assert_eq!(px(2.0), 40.0);
+    }
+
+    /// Regression: ORCA had social force's limit, 1.3 × its preferred speed (1.74 m/s at 1.34),
+    /// and walked up to it in a jam; its limit is its preferred speed. Social force keeps
+    /// Helbing & Molnár's 1.3 × desired.
+    #[test]
+    fn each_baseline_gets_its_own_papers_speed_limit() {
+        let limit = |kind: PlannerKind| {
+            let config = config_at_speed(kind, 1.34).expect("a speed parameter");
+            crate::planners::build(&config, 1, &[]).max_speed()
+        };
+        let orca = limit(PlannerKind::Orca);
+        assert!((orca - px_per_step(1.34)).abs() < 1e-5, "ORCA's limit {} m/s", mps(orca));
+        let social = limit(PlannerKind::SocialForce);
+        assert!((social - px_per_step(1.3 * 1.34)).abs() < 1e-5, "social force's limit {} m/s", mps(social));
     }
 
     #[test]

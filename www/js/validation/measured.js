@@ -27,8 +27,11 @@ function flow(text) {
 const PATTERNS = [
   [new RegExp(`^(?<v>${NUM}) m/s \\((?<dev>${NUM})%\\)$`), 'speed'],
   [/^did not walk from 5 m to 35 m within 50 s$/, 'no_walk'],
-  [new RegExp(`^mean \\|Δv\\| (?<mean>${NUM}) m/s \\(largest (?<worst>${NUM}) at (?<at>${NUM}) (?<unit>persons/m²|persons/m)\\)$`), 'diagram',
-    (g) => ({ ...g, unit: t(g.unit === 'persons/m' ? 'validation.measured.unit_m' : 'validation.measured.unit_m2') })],
+  [new RegExp(`^mean \\|Δv\\| (?<mean>${NUM}) m/s \\(largest (?<worst>${NUM}) at (?<at>${NUM}) (?<unit>persons/m²|persons/m)\\); mean \\|ΔJ\\| (?<meanFlow>${NUM}) (?<flowUnit>persons/\\(m·s\\)|persons/s), peak J (?<peak>${NUM}) at (?<peakAt>${NUM}) (?:persons/m²|persons/m)$`), 'diagram',
+    (g) => {
+      const line = g.unit === 'persons/m';
+      return { ...g, unit: t(line ? 'validation.measured.unit_m' : 'validation.measured.unit_m2'), flowUnit: t(line ? 'validation.measured.flow_unit_m' : 'validation.measured.flow_unit_m2') };
+    }],
   [/^(?<arrived>\d+)\/20 arrived, (?<crossings>\d+) crossed a wall$/, 'walls'],
   [new RegExp(`^mean arrival (?<m0>${NUM}) s vs (?<m1>${NUM}) s turned, last (?<l0>${NUM}) s vs (?<l1>${NUM}) s: (?<rel>${NUM})%$`), 'rotation'],
   [/^arrived (?<n0>\d+)\/10, turned (?<n1>\d+)\/10 within 40 s$/, 'rotation_failed'],
