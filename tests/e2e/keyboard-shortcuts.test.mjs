@@ -28,7 +28,9 @@ test('playground: Space and Enter act on the focused control; shortcuts on the b
     await page.keyboard.press('Space');
     assert.equal(await page.isChecked('#overlay-landscape'), !before, 'Space ticked the focused checkbox');
     assert.equal(await playing(page), false, 'Space did not toggle play');
-    assert.equal(await page.evaluate(async () => (await window.flockpath.overlays()).landscape), !before, 'the tick reached the page');
+    // settled(): the checkbox's change reaches the worker after the key (README: reads after UI actions).
+    const ticked = await page.evaluate(async () => (await window.flockpath.settled(), (await window.flockpath.overlays()).landscape));
+    assert.equal(ticked, !before, 'the tick reached the page');
 
     // A focused Reset presses with Space (step 0), and play stays paused.
     await page.focus('#reset');
