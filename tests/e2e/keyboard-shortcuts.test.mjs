@@ -172,3 +172,120 @@ test('compare and lab: a focused button or checkbox keeps Space; the body gets t
     await opened.close();
   }
 });
+
+// Issue #27 §4: every shortcut with every kind of control focused. Focused by keyboard, a control
+// keeps its keys and no single-key shortcut acts; focused by a mouse click (a button keeps the
+// focus after it is clicked, a select after a pick), the shortcuts act on every key the control
+// does not use itself, so S, R and 1–7 work right after clicking Pause or picking a scene.
+test('playground: every shortcut with every kind of control focused, by keyboard and by mouse', async () => {
+  const { page, errors, close } = await openPage();
+  try {
+    const state = () =>
+      page.evaluate(async () => {
+        await window.flockpath.settled();
+        return {
+          steps: window.flockpath.metrics().steps,
+          playing: window.flockpath.isPlaying(),
+          tool: document.querySelector('#tools [aria-checked="true"]')?.dataset.tool,
+          preset: document.getElementById('preset').value,
+          obstacles: window.flockpath.scene().obstacles.length,
+        };
+      });
+    const tool = (name) => page.evaluate((n) => document.querySelector(`#tools [data-tool="${n}"]`).click(), name);
+    await page.evaluate(async (s) => {
+      await window.flockpath.pause();
+      await window.flockpath.load(s);
+      await window.flockpath.step(5);
+    }, simpleScene());
+    const start = await state();
+    assert.equal(start.steps, 5);
+
+    // Focused by keyboard (Tab order, here page.focus with no pointer): no single-key shortcut acts.
+    // Keys each control would take itself are left out (a select's type-ahead on letters it has).
+    const kinds = [
+      ['button', '#step', ['r', 's', '3', 'Delete', 'Escape']],
+      ['checkbox', '#overlay-landscape', ['r', 's', '3', 'Delete', 'Escape']],
+      ['tool radio', '#tools [data-tool="select"]', ['r', 's', '3', 'Delete', 'Escape']],
+      ['slider', '#spf', ['r', 's', '3', 'Delete', 'Escape', 'Space']],
+      ['select', '#preset', ['r', '3']],
+      ['number field', '#seed', ['r', 's', '3', 'Space']],
+    ];
+    for (const [kind, selector, keys] of kinds) {
+      await page.focus(selector);
+      for (const key of keys) {
+        await page.keyboard.press(key);
+        const now = await state();
+        assert.equal(now.steps, 5, `${key} on a keyboard-focused ${kind} did not step or reset`);
+        assert.equal(now.tool, 'select', `${key} on a keyboard-focused ${kind} did not pick a tool`);
+        assert.equal(now.playing, false, `${key} on a keyboard-focused ${kind} did not play`);
+        assert.equal(now.preset, start.preset, `${key} on a keyboard-focused ${kind} did not switch scenes`);
+      }
+    }
+    await page.evaluate(() => document.activeElement?.blur());
+
+    // Focused by a mouse click: each shortcut acts, except the keys the control uses.
+    const mouse = [
+      ['button', '#step', 1],
+      ['checkbox', '#overlay-landscape', 0],
+      ['tool radio', '#tools [data-tool="circle"]', 0],
+      ['slider', '#spf', 0],
+    ];
+    for (const [kind, selector, stepsByClick] of mouse) {
+      await tool('select');
+      const before = (await state()).steps;
+      await page.click(selector);
+      assert.equal(await page.evaluate((sel) => document.activeElement === document.querySelector(sel), selector), true, `the click focused the ${kind}`);
+      assert.equal((await state()).steps, before + stepsByClick);
+      await page.keyboard.press('s');
+      assert.equal((await state()).steps, before + stepsByClick + 1, `S steps after a click on the ${kind}`);
+      await page.keyboard.press('3');
+      assert.equal((await state()).tool, 'rect', `3 picks the rectangle after a click on the ${kind}`);
+      await page.keyboard.press('Escape');
+      await page.keyboard.press('r');
+      assert.equal((await state()).steps, 0, `R resets after a click on the ${kind}`);
+      await page.evaluate(() => window.flockpath.step(5));
+    }
+    // Space and Enter stay the clicked button's own keys: Space presses Step, play stays paused.
+    await page.click('#step');
+    const pressed = (await state()).steps;
+    await page.keyboard.press('Space');
+    let now = await state();
+    assert.equal(now.steps, pressed + 1, 'Space pressed the clicked Step button');
+    assert.equal(now.playing, false, 'and did not toggle play');
+    // The slider keeps its arrows.
+    await page.click('#spf');
+    const spf = await page.inputValue('#spf');
+    await page.keyboard.press('ArrowLeft');
+    assert.notEqual(await page.inputValue('#spf'), spf, 'ArrowLeft moved the clicked slider');
+
+    // A scene picked from the Scene menu with the mouse (the click opens the list, the pick closes
+    // it): the next S steps the new scene; before, the select's type-ahead took it and switched to
+    // the first scene starting with S.
+    await page.selectOption('#preset', 'pillars');
+    await page.evaluate(() => document.activeElement?.blur());
+    await page.click('#preset');
+    await page.keyboard.press('ArrowDown');
+    await page.keyboard.press('Enter');
+    await page.evaluate(async () => {
+      await window.flockpath.settled();
+      await window.flockpath.pause();
+    });
+    const picked = await state();
+    assert.notEqual(picked.preset, 'pillars', 'a scene was picked');
+    await page.keyboard.press('s');
+    now = await state();
+    assert.equal(now.preset, picked.preset, 'S did not switch scenes');
+    assert.equal(now.steps, picked.steps + 1, 'S stepped the picked scene');
+
+    // A text field keeps every key even when clicked.
+    await tool('select');
+    await page.click('#seed');
+    await page.keyboard.press('3');
+    assert.match(await page.inputValue('#seed'), /3$/, 'the clicked field took the 3');
+    assert.equal((await state()).tool, 'select', 'and no tool was picked');
+    await page.keyboard.press('Backspace');
+    assertNoUnexpectedErrors(errors);
+  } finally {
+    await close();
+  }
+});
