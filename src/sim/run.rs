@@ -264,7 +264,6 @@ impl Run {
         let Some(before) = self.before_planning.take() else { return false };
         self.world = before;
         self.start_recording();
-        self.metrics.clear();
         true
     }
 
@@ -280,10 +279,8 @@ impl Run {
         let budget = self.options.recording_budget_bytes.unwrap_or(0);
         self.recording = Recording::of_world(&self.world, budget);
         self.replay = self.options.replay.map(|b| Replay::with_budget(&self.world, b));
-        if self.metrics.groups() != self.world.scene().groups.len() {
-            // Samples of a scene with other groups cannot be plotted with this one's.
-            self.metrics.clear();
-        }
+        // The old run's samples would be plotted beside the new run's step 0 until it steps.
+        self.metrics.clear();
     }
 
     /// Starts a new recording when the run restarted (step 0) or its agents changed; otherwise

@@ -51,3 +51,46 @@ test('the metrics panel shows per-group rows and plots over time', async () => {
     await close();
   }
 });
+
+// Issue #27 §4 (stale state): paused, the plots follow what the page API and the Scene menu did —
+// after step(300) they show the run's samples, and a scene picked from the menu starts them
+// empty (they kept the previous run's history, to step 615 at step 0, until Play).
+test('paused, the plots follow steps and a newly picked scene', async () => {
+  const { page, errors, close } = await openPage();
+  try {
+    const shown = () =>
+      page.evaluate(() => [...document.querySelectorAll('#plots canvas')].map((c) => `${c.dataset.samples}@${c.dataset.lastStep}`));
+    const drawn = async (expected) => {
+      await page.waitForFunction(
+        (want) => [...document.querySelectorAll('#plots canvas')].every((c) => c.dataset.samples !== undefined && c.dataset.lastStep === want),
+        expected,
+        { timeout: 10_000 },
+      ).catch(() => {});
+      return shown();
+    };
+    await page.selectOption('#preset', 'pillars');
+    await page.evaluate(async () => {
+      await window.flockpath.settled();
+      await window.flockpath.pause();
+      await window.flockpath.reset();
+      await window.flockpath.step(300);
+    });
+    assert.equal(await page.evaluate(() => document.getElementById('plots-details').open), true, 'the plots are open');
+    const after300 = await drawn('300');
+    assert.ok(after300.length > 5, `${after300.length} plots`);
+    for (const p of after300) assert.match(p, /^\d+@300$/, 'each plot shows the run to step 300');
+    assert.ok(after300.every((p) => Number(p.split('@')[0]) > 1), after300.join());
+
+    await page.selectOption('#preset', 'open-field');
+    await page.evaluate(async () => {
+      await window.flockpath.settled();
+      await window.flockpath.pause();
+    });
+    assert.equal(await page.evaluate(() => window.flockpath.metrics().steps), 0);
+    const picked = await drawn('');
+    for (const p of picked) assert.equal(p, '0@', 'a new scene at step 0 plots nothing of the old run');
+    assertNoUnexpectedErrors(errors);
+  } finally {
+    await close();
+  }
+});

@@ -9,6 +9,7 @@
 // pass of the whole page).
 
 import { drawPlot, formatTick } from '../core/plot.js';
+import { Pending } from '../core/sim-proxy.js';
 import { onLanguageChange, setText as bindText, t, tOr } from '../core/i18n.js';
 import { unitText } from '../core/params-form.js';
 import { METRIC_KEYS, describeMetric, metricsGlossary } from '../core/metric-words.js';
@@ -93,6 +94,18 @@ export function setupMetrics(app) {
   const force = () => (forced = true);
   app.addEventListener('stepped', force);
   app.addEventListener('scene', force);
+  // Paused, a frame from the worker is the only news: it brings the state after a step, a load or
+  // a seek, and the plots' series the panel asked for (the first read of a series only asks).
+  // While playing, the refresh interval paces the panel instead.
+  app.remote?.addEventListener('frame', () => {
+    if (!app.playing) forced = true;
+  });
+  // Paused, a frame from the worker is the only news: it brings the state after a step, a load or
+  // a seek, and the plots' series the panel asked for (the first read of a series only asks).
+  // While playing, the refresh interval paces the panel instead.
+  app.remote?.addEventListener('frame', () => {
+    if (!app.playing) forced = true;
+  });
 
   const groupTable = document.getElementById('metrics-groups');
   const plotBox = document.getElementById('plots');
@@ -128,15 +141,32 @@ export function setupMetrics(app) {
       const steps = sim.history_steps();
       const shown = `${steps.length}:${steps.at(-1)}:${plotGroups.map((g) => g.color).join()}`;
       if (shown === plotted) return [];
-      plotted = shown;
-      return plots.map((p) => {
-        const lines = plotGroups.map((g, i) => ({ values: sim.history_series(p.key, i), color: g.color }));
-        if (plotGroups.length > 1) lines.push({ values: sim.history_series(p.key, -1), color: OVERALL_COLOR, width: 1 });
+      // A series' first read only asks the worker for it: ask for all of them in one go, and draw
+      // (and remember what is drawn) only once every one has arrived.
+      let pending = null;
+      const series = (key, group) => {
+        try {
+          return sim.history_series(key, group);
+        } catch (error) {
+          if (!(error instanceof Pending)) throw error;
+          pending = error;
+          return null;
+        }
+      };
+      const drawn = plots.map((p) => {
+        const lines = plotGroups.map((g, i) => ({ values: series(p.key, i), color: g.color }));
+        if (plotGroups.length > 1) lines.push({ values: series(p.key, -1), color: OVERALL_COLOR, width: 1 });
         return { plot: p, steps, lines };
       });
+      if (pending) throw pending;
+      plotted = shown;
+      return drawn;
     });
     if (!result.ok) return;
     for (const { plot, steps, lines } of result.value) {
+      // What the chart shows, for scripts and tests: the samples and the last step drawn.
+      plot.canvas.dataset.samples = String(steps.length);
+      plot.canvas.dataset.lastStep = String(steps.at(-1) ?? '');
       drawPlot(plot.canvas, overTime(steps, lines, plot));
     }
   };
