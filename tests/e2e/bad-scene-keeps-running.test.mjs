@@ -43,6 +43,8 @@ test('a garbled #s= link shows a message and the default preset runs', async () 
     const defaultPreset = await page.$eval('#preset option', (o) => o.value);
     assert.equal((await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.scene()))).name, defaultPreset);
     assert.equal(await page.evaluate(() => window.flockpath.isPlaying()), true);
+    // The address bar holds the link of what is on screen, not the refused one (issue #27 §4).
+    assert.equal(await page.evaluate(() => location.hash), `#s=${await page.evaluate(() => window.flockpath.sceneString())}`);
     await stepsIncrease(page, 10);
     await page.click('#banner-close');
     assert.equal(await bannerText(page), null, 'the message can be dismissed');
@@ -117,6 +119,8 @@ test('refused scenes keep the previous scene running unchanged', async () => {
     await page.waitForFunction(() => !document.getElementById('banner').hidden);
     assert.match(await bannerText(page), /scene in the link could not be loaded.*previous scene keeps running/i);
     assert.deepEqual(await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.scene())), loaded, 'link: scene unchanged');
+    assert.equal(await page.evaluate(() => location.hash), `#s=${await page.evaluate(() => window.flockpath.sceneString())}`,
+      'the refused link left the address bar: it holds the running scene');
     await stepsIncrease(page, stepsBefore);
 
     // A good link loads.
@@ -131,6 +135,37 @@ test('refused scenes keep the previous scene running unchanged', async () => {
     }, goodLink);
     await page.waitForFunction(() => window.flockpath.scene().name === 'good');
     await screenshot(page, 'bad-scene-keeps-running');
+    assertNoUnexpectedErrors(errors);
+  } finally {
+    await close();
+  }
+});
+
+// Issue #27 §4: a refused value does not stay in its field (10000000 shown while the scene has
+// 60): the field shows the scene's value again, the reason beside it, tied to the field for
+// screen readers; the next accepted value clears both.
+test('a refused group field shows the scene value again with the reason beside it', async () => {
+  const { page, errors, close } = await openPage();
+  try {
+    await page.evaluate(async (s) => {
+      await window.flockpath.pause();
+      await window.flockpath.load(s);
+    }, simpleScene());
+    const count = page.locator('#group-editor input[name=count]');
+    const before = await page.evaluate(() => window.flockpath.scene().groups[0].count);
+    await count.fill('10000000');
+    await count.press('Enter');
+    await page.waitForSelector('#count-refused', { timeout: 5_000 });
+    assert.equal(await count.inputValue(), String(before), 'the field shows the scene value again');
+    assert.equal(await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.scene().groups[0].count)), before);
+    assert.equal(await count.getAttribute('aria-invalid'), 'true');
+    assert.equal(await count.getAttribute('aria-describedby'), 'count-refused');
+    assert.match(await page.textContent('#count-refused'), /count is 10000000 agents.*at most 200000/);
+    await count.fill(String(before + 3));
+    await count.press('Enter');
+    await page.waitForSelector('#count-refused', { state: 'detached', timeout: 5_000 });
+    assert.equal(await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.scene().groups[0].count)), before + 3);
+    assert.equal(await count.getAttribute('aria-invalid'), null);
     assertNoUnexpectedErrors(errors);
   } finally {
     await close();

@@ -45,15 +45,25 @@ export function watchLocation(app) {
     Promise.resolve()
       .then(() => app.load(value, { rethrow: true }))
       .catch((error) => {
-        if (!app.crashed) showMessage(t('error.link_kept', { reason: messageOf(error) }));
+        if (app.crashed) return;
+        showMessage(t('error.link_kept', { reason: messageOf(error) }));
+        showSceneInLocation(app);
       });
   });
 }
 
 /**
+ * Puts the link of what is on screen back in the address bar after a refused link (at boot or
+ * pasted), so copying the address copies a link that works; the message names what was wrong.
+ */
+export function showSceneInLocation(app) {
+  const result = app.guard((sim) => sim.scene_string());
+  if (result.ok) writeSceneToLocation(result.value);
+}
+
+/**
  * Rewrites the fragment after every scene change (edits, parameters, seed, view options, loads),
- * at most once per WRITE_DELAY_MS. Call after boot so a broken link stays visible until the user
- * changes something.
+ * at most once per WRITE_DELAY_MS.
  */
 export function keepLocationInSync(app) {
   let timer = null;

@@ -22,7 +22,7 @@ import { setupShare } from './share.js';
 import { setupActivity } from './activity.js';
 import { setupSceneLinks } from './scene-links.js';
 import { setupTimeline } from './timeline.js';
-import { keepLocationInSync, sceneFromLocation, watchLocation } from '../core/url.js';
+import { keepLocationInSync, sceneFromLocation, showSceneInLocation, watchLocation } from '../core/url.js';
 import { measure, setupView } from '../core/view.js';
 import { prefersReducedMotion } from '../core/motion.js';
 import { t, tOr } from '../core/i18n.js';
@@ -82,6 +82,7 @@ bootPage(t('boot.what_play'), async ({ module, wasm }) => {
   if (linkError !== null) {
     const name = tOr(`preset.${presets[0].name}`, presets[0].name);
     showMessage(t('play.link_failed_default', { reason: linkError, name }));
+    showSceneInLocation(app);
   }
 
   attach(app);

@@ -3,6 +3,10 @@
 
 import { paramControl, paramHelp, paramLabel, paramReadout } from '../core/params-form.js';
 import { onLanguageChange, t, tOr } from '../core/i18n.js';
+import { messageOf } from '../core/errors.js';
+
+/** The group form's field of each group key. */
+const FIELD_OF = { name: 'name', count: 'count', color: 'color', goal: 'goal', agent_radius: 'radius' };
 
 const el = (tag, props = {}, children = []) => {
   const node = document.createElement(tag);
@@ -99,15 +103,42 @@ export class Panel {
     );
   }
 
-  /** Whole-group edit: every field change sends the full group through `edit` `set_group`. */
+  /**
+   * Whole-group edit: every field change sends the full group through `edit` `set_group`. A
+   * refused value does not stay in its field: the field shows the scene's value again, with the
+   * refusal beside it (until the field's next accepted change), so what is shown is what runs.
+   */
   updateGroup(patch) {
     const index = this.app.activeGroup;
     const group = this.group();
     if (!group) return;
+    const field = this.fields?.[FIELD_OF[Object.keys(patch)[0]]] ?? null;
     const op = { op: 'set_group', index, group: { ...group, ...patch } };
     Promise.resolve(this.app.change((sim) => sim.edit(JSON.stringify(op)), { clearSelection: false })).then((result) => {
-      if (!result.ok) this.fillValues();
+      if (result.pending) return;
+      this.showRefusal(field, result.ok ? null : messageOf(result.error));
+      if (!result.ok) this.fillValues({ even: field });
     });
+  }
+
+  /** Shows `message` beside `field` (null clears it), tied to the field for screen readers. */
+  showRefusal(field, message) {
+    if (!field) return;
+    const row = field.closest('.row');
+    let note = row?.nextElementSibling?.classList.contains('field-error') ? row.nextElementSibling : null;
+    if (message === null) {
+      note?.remove();
+      field.removeAttribute('aria-invalid');
+      field.removeAttribute('aria-describedby');
+      return;
+    }
+    if (!note) {
+      note = el('p', { className: 'field-error', id: `${field.name}-refused` });
+      row?.after(note);
+    }
+    note.textContent = message;
+    field.setAttribute('aria-invalid', 'true');
+    field.setAttribute('aria-describedby', note.id);
   }
 
   buildGroupForm() {
@@ -228,7 +259,8 @@ export class Panel {
     output.textContent = input.tagName === 'SELECT' ? '' : paramReadout(spec, value);
   }
 
-  fillValues() {
+  /** Shows the active group's values; `even`: a field refilled although it has the focus. */
+  fillValues({ even = null } = {}) {
     for (const button of this.list.children) {
       const index = [...this.list.children].indexOf(button);
       button.setAttribute('aria-selected', String(index === this.app.activeGroup));
@@ -238,7 +270,7 @@ export class Panel {
     this.plannerSelect.value = group.planner.kind;
     const f = this.fields;
     const set = (input, value) => {
-      if (document.activeElement !== input) input.value = value;
+      if (document.activeElement !== input || input === even) input.value = value;
     };
     set(f.name, group.name ?? '');
     set(f.count, String(group.count));
