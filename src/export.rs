@@ -60,13 +60,22 @@ fn group_of_agents(scene: &Scene) -> Vec<usize> {
         .collect()
 }
 
+/// The time of `step` in seconds as text: `steps × DT` to the microsecond, trailing zeros dropped
+/// (`0`, `0.016667`, `5`), not the f32 product's noise (`5.0000005`).
+fn seconds_at(step: u32) -> String {
+    // DT is 1/60 s rounded to f32; dividing by the whole steps per second keeps long runs exact.
+    let steps_per_second = (1.0 / f64::from(DT)).round();
+    let text = format!("{:.6}", f64::from(step) / steps_per_second);
+    text.trim_end_matches('0').trim_end_matches('.').to_string()
+}
+
 /// `agent,group,step,time,x,y,vx,vy`: one row per agent per recorded step.
 pub fn paths_csv(scene: &Scene, rec: &Recording) -> String {
     let groups = group_of_agents(scene);
     let mut out = String::with_capacity(rec.steps().len() * rec.agents() * 48 + 64);
     out.push_str("agent,group,step,time,x,y,vx,vy\n");
     for (f, &step) in rec.steps().iter().enumerate() {
-        let time = step as f32 * DT;
+        let time = seconds_at(step);
         for (i, s) in rec.frame(f).iter().enumerate() {
             let g = groups.get(i).copied().unwrap_or(0);
             let _ = writeln!(out, "{i},{g},{step},{time},{},{},{},{}", s[0], s[1], s[2], s[3]);
@@ -359,6 +368,12 @@ fn write_goals_svg(out: &mut String, scene: &Scene, rec: &Recording) {
 mod tests {
     use super::*;
     use crate::{presets, World};
+
+    #[test]
+    fn times_are_the_step_count_in_seconds_without_float_noise() {
+        let shown: Vec<String> = [0, 1, 7, 300, 301, 10_000_000].into_iter().map(seconds_at).collect();
+        assert_eq!(shown, ["0", "0.016667", "0.116667", "5", "5.016667", "166666.666667"]);
+    }
 
     fn recorded(steps: u32) -> (Scene, Recording) {
         let scene = presets::open_field();
