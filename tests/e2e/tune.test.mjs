@@ -53,6 +53,11 @@ test('a short run progresses, plots every generation, and Apply opens the tuned 
     assert.ok(done.best.gsum >= done.history[0].best_gsum, 'the best never falls below generation 0');
     assert.equal(await page.locator('#best-gsum').textContent(), done.best.gsum.toFixed(2));
     assert.match(await page.locator('#status').textContent(), /Done after 4 generations/);
+    // One count everywhere (issue #27 §5: "generation 0" in the preview, "Generation 3 of ≤ 3"
+    // over an axis 0–2): generations 1…4 in the status, the preview and the plot's axis.
+    assert.equal(await page.locator('#generation').textContent(), '4 of ≤ 4');
+    assert.deepEqual(await page.locator('#plot').evaluate((c) => [c.dataset.axis, c.dataset.last]), ['1–4', '4']);
+    assert.match(await page.locator('#preview-label').textContent(), /generation [1-4]\b/);
     assert.ok(done.previewSteps > 0 || done.previewFrames > 0, 'the preview runs');
     await screenshot(page, 'tune-finished');
 
@@ -80,7 +85,7 @@ test('a long run keeps the page responsive and can be cancelled', async () => {
   const { page, errors, close } = await openPath(`tune.html${query}`, { ready: tuneReady });
   try {
     await page.click('#tune');
-    await page.waitForFunction(() => /Generation 0/.test(document.getElementById('status').textContent), null,
+    await page.waitForFunction(() => /Generation 1 of up to/.test(document.getElementById('status').textContent), null,
       { timeout: 30_000 });
     // While the worker scores generation 0 the page keeps painting the preview and answering.
     const before = await state(page);

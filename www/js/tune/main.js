@@ -136,7 +136,7 @@ function onWorkerMessage(event) {
     $('rate').textContent = message.ms > 0 ? `${((1000 * newEvaluations) / message.ms).toFixed(0)} /s` : '–';
     showBest(stats.best);
     $('apply').disabled = false;
-    if (improved) showPreview(message.scene, 'tune.preview_best', { generation: stats.generation, gsum: stats.best.gsum.toFixed(2) });
+    if (improved) showPreview(message.scene, 'tune.preview_best', { generation: stats.generation + 1, gsum: stats.best.gsum.toFixed(2) });
     if (stats.finished) {
       state.finished = true;
       setRunning(false);

@@ -37,19 +37,23 @@ export class FitnessPlot {
     for (let v = lo; v <= hi; v += 10) yTicks.push({ value: v, text: String(v) });
     const xTicks = [];
     const step = Math.max(1, Math.ceil(this.maxGenerations / 10));
-    for (let g = 0; g < this.maxGenerations; g += step) xTicks.push({ value: g, text: String(g) });
-    const generations = this.points.map((p) => p.generation);
+    // Generations are counted from 1 on this page, as in its status line and preview.
+    for (let g = 1; g <= this.maxGenerations; g += step) xTicks.push({ value: g, text: String(g) });
+    const generations = this.points.map((p) => p.generation + 1);
     drawPlot(this.canvas, {
       lines: [
         { xs: generations, ys: this.points.map((p) => p.mean), color: MEAN, width: 2, dots: true },
         { xs: generations, ys: this.points.map((p) => p.best), color: BEST, width: 2, dots: true },
       ],
-      x: { min: 0, max: Math.max(1, this.maxGenerations - 1) },
+      x: { min: 1, max: Math.max(2, this.maxGenerations) },
       y: { min: lo, max: hi },
       margin: { left: 36, right: 8, top: 8, bottom: 22 },
       yTicks,
       xTicks,
     });
     this.canvas.dataset.points = String(this.points.length);
+    // The generations the axis spans and the last one drawn, as the page counts them (from 1).
+    this.canvas.dataset.axis = `${xTicks[0]?.value ?? 1}–${Math.max(2, this.maxGenerations)}`;
+    this.canvas.dataset.last = String(generations.at(-1) ?? '');
   }
 }

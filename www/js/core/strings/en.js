@@ -456,7 +456,7 @@ export default {
   'tune.ga': 'Ga orientation',
   'tune.gd': 'Gd distance',
   'tune.stopped': 'Stopped: {message}',
-  'tune.started': 'Generation 0 of up to {generations}: scoring {population} weight sets ({agents} agents × {frames} frames each)…',
+  'tune.started': 'Generation 1 of up to {generations}: scoring {population} weight sets ({agents} agents × {frames} frames each)…',
   'tune.generation_of': '{n} of ≤ {total}',
   'tune.why_limit': 'generation limit',
   'tune.why_unchanged': 'best unchanged for {n} generations',

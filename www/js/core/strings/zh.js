@@ -456,7 +456,7 @@ export default {
   'tune.ga': 'Ga 朝向',
   'tune.gd': 'Gd 距离',
   'tune.stopped': '已停止：{message}',
-  'tune.started': '第 0 代，最多 {generations} 代：正在为 {population} 组权重打分（每组 {agents} 个个体 × {frames} 帧）…',
+  'tune.started': '第 1 代，最多 {generations} 代：正在为 {population} 组权重打分（每组 {agents} 个个体 × {frames} 帧）…',
   'tune.generation_of': '{n} / ≤ {total}',
   'tune.why_limit': '达到代数上限',
   'tune.why_unchanged': '最优值连续 {n} 代未变',
