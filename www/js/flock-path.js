@@ -69,14 +69,15 @@ const STYLE = `
 :host([fill]) .stage, :host([height]) .stage, :host(:fullscreen) .stage { flex: 1; min-height: 0; aspect-ratio: auto !important; }
 :host(:fullscreen) { width: 100%; height: 100%; border: 0; border-radius: 0; }
 canvas { position: absolute; inset: 0; width: 100%; height: 100%; display: block; }
-.bar { display: flex; align-items: center; gap: 6px; padding: 4px 6px; border-top: 1px solid #d5dbe3; background: #fff; flex-wrap: wrap; }
+.bar { display: flex; align-items: center; gap: 6px; padding: 4px 6px; border-top: 1px solid #d5dbe3; background: #fff; flex-wrap: nowrap; overflow: hidden; }
 .bar[hidden] { display: none; }
 button { font: inherit; padding: 3px 10px; border: 1px solid #c5cdd8; border-radius: 6px; background: #fff; cursor: pointer; min-height: 28px; }
 button:hover { border-color: #2f6fdf; }
 button:focus-visible { outline: 3px solid #8db6ff; outline-offset: 1px; }
 button.play { background: #2f6fdf; border-color: #2f6fdf; color: #fff; min-width: 64px; font-weight: 600; }
-.planner { color: #5a6676; }
-.steps { margin-left: auto; color: #5a6676; font-variant-numeric: tabular-nums; }
+.planner { color: #5a6676; min-width: 0; overflow: hidden; text-overflow: ellipsis; white-space: nowrap; }
+.steps { margin-left: auto; color: #5a6676; font-variant-numeric: tabular-nums; white-space: nowrap; flex: none; }
+.bar button { flex: none; }
 .message { position: absolute; left: 8px; right: 8px; top: 8px; margin: 0; padding: 6px 10px; background: #fdecea;
   border-left: 5px solid #b3261e; border-radius: 6px; color: #17202c; }
 .message[hidden] { display: none; }
@@ -86,6 +87,8 @@ button.play { background: #2f6fdf; border-color: #2f6fdf; color: #fff; min-width
 .loading { position: absolute; inset: 0; display: flex; align-items: center; justify-content: center; color: #5a6676; }
 .loading[hidden] { display: none; }
 ::slotted(a) { color: #2f6fdf; }
+/* One line at any width (an embed's frame reserves one bar): the planner's name and the actions give way. */
+::slotted(*) { min-width: 0; overflow: hidden; text-overflow: ellipsis; white-space: nowrap; }
 .visually-hidden { position: absolute; width: 1px; height: 1px; margin: -1px; padding: 0; overflow: hidden;
   clip-path: inset(50%); white-space: nowrap; border: 0; }
 `;

@@ -34,19 +34,27 @@ function moduleErrorHandler() {
   );
 }
 
+/** Height of the embed page's control bar on one line (px; `<flock-path controls>`). */
+const EMBED_BAR_PX = 38;
+
 /**
  * The snippets for the current scene string (absolute URLs: they are pasted into other sites).
  * `classroom`: the teacher's options from share-lock.js, `{fragment, attributes}`.
  */
-export function snippets(sceneString, { autoplay = true, page = location.href, classroom = null } = {}) {
+export function snippets(sceneString, { autoplay = true, page = location.href, classroom = null, world = null } = {}) {
   const options = classroom?.fragment ? `&${classroom.fragment}` : '';
   const link = shareUrl(sceneString, page) + options;
   const embed = new URL('embed.html', page);
   embed.hash = `s=${sceneString}${autoplay ? '&autoplay=1' : ''}${options}`;
   const module = new URL('js/flock-path.js', page);
+  // The frame keeps the world's aspect ratio at any width up to 720 px, plus the embed's control
+  // bar (a fixed height: padding in % of the width plus px), so a narrow column shows no grey
+  // bands above and below the world as a fixed 720×480 frame squeezed to 100% width did.
+  const aspect = world && world.width > 0 && world.height > 0 ? (100 * world.height) / world.width : (100 * 2) / 3;
   const iframe =
-    `<iframe src="${attr(embed.href)}" width="720" height="480" style="border:0;max-width:100%" ` +
-    `title="${attr(t('share.snippet_iframe_title'))}" allowfullscreen loading="lazy"></iframe>`;
+    `<div style="max-width:720px"><div style="position:relative;padding-top:calc(${aspect.toFixed(3)}% + ${EMBED_BAR_PX}px)">` +
+    `<iframe src="${attr(embed.href)}" style="position:absolute;inset:0;width:100%;height:100%;border:0" ` +
+    `title="${attr(t('share.snippet_iframe_title'))}" allowfullscreen loading="lazy"></iframe></div></div>`;
   // The element's children are fallback content: shown until the module upgrades it (then its
   // shadow DOM replaces them), and all a reader sees when scripts do not run at all. Inline
   // elements only: a Markdown tool that wraps the element in <p> would end it at a child <p>.
@@ -90,7 +98,8 @@ export function setupShare(app) {
   const fill = () => {
     const result = app.guard((sim) => sim.scene_string());
     if (!result.ok) return null;
-    const s = snippets(result.value, { autoplay: autoplay.checked, classroom: lock.options() });
+    const world = { width: app.scene.width, height: app.scene.height };
+    const s = snippets(result.value, { autoplay: autoplay.checked, classroom: lock.options(), world });
     $('share-link').value = s.link;
     $('share-link-size').textContent = t('share.link_size', { n: s.link.length });
     $('share-iframe').value = s.iframe;
