@@ -104,3 +104,55 @@ test('the element draws through the core, sizes by it, and pauses in a hidden ta
     await close();
   }
 });
+
+// Issue #27 §5: the element's `ready` Promise (documented in the README) resolves with the element
+// once it runs — also after a refused scene attribute, when it runs the first preset and says why
+// by flockpath-error — and rejects with the reason when it cannot run at all (no wasm).
+test('<flock-path>.ready resolves when the element runs and rejects with the reason when it cannot', async () => {
+  const ready = () => customElements.get('flock-path') !== undefined;
+  const { page, context, server, errors, close } = await openPath('examples/course-notes.html', { ready });
+  try {
+    const outcome = await page.evaluate(async () => {
+      const make = (scene) => {
+        const el = document.createElement('flock-path');
+        el.setAttribute('scene', scene);
+        document.body.append(el);
+        return el;
+      };
+      const good = make('pillars');
+      const bad = make('no-such-preset');
+      const said = new Promise((resolve) => bad.addEventListener('flockpath-error', (e) => resolve(e.detail), { once: true }));
+      const resolved = await good.ready;
+      await good.step(3);
+      const runs = await bad.ready;
+      return { same: resolved === good, steps: good.steps, badRuns: runs === bad, badScene: bad.scene().name, said: await said };
+    });
+    assert.equal(outcome.same, true, 'ready resolves with the element');
+    assert.equal(outcome.steps, 3, 'and its methods work then');
+    assert.equal(outcome.badRuns, true, 'a refused scene attribute: the element still runs');
+    assert.match(outcome.said, /unknown preset 'no-such-preset'/, 'and says why');
+    assertNoUnexpectedErrors(errors, [/no-such-preset/]);
+
+    // No wasm (blocked): the element cannot run, ready rejects with the reason in its box.
+    const blocked = await context.newPage();
+    await blocked.route('**/*.wasm', (route) => route.abort());
+    await blocked.goto(`${server.url}examples/course-notes.html`);
+    const rejected = await blocked.evaluate(async () => {
+      await customElements.whenDefined('flock-path');
+      const el = document.querySelector('flock-path');
+      try {
+        await el.ready;
+        return null;
+      } catch (error) {
+        const box = el.shadowRoot.querySelector('.message');
+        return { isError: error instanceof Error, message: error.message, box: box.textContent, shown: !box.hidden };
+      }
+    });
+    assert.ok(rejected?.isError, `ready rejects with an Error: ${JSON.stringify(rejected)}`);
+    assert.ok(rejected.message.length > 10 && rejected.shown, JSON.stringify(rejected));
+    assert.equal(rejected.message, rejected.box, 'the reason the element shows');
+    await blocked.close();
+  } finally {
+    await close();
+  }
+});

@@ -155,7 +155,17 @@ export class FlockPathElement extends HTMLElement {
     this.stopLoop = null;
     this.shownSteps = -1;
     this.failed = false;
-    this.ready = new Promise((resolve) => (this.resolveReady = resolve));
+    /**
+     * Resolves with the element once its simulation runs (before `flockpath-ready` fires), or
+     * rejects with an Error naming why it cannot run (as `flockpath-error`'s detail says).
+     * A host script can `await el.ready` instead of listening for both events.
+     */
+    this.ready = new Promise((resolve, reject) => {
+      this.resolveReady = resolve;
+      this.rejectReady = reject;
+    });
+    // Rejected only for those who await it: no "unhandled rejection" on a page that does not.
+    this.ready.catch(() => {});
     this.$('.play').addEventListener('click', () => (this.playing ? this.pause() : this.play()));
     this.$('.step').addEventListener('click', () => {
       this.pause();
@@ -452,6 +462,7 @@ export class FlockPathElement extends HTMLElement {
     for (const button of this.shadowRoot.querySelectorAll('.bar button')) button.hidden = true;
     this.$('.message').classList.add('fatal');
     this.$('.message').title = '';
+    this.rejectReady(new Error(text));
     this.dispatchEvent(new CustomEvent('flockpath-error', { detail: text, bubbles: true, composed: true }));
   }
 
