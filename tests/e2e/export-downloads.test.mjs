@@ -56,6 +56,13 @@ test('exports download real files and scenes load from files', async () => {
     assert.equal((svg.bytes.toString('utf8').match(/<polyline/g) ?? []).length, 30);
     const png = await downloadVia(page, '[data-export="png"]');
     assert.deepEqual([...png.bytes.subarray(0, 4)], [0x89, 0x50, 0x4e, 0x47], 'PNG signature');
+    // The world only (issue #27 §5): the image has the world's shape, not the canvas' letterbox.
+    const [pngWidth, pngHeight] = [png.bytes.readUInt32BE(16), png.bytes.readUInt32BE(20)];
+    const { scale } = await page.evaluate(() => window.flockpath.view());
+    const canvasSize = await page.$eval('#scene-canvas', (c) => [c.width, c.height]);
+    assert.ok(Math.abs(pngWidth - 800 * scale) <= 1 && Math.abs(pngHeight - 500 * scale) <= 1,
+      `PNG ${pngWidth}×${pngHeight} = the 800×500 world at scale ${scale} (canvas ${canvasSize.join('×')})`);
+    assert.notDeepEqual([pngWidth, pngHeight], canvasSize, 'the letterboxed canvas is not the image');
 
     // WebM: the indicator shows while recording; stopping downloads the video.
     await page.click('#record-webm');

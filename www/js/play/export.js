@@ -77,7 +77,7 @@ export function setupExport(app, canvas) {
       if (kind === 'png') {
         const steps = app.guard((sim) => sim.steps()).value ?? 0;
         const name = `${stem}-step-${steps}.png`;
-        canvas.toBlob((blob) => {
+        worldOnly(app, canvas).toBlob((blob) => {
           if (!blob) {
             showMessage(t('export.png_failed'));
             return;
@@ -101,6 +101,28 @@ export function setupExport(app, canvas) {
   }
 
   setupVideo(app, canvas, status);
+}
+
+/**
+ * The world's part of the scene canvas as a canvas of its own: the PNG shows the scene, not the
+ * grey letterbox the canvas has where its shape differs from the world's. The view (`scale`,
+ * `offset_x`, `offset_y`: world px → canvas px) is the renderer's, read from the mirror.
+ */
+function worldOnly(app, canvas) {
+  const view = app.guard((sim) => sim.view()).value;
+  const { width = 0, height = 0 } = app.scene ?? {};
+  if (!view || !(width > 0 && height > 0)) return canvas;
+  const [scale, offsetX, offsetY] = view;
+  const x = Math.max(0, Math.round(offsetX));
+  const y = Math.max(0, Math.round(offsetY));
+  const w = Math.min(canvas.width - x, Math.round(width * scale));
+  const h = Math.min(canvas.height - y, Math.round(height * scale));
+  if (w <= 0 || h <= 0) return canvas;
+  const out = document.createElement('canvas');
+  out.width = w;
+  out.height = h;
+  out.getContext('2d').drawImage(canvas, x, y, w, h, 0, 0, w, h);
+  return out;
 }
 
 /** WebM capture of the canvas while the simulation runs, with the REC indicator over the canvas corner. */
