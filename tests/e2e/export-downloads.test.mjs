@@ -16,6 +16,46 @@ async function downloadVia(page, selector) {
   return { name: download.suggestedFilename(), bytes: await readFile(file), file };
 }
 
+/**
+ * The Segment Info's Duration of a WebM in seconds (null: none): EBML elements are an ID and a size
+ * (variable-length integers, the size's marker bit removed) then the payload.
+ */
+function webmDurationSeconds(bytes) {
+  const vint = (at, keepMarker) => {
+    let length = 1;
+    while (length <= 8 && !(bytes[at] & (0x80 >> (length - 1)))) length += 1;
+    let value = keepMarker ? bytes[at] : bytes[at] & (0xff >> length);
+    for (let i = 1; i < length; i += 1) value = value * 256 + bytes[at + i];
+    return { value, length };
+  };
+  const children = (from, to, visit) => {
+    for (let at = from; at < to; ) {
+      const id = vint(at, true);
+      const size = vint(at + id.length, false);
+      const start = at + id.length + size.length;
+      const known = size.value !== 2 ** (7 * size.length) - 1;
+      if (visit(id.value, start, known ? size.value : to - start) === false) return;
+      if (!known) return;
+      at = start + size.value;
+    }
+  };
+  let scale = 1_000_000;
+  let duration = null;
+  children(0, bytes.length, (id, start, size) => {
+    if (id !== 0x18538067) return true; // Segment
+    children(start, start + size, (childId, childStart, childSize) => {
+      if (childId !== 0x1549a966) return true; // Info
+      children(childStart, childStart + childSize, (infoId, infoStart, infoSize) => {
+        if (infoId === 0x2ad7b1) scale = bytes.readUIntBE(infoStart, infoSize);
+        if (infoId === 0x4489) duration = infoSize === 8 ? bytes.readDoubleBE(infoStart) : bytes.readFloatBE(infoStart);
+      });
+      return false;
+    });
+    return false;
+  });
+  return duration === null ? null : (duration * scale) / 1e9;
+}
+
 test('exports download real files and scenes load from files', async () => {
   const { page, errors, close } = await openPage();
   try {
@@ -72,6 +112,11 @@ test('exports download real files and scenes load from files', async () => {
     const webm = await downloadVia(page, '#recording-indicator');
     assert.equal(webm.name, 'export-me.webm');
     assert.deepEqual([...webm.bytes.subarray(0, 4)], [0x1a, 0x45, 0xdf, 0xa3], 'WebM (EBML) header');
+    // Its length is in the file (issue #27 §5: MediaRecorder leaves Duration out), read here by a
+    // walk of the EBML tree independent of the page's writer: ~1.2 s recorded.
+    const seconds = webmDurationSeconds(webm.bytes);
+    assert.ok(seconds !== null, 'the WebM has a Duration');
+    assert.ok(seconds > 0.8 && seconds < 5, `duration ${seconds} s for a ~1.2 s recording`);
     assert.ok(await page.isHidden('#recording-indicator'), 'the indicator goes away');
 
     // Share dialog: the scene JSON downloads, and loads back by picker and by drop.

@@ -6,6 +6,7 @@ import { messageOf, showMessage } from '../core/errors.js';
 import { download } from '../core/download.js';
 import { fileStem } from './share.js';
 import { formatNumber, onLanguageChange, setAttr, setText, t } from '../core/i18n.js';
+import { withDuration } from './webm-duration.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -159,7 +160,8 @@ function setupVideo(app, canvas, status) {
     recorder.addEventListener('dataavailable', (e) => {
       if (e.data.size > 0) chunks.push(e.data);
     });
-    recorder.addEventListener('stop', () => {
+    recorder.addEventListener('stop', async () => {
+      const recordedMs = performance.now() - started;
       clearInterval(timer);
       for (const track of stream.getTracks()) track.stop();
       indicator.hidden = true;
@@ -167,7 +169,9 @@ function setupVideo(app, canvas, status) {
       button.classList.remove('recording');
       recorder = null;
       const name = `${fileStem(app.scene)}.webm`;
-      download(name, new Blob(chunks, { type: 'video/webm' }));
+      // With its length written in (MediaRecorder leaves it out): players show it and can seek.
+      const bytes = new Uint8Array(await new Blob(chunks).arrayBuffer());
+      download(name, new Blob([withDuration(bytes, recordedMs)], { type: 'video/webm' }));
       status.textContent = t('share.downloading', { name });
       app.dispatchEvent(new Event('video-saved'));
     });
