@@ -29,9 +29,11 @@ async function drag(page, [ax, ay], [bx, by]) {
 }
 
 /** Opens `hash` on the already open page as a fresh load (not a same-document jump). */
-async function reopen(page, base, hash) {
+async function reopen(page, base, hash, { newTab = false } = {}) {
   // Leaving while a request is in flight (the manifest's icon) would report it as failed.
   await page.waitForLoadState('networkidle');
+  // A new tab starts with its own session storage, where a tab keeps its lock (lock.js).
+  if (newTab) await page.evaluate(() => sessionStorage.clear());
   await page.goto('about:blank');
   await page.goto(base + hash);
   await page.waitForFunction(() => window.flockpath !== undefined);
@@ -145,8 +147,8 @@ test('keys of controls not given do nothing; those given still work', () =>
     assert.deepEqual(await listed(), ['S step', '1–7 tools', 'Del delete', 'Esc cancel']);
     const dots = await page.$$eval('#keys-list > span', (spans) => spans.filter((s) => s.getClientRects().length > 0).map((s) => getComputedStyle(s, '::before').content));
     assert.deepEqual(dots, ['none', '" · "', '" · "', '" · "'], 'a dot between the shown ones only');
-    // All controls again (an old link): every shortcut is listed.
-    await reopen(page, server.url, `#s=${fragment}`);
+    // All controls again (an old link, in a new tab): every shortcut is listed.
+    await reopen(page, server.url, `#s=${fragment}`, { newTab: true });
     assert.equal((await listed()).length, 7, 'every shortcut without a lock');
   }));
 
@@ -160,7 +162,7 @@ test('an unknown name is refused by field with the allowed names; an old link sh
     assert.deepEqual(refused.lock, [], 'the refused option locks nothing');
     assert.deepEqual(refused.hide, ['plots'], 'the other options still apply');
 
-    await reopen(page, server.url, `#s=${fragment}`);
+    await reopen(page, server.url, `#s=${fragment}`, { newTab: true });
     const open = await page.evaluate(() => window.flockpath.classroom());
     assert.equal(open.open, true);
     const selectors = ['#play', '#step', '#reset', '#spf', '#planner', '#undo', '#share', '#export', '#seed', '#trails',
@@ -200,4 +202,37 @@ test('with groups locked the Groups panel is read-only and a new goal leaves the
     await drag(page, OBSTACLE.center, [OBSTACLE.center[0], OBSTACLE.center[1] + 100]);
     const center = await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.scene().obstacles[0].center));
     assert.ok(center[1] > OBSTACLE.center[1] + 50, `the obstacle moved to ${center}`);
+  }));
+
+// Issue #27 §4: a lock is honoured in the tab it was opened in. Deleting `&lock=…` from the address
+// bar and reloading, or pasting a link without options, keeps the lock (with a message that says a
+// lock keeps a class focused and is not security); the select hint on a locked page says what is
+// fixed instead of "Delete removes it"; a new tab opens the unlocked link unlocked.
+test('a locked tab keeps its lock for links without options, and says a lock is not security', () =>
+  withLink('&lock=obstacles,goals', async ({ page, server, fragment }) => {
+    const hint = () => page.textContent('#hint');
+    assert.match(await hint(), /Obstacles, Goals are fixed by the teacher’s link/);
+    assert.doesNotMatch(await hint(), /Delete removes it;?$/);
+
+    // The options deleted from the address bar, then a reload.
+    await reopen(page, server.url, `#s=${fragment}`);
+    let classroom = await page.evaluate(() => window.flockpath.classroom());
+    assert.deepEqual(classroom.lock, ['obstacles', 'goals'], 'the reload kept the lock');
+    assert.match(await bannerText(page) ?? '', /keeps the lock of the teacher’s link.*not security/);
+    assert.match(await page.evaluate(() => location.hash), /&lock=obstacles,goals/, 'the address bar holds the lock again');
+
+    // A link without options pasted into the tab.
+    await page.click('#banner-close');
+    await page.evaluate((f) => {
+      location.hash = `s=${f}`;
+    }, fragment);
+    await page.waitForFunction(() => /&lock=/.test(location.hash));
+    classroom = await page.evaluate(() => window.flockpath.classroom());
+    assert.deepEqual(classroom.lock, ['obstacles', 'goals'], 'the pasted link kept the lock');
+
+    // A new tab opens it unlocked: the lock is not security, and the page says so where it is made.
+    await reopen(page, server.url, `#s=${fragment}`, { newTab: true });
+    classroom = await page.evaluate(() => window.flockpath.classroom());
+    assert.deepEqual(classroom.lock, [], 'a new tab is not locked');
+    assert.match(await hint(), /Delete removes it\.$/);
   }));

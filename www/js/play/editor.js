@@ -133,10 +133,14 @@ export class Editor {
     const hint = document.getElementById('hint');
     if (!hint) return;
     // The tool's hint from the tables (re-translated on a language switch), plus the cursor keys.
-    if (!this.keyboard) setText(hint, HINTS[this.tool]);
+    // On a teacher-locked page the select hint names what stays put.
+    const locked = this.tool === 'select' ? (this.lock?.lockedParts?.() ?? []) : [];
+    const key = locked.length ? 'hint.select_locked' : HINTS[this.tool];
+    const vars = locked.length ? { parts: locked.map((part) => t(`classroom.part.${part}`)).join(', ') } : undefined;
+    if (!this.keyboard) setText(hint, key, vars);
     else {
       delete hint.dataset.i18n;
-      hint.textContent = `${t(HINTS[this.tool])} ${t('a11y.cursor.keys')}`;
+      hint.textContent = `${t(key, vars)} ${t('a11y.cursor.keys')}`;
     }
   }
 

@@ -98,6 +98,7 @@ export function setupLock(app, editor) {
       hide([item], control === 'tools' ? noTools : !view.controls.includes(control));
     }
     if (view.locked_tools.includes(editor.tool)) editor.setTool('select');
+    editor.showHint();
     readOnlyGroups();
     app.dispatchEvent(new Event('classroom'));
     if (classroom.errors.length) showMessage(classroom.errors.join(' '));
@@ -115,6 +116,7 @@ export function setupLock(app, editor) {
     }
   };
   editor.lock = {
+    lockedParts: () => current?.view.lock ?? [],
     toolAllowed: (tool) => !(current?.view.locked_tools.includes(tool) ?? false),
     // Asked when a pointer lands on an item (a refusal says why), and by the waypoint handles.
     movable: (item) => {
@@ -144,6 +146,41 @@ export function setupLock(app, editor) {
   }
 
   app.addEventListener('scene', readOnlyGroups);
-  addEventListener('hashchange', () => apply(readClassroom(app.module.Classroom.from_link(location.hash))));
-  apply(readClassroom(app.module.Classroom.from_link(location.hash)));
+  addEventListener('hashchange', () => apply(readClassroom(app.module.Classroom.from_link(keptLock(location.hash)))));
+  apply(readClassroom(app.module.Classroom.from_link(keptLock(location.hash))));
+}
+
+/** Where a tab remembers the classroom options of the link it was opened with. */
+const KEPT = 'flockpath.classroom';
+
+/** The classroom options (`controls=`, `lock=`, `hide=`) of a fragment, in its order. */
+function classroomOptions(hash) {
+  return hash.replace(/^#/, '').split('&').filter((part) => /^(controls|lock|hide)=/.test(part));
+}
+
+/**
+ * The fragment to apply, keeping a tab's lock: a locked link remembers its options for the tab
+ * (sessionStorage: a reload and links opened in it keep them; a new tab does not), and a link
+ * without options opened in that tab (pasted, or the options deleted from the address bar) gets
+ * them back, in the address bar too, with a message. Not security — it keeps a class focused.
+ */
+function keptLock(hash) {
+  let store = null;
+  try {
+    store = window.sessionStorage;
+  } catch {
+    return hash;
+  }
+  const options = classroomOptions(hash);
+  if (options.length) {
+    store?.setItem(KEPT, options.join('&'));
+    return hash;
+  }
+  const kept = store?.getItem(KEPT);
+  if (!kept) return hash;
+  const url = new URL(location.href);
+  url.hash = [hash.replace(/^#/, ''), kept].filter(Boolean).join('&');
+  history.replaceState(null, '', url);
+  showMessage(t('classroom.kept'));
+  return url.hash;
 }
