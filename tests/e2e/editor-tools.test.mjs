@@ -124,3 +124,40 @@ test('a crash replaces the canvas with a loud panel and a reload button', async 
     await close();
   }
 });
+
+// Issue #27 §1: New scene — an empty world of a chosen size from the Scene menu's "New…" button;
+// a size the core refuses is said beside the field and the running scene stays; the new scene is
+// one undo step.
+test('New… makes an empty world of the chosen size; a refused size keeps the scene', async () => {
+  const { page, errors, close } = await openPage();
+  try {
+    await page.evaluate(async (s) => {
+      await window.flockpath.pause();
+      await window.flockpath.load(s);
+    }, simpleScene());
+    const before = await page.evaluate(() => window.flockpath.sceneString());
+    await page.click('#new-scene');
+    assert.equal(await page.evaluate(() => document.getElementById('new-scene-dialog').open), true);
+    assert.equal(await page.inputValue('#new-scene-width'), '800', 'the current size to start from');
+    await page.fill('#new-scene-width', '5');
+    await page.click('#new-scene-create');
+    await page.waitForSelector('#new-scene-refused');
+    assert.match(await page.textContent('#new-scene-refused'), /^width is 5; allowed: a number in 10…20000 px$/);
+    assert.equal(await page.getAttribute('#new-scene-width', 'aria-invalid'), 'true');
+    assert.equal(await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.sceneString())), before, 'the scene stays');
+
+    await page.fill('#new-scene-width', '1200');
+    await page.fill('#new-scene-height', '600');
+    await page.click('#new-scene-create');
+    await page.waitForFunction(() => !document.getElementById('new-scene-dialog').open);
+    const made = await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.scene()));
+    assert.deepEqual([made.width, made.height, made.obstacles.length, made.goals.length, made.groups.length], [1200, 600, 0, 0, 0]);
+    assert.equal(made.seed, 7, 'the seed carries over');
+    assert.equal(await page.isHidden('#banner'), true, 'the earlier refusal is gone');
+    await page.click('#undo');
+    assert.equal(await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.sceneString())), before, 'one undo step back');
+    assertNoUnexpectedErrors(errors);
+  } finally {
+    await close();
+  }
+});

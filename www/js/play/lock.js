@@ -24,7 +24,7 @@ const CONTROLS = {
   params: () => [$('params'), $('params-defaults')],
   seed: () => [closest('seed', '.row')],
   trails: () => [closest('trails', 'label'), closest('fade', '.row'), $('clear-trails')],
-  presets: () => [closest('preset', 'label')],
+  presets: () => [closest('preset', 'label'), $('new-scene')],
   undo: () => [$('undo')?.parentElement],
   share: () => [$('share')],
   export: () => [$('export')],
@@ -82,7 +82,7 @@ export function setupLock(app, editor) {
     hide([closest('planner-title', 'section')], !view.controls.includes('planner') && !view.controls.includes('params'));
     hide([closest('run-title', 'section')], !view.controls.includes('seed') && !view.controls.includes('trails'));
     // Replacing the scene would change locked parts.
-    hide([closest('preset', 'label')], !view.controls.includes('presets') || !view.can_load);
+    hide([closest('preset', 'label'), $('new-scene')], !view.controls.includes('presets') || !view.can_load);
     hide([$('open-scene')], !view.can_load);
     const tools = [...document.querySelectorAll('[data-tool]')];
     for (const button of tools) {

@@ -26,6 +26,7 @@ import { keepLocationInSync, sceneFromLocation, showSceneInLocation, watchLocati
 import { measure, setupView } from '../core/view.js';
 import { prefersReducedMotion } from '../core/motion.js';
 import { t, tOr } from '../core/i18n.js';
+import { setupNewScene } from './new-scene.js';
 
 bootPage(t('boot.what_play'), async ({ module, wasm }) => {
   const canvas = document.getElementById('scene-canvas');
@@ -64,6 +65,7 @@ bootPage(t('boot.what_play'), async ({ module, wasm }) => {
   setupExport(app, canvas);
   setupTimeline(app);
   setupSceneLinks(app);
+  setupNewScene(app);
   const onFrame = setupMetrics(app);
   setupCapacityNotice(app);
   setupInspector(app);
