@@ -53,3 +53,44 @@ test('a touch drag with the rectangle tool adds a rectangle obstacle', async () 
     await close();
   }
 });
+
+// Issue #27 §4 (touch): on a 390×844 phone every control a finger uses is ≥ 44 px tall (checkboxes
+// through their ≥ 44 px labels), the tools show their names under the icons, an on-screen Delete
+// removes the selected item, and the Planner card is one tap from the toolbar.
+test('phone: 44 px targets, tool names, an on-screen Delete, the Planner one tap away', async () => {
+  const { page, errors, close } = await openPage({ viewport: { width: 390, height: 844 }, hasTouch: true });
+  try {
+    await loadPaused(page, simpleScene({ obstacles: [{ shape: 'circle', center: [400, 250], radius: 40 }] }));
+    const small = await page.evaluate(() =>
+      [...document.querySelectorAll('button, a.button, select, input, label.check')]
+        .filter((el) => el.offsetParent !== null && el.getClientRects().length)
+        .filter((el) => !(el.type === 'checkbox' || el.type === 'radio') || !el.closest('label'))
+        .map((el) => ({ what: el.id || el.dataset.tool || el.textContent.trim().slice(0, 20) || el.type, height: el.getBoundingClientRect().height }))
+        .filter((c) => c.height < 44));
+    assert.deepEqual(small, [], 'every control is at least 44 px tall');
+    const names = await page.$$eval('#tools .tool-name', (spans) => spans.map((s) => ({ text: s.textContent, ...s.getBoundingClientRect().toJSON() })));
+    for (const name of names) assert.ok(name.width > 15 && name.height > 8, `tool name "${name.text}" shows: ${name.width}×${name.height}`);
+    assert.equal(await page.evaluate(() => document.documentElement.scrollWidth), 390, 'no sideways scrolling');
+
+    // Tap the obstacle with the select tool, then the on-screen Delete.
+    assert.equal(await page.isDisabled('#delete-selection'), true, 'nothing selected yet');
+    const centre = await sceneToClient(page, 400, 250);
+    await page.touchscreen.tap(centre.x, centre.y);
+    await page.waitForFunction(() => !document.getElementById('delete-selection').disabled);
+    await page.tap('#delete-selection');
+    assert.equal((await page.evaluate(async () => (await window.flockpath.settled(), window.flockpath.scene()))).obstacles.length, 0, 'Delete removed it');
+    assert.equal(await page.isDisabled('#delete-selection'), true, 'nothing selected after');
+
+    // The Planner card is ~1,900 px down: one tap brings it into view.
+    assert.ok(await page.evaluate(() => document.getElementById('planner-title').getBoundingClientRect().top > innerHeight), 'below the fold first');
+    await page.tap('#to-planner');
+    await page.waitForFunction(() => {
+      const top = document.getElementById('planner-title').getBoundingClientRect().top;
+      return top >= 0 && top < innerHeight;
+    }, null, { timeout: 5_000 });
+    await screenshot(page, 'touch-phone-planner');
+    assertNoUnexpectedErrors(errors);
+  } finally {
+    await close();
+  }
+});

@@ -25,8 +25,18 @@ export class History {
   }
 }
 
-/** Wires the Undo/Redo buttons and keeps their enabled state current. */
-export function setupHistoryButtons(app) {
+/**
+ * Wires the Undo/Redo buttons and the on-screen Delete (the Delete key's button, for touch
+ * screens), and keeps their enabled state current.
+ */
+export function setupHistoryButtons(app, editor) {
+  const remove = document.getElementById('delete-selection');
+  if (remove) {
+    remove.addEventListener('click', () => editor.deleteSelection());
+    const selected = () => (remove.disabled = app.selection === null);
+    app.addEventListener('selection', selected);
+    selected();
+  }
   const undo = document.getElementById('undo');
   const redo = document.getElementById('redo');
   undo.addEventListener('click', () => app.undo());

@@ -58,7 +58,7 @@ bootPage(t('boot.what_play'), async ({ module, wasm }) => {
   const editor = new Editor(app, overlay, canvas);
   new Panel(app);
   setupControls(app, editor);
-  setupHistoryButtons(app);
+  setupHistoryButtons(app, editor);
   watchLocation(app);
   keepLocationInSync(app);
   setupShare(app);
