@@ -75,7 +75,7 @@ test('axe: no serious or critical violation on the playground, its dialogs and i
     assert.deepEqual(await seriousViolations(page), [], 'index.html in the projector theme');
     await page.click('#theme-toggle');
 
-    for (const [button, dialog] of [['#share', '#share-dialog'], ['#export', '#export-dialog']]) {
+    for (const [button, dialog] of [['#share', '#share-dialog'], ['#export', '#export-dialog'], ['#help', '#help-dialog'], ['#new-scene', '#new-scene-dialog']]) {
       await page.click(button);
       await page.waitForSelector(`${dialog}[open]`);
       assert.deepEqual(await seriousViolations(page), [], `index.html with ${dialog} open`);

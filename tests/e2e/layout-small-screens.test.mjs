@@ -9,7 +9,7 @@ import { assertNoUnexpectedErrors, openPage, screenshot } from './helpers.mjs';
 import { assertFitsWidth, assertOnScreen, box, openMenuIfCollapsed } from './layout-helpers.mjs';
 
 /** Header controls that must be reachable at every size. */
-const HEADER_CONTROLS = ['#preset', '#new-scene', '#compare-link', '#tune-link', '#to-lab', '#share', '#export'];
+const HEADER_CONTROLS = ['#preset', '#help', '#new-scene', '#compare-link', '#tune-link', '#to-lab', '#share', '#export'];
 
 /** Opens a dialog from the header (through the menu when collapsed) and checks it fits. */
 async function checkDialog(page, button, dialog, screen, name) {
@@ -58,7 +58,7 @@ for (const viewport of [{ width: 390, height: 844 }, { width: 768, height: 1024 
         assert.equal(await page.evaluate(() => document.activeElement.id), 'menu-toggle');
         await page.keyboard.press('Enter');
         assert.equal(await page.getAttribute('#menu-toggle', 'aria-expanded'), 'true');
-        assert.equal(await page.evaluate(() => document.activeElement.id), 'new-scene');
+        assert.equal(await page.evaluate(() => document.activeElement.id), 'help');
         await page.keyboard.press('Escape');
       }
 

@@ -52,6 +52,9 @@ export function onPage(e) {
   if (!(target instanceof Element)) return true;
   if (target === document.body || target === document.documentElement) return true;
   if (target.tagName === 'CANVAS' || target.hasAttribute('data-shortcuts')) return true;
+  // Never inside an open dialog: its keys (Escape closes it) are its own, and opening it by a
+  // click moves the focus into it within that click.
+  if (target.closest('dialog[open]')) return false;
   return target === pointerFocused && target instanceof HTMLElement && !textEntry(target) && !CONTROL_KEYS.has(e.key);
 }
 

@@ -27,6 +27,7 @@ import { measure, setupView } from '../core/view.js';
 import { prefersReducedMotion } from '../core/motion.js';
 import { t, tOr } from '../core/i18n.js';
 import { setupNewScene } from './new-scene.js';
+import { setupHelp } from './help.js';
 
 bootPage(t('boot.what_play'), async ({ module, wasm }) => {
   const canvas = document.getElementById('scene-canvas');
@@ -66,6 +67,7 @@ bootPage(t('boot.what_play'), async ({ module, wasm }) => {
   setupTimeline(app);
   setupSceneLinks(app);
   setupNewScene(app);
+  setupHelp(app);
   const onFrame = setupMetrics(app);
   setupCapacityNotice(app);
   setupInspector(app);
