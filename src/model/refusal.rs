@@ -29,6 +29,7 @@ impl Refusal for SceneError {
             SceneError::TooCostly(_) => "too_costly",
             SceneError::Field(_) => "field",
             SceneError::TooLarge { .. } => "too_large",
+            SceneError::FlowFieldMemory { .. } => "flow_field_memory",
             SceneError::UnknownPreset { .. } => "unknown_preset",
         }
     }
@@ -53,6 +54,13 @@ impl Refusal for SceneError {
                 }
                 args
             }
+            SceneError::FlowFieldMemory { path, fields, cells, bytes, limit } => vec![
+                ("path", path.clone()),
+                ("fields", fields.to_string()),
+                ("cells", cells.to_string()),
+                ("mb", bytes.div_ceil(1 << 20).to_string()),
+                ("limit_mb", (limit / (1 << 20)).to_string()),
+            ],
             SceneError::UnknownPreset { name, known } => {
                 vec![("name", name.clone()), ("known", known.join(", "))]
             }

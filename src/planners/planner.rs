@@ -5,6 +5,7 @@
 use crate::model::scene::Scene;
 use crate::planners::explain::{Explanation, GroupPath};
 use crate::rng::Rng;
+use crate::spatial::flow_field::FlowFieldStore;
 use crate::spatial::{ObstacleIndex, SpatialGrid};
 use glam::Vec2;
 use std::ops::Range;
@@ -30,6 +31,8 @@ pub struct StepContext<'a> {
     pub scene: &'a Scene,
     /// Group index of every agent.
     pub group_of: &'a [u32],
+    /// The world's flow fields, shared by the groups that would build the same one.
+    pub flow_fields: &'a FlowFieldStore,
 }
 
 /// What a planner knows about the group it steers.

@@ -364,10 +364,65 @@ pub fn planning_segment_checks(g: &Group) -> u64 {
     }
 }
 
+/// Most bytes the groups' flow fields may keep together: 1 GiB, a quarter of wasm32's 4 GiB
+/// address space (the page's worker also holds the agents, the timeline and recording budgets
+/// of [`crate::sim::limits`], the renderer's pixmaps, and builds a field beside the one it
+/// replaces), and about what a phone's browser lets one tab have. 20,000 px worlds have fields
+/// of 156,816 cells (1.9 MB), so about 570 distinct ones fit; a world of the default size
+/// (1,000 × 700 px, 7,000 cells, 84 kB) about 12,800.
+pub const MAX_FLOW_FIELD_BYTES: u64 = 1 << 30;
+
+/// What the flow fields of a scene's groups would keep in memory.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct FlowFieldMemory {
+    /// Distinct fields: one per goal and body radius among the groups guided by a field (the
+    /// world shares one field between groups that would build the same,
+    /// [`crate::spatial::flow_field::FlowFieldStore`]). Two goals at the same point count twice.
+    pub fields: u64,
+    /// Cells of each field.
+    pub cells: u64,
+    /// Bytes all fields keep.
+    pub bytes: u64,
+    /// The group whose field first takes the total over [`MAX_FLOW_FIELD_BYTES`], if any.
+    pub over_at: Option<usize>,
+}
+
+/// The memory the flow fields of `scene`'s groups would keep (see [`FlowFieldMemory`]).
+pub fn flow_field_memory(scene: &Scene) -> FlowFieldMemory {
+    let cells = crate::spatial::flow_field::cells_of(glam::Vec2::new(scene.width, scene.height));
+    let field_bytes = cells * crate::spatial::flow_field::BYTES_PER_CELL;
+    let has_obstacles = !scene.obstacles.is_empty();
+    let mut distinct = std::collections::HashSet::new();
+    let mut over_at = None;
+    for (i, g) in scene.groups.iter().enumerate() {
+        let Some(goal) = g.goal.filter(|_| g.planner.keeps_flow_field(has_obstacles)) else { continue };
+        // The field's clearance is the group's body radius (none without agents).
+        let clearance = if g.count == 0 { 0 } else { g.agent_radius.to_bits() };
+        if !distinct.insert((goal, clearance)) {
+            continue;
+        }
+        if over_at.is_none() && distinct.len() as u64 * field_bytes > MAX_FLOW_FIELD_BYTES {
+            over_at = Some(i);
+        }
+    }
+    let fields = distinct.len() as u64;
+    FlowFieldMemory { fields, cells, bytes: fields * field_bytes, over_at }
+}
+
 /// Refuses a scene over a limit: a step over [`STEP_BUDGET_NS`] names the group that costs
 /// the most, its planner, its count and how many agents of that planner would fit beside the
 /// others; planning over [`MAX_PLANNING_SEGMENT_CHECKS`] names the IGSA group that plans most.
 pub fn check(scene: &Scene) -> Result<(), SceneError> {
+    let memory = flow_field_memory(scene);
+    if let Some(i) = memory.over_at {
+        return Err(SceneError::FlowFieldMemory {
+            path: format!("groups[{i}]"),
+            fields: memory.fields,
+            cells: memory.cells,
+            bytes: memory.bytes,
+            limit: MAX_FLOW_FIELD_BYTES,
+        });
+    }
     let total = step_cost_ns(scene);
     let crowd = crowd_radius(scene);
     let costliest = |cost: &dyn Fn(&Group) -> f64| {

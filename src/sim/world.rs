@@ -10,6 +10,7 @@ use crate::sim::gather::{Arrival, GoalPlaces};
 use crate::sim::metrics::{Metrics, MetricsRecorder};
 use crate::sim::spawn::{centre_bounds, spawn, Spawn};
 use crate::sim::sweep::{path_enters, Terrain, PUSH_EPSILON};
+use crate::spatial::flow_field::FlowFieldStore;
 use crate::spatial::{periodic_images, ObstacleIndex, PeriodicImage, QueryCap, SpatialGrid};
 use glam::Vec2;
 use std::ops::Range;
@@ -118,6 +119,9 @@ pub struct World {
     images: Vec<PeriodicImage>,
     /// Whether groups whose planner parks do park at their fixed goal ([`World::set_parking`]).
     parking: bool,
+    /// The flow fields of the groups guided by one, each distinct field once
+    /// ([`FlowFieldStore`]).
+    flow_fields: FlowFieldStore,
 }
 
 impl World {
@@ -224,6 +228,7 @@ impl World {
             image_grid: None,
             images: Vec::new(),
             parking: true,
+            flow_fields: FlowFieldStore::default(),
         };
         world.update_parking_rules();
         world.grid.rebuild(&world.pos, &world.vel);
@@ -349,7 +354,14 @@ impl World {
             step: self.step,
             scene: &self.scene,
             group_of: &self.group_of,
+            flow_fields: &self.flow_fields,
         }
+    }
+
+    /// How many distinct flow fields the groups hold now (groups that would build the same field
+    /// share one, [`FlowFieldStore`]).
+    pub fn flow_field_count(&self) -> usize {
+        self.flow_fields.live_fields()
     }
 
     /// The planner steering group `g`.
@@ -575,6 +587,7 @@ impl World {
             step: self.step,
             scene: &self.scene,
             group_of: &self.group_of,
+            flow_fields: &self.flow_fields,
         };
         let step = self.step;
         for (gi, group) in self.groups.iter_mut().enumerate() {

@@ -323,6 +323,7 @@ export function refusalText(error) {
       return t('error.unreadable', { what: tOr(`what.${a.what}`, a.what), reason: reasonText(a.reason) });
     case 'unknown_preset':
     case 'unknown_planner':
+    case 'flow_field_memory':
     case 'unknown_param':
     case 'not_finite':
       return t(`error.${code}`, a);

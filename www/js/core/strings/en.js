@@ -320,6 +320,7 @@ export default {
   'error.not_finite': '{what} is not a finite number',
   'error.too_large': '{what} is too large (limit {limit} bytes)',
   'error.too_large_bytes': '{what} is too large ({bytes} bytes; limit {limit} bytes)',
+  'error.flow_field_memory': '{path}: the groups\' {fields} distinct flow fields ({cells} cells each: one per goal and body radius among the groups guided by a field) would keep {mb} MB, over the {limit_mb} MB limit; let groups share a goal or steer straight at it (guidance: goal)',
   'what.the scene text': 'the scene text',
   'what.the unpacked scene string': 'the unpacked scene string',
   "what.the scene's link": "the scene's link",

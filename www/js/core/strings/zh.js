@@ -320,6 +320,7 @@ export default {
   'error.not_finite': '{what} 不是有限数',
   'error.too_large': '{what}太大（上限 {limit} 字节）',
   'error.too_large_bytes': '{what}太大（{bytes} 字节；上限 {limit} 字节）',
+  'error.flow_field_memory': '{path}：各群组共需 {fields} 个不同的流场（每个 {cells} 个格子；受流场引导的群组中，每种目标与身体半径的组合各需一个），将占用 {mb} MB 内存，超过 {limit_mb} MB 的上限；请让群组共用一个目标，或改为直奔目标（guidance: goal）',
   'what.the scene text': '场景文本',
   'what.the unpacked scene string': '解压后的场景字符串',
   "what.the scene's link": "场景链接",
