@@ -90,9 +90,10 @@ pub trait Planner: PlannerClone {
     fn planning_progress(&self) -> f64 {
         1.0
     }
-    /// Runs up to `iterations` more iterations of the planning ahead; returns the share done.
-    fn advance_planning(&mut self, iterations: u32) -> f64 {
-        let _ = iterations;
+    /// Runs up to `evaluations` more objective evaluations of the planning ahead (`u32::MAX`:
+    /// all of it); returns the share done. Slices of any size give the same result.
+    fn advance_planning(&mut self, evaluations: u32) -> f64 {
+        let _ = evaluations;
         1.0
     }
     /// Why `agent` would move as it does at the next step: the terms of its step recomputed from

@@ -259,11 +259,12 @@ impl World {
         }
     }
 
-    /// Runs up to `iterations` planning iterations (of the first group still planning; the
-    /// slices do not change the result); returns [`World::planning_progress`].
-    pub fn advance_planning(&mut self, iterations: u32) -> f64 {
+    /// Runs up to `evaluations` more objective evaluations of the planning (of the first group
+    /// still planning; the slices do not change the result); returns
+    /// [`World::planning_progress`].
+    pub fn advance_planning(&mut self, evaluations: u32) -> f64 {
         if let Some(g) = self.groups.iter_mut().find(|g| g.planner.planning_progress() < 1.0) {
-            g.planner.advance_planning(iterations);
+            g.planner.advance_planning(evaluations);
         }
         self.planning_progress()
     }

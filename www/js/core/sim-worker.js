@@ -10,6 +10,7 @@
 
 import { loadWasm } from './boot.js';
 import { errorData, isPanic, messageOf } from './errors.js';
+import { PlanningBudget } from './planning-slice.js';
 import { READS } from './sim-reads.js';
 
 /** Simulation work per frame (ms) before the frame is shown: the frame rate of a playing scene. */
@@ -28,6 +29,8 @@ let playing = false;
 let stepsPerFrame = 2;
 /** Steps to reach without playing (a restarted worker replaying the run the page had). */
 let replayTo = 0;
+/** Evaluations per planning call, adapted to the scene's cost (core/planning-slice.js). */
+const planningBudget = new PlanningBudget();
 let awaitingAck = false;
 let dirty = true;
 let sceneChanged = true;
@@ -125,11 +128,7 @@ function tick() {
     if (kind === 'Sim' && sim.planning_progress() < 1) {
       // Planning runs whether or not the scene plays (the page shows its progress and Cancel).
       planning = true;
-      const end = performance.now() + PLANNING_BUDGET_MS;
-      let progress;
-      do {
-        progress = sim.advance_planning(1);
-      } while (progress < 1 && performance.now() < end);
+      planningBudget.spend((evaluations) => sim.advance_planning(evaluations), PLANNING_BUDGET_MS);
       dirty = true;
     } else if (playing || replaying) {
       asked = replaying ? 1 : stepsPerFrame;
