@@ -91,3 +91,24 @@ fn distinct_fields_over_the_memory_limit_are_refused_naming_the_group_and_the_li
     assert_eq!(cost::flow_field_memory(&straight).fields, 0);
     assert_eq!(cost::check(&straight), Ok(()));
 }
+
+#[test]
+fn switching_groups_to_flow_field_guidance_is_refused_at_the_limit_and_the_run_keeps_its_planner() {
+    let field_bytes = cells_of(glam::Vec2::new(20_000.0, 20_000.0)) * BYTES_PER_CELL;
+    let fit = (MAX_FLOW_FIELD_BYTES / field_bytes) as usize;
+    let mut scene = many_groups(fit + 1, fit + 1);
+    let straight = |config: &mut flockpath::PlannerConfig| {
+        config.set_param("guidance", serde_json::json!("goal")).expect("a guidance choice");
+    };
+    scene.groups.iter_mut().for_each(|g| straight(&mut g.planner));
+    let mut world = World::new(scene).expect("straight guidance keeps no field");
+    let guided = PlannerKind::Orca.default_config();
+    for g in 0..fit {
+        world.set_group_planner(g, guided.clone()).expect("within the limit");
+    }
+    let e = world.set_group_planner(fit, guided).expect_err("one field over the limit");
+    assert!(matches!(e, SceneError::FlowFieldMemory { .. }), "{e:?}");
+    let mut kept = PlannerKind::Orca.default_config();
+    straight(&mut kept);
+    assert_eq!(world.scene().groups[fit].planner, kept, "the run keeps its planner");
+}

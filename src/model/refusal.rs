@@ -37,7 +37,7 @@ impl Refusal for SceneError {
     fn args(&self) -> Vec<(&'static str, String)> {
         match self {
             // Worded by the core only: the page matches the few it words itself (unknown
-            // version, the cost and density limits) by their text and shows the rest as given.
+            // version, the planning and density limits) by their text and shows the rest as given.
             SceneError::Parse(m)
             | SceneError::OutOfRange(m)
             | SceneError::BadReference(m)

@@ -554,7 +554,8 @@ pub enum SceneError {
     BadReference(String),
     /// The geometry makes the scene unusable (goal inside an obstacle, no room to spawn).
     Blocked(String),
-    /// One step of the scene would cost more than the stated limit ([`crate::sim::cost`]).
+    /// The scene asks for more work than the stated limit: IGSA path planning over its
+    /// segment checks ([`crate::sim::cost`]).
     TooCostly(String),
     /// One field's value is refused (wrong type, not a finite number, outside its limit, an
     /// unknown key, a missing one): the message names the field by its path, the value and what

@@ -146,7 +146,7 @@ impl World {
         Self::build(scene, false, false, Some(positions))
     }
 
-    /// `cost_limit`: refuse scenes over the step-cost limit of [`crate::sim::cost`];
+    /// `cost_limit`: refuse scenes over the memory and planning limits of [`crate::sim::cost`];
     /// `sliced_planning`: leave IGSA planning to [`World::advance_planning`];
     /// `start`: the agents' positions instead of the spawn's.
     fn build(
@@ -236,8 +236,9 @@ impl World {
         Ok(world)
     }
 
-    /// [`World::new`] without the step-cost limit of [`crate::sim::cost`] (the spawn density limit
-    /// still holds): for native benchmarks that time scenes bigger than the page may run.
+    /// [`World::new`] without the memory and planning limits of [`crate::sim::cost`] (the spawn
+    /// density limit still holds): for native benchmarks and suites that run scenes bigger than
+    /// the page may.
     #[doc(hidden)]
     pub fn new_beyond_cost_limit(scene: Scene) -> Result<Self, SceneError> {
         Self::build(scene, false, false, None)
@@ -402,9 +403,10 @@ impl World {
         // scene's link stays loadable.
         self.scene.validate_planner(g, &config)?;
         if self.scene.groups[g].planner != config {
-            // Another planner or larger IGSA settings may break a cost limit: then the run keeps
-            // its planner.
-            let mut changed = Scene { groups: self.scene.groups.clone(), ..Scene::empty(10.0, 10.0) };
+            // Another planner or larger IGSA settings may break a memory or planning limit: then
+            // the run keeps its planner.
+            // The whole scene: the flow fields' memory depends on its size and obstacles.
+            let mut changed = self.scene.clone();
             changed.groups[g].planner = config.clone();
             crate::sim::cost::check(&changed)?;
         }
