@@ -274,8 +274,9 @@ impl BuildInputs {
 ///
 /// It holds weak references only: a field lives as long as a group holds it, and an entry
 /// whose field is gone is swept out as the store grows. Sharing changes no result: a field is
-/// a pure function of its [`BuildInputs`], so a shared one is the field the group would have
-/// built itself, bit for bit.
+/// a pure function of its inputs (`BuildInputs`), so a shared one is the field the group would
+/// have built itself, bit for bit. (The obstacles enter as their 64-bit fingerprint, as they
+/// already did for when a group rebuilds its field.)
 #[derive(Clone, Debug, Default)]
 pub struct FlowFieldStore {
     built: RefCell<FieldsByInputs>,

@@ -308,7 +308,7 @@ impl PathProblem {
 ///
 /// How a slice can stop inside an iteration without the optimizers knowing: an iteration (or
 /// the build, which evaluates the initial population) runs on a copy of the optimizer against
-/// [`Metered`], which answers from the values computed by earlier slices, computes new ones
+/// `Metered`, which answers from the values computed by earlier slices, computes new ones
 /// while the budget lasts, and after that answers a stand-in value and notes that it starved.
 /// A starved copy is thrown away; the next slice runs the iteration again on a fresh copy,
 /// which asks for the same points in the same order (the optimizer's state and random stream
