@@ -13,13 +13,13 @@
 //! Cost, not only panics: the corpus holds valid-but-expensive scenes (`cost-*`: the dense
 //! spawns, packed crowds, huge populations and heavy IGSA planning of issue 12), and every
 //! decoded input's work is counted by `flockpath::sim::cost::work` (lattice places the spawn
-//! examined, the step estimate, the IGSA segments to plan): an accepted scene must stay within
+//! examined, the IGSA segments to plan, the flow fields' memory): an accepted scene must stay within
 //! the stated budgets, and every `cost-*` entry must be refused or within them, without timing.
 
 use base64::engine::general_purpose::URL_SAFE_NO_PAD;
 use base64::Engine as _;
 use flockpath::rng::Rng;
-use flockpath::sim::cost::{self, Work, MAX_PLANNING_SEGMENT_CHECKS, STEP_BUDGET_NS};
+use flockpath::sim::cost::{self, Work, MAX_FLOW_FIELD_BYTES, MAX_PLANNING_SEGMENT_CHECKS};
 use flockpath::sim::spawn::MAX_SPAWN_PLACES;
 use flockpath::{scene_from_any, PlannerConfig, PlannerKind, Region, Scene, SceneError};
 use std::panic::{catch_unwind, AssertUnwindSafe};
@@ -205,8 +205,8 @@ fn within_budget(scene: &Scene) -> Result<Option<Work>, String> {
     if work.spawn_places > spawn_bound {
         return Err(format!("spawn examined {} places, over {spawn_bound}", work.spawn_places));
     }
-    if work.step_ns > STEP_BUDGET_NS {
-        return Err(format!("a step costs about {:.0} ms", work.step_ns / 1e6));
+    if work.flow_fields.bytes > MAX_FLOW_FIELD_BYTES {
+        return Err(format!("flow fields keep {} bytes", work.flow_fields.bytes));
     }
     if work.planning_segment_checks > MAX_PLANNING_SEGMENT_CHECKS {
         return Err(format!("planning checks {} segments", work.planning_segment_checks));
@@ -243,7 +243,6 @@ fn the_expensive_scenes_of_the_issue_are_refused_with_the_limit_named() {
         ("cost-firefly-1000-in-10x10.json", &["1000 agents", "density limit"]),
         ("cost-pso-2000-in-50x100.json", &["2000 agents", "density limit"]),
         ("cost-forces-10x10-circle.json", &["1000 agents", "at most 0", "density limit"]),
-        ("cost-firefly-200k-spread.json", &["200000 firefly agents", "180 ms limit"]),
         ("cost-igsa-max-params-three-groups.json", &["igsa", "16200000 path segments"]),
     ] {
         let e = refusal(file);
@@ -253,6 +252,12 @@ fn the_expensive_scenes_of_the_issue_are_refused_with_the_limit_named() {
             assert!(text.contains(w), "{file}: {w:?} missing from {text:?}");
         }
     }
+    // Issue 24: refused once by the step-time estimate (200,000 fireflies, "180 ms limit"), which
+    // is gone now that the page steps in a worker: it loads.
+    let text =
+        std::fs::read_to_string("tests/data/fuzz-corpus/cost-firefly-200k-spread.json").expect("reads");
+    let work = cost::work(&scene_from_any(&text).expect("valid")).expect("accepted");
+    assert_eq!(work.flow_fields.fields, 0);
 }
 
 #[test]

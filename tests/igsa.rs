@@ -142,3 +142,37 @@ fn the_lab_reference_run_matches_the_pinned_digest() {
     let pinned = include_str!("data/golden-optim.txt").trim();
     assert_eq!(flockpath::optim::lab::reference_digest(), pinned);
 }
+
+/// Issue 24: the page plans in slices bounded by objective evaluations (its worker calls
+/// `advance_planning` until its time budget is spent); slices of 1, 7 or all evaluations must
+/// plan the same paths and step to the same digest as planning at once.
+#[test]
+fn planning_in_slices_of_any_budget_gives_the_same_run() {
+    let mut scene = presets::igsa_path_2();
+    scene.groups.push(scene.groups[0].clone());
+    for g in &mut scene.groups {
+        let PlannerConfig::Igsa(params) = &mut g.planner else { panic!("igsa preset") };
+        (params.population, params.iterations) = (16, 30);
+    }
+    let run = |budget: Option<u32>| {
+        let mut world = match budget {
+            None => World::new(scene.clone()).expect("valid"),
+            Some(budget) => {
+                let mut world = World::new_sliced(scene.clone()).expect("valid");
+                let mut calls = 0u32;
+                while world.advance_planning(budget) < 1.0 {
+                    calls += 1;
+                }
+                assert!(calls > 0 || budget == u32::MAX, "slices of {budget} took {calls} calls");
+                world
+            }
+        };
+        let paths: Vec<_> = (0..2).map(|g| world.planned_path(g).expect("path").clone()).collect();
+        world.step_n(100);
+        (paths, world.digest())
+    };
+    let at_once = run(None);
+    for budget in [1, 7, u32::MAX] {
+        assert_eq!(run(Some(budget)), at_once, "slices of {budget} evaluations");
+    }
+}

@@ -279,26 +279,21 @@ fn a_region_that_just_holds_its_count_is_filled() {
     assert_apart(&world, "full region");
 }
 
+/// Issue 24: switching a big crowd to a costlier planner was refused by the step-time estimate
+/// while the page stepped on its main thread; the simulation runs in a worker now and the
+/// estimate is gone (`src/sim/cost.rs`), so the switch is accepted and the run goes on.
 #[test]
-fn switching_a_big_crowd_to_a_costlier_planner_is_refused_and_the_run_goes_on() {
-    // 20,000 Boids wander in a 4000×4000 world: within the limits; as social-force pedestrians
-    // they are not.
+fn switching_a_big_crowd_to_a_costlier_planner_is_accepted() {
+    // 20,000 Boids wander in a 4000×4000 world; as social-force pedestrians they once were over
+    // the 180 ms step estimate.
     let mut scene = presets::open_field();
     (scene.width, scene.height) = (4000.0, 4000.0);
     scene.groups[0].count = 20_000;
     scene.groups[0].goal = None;
     scene.groups[0].spawn = Region { min: [0.0, 0.0], max: [4000.0, 4000.0] };
-    let mut world = World::new(scene).expect("20,000 Boids fit the limits");
+    let mut world = World::new(scene).expect("20,000 Boids load");
     world.step();
-    let costly = PlannerKind::SocialForce;
-    let e = world.set_group_planner(0, costly.default_config()).expect_err("too costly");
-    let limit = format!(
-        "at most {} {} agents",
-        flockpath::sim::cost::max_agents(costly, flockpath::sim::cost::DEFAULT_BODY_RADIUS),
-        costly.name()
-    );
-    assert!(matches!(e, SceneError::TooCostly(_)) && e.to_string().contains(&limit), "{e}");
-    assert_eq!(world.scene().groups[0].planner.kind(), PlannerKind::Boids, "the run keeps its planner");
-    world.step();
-    assert_eq!(world.step_count(), 2);
+    world.set_group_planner(0, PlannerKind::SocialForce.default_config()).expect("accepted");
+    assert_eq!(world.scene().groups[0].planner.kind(), PlannerKind::SocialForce);
+    assert_eq!(world.step_count(), 1, "switching keeps the run");
 }

@@ -29,6 +29,7 @@ impl Refusal for SceneError {
             SceneError::TooCostly(_) => "too_costly",
             SceneError::Field(_) => "field",
             SceneError::TooLarge { .. } => "too_large",
+            SceneError::FlowFieldMemory { .. } => "flow_field_memory",
             SceneError::UnknownPreset { .. } => "unknown_preset",
         }
     }
@@ -36,7 +37,7 @@ impl Refusal for SceneError {
     fn args(&self) -> Vec<(&'static str, String)> {
         match self {
             // Worded by the core only: the page matches the few it words itself (unknown
-            // version, the cost and density limits) by their text and shows the rest as given.
+            // version, the planning and density limits) by their text and shows the rest as given.
             SceneError::Parse(m)
             | SceneError::OutOfRange(m)
             | SceneError::BadReference(m)
@@ -53,6 +54,13 @@ impl Refusal for SceneError {
                 }
                 args
             }
+            SceneError::FlowFieldMemory { path, fields, cells, bytes, limit } => vec![
+                ("path", path.clone()),
+                ("fields", fields.to_string()),
+                ("cells", cells.to_string()),
+                ("mb", bytes.div_ceil(1 << 20).to_string()),
+                ("limit_mb", (limit / (1 << 20)).to_string()),
+            ],
             SceneError::UnknownPreset { name, known } => {
                 vec![("name", name.clone()), ("known", known.join(", "))]
             }

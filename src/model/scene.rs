@@ -554,7 +554,8 @@ pub enum SceneError {
     BadReference(String),
     /// The geometry makes the scene unusable (goal inside an obstacle, no room to spawn).
     Blocked(String),
-    /// One step of the scene would cost more than the stated limit ([`crate::sim::cost`]).
+    /// The scene asks for more work than the stated limit: IGSA path planning over its
+    /// segment checks ([`crate::sim::cost`]).
     TooCostly(String),
     /// One field's value is refused (wrong type, not a finite number, outside its limit, an
     /// unknown key, a missing one): the message names the field by its path, the value and what
@@ -568,6 +569,21 @@ pub enum SceneError {
         bytes: Option<usize>,
         /// The limit in bytes.
         limit: usize,
+    },
+    /// The groups' flow fields would keep more memory than the stated limit
+    /// (`crate::sim::cost::MAX_FLOW_FIELD_BYTES`): each distinct goal point and body radius among
+    /// the groups guided by a field keeps one field of `cells` cells.
+    FlowFieldMemory {
+        /// The group whose field crosses the limit, as the scene JSON spells it (`groups[499]`).
+        path: String,
+        /// Distinct fields the scene's groups would keep.
+        fields: u64,
+        /// Cells of each field (set by the world's size).
+        cells: u64,
+        /// Bytes the fields would keep.
+        bytes: u64,
+        /// The limit in bytes.
+        limit: u64,
     },
     /// A bare name that names no preset.
     UnknownPreset {
@@ -630,6 +646,14 @@ impl fmt::Display for SceneError {
             SceneError::TooLarge { what, bytes: None, limit } => {
                 write!(f, "{what} is too large (limit {limit} bytes)")
             }
+            SceneError::FlowFieldMemory { path, fields, cells, bytes, limit } => write!(
+                f,
+                "{path}: the groups' {fields} distinct flow fields ({cells} cells each: one per goal \
+                 and body radius among the groups guided by a field) would keep {} MB, over the {} MB \
+                 limit; let groups share a goal or steer straight at it (guidance: goal)",
+                bytes.div_ceil(1 << 20),
+                limit / (1 << 20),
+            ),
             SceneError::UnknownPreset { name, known } => {
                 write!(f, "unknown preset '{name}' (known: {})", known.join(", "))
             }

@@ -37,6 +37,7 @@ impl Default for FireflyParams {
 }
 
 /// A firefly run.
+#[derive(Clone)]
 pub struct Firefly {
     params: FireflyParams,
     swarm: Swarm,

@@ -34,6 +34,7 @@ impl Default for GaParams {
 }
 
 /// A GA run.
+#[derive(Clone)]
 pub struct Ga {
     params: GaParams,
     swarm: Swarm,

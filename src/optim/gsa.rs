@@ -173,6 +173,7 @@ pub fn redraw_outside(bounds: &Bounds, x: &mut [f64], rng: &mut Rng) {
 }
 
 /// A plain GSA run.
+#[derive(Clone)]
 pub struct Gsa {
     params: GsaParams,
     swarm: Swarm,

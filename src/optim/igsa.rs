@@ -88,6 +88,7 @@ pub fn chaotic_positions(bounds: &Bounds, count: usize, lambda: f64, rng: &mut R
 }
 
 /// An IGSA run.
+#[derive(Clone)]
 pub struct Igsa {
     params: IgsaParams,
     swarm: Swarm,

@@ -40,8 +40,8 @@ pub use ga::{Ga, GaParams};
 pub use gsa::{Gsa, GsaParams};
 pub use igsa::{Igsa, IgsaParams};
 pub use problem::{
-    clamp_coordinate, gaussian, run_rng, sanitize, Algorithm, Bounds, Objective, Optimizer, Population,
-    Settings, UnknownName,
+    clamp_coordinate, gaussian, run_rng, sanitize, Algorithm, Bounds, Objective, Optimizer, OptimizerClone,
+    Population, Settings, UnknownName,
 };
 pub use pso::{Pso, PsoParams};
 

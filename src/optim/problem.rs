@@ -40,8 +40,21 @@ pub trait Objective {
     fn evaluate(&self, x: &[f64]) -> f64;
 }
 
+/// Copies a boxed optimizer with all its state (the random stream included), so a copy steps
+/// exactly as the original would. Implemented for every `Clone` optimizer.
+pub trait OptimizerClone {
+    /// A boxed deep copy of this run.
+    fn clone_box(&self) -> Box<dyn Optimizer + Send>;
+}
+
+impl<T: Optimizer + Clone + Send + 'static> OptimizerClone for T {
+    fn clone_box(&self) -> Box<dyn Optimizer + Send> {
+        Box::new(self.clone())
+    }
+}
+
 /// One optimizer run in progress.
-pub trait Optimizer {
+pub trait Optimizer: OptimizerClone {
     /// Which algorithm this is.
     fn algorithm(&self) -> Algorithm;
     /// One iteration: move the population and evaluate it.

@@ -31,6 +31,7 @@ impl Default for PsoParams {
 }
 
 /// A PSO run.
+#[derive(Clone)]
 pub struct Pso {
     params: PsoParams,
     swarm: Swarm,

@@ -117,7 +117,7 @@ impl Boids {
         if prm.flow_field == FlowGuide::Goal {
             if let Some((goal, _)) = group.goal {
                 let clearance = group.agents.clone().next().map_or(0.0, |i| ctx.radii[i as usize]);
-                self.flow.update(ctx.bounds, ctx.obstacles, goal, clearance);
+                self.flow.update(ctx.flow_fields, ctx.bounds, ctx.obstacles, goal, clearance);
             }
         }
         if prm.leader == Leader::First {

@@ -41,7 +41,7 @@ impl GoalWay {
             return;
         }
         let clearance = group.agents.clone().next().map_or(0.0, |i| ctx.radii[i as usize]);
-        self.field.update(ctx.bounds, ctx.obstacles, goal, clearance);
+        self.field.update(ctx.flow_fields, ctx.bounds, ctx.obstacles, goal, clearance);
     }
 
     /// The way from `p` for a group heading for `goal` (position, radius).

@@ -5,6 +5,7 @@
 use crate::model::scene::Scene;
 use crate::planners::explain::{Explanation, GroupPath};
 use crate::rng::Rng;
+use crate::spatial::flow_field::FlowFieldStore;
 use crate::spatial::{ObstacleIndex, SpatialGrid};
 use glam::Vec2;
 use std::ops::Range;
@@ -30,6 +31,8 @@ pub struct StepContext<'a> {
     pub scene: &'a Scene,
     /// Group index of every agent.
     pub group_of: &'a [u32],
+    /// The world's flow fields, shared by the groups that would build the same one.
+    pub flow_fields: &'a FlowFieldStore,
 }
 
 /// What a planner knows about the group it steers.
@@ -87,9 +90,10 @@ pub trait Planner: PlannerClone {
     fn planning_progress(&self) -> f64 {
         1.0
     }
-    /// Runs up to `iterations` more iterations of the planning ahead; returns the share done.
-    fn advance_planning(&mut self, iterations: u32) -> f64 {
-        let _ = iterations;
+    /// Runs up to `evaluations` more objective evaluations of the planning ahead (`u32::MAX`:
+    /// all of it); returns the share done. Slices of any size give the same result.
+    fn advance_planning(&mut self, evaluations: u32) -> f64 {
+        let _ = evaluations;
         1.0
     }
     /// Why `agent` would move as it does at the next step: the terms of its step recomputed from

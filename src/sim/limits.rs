@@ -6,7 +6,7 @@
 //! must fit in a frame. The command line runs natively with the machine's memory, writes files
 //! and may take minutes. The scene's own limits (agents, size, obstacles) are the same everywhere
 //! and live with the scene (`crate::model::scene`, stated in the README's limits table); the
-//! step-cost limits are [`crate::sim::cost`].
+//! flow fields' memory and the planning limit are [`crate::sim::cost`].
 
 /// The page's recording of a run (the exports: paths CSV/JSON, MEL, Python, SVG): 32 MiB, for
 /// example 1,000 agents × 2,000 steps at every step. Smaller than the command line's because it

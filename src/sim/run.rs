@@ -235,10 +235,10 @@ impl Run {
         Ok(resimulated)
     }
 
-    /// Runs up to `iterations` planning iterations; returns the share done (0…1). The path is
-    /// the same whatever the slices.
-    pub fn advance_planning(&mut self, iterations: u32) -> f64 {
-        let progress = self.world.advance_planning(iterations);
+    /// Runs up to `evaluations` more objective evaluations of the planning (`u32::MAX`: all);
+    /// returns the share done (0…1). The path is the same whatever the slices.
+    pub fn advance_planning(&mut self, evaluations: u32) -> f64 {
+        let progress = self.world.advance_planning(evaluations);
         if progress >= 1.0 {
             self.before_planning = None;
             if self.world.step_count() == 0 {

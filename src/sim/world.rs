@@ -10,6 +10,7 @@ use crate::sim::gather::{Arrival, GoalPlaces};
 use crate::sim::metrics::{Metrics, MetricsRecorder};
 use crate::sim::spawn::{centre_bounds, spawn, Spawn};
 use crate::sim::sweep::{path_enters, Terrain, PUSH_EPSILON};
+use crate::spatial::flow_field::FlowFieldStore;
 use crate::spatial::{periodic_images, ObstacleIndex, PeriodicImage, QueryCap, SpatialGrid};
 use glam::Vec2;
 use std::ops::Range;
@@ -118,6 +119,9 @@ pub struct World {
     images: Vec<PeriodicImage>,
     /// Whether groups whose planner parks do park at their fixed goal ([`World::set_parking`]).
     parking: bool,
+    /// The flow fields of the groups guided by one, each distinct field once
+    /// ([`FlowFieldStore`]).
+    flow_fields: FlowFieldStore,
 }
 
 impl World {
@@ -142,7 +146,7 @@ impl World {
         Self::build(scene, false, false, Some(positions))
     }
 
-    /// `cost_limit`: refuse scenes over the step-cost limit of [`crate::sim::cost`];
+    /// `cost_limit`: refuse scenes over the memory and planning limits of [`crate::sim::cost`];
     /// `sliced_planning`: leave IGSA planning to [`World::advance_planning`];
     /// `start`: the agents' positions instead of the spawn's.
     fn build(
@@ -224,6 +228,7 @@ impl World {
             image_grid: None,
             images: Vec::new(),
             parking: true,
+            flow_fields: FlowFieldStore::default(),
         };
         world.update_parking_rules();
         world.grid.rebuild(&world.pos, &world.vel);
@@ -231,8 +236,9 @@ impl World {
         Ok(world)
     }
 
-    /// [`World::new`] without the step-cost limit of [`crate::sim::cost`] (the spawn density limit
-    /// still holds): for native benchmarks that time scenes bigger than the page may run.
+    /// [`World::new`] without the memory and planning limits of [`crate::sim::cost`] (the spawn
+    /// density limit still holds): for native benchmarks and suites that run scenes bigger than
+    /// the page may.
     #[doc(hidden)]
     pub fn new_beyond_cost_limit(scene: Scene) -> Result<Self, SceneError> {
         Self::build(scene, false, false, None)
@@ -254,11 +260,12 @@ impl World {
         }
     }
 
-    /// Runs up to `iterations` planning iterations (of the first group still planning; the
-    /// slices do not change the result); returns [`World::planning_progress`].
-    pub fn advance_planning(&mut self, iterations: u32) -> f64 {
+    /// Runs up to `evaluations` more objective evaluations of the planning (of the first group
+    /// still planning; the slices do not change the result); returns
+    /// [`World::planning_progress`].
+    pub fn advance_planning(&mut self, evaluations: u32) -> f64 {
         if let Some(g) = self.groups.iter_mut().find(|g| g.planner.planning_progress() < 1.0) {
-            g.planner.advance_planning(iterations);
+            g.planner.advance_planning(evaluations);
         }
         self.planning_progress()
     }
@@ -349,7 +356,14 @@ impl World {
             step: self.step,
             scene: &self.scene,
             group_of: &self.group_of,
+            flow_fields: &self.flow_fields,
         }
+    }
+
+    /// How many distinct flow fields the groups hold now (groups that would build the same field
+    /// share one, [`FlowFieldStore`]).
+    pub fn flow_field_count(&self) -> usize {
+        self.flow_fields.live_fields()
     }
 
     /// The planner steering group `g`.
@@ -389,9 +403,10 @@ impl World {
         // scene's link stays loadable.
         self.scene.validate_planner(g, &config)?;
         if self.scene.groups[g].planner != config {
-            // Another planner or larger IGSA settings may break a cost limit: then the run keeps
-            // its planner.
-            let mut changed = Scene { groups: self.scene.groups.clone(), ..Scene::empty(10.0, 10.0) };
+            // Another planner or larger IGSA settings may break a memory or planning limit: then
+            // the run keeps its planner.
+            // The whole scene: the flow fields' memory depends on its size and obstacles.
+            let mut changed = self.scene.clone();
             changed.groups[g].planner = config.clone();
             crate::sim::cost::check(&changed)?;
         }
@@ -575,6 +590,7 @@ impl World {
             step: self.step,
             scene: &self.scene,
             group_of: &self.group_of,
+            flow_fields: &self.flow_fields,
         };
         let step = self.step;
         for (gi, group) in self.groups.iter_mut().enumerate() {

@@ -430,10 +430,12 @@ impl Sim {
         self.run.world().planning_progress()
     }
 
-    /// Runs up to `iterations` planning iterations; returns the share done. The path is the
-    /// same whatever the slices.
-    pub fn advance_planning(&mut self, iterations: u32) -> f64 {
-        self.run.advance_planning(iterations)
+    /// Runs up to `evaluations` more objective evaluations of the planning (each is a path's
+    /// fitness: at most a few milliseconds even among thousands of obstacles, so the worker
+    /// calls this in a loop until its time budget is spent); returns the share done. The path
+    /// is the same whatever the slices.
+    pub fn advance_planning(&mut self, evaluations: u32) -> f64 {
+        self.run.advance_planning(evaluations)
     }
 
     /// Whether [`Sim::cancel_planning`] has a scene to go back to.

@@ -125,19 +125,18 @@ test('the core’s refusals are worded in Chinese (real errors from the wasm mod
   const base = JSON.parse(m.preset_scene_json('open-field'));
   const dense = structuredClone(base);
   Object.assign(dense.groups[0], { count: 5000, spawn: { min: [10, 10], max: [60, 60] } });
-  const costly = structuredClone(base);
-  // No goal: a crowd that cannot jam meets the ordinary limit (the jam limit has its own case).
-  // Fireflies among 0.5 px bodies: dearer than among the default ones, so the refusal names the size.
-  Object.assign(costly.groups[0], { count: 200000, agent_radius: 0.5, goal: null, planner: { kind: 'firefly', params: {} }, spawn: { min: [0, 0], max: [base.width, base.height] } });
-  // The default bodies in a field large enough to hold them: the limit without small bodies.
-  const costlyDefault = structuredClone(base);
-  Object.assign(costlyDefault, { width: 20000, height: 20000, obstacles: [] });
-  Object.assign(costlyDefault.groups[0], { count: 200000, goal: null, spawn: { min: [0, 0], max: [20000, 20000] } });
+  // src/sim/cost.rs: 571 one-agent ORCA groups, each heading for a goal of its own round an
+  // obstacle in a 20,000 px world, keep 571 distinct flow fields of 1.9 MB: over 1 GiB.
+  const memory = structuredClone(base);
+  Object.assign(memory, { width: 20000, height: 20000, obstacles: [{ shape: 'circle', center: [10000, 10000], radius: 300 }] });
+  memory.goals = Array.from({ length: 571 }, (_, k) => ({ position: [19700, 100 + 19 * k], radius: 8 }));
+  memory.groups = memory.goals.map((_, k) => ({
+    ...base.groups[0], name: `g${k}`, count: 1, goal: k, spawn: { min: [100, 100 + 19 * k], max: [110, 110 + 19 * k] }, planner: { kind: 'orca', params: {} },
+  }));
   const sim = new m.Sim(m.preset_scene_json('open-field'), 200, 100);
   const cases = {
     density: refused(() => new m.Sim(JSON.stringify(dense), 100, 100)),
-    cost: refused(() => new m.Sim(JSON.stringify(costly), 100, 100)),
-    cost_default: refused(() => new m.Sim(JSON.stringify(costlyDefault), 100, 100)),
+    memory: refused(() => new m.Sim(JSON.stringify(memory), 100, 100)),
     planner: refused(() => sim.set_group_planner(0, 'teleport')),
     preset: refused(() => m.preset_scene_json('no-such-preset')),
     range: refused(() => sim.set_group_param(0, 'max_speed', '1000000')),
@@ -162,10 +161,9 @@ test('the core’s refusals are worded in Chinese (real errors from the wasm mod
       assert.deepEqual(english, [], `${k}: no English words left in ${text}`);
     }
     assert.equal(zh.density, '群组 1（flock）：5000 个半径 4 像素的个体放不进其出生区域（50×50 像素）：在彼此、障碍物和其他群组之间保持间隔时最多只能放 49 个（密度上限）');
-    assert.match(zh.cost_default, /^群组 1（flock）：200000 个 boids 个体会使每步在浏览器中耗时约 \d+ 毫秒，超过 \d+ 毫秒的上限/);
-    assert.match(cases.cost.message, /firefly agents among bodies of radius 0\.5 px/, 'small bodies are named');
-    assert.doesNotMatch(cases.cost_default.message, /among bodies/, 'default bodies are not');
-    assert.match(zh.cost, /^群组 1（flock）：半径 0\.5 像素的小个体中的 200000 个 firefly 个体/, 'and worded');
+    assert.equal(cases.memory.code, 'flow_field_memory');
+    assert.match(cases.memory.message, /^groups\[570\]: the groups' 571 distinct flow fields \(156816 cells each.* over the 1024 MB limit/);
+    assert.match(zh.memory, /^groups\[570\]：各群组共需 571 个不同的流场（每个 156816 个格子.*超过 1024 MB 的上限/);
     assert.equal(zh.range, '最大速度（max_speed）的值为 1000000；允许：0.1…20 像素/步 之间的数');
     assert.equal(zh.version, '无法读取场景：未知的场景格式版本“7”；此 flockpath 能读取的版本为 1 和 2');
     assert.equal(zh.field, 'groups[0].agent_radius 的值为 500；允许：0.5…100 像素 之间的数');
@@ -208,12 +206,6 @@ test('every other refusal is worded in Chinese too: scene fields, items, compare
     unknown_key: load(scene((s) => { s.groups[0].colour = '#ff0000'; })),
     missing_key: load(scene((s) => { delete s.width; })),
     list_of: load(scene((s) => { s.paths = [{ points: [[10, 10]], radius: 10 }]; })),
-    // src/sim/cost.rs: 30,000 Boids packed round their own goal, over the jam limit.
-    jam: load(scene((s) => {
-      Object.assign(s, { width: 2000, height: 2000, obstacles: [] });
-      s.goals[0].position = [900, 900];
-      Object.assign(s.groups[0], { goal: 0, count: 30000, spawn: { min: [100, 100], max: [1700, 1700] } });
-    })),
     // Items and edits.
     no_item: refused(() => sim.edit(JSON.stringify({ op: 'delete', item: { kind: 'obstacle', index: 99 } }))),
     path_boids: refused(() => {
@@ -273,7 +265,6 @@ test('every other refusal is worded in Chinese too: scene fields, items, compare
       assert.deepEqual(englishWords(text, names), [], `${k}: no English words left in ${text} (core: ${cases[k].message})`);
       if (process.env.I18N_SHOW) console.log(`${k} | ${text}`);
     }
-    assert.match(cases.jam.message, /agents packed round their own goal \(the jam limit\)/, 'the jam refusal names its limit');
     assert.equal(zh.no_item, '不存在障碍物 100');
     assert.match(zh.spec_planner, /^比较：未知的规划器“zz”；可用的有：/);
     assert.match(zh.polygon, /^obstacles\[\d+\]\.points 的值为 边 \d+→\d+ 与 \d+→\d+ 相交或接触的多边形；允许：简单多边形/);

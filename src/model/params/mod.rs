@@ -230,6 +230,22 @@ impl PlannerConfig {
         }
     }
 
+    /// Whether this planner steers its group down the goal's flow field (one field per distinct
+    /// goal point and body radius, `spatial::flow_field`) in a scene with or without
+    /// obstacles: Boids with `flow_field: goal` always, ORCA and social force with flow-field
+    /// guidance among obstacles (without any their way is straight).
+    pub fn keeps_flow_field(&self, has_obstacles: bool) -> bool {
+        match self {
+            PlannerConfig::Boids(p) => p.flow_field == FlowGuide::Goal,
+            PlannerConfig::Orca(p) => has_obstacles && p.guidance == guidance::Guidance::FlowField,
+            PlannerConfig::SocialForce(p) => has_obstacles && p.guidance == guidance::Guidance::FlowField,
+            PlannerConfig::Pso(_)
+            | PlannerConfig::Firefly(_)
+            | PlannerConfig::Forces(_)
+            | PlannerConfig::Igsa(_) => false,
+        }
+    }
+
     /// Checks every parameter against its table range (and IGSA's edited waypoints); a refusal
     /// names the parameter by its key, value and range.
     pub fn check(&self) -> Result<(), ParamError> {

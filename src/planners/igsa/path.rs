@@ -22,6 +22,8 @@ use crate::rng::Rng;
 use crate::spatial::ObstacleIndex;
 use glam::Vec2;
 use serde::Serialize;
+use std::cell::{Cell, RefCell};
+use std::collections::HashMap;
 
 /// Waypoint coordinates are searched in `[−100, 100]` and mapped linearly onto the scene: the
 /// gravitational constants (G0 is an acceleration in search units) were set by Rashedi on
@@ -297,9 +299,22 @@ impl PathProblem {
     }
 }
 
-/// A path being planned, one slice of iterations at a time ([`PathPlanning::advance`]), so a
-/// caller with a frame budget (the page) can spread the work over frames. The iterations are the
-/// same whatever the slices: the result is bit-identical to [`PathProblem::plan`].
+/// A path being planned a slice at a time ([`PathPlanning::advance`]), so a caller with a time
+/// budget (the page's worker) can spread the work over frames. A slice is bounded by objective
+/// evaluations, not iterations: one iteration at the largest settings evaluates up to three
+/// times the population (the move, IGSA's neighbourhood move, a restart), and among thousands
+/// of obstacles that took seconds. The evaluations are the same whatever the slices, so the
+/// result is bit-identical to [`PathProblem::plan`].
+///
+/// How a slice can stop inside an iteration without the optimizers knowing: an iteration (or
+/// the build, which evaluates the initial population) runs on a copy of the optimizer against
+/// `Metered`, which answers from the values computed by earlier slices, computes new ones
+/// while the budget lasts, and after that answers a stand-in value and notes that it starved.
+/// A starved copy is thrown away; the next slice runs the iteration again on a fresh copy,
+/// which asks for the same points in the same order (the optimizer's state and random stream
+/// are the same and every value it was given is the true one), so the values kept answer them
+/// and the budget goes to the points after. Only a copy that never starved is kept. The
+/// objective is a pure function of the point, so a kept value is the value.
 pub struct PathPlanning {
     problem: PathProblem,
     algorithm: Algorithm,
@@ -309,33 +324,109 @@ pub struct PathPlanning {
     optimizer: Option<Box<dyn Optimizer + Send>>,
     /// Iterations done so far.
     done: u32,
+    /// Values computed for the unfinished build or iteration, by the point's bits.
+    kept: HashMap<Vec<u64>, f64>,
+}
+
+/// The path problem seen through a slice's evaluation budget (see [`PathPlanning`]).
+struct Metered<'a> {
+    problem: &'a PathProblem,
+    kept: RefCell<&'a mut HashMap<Vec<u64>, f64>>,
+    /// New evaluations this slice may still compute.
+    budget: Cell<u64>,
+    /// Whether a value was asked for after the budget ran out.
+    starved: Cell<bool>,
+}
+
+impl Objective for Metered<'_> {
+    fn bounds(&self) -> &Bounds {
+        self.problem.bounds()
+    }
+
+    fn evaluate(&self, x: &[f64]) -> f64 {
+        let key: Vec<u64> = x.iter().map(|v| v.to_bits()).collect();
+        if let Some(&f) = self.kept.borrow().get(&key) {
+            return f;
+        }
+        if self.starved.get() || self.budget.get() == 0 {
+            // The copy asking is thrown away: any value will do.
+            self.starved.set(true);
+            return f64::MAX;
+        }
+        self.budget.set(self.budget.get() - 1);
+        let f = self.problem.evaluate(x);
+        self.kept.borrow_mut().insert(key, f);
+        f
+    }
 }
 
 impl PathPlanning {
     /// Starts planning `problem`; nothing is computed yet.
     pub fn new(problem: PathProblem, algorithm: Algorithm, settings: &Settings, seed: u32) -> Self {
-        Self { problem, algorithm, settings: settings.clone(), seed, optimizer: None, done: 0 }
+        Self {
+            problem,
+            algorithm,
+            settings: settings.clone(),
+            seed,
+            optimizer: None,
+            done: 0,
+            kept: HashMap::new(),
+        }
     }
 
-    /// Runs up to `iterations` more iterations; returns the share done, 0…1. The first call
-    /// builds and evaluates the initial population (about one iteration's work) and counts it
-    /// as one of its iterations' slice.
-    pub fn advance(&mut self, iterations: u32) -> f64 {
-        let mut budget = iterations;
+    /// Runs up to `evaluations` more objective evaluations (`u32::MAX`: to the end); returns the
+    /// share of iterations done, 0…1. The first evaluations build the initial population. A
+    /// slice of at least one evaluation always makes progress.
+    pub fn advance(&mut self, evaluations: u32) -> f64 {
+        if evaluations == u32::MAX {
+            self.run_to_the_end();
+            return self.progress();
+        }
+        let mut budget = u64::from(evaluations);
+        while budget > 0 && !self.is_done() {
+            let metered = Metered {
+                problem: &self.problem,
+                kept: RefCell::new(&mut self.kept),
+                budget: Cell::new(budget),
+                starved: Cell::new(false),
+            };
+            let attempt = match &self.optimizer {
+                Some(optimizer) => {
+                    let mut copy = optimizer.clone_box();
+                    copy.step(&metered);
+                    copy
+                }
+                None => self.algorithm.build(&metered, &self.settings, Rng::new(self.seed, PATH_STREAM)),
+            };
+            budget = metered.budget.get();
+            if metered.starved.get() {
+                break;
+            }
+            if self.optimizer.is_some() {
+                self.done += 1;
+            }
+            self.optimizer = Some(attempt);
+            self.kept.clear();
+        }
+        self.progress()
+    }
+
+    /// Every iteration left at once, on the optimizer itself (nothing to keep between slices).
+    fn run_to_the_end(&mut self) {
         let optimizer = match &mut self.optimizer {
             Some(optimizer) => optimizer,
             None => {
-                budget = budget.saturating_sub(1);
                 let rng = Rng::new(self.seed, PATH_STREAM);
                 self.optimizer.insert(self.algorithm.build(&self.problem, &self.settings, rng))
             }
         };
-        let todo = budget.min(self.settings.iterations - self.done);
-        for _ in 0..todo {
+        // Values an earlier slice kept for the unfinished iteration are computed again: cheaper
+        // than looking every point up.
+        self.kept.clear();
+        while self.done < self.settings.iterations {
             optimizer.step(&self.problem);
+            self.done += 1;
         }
-        self.done += todo;
-        self.progress()
     }
 
     /// Share of the iterations done, 0…1 (1 when there are none to do).
@@ -378,16 +469,16 @@ impl PathPlanning {
 }
 
 impl Clone for PathPlanning {
-    /// Optimizers are not `Clone`: the copy replays the same iterations from the same seed,
-    /// which gives the same state bit for bit.
     fn clone(&self) -> Self {
-        let mut copy = Self::new(self.problem.clone(), self.algorithm, &self.settings, self.seed);
-        if self.optimizer.is_some() {
-            // The build slice, then the iterations done.
-            copy.advance(1);
-            copy.advance(self.done);
+        Self {
+            problem: self.problem.clone(),
+            algorithm: self.algorithm,
+            settings: self.settings.clone(),
+            seed: self.seed,
+            optimizer: self.optimizer.as_ref().map(|o| o.clone_box()),
+            done: self.done,
+            kept: self.kept.clone(),
         }
-        copy
     }
 }
 
@@ -639,29 +730,42 @@ mod tests {
         let settings = Settings { population: 12, iterations: 40, ..Settings::default() };
         for algorithm in [Algorithm::Igsa, Algorithm::Gsa] {
             let whole = p.plan(algorithm, &settings, 9);
-            let mut sliced = PathPlanning::new(p.clone(), algorithm, &settings, 9);
-            let mut last = sliced.progress();
-            assert_eq!(last, 0.0);
-            for k in [1, 3, 1, 7, 2].iter().cycle() {
-                if sliced.is_done() {
-                    break;
+            let mut calls_of_budget = Vec::new();
+            for budget in [1, 7, u32::MAX] {
+                let mut sliced = PathPlanning::new(p.clone(), algorithm, &settings, 9);
+                let mut last = sliced.progress();
+                assert_eq!(last, 0.0);
+                let mut calls = 0u64;
+                while !sliced.is_done() {
+                    // A copy taken mid-way (a timeline checkpoint) carries on identically.
+                    if calls == 100 {
+                        sliced = sliced.clone();
+                    }
+                    let now = sliced.advance(budget);
+                    assert!(now >= last, "progress never falls: {last} → {now}");
+                    last = now;
+                    calls += 1;
                 }
-                // A copy taken mid-way carries on identically.
-                if sliced.progress() > 0.5 && sliced.progress() < 0.6 {
-                    sliced = sliced.clone();
-                }
-                let now = sliced.advance(*k);
-                // The first slice only builds the initial population.
-                assert!(now > last || (last == 0.0 && *k == 1), "progress grows: {last} → {now}");
-                last = now;
+                assert_eq!(last, 1.0);
+                assert_eq!(sliced.advance(5), 1.0, "nothing left to do");
+                let r = sliced.result();
+                assert_eq!(
+                    (r.fitness.to_bits(), &r.points, r.evaluations),
+                    (whole.fitness.to_bits(), &whole.points, whole.evaluations),
+                    "{algorithm:?} in slices of {budget} evaluations"
+                );
+                calls_of_budget.push(calls);
             }
-            assert_eq!(last, 1.0);
-            assert_eq!(sliced.advance(5), 1.0, "nothing left to do");
-            let r = sliced.result();
-            assert_eq!(
-                (r.fitness.to_bits(), &r.points, r.evaluations),
-                (whole.fitness.to_bits(), &whole.points, whole.evaluations)
+            // A slice computes at most its budget of evaluations (a point asked twice in one
+            // iteration is computed once, hence the margin).
+            let evaluations = whole.evaluations;
+            assert!(
+                calls_of_budget[0] >= evaluations - evaluations / 50,
+                "{calls_of_budget:?} vs {evaluations}"
             );
+            assert!(calls_of_budget[1] >= evaluations / 7, "{calls_of_budget:?}");
+            assert!(calls_of_budget[1] <= calls_of_budget[0] / 5, "{calls_of_budget:?}");
+            assert_eq!(calls_of_budget[2], 1);
         }
     }
 

@@ -1,11 +1,12 @@
 // Planning ahead in slices (IGSA group paths): a scene whose path is still being planned does not
 // step; instead the frame loop hands the Sim's planning a time budget every frame
-// (`Sim.advance_planning`, one optimizer iteration per call, timed here), so clicks and keys are
+// (`Sim.advance_planning`, a few objective evaluations per call, core/planning-slice.js), so clicks and keys are
 // answered between slices. Meanwhile a bar over the canvas shows the progress, and Cancel goes
 // back to the scene shown before (`Sim.cancel_planning`). The path is the same whatever the
-// slices: the core runs the same iterations. Used by the playground's loop and by <flock-path>.
+// slices: the core runs the same evaluations. Used by the playground's loop and by <flock-path>.
 
 import { setAttr, setText, t } from './i18n.js';
+import { PlanningBudget } from './planning-slice.js';
 
 /** Time (ms) given to planning per frame: short enough that input is answered at once. */
 export const PLANNING_BUDGET_MS = 24;
@@ -25,6 +26,7 @@ export class PlanningSlices {
     this.call = call;
     this.stage = stage;
     this.onCancelled = onCancelled;
+    this.budget = new PlanningBudget();
     this.box = null;
   }
 
@@ -38,10 +40,7 @@ export class PlanningSlices {
       this.hide();
       return false;
     }
-    const end = performance.now() + budgetMs;
-    do {
-      progress = this.call((sim) => sim.advance_planning(1));
-    } while (progress < 1 && performance.now() < end);
+    progress = this.budget.spend((evaluations) => this.call((sim) => sim.advance_planning(evaluations)), budgetMs);
     if (progress < 1) {
       this.show(progress);
       return true;

@@ -3,7 +3,7 @@
 // allowed, a limit, known names). English pages show the core's message as it is; other
 // languages word it with the table's `error.<code>` template. Messages the core words alone
 // (`parse`, `blocked`, `too_costly`, …: one `message` argument) are matched against the few
-// patterns below (unknown scene version, the density and cost limits, a missing item, …); any
+// patterns below (unknown scene version, the density and planning limits, a missing item, …); any
 // other keeps the core's English words. Errors of the other pages come coded by where they arose
 // (`compare`, `lab`, `tune`, `validation`, `export`, `theme`, `play`: src/web/mod.rs `worded`) with the
 // core's words as `message`, matched against that code's patterns here the same way.
@@ -22,10 +22,6 @@ const PATTERNS = [
   [/^the scene text is not valid JSON: (?<reason>.*)$/, 'error.not_json'],
   [/^the text is not a scene object \((?<reason>.*)\)$/, 'error.not_scene'],
   [/^group (?<group>\d+) \((?<name>[^)]*)\): (?<count>\d+) agents of radius (?<radius>[\d.]+) px do not fit in its spawn region \((?<w>[\d.]+)×(?<h>[\d.]+) px\): it holds at most (?<max>\d+) apart from each other, the obstacles and the other groups \(the density limit\)$/, 'error.density'],
-  [/^group (?<group>\d+) \((?<name>[^)]*)\): (?<count>\d+) (?<planner>\w+) agents would make a step take about (?<ms>\d+) ms in the browser, over the (?<limit>\d+) ms limit; at most (?<fit>\d+) \w+ agents fit beside the other groups \((?<alone>\d+) alone\)$/, 'error.step_cost'],
-  [/^group (?<group>\d+) \((?<name>[^)]*)\): (?<count>\d+) (?<planner>\w+) agents packed round their own goal \(the jam limit\) would make a step take about (?<ms>\d+) ms in the browser, over the (?<limit>\d+) ms limit; at most (?<fit>\d+) \w+ agents fit beside the other groups \((?<alone>\d+) alone\)$/, 'error.step_cost_jam'],
-  [/^group (?<group>\d+) \((?<name>[^)]*)\): (?<count>\d+) (?<planner>\w+) agents among bodies of radius (?<radius>[\d.]+) px \(small bodies crowd into each agent's reach\) would make a step take about (?<ms>\d+) ms in the browser, over the (?<limit>\d+) ms limit; at most (?<fit>\d+) \w+ agents fit beside the other groups \((?<alone>\d+) alone\)$/, 'error.step_cost_small'],
-  [/^group (?<group>\d+) \((?<name>[^)]*)\): (?<count>\d+) (?<planner>\w+) agents packed round their own goal \(the jam limit\) among bodies of radius (?<radius>[\d.]+) px \(small bodies crowd into each agent's reach\) would make a step take about (?<ms>\d+) ms in the browser, over the (?<limit>\d+) ms limit; at most (?<fit>\d+) \w+ agents fit beside the other groups \((?<alone>\d+) alone\)$/, 'error.step_cost_jam_small'],
   [/^group (?<group>\d+) \((?<name>[^)]*)\): igsa path planning of all groups would check (?<checks>\d+) path segments .* over the limit of (?<limit>\d+): lower the population or the iterations$/, 'error.planning_cost'],
   [/^goals\[(?<goal>\d+)\] at \((?<x>[^,]+), (?<y>[^)]+)\) is inside obstacles\[(?<obstacle>\d+)\]; a goal must lie outside every obstacle$/, 'error.goal_in_obstacle'],
   [/^there is no (?<item>\w+) (?<n>\d+)$/, 'error.no_such_item'],
@@ -323,6 +319,7 @@ export function refusalText(error) {
       return t('error.unreadable', { what: tOr(`what.${a.what}`, a.what), reason: reasonText(a.reason) });
     case 'unknown_preset':
     case 'unknown_planner':
+    case 'flow_field_memory':
     case 'unknown_param':
     case 'not_finite':
       return t(`error.${code}`, a);

@@ -10,12 +10,15 @@
 
 import { loadWasm } from './boot.js';
 import { errorData, isPanic, messageOf } from './errors.js';
+import { PlanningBudget } from './planning-slice.js';
 import { READS } from './sim-reads.js';
 
 /** Simulation work per frame (ms) before the frame is shown: the frame rate of a playing scene. */
 const STEP_BUDGET_MS = 10;
 /** Time given to planning ahead (IGSA) per frame (ms). */
 const PLANNING_BUDGET_MS = 24;
+/** Time between frames while planning ahead (ms): the progress bar's refresh. */
+const PLANNING_FRAME_MS = 100;
 
 let module = null;
 let wasm = null;
@@ -28,6 +31,10 @@ let playing = false;
 let stepsPerFrame = 2;
 /** Steps to reach without playing (a restarted worker replaying the run the page had). */
 let replayTo = 0;
+/** Evaluations per planning call, adapted to the scene's cost (core/planning-slice.js). */
+const planningBudget = new PlanningBudget();
+/** When the last frame while planning was posted (performance.now()). */
+let lastPlanningFrame = 0;
 let awaitingAck = false;
 let dirty = true;
 let sceneChanged = true;
@@ -125,12 +132,15 @@ function tick() {
     if (kind === 'Sim' && sim.planning_progress() < 1) {
       // Planning runs whether or not the scene plays (the page shows its progress and Cancel).
       planning = true;
-      const end = performance.now() + PLANNING_BUDGET_MS;
-      let progress;
-      do {
-        progress = sim.advance_planning(1);
-      } while (progress < 1 && performance.now() < end);
-      dirty = true;
+      const progress = planningBudget.spend((evaluations) => sim.advance_planning(evaluations), PLANNING_BUDGET_MS);
+      // The picture does not change while planning: a frame (with the progress) every
+      // PLANNING_FRAME_MS, and between them the next slice runs at once (messages still get
+      // their turn between slices), not after the page's answer to a frame.
+      const now = performance.now();
+      if (progress >= 1 || now - lastPlanningFrame >= PLANNING_FRAME_MS) {
+        lastPlanningFrame = now;
+        dirty = true;
+      }
     } else if (playing || replaying) {
       asked = replaying ? 1 : stepsPerFrame;
       const start = performance.now();
