@@ -10,10 +10,9 @@
 
 import { loadWasm } from './boot.js';
 import { errorData, isPanic, messageOf } from './errors.js';
+import { STEP_BUDGET_MS } from './pace.js';
 import { READS } from './sim-reads.js';
 
-/** Simulation work per frame (ms) before the frame is shown: the frame rate of a playing scene. */
-const STEP_BUDGET_MS = 10;
 /** Time given to planning ahead (IGSA) per frame (ms). */
 const PLANNING_BUDGET_MS = 24;
 
