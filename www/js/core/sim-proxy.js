@@ -60,6 +60,7 @@ export class RemoteSim extends EventTarget {
     /** Set while guard() collects the Promises of the calls its function makes. */
     this.collecting = null;
     this.crashed = false;
+    this.seeking = null;
     this.restarts = 0;
     this.playing = false;
     this.stepsPerFrame = 2;
@@ -154,8 +155,10 @@ export class RemoteSim extends EventTarget {
     }
   }
 
-  absorb({ values, subscribed }) {
+  absorb({ values, subscribed, seeking = null }) {
     for (const [method, entry] of Object.entries(values)) this.mirror.set(method, entry);
+    /** A timeline jump in progress (`{ step, at, done, total }`: re-simulated in slices), or null. */
+    this.seeking = seeking;
     if (subscribed) for (const [key, entry] of Object.entries(subscribed)) this.subscribed.set(key, entry);
   }
 

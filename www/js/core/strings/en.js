@@ -282,6 +282,7 @@ export default {
   'timeline.title': 'Drag to go back and forth in the run; Play goes on from the step shown',
   'timeline.step_of': 'step {step} of {end}',
   'timeline.memory': 'Positions: {used} of {budget} MB ({capacity} steps of this run at every step); {checkpoints} checkpoints every {every} steps',
+  'timeline.seeking': 'Jumping to step {step}: {done} of {total} steps re-simulated',
 
   // — playground (JS) —
   'path.crossing': 'Warning: the edited path of group {group} crosses an obstacle on segment {segments} (red). The agents will be pushed along the obstacle; drag the waypoints clear of it.',

@@ -282,6 +282,7 @@ export default {
   'timeline.title': '拖动可在运行中前后移动；播放会从显示的那一步继续',
   'timeline.step_of': '第 {step} 步，共 {end} 步',
   'timeline.memory': '位置：已用 {used} MB，共 {budget} MB（按每步记录，此运行可存 {capacity} 步）；{checkpoints} 个检查点，每 {every} 步一个',
+  'timeline.seeking': '正在跳到第 {step} 步：已重新模拟 {done} / {total} 步',
 
   // — playground (JS) —
   'path.crossing': '警告：群组 {group} 编辑后的路径在第 {segments} 段穿过障碍物（红色）。个体会被推着沿障碍物走；请把路径点拖离障碍物。',
