@@ -20,6 +20,10 @@ impl Sim {
     /// re-simulated; the jump is done once `steps()` equals [`Sim::seek_target`].
     pub fn seek_toward(&mut self, step: u32, max_steps: u32) -> Result<u32, JsError> {
         let resimulated = self.run.seek_toward(step, max_steps).map_err(js_error)?;
+        if self.run.world().step_count() != self.seek_target(step) {
+            // A slice on the way: the trails are redrawn once, when the jump arrives.
+            return Ok(resimulated);
+        }
         // Redraw the trails from the recorded positions before the new step (the timeline's
         // quantised frames, every `frame_every`-th step once thinned), not a chord of the jump.
         let world = self.run.world();

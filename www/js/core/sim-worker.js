@@ -13,6 +13,12 @@ import { errorData, isPanic, messageOf } from './errors.js';
 import { STEP_BUDGET_MS } from './pace.js';
 import { READS } from './sim-reads.js';
 
+/**
+ * Time a timeline jump may re-simulate before the worker shows its progress and reads its
+ * messages (ms): a short jump (tens of steps of a small crowd) ends in one slice, answered at
+ * once; a jump through steps of a second shows each step.
+ */
+const SEEK_BUDGET_MS = 100;
 /** Time given to planning ahead (IGSA) per frame (ms). */
 const PLANNING_BUDGET_MS = 24;
 
@@ -159,6 +165,10 @@ function tick() {
     else if (planning || playing || replaying) schedule();
     if (seeking?.ended) endSeek();
   } catch (error) {
+    if (seeking && !isPanic(error)) {
+      refuseSeek(error);
+      return;
+    }
     if (!fail(error)) {
       // A refused step (not a panic) would repeat every frame: stop and let the page explain.
       playing = false;
@@ -219,7 +229,7 @@ async function start(options) {
 }
 
 /**
- * One slice of the jump in progress: single re-simulated steps until the frame's budget is spent
+ * One slice of the jump in progress: single re-simulated steps until SEEK_BUDGET_MS is spent
  * (at least one). The world reached is the one a single `seek` would give (core: `seek_toward`).
  */
 function seekSlice() {
@@ -235,7 +245,7 @@ function seekSlice() {
       seeking.ended = true;
       break;
     }
-  } while (performance.now() - start < STEP_BUDGET_MS);
+  } while (performance.now() - start < SEEK_BUDGET_MS);
 }
 
 /** Answers the finished jump's call, then the calls that waited for it. */
@@ -245,10 +255,24 @@ function endSeek() {
   sceneChanged = true;
   sim.render();
   self.postMessage({ type: 'reply', id, ok: true, value: done, state: snapshot() });
+  answerWaiting();
+}
+
+/** Answers, in order, the calls that waited for a jump. */
+function answerWaiting() {
   const waiting = afterSeek;
   afterSeek = [];
   for (const call of waiting) answer(call.id, call.method, call.args);
   schedule();
+}
+
+/** Answers the jump in progress with the core's refusal and ends it. */
+function refuseSeek(error) {
+  const { id } = seeking;
+  seeking = null;
+  sceneChanged = true;
+  self.postMessage({ type: 'reply', id, ok: false, error: errorData(error), state: snapshot() });
+  answerWaiting();
 }
 
 /** Starts a jump on the timeline in slices; a jump asked for meanwhile takes over from it. */
@@ -259,14 +283,21 @@ function startSeek(id, step) {
   }
   seeking = { id, step, target: sim.seek_target(step), done: 0, total: 0, ended: false };
   dirty = true;
-  schedule();
+  // The first slice at once: a short jump is answered without waiting for the next frame.
+  seekSlice();
+  if (seeking.ended) endSeek();
+  else schedule();
 }
 
 function answer(id, method, args) {
   if (crashed) return;
   // A long jump re-simulates in slices between frames (`Sim` only: the timeline's).
   if (kind === 'Sim' && method === 'seek' && Number.isInteger(args[0]) && args[0] >= 0) {
-    startSeek(id, args[0]);
+    try {
+      startSeek(id, args[0]);
+    } catch (error) {
+      if (!fail(error)) refuseSeek(error);
+    }
     return;
   }
   if (seeking) {
