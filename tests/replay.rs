@@ -99,6 +99,34 @@ fn metrics_after_a_jump_equal_the_original_metrics() {
 }
 
 #[test]
+fn a_jump_in_slices_ends_on_the_world_of_one_jump() {
+    // The page's worker cuts a long jump into slices (`seek_toward`): each slice re-simulates
+    // at most `max_steps`, the next goes on from there, and the world reached is the original's.
+    const STEPS: u32 = 300;
+    let truth = truth("pillars", STEPS);
+    let budget = ReplayBudget { checkpoint_every: 100, ..ReplayBudget::default() };
+    let (mut w, r) = recorded("pillars", STEPS, budget);
+    for (target, slice) in [(99u32, 7u32), (250, 1), (120, 30), (299, 200), (5, 2)] {
+        let mut slices = 0;
+        let mut resimulated = 0;
+        loop {
+            let steps = r.seek_toward(target, slice, &mut w);
+            assert!(steps <= slice, "a slice re-simulates at most {slice}: {steps}");
+            resimulated += steps;
+            slices += 1;
+            if w.step_count() == r.seek_target(target) {
+                break;
+            }
+            assert!(slices < 1_000, "the jump to {target} ends");
+        }
+        assert_eq!(w.digest(), truth[target as usize], "digest at {target} after {slices} slices of {slice}");
+        assert!(resimulated < 100, "no more than one jump re-simulates: {resimulated}");
+        assert!(slices >= (target % 100).div_ceil(slice) as usize, "the slices were used: {slices}");
+    }
+    assert_eq!(r.seek_target(10_000), STEPS, "a jump past the end ends on the last step");
+}
+
+#[test]
 fn the_recording_stays_within_its_budgets() {
     let w = world("pso-crowd");
     let agents = w.agent_count();

@@ -246,6 +246,15 @@ impl Replay {
     /// is on the way, else from the nearest checkpoint at or before `step`. Returns the number of
     /// steps re-simulated (less than the checkpoint interval, except after a failed edit).
     pub fn seek(&self, step: u32, world: &mut World) -> u32 {
+        self.seek_toward(step, u32::MAX, world)
+    }
+
+    /// [`Replay::seek`] in slices: moves `world` toward `step` re-simulating at most
+    /// `max_steps` (restoring the checkpoint when the current world is not on the way). Called
+    /// again with the same `step`, it goes on from the world it left (now on the way), so a jump
+    /// that re-simulates for seconds can be cut into pieces that each answer in time; the world
+    /// reached is bit-identical to one [`Replay::seek`]. Returns the steps re-simulated.
+    pub fn seek_toward(&self, step: u32, max_steps: u32, world: &mut World) -> u32 {
         let target = step.clamp(self.first_step, self.end_step);
         let at = self.checkpoints.steps().partition_point(|&s| s <= target);
         let Some(checkpoint) = at.checked_sub(1).and_then(|i| self.checkpoints.row(i).first()) else {
@@ -255,9 +264,14 @@ impl Replay {
         if !(checkpoint.step_count() <= current && current <= target) {
             *world = checkpoint.clone();
         }
-        let steps = target - world.step_count();
+        let steps = (target - world.step_count()).min(max_steps);
         world.step_n(steps);
         steps
+    }
+
+    /// The step a jump to `step` ends on (clamped to the recorded history).
+    pub fn seek_target(&self, step: u32) -> u32 {
+        step.clamp(self.first_step, self.end_step)
     }
 
     /// The recorded digest at `step`, if that step has a checkpoint.

@@ -226,9 +226,15 @@ impl Run {
     /// Playing on continues from there. Returns the number of steps re-simulated (0 without a
     /// timeline).
     pub fn seek(&mut self, step: u32) -> Result<u32, SceneError> {
+        self.seek_toward(step, u32::MAX)
+    }
+
+    /// [`Run::seek`] re-simulating at most `max_steps` (see [`Replay::seek_toward`]): called
+    /// again with the same `step` it goes on where it stopped, and ends on the same world.
+    pub fn seek_toward(&mut self, step: u32, max_steps: u32) -> Result<u32, SceneError> {
         let Some(replay) = self.replay.as_ref() else { return Ok(0) };
         let view = self.world.scene().view;
-        let resimulated = replay.seek(step, &mut self.world);
+        let resimulated = replay.seek_toward(step, max_steps, &mut self.world);
         if self.world.scene().view != view {
             self.set_view(view)?;
         }

@@ -11,7 +11,19 @@ impl Sim {
     /// checkpoint and re-simulating from it: bit-identical to the original run at that step.
     /// Playing on continues from there. Returns the number of steps re-simulated.
     pub fn seek(&mut self, step: u32) -> Result<u32, JsError> {
-        let resimulated = self.run.seek(step).map_err(js_error)?;
+        self.seek_toward(step, u32::MAX)
+    }
+
+    /// [`Sim::seek`] re-simulating at most `max_steps`; called again with the same `step` it
+    /// goes on where it stopped (the simulation worker slices a long jump this way, so a scene
+    /// whose steps take a second shows its progress and answers in between). Returns the steps
+    /// re-simulated; the jump is done once `steps()` equals [`Sim::seek_target`].
+    pub fn seek_toward(&mut self, step: u32, max_steps: u32) -> Result<u32, JsError> {
+        let resimulated = self.run.seek_toward(step, max_steps).map_err(js_error)?;
+        if self.run.world().step_count() != self.seek_target(step) {
+            // A slice on the way: the trails are redrawn once, when the jump arrives.
+            return Ok(resimulated);
+        }
         // Redraw the trails from the recorded positions before the new step (the timeline's
         // quantised frames, every `frame_every`-th step once thinned), not a chord of the jump.
         let world = self.run.world();
@@ -22,6 +34,12 @@ impl Sim {
         let history = recorded.map_while(|s| Some((s, self.run.replay()?.positions_at(s)?)));
         self.renderer.rebuild_trails(world, history);
         Ok(resimulated)
+    }
+
+    /// The step a jump to `step` ends on: `step` clamped to the recorded history (the current
+    /// step without a timeline).
+    pub fn seek_target(&self, step: u32) -> u32 {
+        self.run.replay().map_or(self.run.world().step_count(), |r| r.seek_target(step))
     }
 
     /// The timeline's state as JSON (`crate::sim::replay::ReplayInfo` plus `step`, the current step):

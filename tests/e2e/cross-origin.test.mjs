@@ -14,6 +14,7 @@ import path from 'node:path';
 import { chromium } from 'playwright-core';
 import { CHROMIUM_ARGS, ROOT, assertNoUnexpectedErrors, screenshot, simpleScene, startServer } from './helpers.mjs';
 import { startHost, startServePy } from './cross-origin-helpers.mjs';
+import { coveringCircles, timedPause } from './pause-helpers.mjs';
 
 /** Host-page script (external, so a strict CSP allows it): records the element's events. */
 const RECORDER = `window.flockpathEvents = [];
@@ -40,6 +41,16 @@ async function readmePolicy(origin) {
   // The host page's own policy for everything else.
   return `default-src 'self'; img-src data:; ${line.replaceAll('https://flockpath.example', origin)}`;
 }
+
+/** 1,000 Boids among 5,000 circles that all cover the world: each step takes ~0.4 s (worker-pause). */
+const HEAVY = simpleScene({
+  name: 'heavy-covering-circles',
+  width: 1000,
+  height: 1000,
+  obstacles: coveringCircles(5_000, 1000),
+  goals: [{ position: [900, 900], radius: 60 }],
+  groups: [{ ...simpleScene().groups[0], count: 1_000, spawn: { min: [600, 600], max: [980, 980] } }],
+});
 
 /** The snippet's own message when the module never runs. */
 const MODULE_REFUSED = /^The flockpath simulation could not be loaded: the browser refused or could not find http:\S+\.js\.$/;
@@ -180,6 +191,65 @@ describe('the <flock-path> snippet on a page of another origin', () => {
       assert.ok(!(await page.evaluate(() => window.flockpathEvents.some((e) => e.type === 'flockpath-error'))));
       await screenshot(page, 'cross-origin-works');
       assertNoUnexpectedErrors(errors);
+    } finally {
+      await page.close();
+    }
+  });
+
+  test('on another origin the element steps in a worker (from a blob): Pause within 100 ms in a heavy scene, the native digest', { timeout: 120_000 }, async () => {
+    const { page, errors } = await openHostPage(hostPage(snippet));
+    try {
+      await page.waitForFunction(() => window.flockpathEvents.some((e) => e.type === 'flockpath-ready'), null, { timeout: 30_000 });
+      // The worker was started from a same-origin blob (a worker script must be same-origin).
+      const worker = await page.evaluate(() => {
+        const remote = document.querySelector('flock-path').host.remote;
+        return { isWorker: remote.worker instanceof Worker, origin: location.origin };
+      });
+      assert.equal(worker.isWorker, true, 'the element runs its simulation in a Worker');
+      assert.notEqual(worker.origin, new URL(servePy.url).origin, 'the host page is on another origin');
+      // The golden link (tests/golden_url.rs pins its native digest at step 300).
+      const goldenUrl = (await readFile(path.join(ROOT, 'tests', 'data', 'golden-url.txt'), 'utf8')).trim();
+      const goldenDigest = (await readFile(path.join(ROOT, 'tests', 'data', 'golden-digest.txt'), 'utf8')).trim();
+      const digest = await page.evaluate(async (url) => {
+        const el = document.querySelector('flock-path');
+        await el.pause();
+        await el.load(url);
+        await el.step(300);
+        return el.digest();
+      }, goldenUrl);
+      assert.equal(digest, goldenDigest, 'the same digest as the native run');
+      // A scene of ~0.4 s steps: the host page's Pause is answered at once while the worker steps.
+      await page.evaluate(async (scene) => {
+        const el = document.querySelector('flock-path');
+        await el.load(scene);
+      }, HEAVY);
+      const times = [];
+      for (let round = 0; round < 3; round += 1) {
+        await page.evaluate(() => document.querySelector('flock-path').play());
+        await page.waitForFunction(() => !document.querySelector('flock-path').shadowRoot.querySelector('.slow-scene').hidden, null, { timeout: 30_000 });
+        times.push(await timedPause(page, null, { element: 'flock-path' }));
+        await page.evaluate(() => document.querySelector('flock-path').settled());
+      }
+      const median = [...times].sort((a, b) => a - b)[1];
+      console.log(`cross-origin <flock-path>, heavy scene: Pause answered in ${times.map((t) => t.toFixed(0)).join(', ')} ms`);
+      assert.ok(median <= 100, `Pause took ${median.toFixed(0)} ms (median of ${times.map((t) => t.toFixed(0)).join(', ')})`);
+      assertNoUnexpectedErrors(errors);
+    } finally {
+      await page.close();
+    }
+  });
+
+  test('with a CSP without worker-src blob:, the box says the worker could not start and why', async () => {
+    const readme = await readmePolicy(new URL(servePy.url).origin);
+    const csp = readme.replace(/; worker-src [^;]*/, '');
+    assert.notEqual(csp, readme, 'the README gives worker-src');
+    const { page } = await openHostPage(hostPage(snippet, { 'content-security-policy': csp }));
+    try {
+      const message = await waitForMessage(page, /^The simulation could not start in its worker: .+ must allow worker-src blob: and the flockpath origin/);
+      assert.equal(message.where, 'shadow');
+      const events = await page.evaluate(() => window.flockpathEvents);
+      assert.deepEqual(events.map((e) => e.type), ['flockpath-error']);
+      await screenshot(page, 'cross-origin-worker-refused');
     } finally {
       await page.close();
     }

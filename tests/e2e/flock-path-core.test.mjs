@@ -1,7 +1,8 @@
 // <flock-path> runs on the shell's core (issue #13): its module graph reaches core/boot.js (the
-// wasm loader), core/sim-host.js (the guarded door), core/loop.js (the frame loop with its
-// hidden-tab pause), core/blit.js and core/view.js (the backing-store sizing, one pixel cap), and
-// flock-path.js keeps no copy of them. In Chromium: the element renders pixels into a backing
+// wasm loader), core/sim-host.js (the guarded door), core/sim-proxy.js (the simulation worker's
+// stand-in), core/remote-loop.js (the frame loop drawing the worker's frames, with its hidden-tab
+// pause) and core/view.js (the backing-store sizing, one pixel cap), and flock-path.js keeps no
+// copy of them; nothing in its module graph steps a simulation on the page's thread. In Chromium: the element renders pixels into a backing
 // store of its CSS box × devicePixelRatio, the core modules load next to it, and a hidden tab
 // does not step while it stays "playing".
 
@@ -33,17 +34,19 @@ async function graph(file, seen = new Set()) {
 
 test('flock-path.js imports the core modules and keeps no copy of them', async () => {
   const direct = (await staticImports(ELEMENT)).map((f) => path.relative(JS, f));
-  for (const core of ['core/boot.js', 'core/sim-host.js', 'core/loop.js', 'core/view.js']) {
+  for (const core of ['core/boot.js', 'core/sim-host.js', 'core/sim-proxy.js', 'core/remote-loop.js', 'core/view.js']) {
     assert.ok(direct.includes(core), `flock-path.js imports ${core}: ${direct.join(', ')}`);
   }
   const reached = [...(await graph(ELEMENT))].map((f) => path.relative(JS, f));
-  assert.ok(reached.includes('core/blit.js'), `the blit comes from core/blit.js: ${reached.join(', ')}`);
+  // The simulation worker and its imports are started by core/sim-proxy.js, not imported.
+  assert.ok(!reached.includes('core/sim-worker.js'), `the worker is not imported into the page: ${reached.join(', ')}`);
   assert.ok(reached.every((f) => f.startsWith('core/')), `only core/ is imported: ${reached.join(', ')}`);
   const text = await readFile(ELEMENT, 'utf8');
   // What the core does, flock-path.js no longer does itself.
   for (const [own, core] of [
-    [/putImageData|Uint8ClampedArray/, 'the blit (core/blit.js)'],
-    [/requestAnimationFrame/, 'the frame loop (core/loop.js)'],
+    [/putImageData|Uint8ClampedArray/, 'the drawing of frames (core/remote-loop.js)'],
+    [/requestAnimationFrame/, 'the frame loop (core/remote-loop.js)'],
+    [/module\.Sim\(|sim\.step\(/, 'the stepping (core/sim-worker.js)'],
     [/devicePixelRatio|MAX_PIXELS|new ResizeObserver/, 'the backing-store sizing (core/view.js)'],
     [/pkg\/flockpath|module_or_path|WebAssembly\./, 'the wasm loading (core/boot.js)'],
     [/instanceof WebAssembly\.RuntimeError|isPanic/, 'the guarded call (core/sim-host.js)'],
@@ -64,7 +67,7 @@ test('the element draws through the core, sizes by it, and pauses in a hidden ta
     const modules = await page.evaluate(() =>
       performance.getEntriesByType('resource').map((e) => new URL(e.name).pathname).filter((p) => p.includes('/js/')),
     );
-    for (const core of ['boot', 'sim-host', 'loop', 'blit', 'view']) {
+    for (const core of ['boot', 'sim-host', 'sim-proxy', 'remote-loop', 'view']) {
       assert.ok(modules.some((p) => p.endsWith(`/js/core/${core}.js`)), `js/core/${core}.js loaded: ${modules.join(', ')}`);
     }
 

@@ -23,9 +23,9 @@
 // sceneString(), digest(), settled(); property `playing`, `steps`. The simulation runs in a Web
 // Worker (js/core/sim-worker.js; issue 24) so a costly scene never blocks the host page: load,
 // play, pause, step and reset return Promises (await them, then read), the reads answer at once
-// from the state of the last frame or call. Where the browser refuses the worker (the module on
-// another site: a worker must come from the page's own origin) the simulation runs in the page,
-// and the same methods resolve at once. Events: `flockpath-ready`,
+// from the state of the last frame or call. From a page on another site the worker starts from a
+// same-origin blob that imports the worker module (core/module-worker.js; a host page's CSP must
+// allow `blob:` and its origin in `worker-src`); nothing steps on the host page's thread. Events: `flockpath-ready`,
 // `flockpath-error` (detail: message; also when the wasm cannot be loaded, shown in the box too).
 // For screen readers the canvas is an image named "Simulated crowd", described by a visually
 // hidden polite live region in the shadow root (core/describe.js: the scene and the run in
@@ -36,10 +36,10 @@ import { loadWasm } from './core/boot.js';
 import { noticeText } from './core/capacity-words.js';
 import { readClassroom } from './core/classroom.js';
 import { messageOf } from './core/errors.js';
-import { startLoop } from './core/loop.js';
 import { startRemoteLoop } from './core/remote-loop.js';
 import { SimHost } from './core/sim-host.js';
-import { RemoteSim } from './core/sim-proxy.js';
+import { startsFromBlob } from './core/module-worker.js';
+import { RemoteSim, WORKER_URL } from './core/sim-proxy.js';
 import { setupDescription } from './core/describe.js';
 import { prefersReducedMotion } from './core/motion.js';
 import { onLanguageChange, t, translatePage, tOr } from './core/i18n.js';
@@ -216,8 +216,7 @@ export class FlockPathElement extends HTMLElement {
         this.description?.stop();
         this.description?.element.remove();
         this.description = null;
-        if (this.host.remote) this.host.remote.worker?.terminate();
-        else this.host.sim.free();
+        this.host.remote.worker?.terminate();
         this.host = null;
         this.booting = null;
       }
@@ -260,30 +259,23 @@ export class FlockPathElement extends HTMLElement {
     canvas.height = height;
     const first = this.module.preset_scene_json(this.presets[0].name);
     const attribute = (this.getAttribute('scene') ?? '').trim();
-    // The simulation in a worker, the link's scene loaded there; in the page where no worker runs.
-    let remote = null;
+    // The simulation in a worker, the link's scene loaded there. From a module on another site the
+    // worker starts from a same-origin blob that imports it (core/module-worker.js).
+    const remote = new RemoteSim();
     let linkError = null;
-    let sim;
     try {
-      remote = new RemoteSim();
       ({ linkError } = await remote.start({ sceneText: first, linked: attribute ? this.sceneText(attribute) : null, width, height }));
-      sim = remote.handle;
-    } catch {
-      remote?.worker?.terminate();
-      remote = null;
-    }
-    if (!this.isConnected) {
-      remote?.worker?.terminate();
+    } catch (error) {
+      remote.worker?.terminate();
+      const hint = startsFromBlob(WORKER_URL) ? t('boot.hint_worker_csp') : '';
+      if (this.isConnected) this.fail(t('element.worker_failed', { reason: messageOf(error).replace(/[.?!。]$/, ''), hint }));
       return;
     }
-    if (remote === null) {
-      try {
-        sim = new this.module.Sim(first, width, height);
-      } catch (error) {
-        this.fail(messageOf(error));
-        return;
-      }
+    if (!this.isConnected) {
+      remote.worker?.terminate();
+      return;
     }
+    const sim = remote.handle;
     // Errors and crashes speak in this element's box and events, not in the host page's banner.
     const event = (message) =>
       this.dispatchEvent(new CustomEvent('flockpath-error', { detail: message, bubbles: true, composed: true }));
@@ -300,8 +292,7 @@ export class FlockPathElement extends HTMLElement {
     this.host.afterLoad = () => this.afterLoad();
     this.host.addEventListener('playing', () => this.refreshBar());
     this.host.addEventListener('stepped', () => this.refreshSteps());
-    if (remote) this.linkLoaded(attribute, linkError);
-    else this.tryLoad(attribute, { fallback: true });
+    this.linkLoaded(attribute, linkError);
     this.mountActivity();
     this.$('.loading').hidden = true;
     // The scene and the run in words for screen readers, beside the canvas (core/describe.js).
@@ -348,9 +339,7 @@ export class FlockPathElement extends HTMLElement {
     if (this.stopLoop || !this.host) return;
     const canvas = this.$('canvas');
     const onFrame = () => this.refreshSteps();
-    this.stopLoop = this.host.remote
-      ? startRemoteLoop(this.host, this.host.remote, canvas, onFrame, { readout: false, styleRoot: this.shadowRoot })
-      : startLoop(this.host, canvas, onFrame, { readout: false });
+    this.stopLoop = startRemoteLoop(this.host, this.host.remote, canvas, onFrame, { readout: false, styleRoot: this.shadowRoot });
   }
 
   /**
@@ -412,7 +401,7 @@ export class FlockPathElement extends HTMLElement {
       const name = tOr(`preset.${this.presets[0].name}`, this.presets[0].name);
       this.showMessage(t(fallback ? 'element.load_failed_fallback' : 'element.load_failed_kept', { reason, name }));
       // The worker refused it quietly (a start option): the page's listeners still hear of it.
-      if (this.host?.remote && fallback) this.host.say.error(messageOf(error));
+      if (fallback) this.host?.say.error(messageOf(error));
     }
     this.afterLoad();
   }
@@ -531,7 +520,7 @@ export class FlockPathElement extends HTMLElement {
     return this.settled();
   }
 
-  /** Resolves once the simulation has answered every call so far (at once without a worker). */
+  /** Resolves once the simulation has answered every call so far. */
   async settled() {
     const remote = this.host?.remote;
     if (!remote) return;

@@ -125,9 +125,19 @@ export function tOr(key, fallback, vars = undefined) {
   return text === undefined ? fill(String(fallback ?? ''), vars) : fill(text, vars);
 }
 
+/** Number formatters by language and options: `toLocaleString` builds one per call (slow). */
+const formatters = new Map();
+
 /** A number in the page's language (digit grouping). */
 export function formatNumber(value, options = undefined) {
-  return Number(value).toLocaleString(current === 'zh' ? 'zh-CN' : 'en-US', options);
+  const locale = current === 'zh' ? 'zh-CN' : 'en-US';
+  const key = `${locale}|${options === undefined ? '' : JSON.stringify(options)}`;
+  let format = formatters.get(key);
+  if (!format) {
+    format = new Intl.NumberFormat(locale, options);
+    formatters.set(key, format);
+  }
+  return format.format(Number(value));
 }
 
 /**

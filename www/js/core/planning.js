@@ -1,15 +1,11 @@
-// Planning ahead in slices (IGSA group paths): a scene whose path is still being planned does not
-// step; instead the frame loop hands the Sim's planning a time budget every frame
-// (`Sim.advance_planning`, a few objective evaluations per call, core/planning-slice.js), so clicks and keys are
-// answered between slices. Meanwhile a bar over the canvas shows the progress, and Cancel goes
-// back to the scene shown before (`Sim.cancel_planning`). The path is the same whatever the
-// slices: the core runs the same evaluations. Used by the playground's loop and by <flock-path>.
+// Planning ahead (IGSA group paths): a scene whose path is still being planned does not step; the
+// simulation worker (core/sim-worker.js) gives the Sim's planning a time budget every frame
+// (`Sim.advance_planning`, a few objective evaluations per call, core/planning-slice.js), and the page shows a bar over the
+// canvas with the mirrored progress, and Cancel, which goes back to the scene shown before
+// (`Sim.cancel_planning`). The path is the same whatever the slices: the core runs the same
+// evaluations. Used by core/remote-loop.js (the playground, <flock-path>, the tune preview).
 
 import { setAttr, setText, t } from './i18n.js';
-import { PlanningBudget } from './planning-slice.js';
-
-/** Time (ms) given to planning per frame: short enough that input is answered at once. */
-export const PLANNING_BUDGET_MS = 24;
 
 const BOX_STYLE =
   'position:absolute;left:50%;top:12px;transform:translateX(-50%);z-index:5;display:flex;align-items:center;' +
@@ -26,27 +22,7 @@ export class PlanningSlices {
     this.call = call;
     this.stage = stage;
     this.onCancelled = onCancelled;
-    this.budget = new PlanningBudget();
     this.box = null;
-  }
-
-  /**
-   * Gives the planning up to `budgetMs` of this frame. Returns true while planning is left (the
-   * caller does not step then; a step would finish the planning in one go).
-   */
-  advance(budgetMs = PLANNING_BUDGET_MS) {
-    let progress = this.call((sim) => sim.planning_progress());
-    if (!(progress < 1)) {
-      this.hide();
-      return false;
-    }
-    progress = this.budget.spend((evaluations) => this.call((sim) => sim.advance_planning(evaluations)), budgetMs);
-    if (progress < 1) {
-      this.show(progress);
-      return true;
-    }
-    this.hide();
-    return false;
   }
 
   show(progress) {

@@ -12,8 +12,6 @@
 // are set through the CSSOM, so a host page's Content-Security-Policy without 'unsafe-inline'
 // does not refuse them.
 
-import { blitSim } from './blit.js';
-
 const STILL_CLASS = 'flockpath-print-still';
 const MARK = 'data-flockpath-print';
 
@@ -35,24 +33,6 @@ function adopt(root) {
     sheet.replaceSync(CSS);
   }
   if (!root.adoptedStyleSheets.includes(sheet)) root.adoptedStyleSheets = [...root.adoptedStyleSheets, sheet];
-}
-
-/** Brings a <flock-path> element's canvas up to its current step (it may be a frame behind). */
-function renderNow(el, canvas) {
-  const host = el.host;
-  try {
-    // A simulation in a worker: the canvas already shows the newest frame it rendered.
-    if (host?.remote) return;
-    if (host?.sim && !host.crashed && host.wasm) {
-      host.sim.render();
-      blitSim(canvas.getContext('2d'), host.wasm, host.sim);
-      // Drawn up to date: the frame loop need not render the same step again (a second render
-      // of one step fades the trails once more, and the still would no longer match the canvas).
-      host.dirty = false;
-    }
-  } catch {
-    // A crashed or freed simulation keeps the picture it has.
-  }
 }
 
 /** Puts a still of `canvas` right after it, sized and placed as the canvas is. */
@@ -90,7 +70,6 @@ function targets() {
   for (const el of document.querySelectorAll('flock-path')) {
     const canvas = el.shadowRoot?.querySelector('canvas');
     if (!canvas) continue;
-    renderNow(el, canvas);
     adopt(el.shadowRoot);
     list.push(canvas);
   }

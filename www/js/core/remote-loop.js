@@ -9,7 +9,7 @@
 // ends the worker: a new one starts from the scene and replays the run to the step shown, with a
 // message (sim-proxy.js `restart`).
 
-import { setupPaceReadout } from './loop.js';
+import { setupPaceReadout } from './pace.js';
 import { PlanningSlices } from './planning.js';
 import { RESTART_AFTER_MS } from './sim-proxy.js';
 import { formatNumber, t } from './i18n.js';
@@ -33,6 +33,31 @@ function rateText(rate) {
   if (rate >= 10) return formatNumber(Math.round(rate));
   if (rate >= 0.1) return formatNumber(Number(rate.toFixed(1)));
   return formatNumber(Number(rate.toFixed(2)));
+}
+
+let slowSheet = null;
+
+/**
+ * Adds the slow-scene style to `root` (the document's head, or an element's shadow root); returns
+ * its removal. A shadow root gets a constructed sheet where the browser has them: unlike a
+ * `<style>` element it is not refused by a host page's Content-Security-Policy (<flock-path> on a
+ * course page, README "Hosting").
+ */
+function addStyle(root) {
+  if (root instanceof ShadowRoot && 'adoptedStyleSheets' in root && typeof CSSStyleSheet.prototype.replaceSync === 'function') {
+    if (!slowSheet) {
+      slowSheet = new CSSStyleSheet();
+      slowSheet.replaceSync(SLOW_STYLE);
+    }
+    root.adoptedStyleSheets = [...root.adoptedStyleSheets, slowSheet];
+    return () => {
+      root.adoptedStyleSheets = root.adoptedStyleSheets.filter((sheet) => sheet !== slowSheet);
+    };
+  }
+  const style = document.createElement('style');
+  style.textContent = SLOW_STYLE;
+  root.append(style);
+  return () => style.remove();
 }
 
 /** Draws a frame's one view onto `canvas` (nothing while a resize is on its way). */
@@ -59,9 +84,7 @@ export function startRemoteLoop(
   const pace = readout ? setupPaceReadout(app) : { note() {}, idle() {} };
   let stopped = false;
 
-  const style = document.createElement('style');
-  style.textContent = SLOW_STYLE;
-  styleRoot.append(style);
+  const unstyle = addStyle(styleRoot);
   const slow = Object.assign(document.createElement('output'), { className: 'slow-scene', hidden: true });
   if (styleRoot === document.head) slow.id = 'slow-scene';
   slow.setAttribute('role', 'status');
@@ -199,7 +222,7 @@ export function startRemoteLoop(
     remote.removeEventListener('refused', onRefused);
     remote.removeEventListener('panic', onPanic);
     remote.removeEventListener('started', onStarted);
-    style.remove();
+    unstyle();
     slow.remove();
     planning.hide();
   };

@@ -9,7 +9,11 @@
 // replays the run to the step the page last showed (the same steps: the run is deterministic).
 
 import { errorFromData } from './errors.js';
+import { startModuleWorker } from './module-worker.js';
 import { READS } from './sim-reads.js';
+
+/** The simulation worker's module. */
+export const WORKER_URL = new URL('./sim-worker.js', import.meta.url).href;
 
 /** How long the worker may leave a pause unanswered before it is ended and restarted (ms). */
 export const RESTART_AFTER_MS = 1000;
@@ -56,6 +60,7 @@ export class RemoteSim extends EventTarget {
     /** Set while guard() collects the Promises of the calls its function makes. */
     this.collecting = null;
     this.crashed = false;
+    this.seeking = null;
     this.restarts = 0;
     this.playing = false;
     this.stepsPerFrame = 2;
@@ -87,7 +92,8 @@ export class RemoteSim extends EventTarget {
     this.reads = READS[kind];
     this.playing = playing;
     this.stepsPerFrame = stepsPerFrame;
-    this.worker = new Worker(new URL('./sim-worker.js', import.meta.url), { type: 'module' });
+    // From another origin (a <flock-path> on a course page) through a same-origin blob.
+    this.worker = startModuleWorker(WORKER_URL);
     const worker = this.worker;
     const started = new Promise((resolve, reject) => {
       this.onStarted = resolve;
@@ -149,8 +155,10 @@ export class RemoteSim extends EventTarget {
     }
   }
 
-  absorb({ values, subscribed }) {
+  absorb({ values, subscribed, seeking = null }) {
     for (const [method, entry] of Object.entries(values)) this.mirror.set(method, entry);
+    /** A timeline jump in progress (`{ step, at, done, total }`: re-simulated in slices), or null. */
+    this.seeking = seeking;
     if (subscribed) for (const [key, entry] of Object.entries(subscribed)) this.subscribed.set(key, entry);
   }
 

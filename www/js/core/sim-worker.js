@@ -10,11 +10,16 @@
 
 import { loadWasm } from './boot.js';
 import { errorData, isPanic, messageOf } from './errors.js';
+import { STEP_BUDGET_MS } from './pace.js';
 import { PlanningBudget } from './planning-slice.js';
 import { READS } from './sim-reads.js';
 
-/** Simulation work per frame (ms) before the frame is shown: the frame rate of a playing scene. */
-const STEP_BUDGET_MS = 10;
+/**
+ * Time a timeline jump may re-simulate before the worker shows its progress and reads its
+ * messages (ms): a short jump (tens of steps of a small crowd) ends in one slice, answered at
+ * once; a jump through steps of a second shows each step.
+ */
+const SEEK_BUDGET_MS = 100;
 /** Time given to planning ahead (IGSA) per frame (ms). */
 const PLANNING_BUDGET_MS = 24;
 /** Time between frames while planning ahead (ms): the progress bar's refresh. */
@@ -44,6 +49,14 @@ let subscriptions = [];
 let spare = [];
 /** Calls that arrived while the handle was still being made (answered, in order, once it is). */
 let early = [];
+/**
+ * A jump on the timeline in progress, re-simulated in slices (`Sim.seek_toward`) so a scene whose
+ * steps take a second shows its progress: `{ id, step, target, done, total }` (the call's id,
+ * the step asked for, the step it ends on, steps re-simulated so far and in all), or null.
+ * Calls that arrive meanwhile wait in `afterSeek` and are answered, in order, once it ends.
+ */
+let seeking = null;
+let afterSeek = [];
 
 // The next frame's work runs in a task of its own, after any request already queued.
 const tickChannel = new MessageChannel();
@@ -80,7 +93,8 @@ function snapshot() {
   for (const [method, args] of subscriptions) {
     if (reads.subscribable.has(method)) subscribed[`${method}|${JSON.stringify(args)}`] = read(method, args);
   }
-  return { values, subscribed };
+  const jump = seeking && { step: seeking.target, at: sim.steps(), done: seeking.done, total: seeking.total };
+  return { values, subscribed, seeking: jump };
 }
 
 function fail(error) {
@@ -129,7 +143,10 @@ function tick() {
     let stepMs = null;
     let planning = false;
     const replaying = !playing && sim.steps() < replayTo;
-    if (kind === 'Sim' && sim.planning_progress() < 1) {
+    if (seeking) {
+      seekSlice();
+      dirty = true;
+    } else if (kind === 'Sim' && sim.planning_progress() < 1) {
       // Planning runs whether or not the scene plays (the page shows its progress and Cancel).
       planning = true;
       const progress = planningBudget.spend((evaluations) => sim.advance_planning(evaluations), PLANNING_BUDGET_MS);
@@ -156,7 +173,12 @@ function tick() {
     }
     if (dirty) postFrame({ asked, done, stepMs, planning, replaying, replayTo });
     else if (planning || playing || replaying) schedule();
+    if (seeking?.ended) endSeek();
   } catch (error) {
+    if (seeking && !isPanic(error)) {
+      refuseSeek(error);
+      return;
+    }
     if (!fail(error)) {
       // A refused step (not a panic) would repeat every frame: stop and let the page explain.
       playing = false;
@@ -216,8 +238,82 @@ async function start(options) {
   return { linkError };
 }
 
+/**
+ * One slice of the jump in progress: single re-simulated steps until SEEK_BUDGET_MS is spent
+ * (at least one). The world reached is the one a single `seek` would give (core: `seek_toward`).
+ */
+function seekSlice() {
+  const start = performance.now();
+  do {
+    const before = sim.steps();
+    const steps = sim.seek_toward(seeking.step, 1);
+    seeking.done += steps;
+    const at = sim.steps();
+    // After the first slice the world is on the way: what is left is the distance to the target.
+    seeking.total = seeking.done + Math.max(0, seeking.target - at);
+    if (at === seeking.target || (steps === 0 && at === before)) {
+      seeking.ended = true;
+      break;
+    }
+  } while (performance.now() - start < SEEK_BUDGET_MS);
+}
+
+/** Answers the finished jump's call, then the calls that waited for it. */
+function endSeek() {
+  const { id, done } = seeking;
+  seeking = null;
+  sceneChanged = true;
+  sim.render();
+  self.postMessage({ type: 'reply', id, ok: true, value: done, state: snapshot() });
+  answerWaiting();
+}
+
+/** Answers, in order, the calls that waited for a jump. */
+function answerWaiting() {
+  const waiting = afterSeek;
+  afterSeek = [];
+  for (const call of waiting) answer(call.id, call.method, call.args);
+  schedule();
+}
+
+/** Answers the jump in progress with the core's refusal and ends it. */
+function refuseSeek(error) {
+  const { id } = seeking;
+  seeking = null;
+  sceneChanged = true;
+  self.postMessage({ type: 'reply', id, ok: false, error: errorData(error), state: snapshot() });
+  answerWaiting();
+}
+
+/** Starts a jump on the timeline in slices; a jump asked for meanwhile takes over from it. */
+function startSeek(id, step) {
+  if (seeking) {
+    // The earlier jump's call is answered with what it re-simulated: the new one goes on from there.
+    self.postMessage({ type: 'reply', id: seeking.id, ok: true, value: seeking.done, state: snapshot() });
+  }
+  seeking = { id, step, target: sim.seek_target(step), done: 0, total: 0, ended: false };
+  dirty = true;
+  // The first slice at once: a short jump is answered without waiting for the next frame.
+  seekSlice();
+  if (seeking.ended) endSeek();
+  else schedule();
+}
+
 function answer(id, method, args) {
   if (crashed) return;
+  // A long jump re-simulates in slices between frames (`Sim` only: the timeline's).
+  if (kind === 'Sim' && method === 'seek' && Number.isInteger(args[0]) && args[0] >= 0) {
+    try {
+      startSeek(id, args[0]);
+    } catch (error) {
+      if (!fail(error)) refuseSeek(error);
+    }
+    return;
+  }
+  if (seeking) {
+    afterSeek.push({ id, method, args });
+    return;
+  }
   let reply;
   try {
     if (typeof sim?.[method] !== 'function' || method === 'free') throw new Error(`no such call: ${method}`);

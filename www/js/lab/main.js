@@ -1,11 +1,12 @@
 // The optimizer lab page: pick a function and an algorithm, watch the swarm on the function's
 // heat map (d = 2, pixels from Rust), compare best-so-far curves of several algorithms on the
-// same seed, and fill a 30-run table in a Web Worker. The page owns the frame loop; every
-// number comes from the wasm core.
+// same seed, and fill a 30-run table in a Web Worker. The live runs step and render in a worker
+// of their own (live-worker.js; issue 24: at d = 200 × N = 500 an iteration of five algorithms
+// takes seconds), so Play, Pause, Step and every field answer at once; the page draws the frames
+// and the curves it is sent. Every number comes from the wasm core.
 
-import { blit } from '../core/blit.js';
 import { bootPage } from '../core/boot.js';
-import { errorFromData, messageOf, showMessage } from '../core/errors.js';
+import { errorFromData, messageOf, showMessage, showPanic } from '../core/errors.js';
 import { drawPlot } from '../core/plot.js';
 import { onPage } from '../core/keys.js';
 import { setText, t } from '../core/i18n.js';
@@ -53,7 +54,97 @@ function convergence(runs) {
 /** Format a value the way Table 3 does. */
 const fmt = (v) => (Number.isFinite(v) ? (v === 0 ? '0' : v.toExponential(4)) : String(v));
 
-bootPage(t('boot.what_lab'), ({ module, wasm }) => {
+/** A Reset waits this long (ms) for a worker inside one piece of work before it ends the worker. */
+const RESTART_AFTER_MS = 250;
+
+/** The error of a request a restarted worker never answered. */
+class Restarted extends Error {}
+
+/**
+ * The page's side of the live runs' worker (live-worker.js): requests answered in order with the
+ * runs' state, frames drawn one at a time. `onState(state)` gets every state the worker sends
+ * (replies and frames, in order); `onFrame(frame)` every frame; `onPanic(message)` a crash.
+ */
+class LiveRuns {
+  constructor({ onState, onFrame, onPanic }) {
+    this.onState = onState;
+    this.onFrame = onFrame;
+    this.onPanic = onPanic;
+    this.playing = false;
+    this.speed = 1;
+    this.nextId = 1;
+    this.start();
+  }
+
+  start() {
+    const worker = new Worker(new URL('./live-worker.js', import.meta.url), { type: 'module' });
+    this.worker = worker;
+    this.calls = new Map();
+    this.frame = null;
+    this.lastHeard = performance.now();
+    worker.onmessage = ({ data }) => {
+      if (worker !== this.worker) return;
+      this.lastHeard = performance.now();
+      if (data.state) this.onState(data.state);
+      if (data.type === 'reply') {
+        const call = this.calls.get(data.id);
+        this.calls.delete(data.id);
+        if (data.ok) call?.resolve(data.state);
+        else call?.reject(errorFromData(data.error));
+      } else if (data.type === 'frame') {
+        this.onFrame(data);
+      } else if (data.type === 'panic') {
+        for (const call of this.calls.values()) call.reject(new Error(data.message));
+        this.calls.clear();
+        this.onPanic(data.message);
+      }
+    };
+    worker.onerror = (event) => {
+      if (worker !== this.worker) return;
+      event.preventDefault();
+      const error = new Error(t('lab.worker_failed', { reason: event.message || 'live-worker.js' }));
+      for (const call of this.calls.values()) call.reject(error);
+      this.calls.clear();
+      showMessage(error.message);
+    };
+    this.control({ playing: this.playing, speed: this.speed });
+  }
+
+  /** Sends one request; resolves to the runs' state after it (rejects with the refusal). */
+  call(type, payload = {}) {
+    const id = this.nextId;
+    this.nextId += 1;
+    const promise = new Promise((resolve, reject) => this.calls.set(id, { resolve, reject }));
+    this.worker.postMessage({ ...payload, type, id });
+    return promise;
+  }
+
+  /** Play or pause, iterations per frame: the worker picks them up after the work it is in. */
+  control(changes) {
+    if ('playing' in changes) this.playing = changes.playing;
+    if ('speed' in changes) this.speed = changes.speed;
+    this.worker.postMessage({ type: 'control', ...changes });
+  }
+
+  /** Lets the worker render its next frame; the drawn frame's pixels go back to be filled again. */
+  ack(buffer) {
+    this.worker.postMessage({ type: 'ack', buffer }, buffer ? [buffer] : []);
+  }
+
+  /** Whether the worker has been inside one piece of work (a request, a frame) too long to wait for. */
+  stuck() {
+    return (this.calls.size > 0 || this.playing) && performance.now() - this.lastHeard > RESTART_AFTER_MS;
+  }
+
+  /** Ends the worker and starts a fresh one (the runs are made again by the next reset). */
+  restart() {
+    this.worker.terminate();
+    for (const call of this.calls.values()) call.reject(new Restarted('restarted'));
+    this.start();
+  }
+}
+
+bootPage(t('boot.what_lab'), async ({ module }) => {
   const options = JSON.parse(module.lab_options_json());
   const fnSelect = $('lab-function');
   const algSelect = $('lab-algorithm');
@@ -73,7 +164,10 @@ bootPage(t('boot.what_lab'), ({ module, wasm }) => {
   const canvas = $('lab-canvas');
   const plot = $('lab-plot');
   const state = {
-    runs: [],
+    /** The runs' state the worker sent last (live-worker.js `snapshot`), or null before the first. */
+    view: null,
+    /** Whether the curves and the status line must be drawn again (a new state arrived). */
+    fresh: false,
     playing: false,
     speed: 1,
     frames: 0,
@@ -92,60 +186,82 @@ bootPage(t('boot.what_lab'), ({ module, wasm }) => {
   });
   const comparedAlgorithms = () => [...compare.querySelectorAll('input:checked')].map((i) => i.value);
 
+  /** Draws the newest frame's picture (d = 2) and hands its pixels back to the worker. */
+  const showFrame = (frame) => {
+    let ms = null;
+    if (frame.pixels && !canvas.hidden && frame.width === canvas.width && frame.height === canvas.height) {
+      const t0 = performance.now();
+      canvas.getContext('2d').putImageData(new ImageData(new Uint8ClampedArray(frame.pixels), frame.width, frame.height), 0, 0);
+      ms = (frame.renderMs ?? 0) + performance.now() - t0;
+    }
+    if (ms !== null) {
+      state.renderMs.push(ms);
+      if (state.renderMs.length > 120) state.renderMs.shift();
+    }
+    live.ack(frame.pixels);
+  };
+  let pendingFrame = null;
+  const live = new LiveRuns({
+    onState: (view) => {
+      state.view = view;
+      state.fresh = true;
+      // The worker stops at the end of the budget: the button says so.
+      if (view.finished && state.playing && !view.playing) setPlaying(false);
+    },
+    onFrame: (frame) => {
+      // Only the newest frame is drawn; an older one not drawn yet goes back at once.
+      if (pendingFrame) live.ack(pendingFrame.pixels);
+      pendingFrame = frame;
+    },
+    onPanic: (message) => {
+      setPlaying(false);
+      if (!showPanic(message)) showMessage(message);
+    },
+  });
+
   /** (Re)creates the runs: the chosen algorithm plus every checked one, all on the same seed. */
-  const reset = () => {
-    for (const run of state.runs) run.lab.free();
-    state.runs = [];
+  const reset = async () => {
     const s = settings();
     const names = [s.algorithm, ...comparedAlgorithms().filter((n) => n !== s.algorithm)];
-    try {
-      for (const name of names) {
-        state.runs.push({ name, lab: new module.Lab(name, s.fn, s.dim, s.population, s.iterations, s.seed), primary: name === s.algorithm });
-      }
-    } catch (error) {
-      showMessage(messageOf(error));
-      for (const run of state.runs) run.lab.free();
-      state.runs = [];
-    }
     const flat = s.dim === 2;
     canvas.hidden = !flat;
     $('lab-no-view').hidden = flat;
-    draw();
+    // A worker still inside an iteration of a big run is not waited for: the new runs start afresh.
+    if (live.stuck()) live.restart();
+    const size = flat ? { width: canvas.width, height: canvas.height } : { width: 0, height: 0 };
+    try {
+      await live.call('reset', { settings: { fn: s.fn, dim: s.dim, population: s.population, iterations: s.iterations, seed: s.seed }, names, ...size });
+    } catch (error) {
+      if (error instanceof Restarted) return;
+      showMessage(messageOf(error));
+    }
   };
 
   const setPlaying = (playing) => {
     state.playing = playing;
     setText($('lab-play'), playing ? 'playback.pause' : 'playback.play');
+    $('lab-play').setAttribute('aria-pressed', String(playing));
+    live?.control({ playing });
   };
 
-  const step = (n) => {
-    for (const run of state.runs) run.lab.step(n);
-    const done = state.runs.every((r) => r.lab.iteration() >= r.lab.iterations());
-    if (done && state.playing) setPlaying(false);
-  };
-
-  /** Shows the primary run's picture (d = 2), the curves and the status line. */
+  /** The curves and the status line of the runs' newest state. */
   const draw = () => {
-    const primary = state.runs[0];
-    if (!primary) return;
-    const lab = primary.lab;
-    if (!canvas.hidden) {
-      const t0 = performance.now();
-      lab.render(canvas.width, canvas.height);
-      blit(canvas.getContext('2d'), wasm, lab.frame_ptr(), lab.frame_len());
-      state.renderMs.push(performance.now() - t0);
-      if (state.renderMs.length > 120) state.renderMs.shift();
-    }
-    drawPlot(plot, convergence(state.runs.map((r) => ({ name: r.name, curve: r.lab.curve(), budget: r.lab.iterations(), primary: r.primary }))));
+    const view = state.view;
+    if (!view || view.name === null) return;
+    drawPlot(plot, convergence(view.curves));
     $('lab-status').textContent =
-      t('lab.status', { name: primary.name, iteration: lab.iteration(), iterations: lab.iterations(), best: fmt(lab.best_value()), particles: lab.particles() });
+      t('lab.status', { name: view.name, iteration: view.iteration, iterations: view.iterations, best: fmt(view.best), particles: view.particles });
   };
 
   let last = performance.now();
   let fpsFrames = 0;
   const frame = (now) => {
-    if (state.playing) {
-      step(state.speed);
+    if (pendingFrame) {
+      showFrame(pendingFrame);
+      pendingFrame = null;
+    }
+    if (state.fresh) {
+      state.fresh = false;
       draw();
     }
     state.frames += 1;
@@ -216,8 +332,9 @@ bootPage(t('boot.what_lab'), ({ module, wasm }) => {
   $('lab-play').addEventListener('click', () => setPlaying(!state.playing));
   $('lab-step').addEventListener('click', () => {
     setPlaying(false);
-    step(1);
-    draw();
+    live.call('step', { n: 1 }).catch((error) => {
+      if (!(error instanceof Restarted)) showMessage(messageOf(error));
+    });
   });
   $('lab-reset').addEventListener('click', () => {
     setPlaying(false);
@@ -225,6 +342,7 @@ bootPage(t('boot.what_lab'), ({ module, wasm }) => {
   });
   $('lab-speed').addEventListener('input', () => {
     state.speed = Number($('lab-speed').value);
+    live.control({ speed: state.speed });
     $('lab-speed-value').textContent = t('playback.times', { n: state.speed });
   });
   for (const input of [fnSelect, algSelect, $('lab-dim'), $('lab-pop'), $('lab-iters'), $('lab-seed')]) {
@@ -254,18 +372,21 @@ bootPage(t('boot.what_lab'), ({ module, wasm }) => {
     }
   });
 
-  reset();
+  await reset();
   requestAnimationFrame(frame);
 
-  // For scripts and tests: read-only views of the state.
+  // For scripts and tests: read-only views of the state the worker sent last (the primary run's),
+  // and `settled()`, which resolves once the worker has handled every click and call so far.
   window.flockpathLab = {
     play: () => setPlaying(true),
     pause: () => setPlaying(false),
     isPlaying: () => state.playing,
-    iteration: () => state.runs[0]?.lab.iteration() ?? 0,
-    particles: () => state.runs[0]?.lab.particles() ?? 0,
-    positions: () => Array.from(state.runs[0]?.lab.positions() ?? []),
-    bestValue: () => state.runs[0]?.lab.best_value(),
+    settled: () => live.call('sync').then(() => undefined),
+    iteration: () => state.view?.iteration ?? 0,
+    particles: () => state.view?.particles ?? 0,
+    positions: () => Array.from(state.view?.positions ?? []),
+    bestValue: () => state.view?.best ?? undefined,
+    digest: () => state.view?.digest ?? null,
     renderMs: () => [...state.renderMs],
     frames: () => state.frames,
     tableSeconds: () => state.lastTableSeconds ?? null,

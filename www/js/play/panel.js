@@ -261,10 +261,11 @@ export class Panel {
 
   /** Shows the active group's values; `even`: a field refilled although it has the focus. */
   fillValues({ even = null } = {}) {
-    for (const button of this.list.children) {
-      const index = [...this.list.children].indexOf(button);
-      button.setAttribute('aria-selected', String(index === this.app.activeGroup));
-    }
+    // By position, not by searching the list for each button (5,000 groups: 17 s of the page's thread).
+    [...this.list.children].forEach((button, index) => {
+      const selected = String(index === this.app.activeGroup);
+      if (button.getAttribute('aria-selected') !== selected) button.setAttribute('aria-selected', selected);
+    });
     const group = this.group();
     if (!group) return;
     this.plannerSelect.value = group.planner.kind;

@@ -4,7 +4,7 @@
 
 import { formatNumber, language, onLanguageChange, setAttr, setText, t } from '../core/i18n.js';
 
-/** How often the slider follows a playing run (ms, display only). */
+/** How often the slider follows the run (ms, display only). */
 const REFRESH_MS = 100;
 
 const STYLE = `
@@ -15,6 +15,9 @@ const STYLE = `
 .timeline .timeline-note { flex-basis: 100%; margin: 0; color: #8a5a00; background: #fff6e0; border-radius: 6px;
   padding: 0.2rem 0.5rem; }
 .timeline .timeline-note[hidden] { display: none; }
+.timeline .timeline-seek { display: inline-flex; align-items: center; gap: 0.4rem; color: var(--muted, #5a6676);
+  font-variant-numeric: tabular-nums; }
+.timeline .timeline-seek[hidden] { display: none; }
 `;
 
 /** The timeline's state from the Sim (`timeline_json`), or null when the call was refused. */
@@ -85,7 +88,14 @@ export function setupTimeline(app) {
   readout.setAttribute('for', 'timeline');
   const note = Object.assign(document.createElement('p'), { id: 'timeline-note', className: 'timeline-note', hidden: true });
   note.setAttribute('role', 'status');
-  bar.append(label, slider, readout, note);
+  // A long jump (a scene whose steps take a second) re-simulates in slices in the worker: its
+  // progress, as the worker reports it (core/sim-proxy.js `seeking`).
+  const seek = Object.assign(document.createElement('span'), { id: 'timeline-seek', className: 'timeline-seek', hidden: true });
+  seek.setAttribute('role', 'status');
+  const seekBar = Object.assign(document.createElement('progress'), { max: 1, value: 0 });
+  const seekText = document.createElement('span');
+  seek.append(seekBar, seekText);
+  bar.append(label, slider, readout, seek, note);
   document.querySelector('.toolbar')?.after(bar);
 
   let dragging = false;
@@ -114,6 +124,12 @@ export function setupTimeline(app) {
         every: info.checkpoint_every,
       }),
     );
+    const jump = app.remote?.seeking ?? null;
+    set(seek, 'hidden', jump === null);
+    if (jump) {
+      set(seekBar, 'value', jump.total > 0 ? jump.done / jump.total : 0);
+      set(seekText, 'textContent', t('timeline.seeking', { step: formatNumber(jump.step), done: formatNumber(jump.done), total: formatNumber(jump.total) }));
+    }
     note.hidden = info.note === null;
     const text = noteText(app, info);
     if (text !== null && note.textContent !== text) note.textContent = text;
@@ -146,8 +162,9 @@ export function setupTimeline(app) {
 
   app.addEventListener('stepped', show);
   app.addEventListener('scene', show);
+  // Also while paused: the worker's last frames and a jump's progress arrive after the click.
   setInterval(() => {
-    if (app.playing && !app.crashed && !document.hidden) show();
+    if (!app.crashed && !document.hidden) show();
   }, REFRESH_MS);
   show();
   onLanguageChange(show);

@@ -325,6 +325,7 @@ export default {
   'timeline.title': 'Drag to go back and forth in the run; Play goes on from the step shown',
   'timeline.step_of': 'step {step} of {end}',
   'timeline.memory': 'Positions: {used} of {budget} MB ({capacity} steps of this run at every step); {checkpoints} checkpoints every {every} steps',
+  'timeline.seeking': 'Jumping to step {step}: {done} of {total} steps re-simulated',
 
   // — playground (JS) —
   'path.crossing': 'Warning: the edited path of group {group} crosses an obstacle on segment {segments} (red). The agents will be pushed along the obstacle; drag the waypoints clear of it.',
@@ -345,6 +346,7 @@ export default {
   'boot.hint_cors': 'This page is on another site than flockpath: the flockpath server must send Access-Control-Allow-Origin, and a Content-Security-Policy must allow its origin (see flockpath’s README, “Hosting”).',
   'boot.hint_build': 'Build it with: bash scripts/build-wasm.sh',
   'boot.hint_csp': 'A Content-Security-Policy must allow \'wasm-unsafe-eval\' in script-src (see flockpath’s README, “Hosting”).',
+  'boot.hint_worker_csp': ' On a page of another site its Content-Security-Policy must allow worker-src blob: and the flockpath origin (see flockpath’s README, “Hosting”).',
   'boot.not_found': 'the browser refused or could not find {url}',
   'boot.not_fetched': 'the browser refused or could not fetch {url}',
   'boot.not_wasm': '{url} could not be started as WebAssembly',
@@ -588,6 +590,7 @@ export default {
   'element.crashed': 'The simulation crashed (a bug in flockpath): {message}',
   'element.load_failed_fallback': 'The scene could not be loaded: {reason}. Showing “{name}” instead.',
   'element.load_failed_kept': 'The scene could not be loaded: {reason}. The previous scene keeps running.',
+  'element.worker_failed': 'The simulation could not start in its worker: {reason}.{hint}',
   'embed.doc_title': 'flockpath — embedded scene',
   'embed.open': 'Open in flockpath ↗',
   'embed.open_title': 'Open this scene in the full flockpath playground',

@@ -325,6 +325,7 @@ export default {
   'timeline.title': '拖动可在运行中前后移动；播放会从显示的那一步继续',
   'timeline.step_of': '第 {step} 步，共 {end} 步',
   'timeline.memory': '位置：已用 {used} MB，共 {budget} MB（按每步记录，此运行可存 {capacity} 步）；{checkpoints} 个检查点，每 {every} 步一个',
+  'timeline.seeking': '正在跳到第 {step} 步：已重新模拟 {done} / {total} 步',
 
   // — playground (JS) —
   'path.crossing': '警告：群组 {group} 编辑后的路径在第 {segments} 段穿过障碍物（红色）。个体会被推着沿障碍物走；请把路径点拖离障碍物。',
@@ -345,6 +346,7 @@ export default {
   'boot.hint_cors': '此页面与 flockpath 不在同一站点：flockpath 服务器必须发送 Access-Control-Allow-Origin，且内容安全策略（CSP）必须允许其来源（见 flockpath 的 README“Hosting”一节）。',
   'boot.hint_build': '用以下命令构建：bash scripts/build-wasm.sh',
   'boot.hint_csp': '内容安全策略（CSP）必须在 script-src 中允许 \'wasm-unsafe-eval\'（见 flockpath 的 README“Hosting”一节）。',
+  'boot.hint_worker_csp': '在其他站点的页面上，其内容安全策略（CSP）必须在 worker-src 中允许 blob: 和 flockpath 的来源（见 flockpath 的 README“Hosting”一节）。',
   'boot.not_found': '浏览器拒绝或找不到 {url}',
   'boot.not_fetched': '浏览器拒绝或无法获取 {url}',
   'boot.not_wasm': '{url} 无法作为 WebAssembly 启动',
@@ -588,6 +590,7 @@ export default {
   'element.crashed': '模拟崩溃了（flockpath 的缺陷）：{message}',
   'element.load_failed_fallback': '无法加载场景：{reason}。改为显示“{name}”。',
   'element.load_failed_kept': '无法加载场景：{reason}。之前的场景继续运行。',
+  'element.worker_failed': '模拟无法在其工作线程中启动：{reason}。{hint}',
   'embed.doc_title': 'flockpath — 嵌入的场景',
   'embed.open': '在 flockpath 中打开 ↗',
   'embed.open_title': '在完整的 flockpath 演练场中打开此场景',
