@@ -83,6 +83,7 @@ pub fn wasm_factor(kind: PlannerKind) -> f64 {
         // the native worst windows.
         PlannerKind::Orca => 1.5,
         PlannerKind::SocialForce => 1.5,
+        PlannerKind::CollisionFreeSpeed => 1.5,
     }
 }
 
@@ -158,6 +159,7 @@ pub fn native_ns_per_agent_step(kind: PlannerKind, crowd_radius: f32) -> f64 {
         PlannerKind::Igsa => 1_200.0,
         PlannerKind::Orca => 1_400.0,
         PlannerKind::SocialForce => 15_000.0,
+        PlannerKind::CollisionFreeSpeed => 15_000.0,
     };
     by_radius(kind, crowd_radius, default_bodies, false)
 }
