@@ -69,7 +69,7 @@ fn run(scene: Scene, steps: u32) -> World {
 /// the room empties.
 #[test]
 fn the_bottleneck_has_no_overlap_and_empties() {
-    let mut world = World::new(presets::collision_free_bottleneck()).expect("valid");
+    let mut world = World::new(presets::csm_bottleneck()).expect("valid");
     let mut worst_pairs = 0;
     for _ in 0..40 {
         world.step_n(100);
@@ -88,14 +88,14 @@ fn the_bottleneck_has_no_overlap_and_empties() {
 #[test]
 fn the_preset_replays_exactly_and_matches_its_golden_digest() {
     let digest = |scene: Scene| run(scene, 300).digest();
-    assert_eq!(digest(presets::collision_free_bottleneck()), digest(presets::collision_free_bottleneck()));
-    let other = Scene { seed: 2, ..presets::collision_free_bottleneck() };
-    assert_ne!(digest(other), digest(presets::collision_free_bottleneck()));
+    assert_eq!(digest(presets::csm_bottleneck()), digest(presets::csm_bottleneck()));
+    let other = Scene { seed: 2, ..presets::csm_bottleneck() };
+    assert_ne!(digest(other), digest(presets::csm_bottleneck()));
     let expected = include_str!("data/golden-baselines.txt")
         .lines()
-        .find_map(|l| l.strip_prefix("collision-free-bottleneck").map(|d| d.trim().to_string()))
-        .expect("a golden digest for collision-free-bottleneck");
-    assert_eq!(format!("{:016x}", digest(presets::collision_free_bottleneck())), expected);
+        .find_map(|l| l.strip_prefix("csm-bottleneck").map(|d| d.trim().to_string()))
+        .expect("a golden digest for csm-bottleneck");
+    assert_eq!(format!("{:016x}", digest(presets::csm_bottleneck())), expected);
 }
 
 #[test]

@@ -155,9 +155,9 @@ pub const ALL: &[Preset] = &[
         build: social_force_bottleneck,
     },
     Preset {
-        name: "collision-free-bottleneck",
+        name: "csm-bottleneck",
         description: "Collision-free speed model (Tordeux et al. 2016): 60 pedestrians leave the room through the same 1.6 m door; watch them queue without touching, each slowing with the gap ahead.",
-        build: collision_free_bottleneck,
+        build: csm_bottleneck,
     },
 ];
 
@@ -672,9 +672,9 @@ pub fn social_force_bottleneck() -> Scene {
 
 /// The room and door of [`social_force_bottleneck`] with the collision-free speed model (its
 /// JuPedSim defaults): the two models side by side on one geometry.
-pub fn collision_free_bottleneck() -> Scene {
+pub fn csm_bottleneck() -> Scene {
     let mut s = social_force_bottleneck();
-    s.name = "collision-free-bottleneck".into();
+    s.name = "csm-bottleneck".into();
     for g in &mut s.groups {
         g.planner = PlannerConfig::CollisionFreeSpeed(CollisionFreeSpeedParams::default());
     }

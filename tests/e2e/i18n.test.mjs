@@ -473,7 +473,8 @@ async function englishLeftovers(page, selector) {
 const ALLOWED_WORDS = ['flock', 'path', 'flockpath', 'Boids', 'PSO', 'IGSA', 'GSA', 'ORCA', 'Gsum', 'Ctrl', 'Esc', 'Del', 'Tab', 'Shift', 'Enter',
   'Space', 'fps', 'CSV', 'JSON', 'SVG', 'PNG', 'WebM', 'MEL', 'Maya', 'Blender', 'Python', 'Chen', 'Lin', 'Zhang', 'Liu',
   'Helbing', 'Molnár', 'van', 'den', 'Berg', 'RiMEA', 'Jülich', 'Weidmann', 'Web', 'Worker', 'MiB', 'KiB', 'iframe', 'LMS',
-  'Markdown', 'rastrigin', 'sphere', 'ackley', 'griewank', 'igsa', 'pso', 'firefly', 'boids', 'forces', 'orca', 'social_force',
+  'Markdown', 'rastrigin', 'sphere', 'ackley', 'griewank', 'igsa', 'pso', 'firefly', 'boids', 'forces', 'orca', 'social_force', 'collision_free_speed',
+  'Tordeux',
   'Gm', 'Gg', 'Gc', 'Ga', 'Gd', 'Vmax', 'max', 'r_safe', 'c_obs', 'v_pref'];
 
 /** Each page with `?lang=zh`: what must be Chinese, and where no English may be left. */

@@ -23,7 +23,7 @@ pub use igsa::{IgsaParams, PathOptimizer, WaypointError};
 pub use orca::OrcaParams;
 pub use pso::PsoParams;
 use serde::{Deserialize, Serialize};
-pub use social_force::SocialForceParams;
+pub use social_force::{Ellipse, SocialForceParams};
 use spec::check_params;
 pub use spec::{ParamError, ParamSpec};
 
