@@ -42,7 +42,7 @@ const flag = (name, fallback) => {
 };
 /** The folder served: www/ unless --www points at another copy (a before/after comparison). */
 const WWW = path.resolve(flag('--www', path.join(ROOT, 'www')));
-const PLANNERS = ['boids', 'pso', 'firefly', 'forces', 'igsa', 'orca', 'social_force'];
+const PLANNERS = ['boids', 'pso', 'firefly', 'forces', 'igsa', 'orca', 'social_force', 'collision_free_speed'];
 const SIZES = [1000, 10000, 100000];
 const LAYOUTS = ['spread', 'packed'];
 const VIEWPORT = { width: 1280, height: 800 };

@@ -232,7 +232,7 @@ fn out_of_range_planner_parameters_in_a_link_are_refused_by_name() {
     let unknown = fragment_of(&json.replace("\"boids\"", "\"warp\""));
     assert_eq!(
         scene_from_fragment(&unknown).expect_err("unknown").to_string(),
-        "groups[0].planner.kind is \"warp\"; allowed: one of \"boids\", \"pso\", \"firefly\", \"forces\", \"igsa\", \"orca\", \"social_force\""
+        "groups[0].planner.kind is \"warp\"; allowed: one of \"boids\", \"pso\", \"firefly\", \"forces\", \"igsa\", \"orca\", \"social_force\", \"collision_free_speed\""
     );
 }
 

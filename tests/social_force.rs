@@ -4,7 +4,7 @@
 //! touch; the bottleneck preset replays bit for bit (natively here, in the browser in
 //! `tests/web_baselines.rs`); the planner is selectable by link and by the CLI.
 
-use flockpath::model::params::{Guidance, SocialForceParams};
+use flockpath::model::params::{Ellipse, Guidance, SocialForceParams};
 use flockpath::planners::social_force::{agent_forces, driving, wall_contact, wall_repulsion, Body};
 use flockpath::{
     presets, scene_from_fragment, scene_to_fragment, Goal, Group, PlannerConfig, Region, Scene, World, DT,
@@ -168,6 +168,45 @@ fn the_agent_force_is_the_gradient_of_the_elliptical_potential() {
     let ahead = agent_forces(&d, body(Vec2::ZERO, Vec2::ZERO), Vec2::X, body(Vec2::X, Vec2::ZERO)).0;
     let behind = agent_forces(&d, body(Vec2::ZERO, Vec2::ZERO), Vec2::X, body(Vec2::NEG_X, Vec2::ZERO)).0;
     assert!((behind.length() - 0.5 * ahead.length()).abs() < 1e-6, "{ahead} {behind}");
+}
+
+/// Spec II (Johansson, Helbing & Shukla 2007) stretches the ellipse along the relative step
+/// `(v_β − v_α) Δt`: its force is the gradient of `V(b)` with that step; two pedestrians walking
+/// side by side at one velocity are circles to each other (the force of two standing ones),
+/// where spec I stretches the ellipse along β's own step; head-on, the closing speed stretches
+/// it further than spec I does, so the push is stronger.
+#[test]
+fn spec_ii_stretches_the_ellipse_along_the_relative_step() {
+    let p =
+        SocialForceParams { view_angle_deg: 360.0, ellipse: Ellipse::SpecIi, ..SocialForceParams::default() };
+    let (v_a, v_b) = (Vec2::new(0.9, 0.1), Vec2::new(-1.2, 0.3));
+    let potential = |r: Vec2| {
+        let y = (v_b - v_a) * p.step_time;
+        let b = 0.5 * ((r.length() + (r - y).length()).powi(2) - y.length_squared()).sqrt();
+        p.agent_strength * (-(b / p.agent_range)).exp()
+    };
+    for r in [Vec2::new(1.0, 0.4), Vec2::new(-0.8, 1.1), Vec2::new(2.5, -0.5)] {
+        let (f, _) = agent_forces(&p, body(r, v_a), Vec2::ZERO, body(Vec2::ZERO, v_b));
+        let h = 1e-3;
+        let grad = Vec2::new(
+            (potential(r + Vec2::X * h) - potential(r - Vec2::X * h)) / (2.0 * h),
+            (potential(r + Vec2::Y * h) - potential(r - Vec2::Y * h)) / (2.0 * h),
+        );
+        assert!((f + grad).length() < 2e-3 * grad.length().max(1e-3), "at {r}: {f} vs {}", -grad);
+    }
+    let spec_i = SocialForceParams { ellipse: Ellipse::SpecI, ..p.clone() };
+    let side = Vec2::new(0.0, 0.8);
+    let walking = Vec2::new(1.3, 0.0);
+    let together =
+        |q: &SocialForceParams| agent_forces(q, body(side, walking), Vec2::ZERO, body(Vec2::ZERO, walking)).0;
+    let standing = agent_forces(&spec_i, body(side, Vec2::ZERO), Vec2::ZERO, body(Vec2::ZERO, Vec2::ZERO)).0;
+    assert!((together(&p) - standing).length() < 1e-6, "{} vs {standing}", together(&p));
+    assert!((together(&spec_i) - standing).length() > 1e-3, "spec I sees β's own step");
+    let ahead = Vec2::new(-6.0, 0.5);
+    let head_on = |q: &SocialForceParams| {
+        agent_forces(q, body(ahead, walking), Vec2::ZERO, body(Vec2::ZERO, -walking)).0
+    };
+    assert!(head_on(&p).length() > head_on(&spec_i).length(), "{} vs {}", head_on(&p), head_on(&spec_i));
 }
 
 fn run(scene: Scene, steps: u32) -> World {

@@ -5,7 +5,8 @@ use crate::model::geometry::Obstacle;
 use crate::model::palette::{BLUE, BLUISH_GREEN, ORANGE, REDDISH_PURPLE, VERMILLION};
 use crate::model::params::boids::{Arbitration, FlowGuide, Leader, Role};
 use crate::model::params::{
-    BoidsParams, FireflyParams, IgsaParams, OrcaParams, PlannerConfig, PsoParams, SocialForceParams,
+    BoidsParams, CollisionFreeSpeedParams, FireflyParams, IgsaParams, OrcaParams, PlannerConfig, PsoParams,
+    SocialForceParams,
 };
 use crate::model::scene::{Goal, GoalMotion, Group, Hill, OnArrival, PathSpec, Region, Scene};
 use crate::rng::Rng;
@@ -152,6 +153,11 @@ pub const ALL: &[Preset] = &[
         name: "social-force-bottleneck",
         description: "Social force (Helbing & Molnár 1995, body forces of Helbing et al. 2000): watch 60 pedestrians press towards a 1.6 m door, an arch form in front of it, and the room empty through it.",
         build: social_force_bottleneck,
+    },
+    Preset {
+        name: "csm-bottleneck",
+        description: "Collision-free speed model (Tordeux et al. 2016): 60 pedestrians leave the room through the same 1.6 m door; watch them queue without touching, each slowing with the gap ahead.",
+        build: csm_bottleneck,
     },
 ];
 
@@ -661,6 +667,17 @@ pub fn social_force_bottleneck() -> Scene {
         planner: PlannerConfig::SocialForce(SocialForceParams::default()),
         ..group("room", "#2f6fdf", 60, ([40.0, 60.0], [300.0, 340.0]), 0)
     });
+    s
+}
+
+/// The room and door of [`social_force_bottleneck`] with the collision-free speed model (its
+/// JuPedSim defaults): the two models side by side on one geometry.
+pub fn csm_bottleneck() -> Scene {
+    let mut s = social_force_bottleneck();
+    s.name = "csm-bottleneck".into();
+    for g in &mut s.groups {
+        g.planner = PlannerConfig::CollisionFreeSpeed(CollisionFreeSpeedParams::default());
+    }
     s
 }
 

@@ -4,6 +4,7 @@
 //! Layer: planners. Uses `model`, `spatial`, `optim` (IGSA plans its path with it) and `rng`.
 
 pub mod boids;
+pub mod collision_free_speed;
 pub mod explain;
 pub mod firefly;
 pub mod forces;
@@ -20,6 +21,7 @@ use crate::model::params::PlannerConfig;
 use crate::model::scene::Scene;
 
 pub use boids::Boids;
+pub use collision_free_speed::CollisionFreeSpeed;
 pub use explain::GroupPath;
 pub use firefly::Firefly;
 pub use forces::Forces;
@@ -41,6 +43,7 @@ pub fn build(config: &PlannerConfig, count: usize, obstacles: &[Obstacle]) -> Bo
         PlannerConfig::Igsa(p) => Box::new(IgsaPlanner::new(p.clone(), &Scene::empty(10.0, 10.0), 0)),
         PlannerConfig::Orca(p) => Box::new(Orca::new(p.clone())),
         PlannerConfig::SocialForce(p) => Box::new(SocialForce::new(p.clone())),
+        PlannerConfig::CollisionFreeSpeed(p) => Box::new(CollisionFreeSpeed::new(p.clone())),
     }
 }
 
@@ -52,6 +55,7 @@ pub fn build_for_group(config: &PlannerConfig, scene: &Scene, group: usize) -> B
         PlannerConfig::Igsa(p) => Box::new(IgsaPlanner::planning(p.clone(), scene, group)),
         PlannerConfig::Orca(p) => Box::new(orca::for_scene(p.clone(), scene)),
         PlannerConfig::SocialForce(p) => Box::new(social_force::for_scene(p.clone(), scene)),
+        PlannerConfig::CollisionFreeSpeed(p) => Box::new(collision_free_speed::for_scene(p.clone(), scene)),
         _ => {
             let count = scene.groups.get(group).map_or(0, |g| g.count as usize);
             build(config, count, &scene.obstacles)

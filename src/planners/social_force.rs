@@ -12,6 +12,9 @@
 //!   its velocity stands for `v_β e_β`); analytically
 //!   `f = (V⁰/σ) e^{−b/σ} · (‖r‖ + ‖r − y‖)/(4b) · (r/‖r‖ + (r − y)/‖r − y‖)`;
 //!   weighted by HM's field of view `w(e, f)`: 1 when `e_α · (−f) ≥ ‖f‖ cos φ` (β ahead), else c;
+//!   with spec II of the ellipse (Johansson, Helbing & Shukla 2007, [`Ellipse::SpecIi`]) the
+//!   step is the relative one, `y = (v_β − v_α) Δt`, and the same gradient (y held fixed, as in
+//!   both papers);
 //! - repulsion by a wall B (HM's border potential): `−∇U(‖r_αB‖)` with `U = U⁰ e^{−‖r_αB‖/R}`, i.e.
 //!   `(U⁰/R) e^{−d/R} n` at distance d from the wall, n the wall's normal;
 //! - touching bodies (HFV eq. 2 and 3, divided by the mass m): `k g(r_αβ − d_αβ) n_αβ` and the
@@ -28,7 +31,7 @@
 use super::goal_way::{px_per_metre, GoalWay};
 use super::planner::{GroupView, Planner, StepContext};
 use crate::model::geometry::{length, limit, Aabb, Obstacle};
-use crate::model::params::SocialForceParams;
+use crate::model::params::{Ellipse, SocialForceParams};
 use crate::model::scene::{DEFAULT_PX_PER_METRE, DT};
 use crate::planners::explain::{Explanation, NamedVector};
 use crate::rng::Rng;
@@ -125,7 +128,10 @@ fn agent_forces_in_view(p: &SocialForceParams, cos_phi: f32, a: Body, e: Vec2, b
         return (Vec2::ZERO, Vec2::ZERO);
     }
     let n = r / d;
-    let y = v_b * p.step_time;
+    let y = match p.ellipse {
+        Ellipse::SpecI => v_b * p.step_time,
+        Ellipse::SpecIi => (v_b - v_a) * p.step_time,
+    };
     let ry = r - y;
     let dy = length(ry);
     let sum = d + dy;

@@ -157,7 +157,7 @@ test('the core’s refusals are worded in Chinese (real errors from the wasm mod
     for (const [k, text] of Object.entries(zh)) {
       assert.equal(typeof cases[k].code, 'string', `${k} carries a code`);
       assert.ok(text && /[\u4e00-\u9fff]/.test(text), `${k} in Chinese: ${text} (core: ${cases[k].message})`);
-      const english = (text.match(/[A-Za-z][\w'-]{3,}/g) ?? []).filter((w) => !names.has(w) && !['flock', 'boids', 'teleport', 'firefly', 'forces', 'igsa', 'orca', 'social_force', 'fast', 'string', 'flockpath', 'pillars', 'open', 'field', 'groups', 'agent_radius', 'max_speed', 'count', 'preset', 'such', 'base64'].includes(w) && !/^[a-z]+(-[a-z0-9]+)+$/.test(w));
+      const english = (text.match(/[A-Za-z][\w'-]{3,}/g) ?? []).filter((w) => !names.has(w) && !['flock', 'boids', 'teleport', 'firefly', 'forces', 'igsa', 'orca', 'social_force', 'collision_free_speed', 'fast', 'string', 'flockpath', 'pillars', 'open', 'field', 'groups', 'agent_radius', 'max_speed', 'count', 'preset', 'such', 'base64'].includes(w) && !/^[a-z]+(-[a-z0-9]+)+$/.test(w));
       assert.deepEqual(english, [], `${k}: no English words left in ${text}`);
     }
     assert.equal(zh.density, '群组 1（flock）：5000 个半径 4 像素的个体放不进其出生区域（50×50 像素）：在彼此、障碍物和其他群组之间保持间隔时最多只能放 49 个（密度上限）');
@@ -464,7 +464,8 @@ async function englishLeftovers(page, selector) {
 const ALLOWED_WORDS = ['flock', 'path', 'flockpath', 'Boids', 'PSO', 'IGSA', 'GSA', 'ORCA', 'Gsum', 'Ctrl', 'Esc', 'Del', 'Tab', 'Shift', 'Enter',
   'Space', 'fps', 'CSV', 'JSON', 'SVG', 'PNG', 'WebM', 'MEL', 'Maya', 'Blender', 'Python', 'Chen', 'Lin', 'Zhang', 'Liu',
   'Helbing', 'Molnár', 'van', 'den', 'Berg', 'RiMEA', 'Jülich', 'Weidmann', 'Web', 'Worker', 'MiB', 'KiB', 'iframe', 'LMS',
-  'Markdown', 'rastrigin', 'sphere', 'ackley', 'griewank', 'igsa', 'pso', 'firefly', 'boids', 'forces', 'orca', 'social_force',
+  'Markdown', 'rastrigin', 'sphere', 'ackley', 'griewank', 'igsa', 'pso', 'firefly', 'boids', 'forces', 'orca', 'social_force', 'collision_free_speed',
+  'Tordeux',
   'Gm', 'Gg', 'Gc', 'Ga', 'Gd', 'Vmax', 'max', 'r_safe', 'c_obs', 'v_pref'];
 
 /** Each page with `?lang=zh`: what must be Chinese, and where no English may be left. */

@@ -23,6 +23,7 @@ const HEAVY = new Set([
   'igsa-crowd-1000',
   'pso-hills',
   'social-force-bottleneck',
+  'csm-bottleneck',
   'orca-crossing',
   'forces-e2-narrow',
   'pso-static-obstacle',

@@ -4,6 +4,7 @@
 //! the codec and validation read. Building a running planner from these is `crate::planners`.
 
 pub mod boids;
+pub mod collision_free_speed;
 pub mod firefly;
 pub mod forces;
 pub mod guidance;
@@ -14,6 +15,7 @@ pub mod social_force;
 pub mod spec;
 
 pub use boids::{Arbitration, BoidsParams, FlowGuide, Leader, Role};
+pub use collision_free_speed::CollisionFreeSpeedParams;
 pub use firefly::FireflyParams;
 pub use forces::ForcesParams;
 pub use guidance::Guidance;
@@ -21,7 +23,7 @@ pub use igsa::{IgsaParams, PathOptimizer, WaypointError};
 pub use orca::OrcaParams;
 pub use pso::PsoParams;
 use serde::{Deserialize, Serialize};
-pub use social_force::SocialForceParams;
+pub use social_force::{Ellipse, SocialForceParams};
 use spec::check_params;
 pub use spec::{ParamError, ParamSpec};
 
@@ -43,6 +45,9 @@ pub enum PlannerKind {
     Orca,
     /// Social force model (Helbing & Molnár 1995; Helbing, Farkas & Vicsek 2000): a baseline.
     SocialForce,
+    /// Collision-free speed model (Tordeux, Chraibi & Seyfried 2016; JuPedSim's default): a
+    /// first-order baseline whose speed falls with the spacing ahead.
+    CollisionFreeSpeed,
 }
 
 impl PlannerKind {
@@ -55,6 +60,7 @@ impl PlannerKind {
         PlannerKind::Igsa,
         PlannerKind::Orca,
         PlannerKind::SocialForce,
+        PlannerKind::CollisionFreeSpeed,
     ];
 
     /// The CLI / URL name.
@@ -67,6 +73,7 @@ impl PlannerKind {
             PlannerKind::Igsa => "igsa",
             PlannerKind::Orca => "orca",
             PlannerKind::SocialForce => "social_force",
+            PlannerKind::CollisionFreeSpeed => "collision_free_speed",
         }
     }
 
@@ -90,6 +97,7 @@ impl PlannerKind {
             PlannerKind::Igsa => "IGSA group path (Liu & Liu 2022)",
             PlannerKind::Orca => "ORCA (van den Berg et al. 2011)",
             PlannerKind::SocialForce => "Social force (Helbing & Molnár 1995)",
+            PlannerKind::CollisionFreeSpeed => "Collision-free speed (Tordeux et al. 2016)",
         }
     }
 
@@ -103,6 +111,9 @@ impl PlannerKind {
             PlannerKind::Igsa => PlannerConfig::Igsa(IgsaParams::default()),
             PlannerKind::Orca => PlannerConfig::Orca(OrcaParams::default()),
             PlannerKind::SocialForce => PlannerConfig::SocialForce(SocialForceParams::default()),
+            PlannerKind::CollisionFreeSpeed => {
+                PlannerConfig::CollisionFreeSpeed(CollisionFreeSpeedParams::default())
+            }
         }
     }
 
@@ -116,6 +127,7 @@ impl PlannerKind {
             PlannerKind::Igsa => IgsaParams::SPECS,
             PlannerKind::Orca => OrcaParams::SPECS,
             PlannerKind::SocialForce => SocialForceParams::SPECS,
+            PlannerKind::CollisionFreeSpeed => CollisionFreeSpeedParams::SPECS,
         }
     }
 }
@@ -191,6 +203,8 @@ pub enum PlannerConfig {
     Orca(OrcaParams),
     /// Social force model.
     SocialForce(SocialForceParams),
+    /// Collision-free speed model.
+    CollisionFreeSpeed(CollisionFreeSpeedParams),
 }
 
 impl Default for PlannerConfig {
@@ -210,12 +224,14 @@ impl PlannerConfig {
             PlannerConfig::Igsa(_) => PlannerKind::Igsa,
             PlannerConfig::Orca(_) => PlannerKind::Orca,
             PlannerConfig::SocialForce(_) => PlannerKind::SocialForce,
+            PlannerConfig::CollisionFreeSpeed(_) => PlannerKind::CollisionFreeSpeed,
         }
     }
 
     /// Whether the world gathers this planner's agents in a goal that gathers (DESIGN §4): an
     /// agent that reaches it walks to a free place inside and stops there for good. False for
-    /// the planners that keep their own arrival (PSO, firefly, ORCA, social force: their
+    /// the planners that keep their own arrival (PSO, firefly, ORCA, social force, the
+    /// collision-free speed model: their
     /// avoidance does not see the world's walkers) and for Boids prey, who must go on fleeing;
     /// theirs count as arrived while their centre is inside. The world and the scene check's
     /// capacity notice both ask this.
@@ -226,19 +242,22 @@ impl PlannerConfig {
             PlannerConfig::Pso(_)
             | PlannerConfig::Firefly(_)
             | PlannerConfig::Orca(_)
-            | PlannerConfig::SocialForce(_) => false,
+            | PlannerConfig::SocialForce(_)
+            | PlannerConfig::CollisionFreeSpeed(_) => false,
         }
     }
 
     /// Whether this planner steers its group down the goal's flow field (one field per distinct
     /// goal point and body radius, `spatial::flow_field`) in a scene with or without
-    /// obstacles: Boids with `flow_field: goal` always, ORCA and social force with flow-field
-    /// guidance among obstacles (without any their way is straight).
+    /// obstacles: Boids with `flow_field: goal` always, ORCA, social force and the
+    /// collision-free speed model with flow-field guidance among obstacles (without any their
+    /// way is straight).
     pub fn keeps_flow_field(&self, has_obstacles: bool) -> bool {
         match self {
             PlannerConfig::Boids(p) => p.flow_field == FlowGuide::Goal,
             PlannerConfig::Orca(p) => has_obstacles && p.guidance == guidance::Guidance::FlowField,
             PlannerConfig::SocialForce(p) => has_obstacles && p.guidance == guidance::Guidance::FlowField,
+            PlannerConfig::CollisionFreeSpeed(p) => has_obstacles && p.guidance == guidance::Guidance::FlowField,
             PlannerConfig::Pso(_)
             | PlannerConfig::Firefly(_)
             | PlannerConfig::Forces(_)

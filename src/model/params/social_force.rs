@@ -4,6 +4,11 @@
 //! "Simulating dynamical features of escape panic", Nature 407, 487 (2000) for the mass and the
 //! body and sliding-friction forces of touching bodies. Plain data in SI units and the table the
 //! panel, the codec and validation read; the planner is `crate::planners::social_force`.
+//!
+//! The elliptical potential comes in two specifications ([`Ellipse`]): HM's (spec I, the
+//! ellipse stretched along the other's own step) and, the default, Johansson, Helbing & Shukla, "Specification
+//! of the social force pedestrian model by evolutionary adjustment to video tracking data",
+//! Advances in Complex Systems 10, 271 (2007) (spec II, stretched along the relative step).
 
 use super::guidance::{Guidance, GUIDANCE_CHOICES};
 use super::spec::ParamSpec;
@@ -46,7 +51,30 @@ pub struct SocialForceParams {
     pub interaction_range: f32,
     /// Where the desired direction `e⁰` points: the goal's flow field or straight at the goal.
     pub guidance: Guidance,
+    /// Which step stretches the elliptical potential: β's own (spec I, 1995) or the relative
+    /// one (spec II, 2007). Default spec II: it passes 9 of the validation suite's 12 tests
+    /// where spec I passes 5 (issue 25, docs/validation.md). A scene or link that does not name
+    /// it (all written before issue 25) runs spec II too.
+    pub ellipse: Ellipse,
 }
+
+/// The specification of the elliptical agent–agent potential: `2b = √((‖r‖ + ‖r − y‖)² − ‖y‖²)`
+/// with `r = r_α − r_β` and the step `y` that stretches the ellipse.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Ellipse {
+    /// Spec I (Helbing & Molnár 1995): `y = v_β Δt`, the other's own step; a pedestrian
+    /// standing still is a circle.
+    SpecI,
+    /// Spec II (Johansson, Helbing & Shukla 2007): `y = (v_β − v_α) Δt`, the relative step; two
+    /// walking side by side at one velocity are circles to each other, one approached head-on
+    /// is stretched by the closing speed.
+    #[default]
+    SpecIi,
+}
+
+/// The choice row's options, in [`Ellipse`] order (spec II, the second, is the default).
+pub const ELLIPSE_CHOICES: &[&str] = &["spec_i", "spec_ii"];
 
 impl Default for SocialForceParams {
     fn default() -> Self {
@@ -66,6 +94,7 @@ impl Default for SocialForceParams {
             friction: 2.4e5,
             interaction_range: 5.0,
             guidance: Guidance::FlowField,
+            ellipse: Ellipse::SpecIi,
         }
     }
 }
@@ -192,6 +221,15 @@ impl SocialForceParams {
             0,
             "flow_field: the desired direction follows the goal's flow field round obstacles; goal: straight at it.",
         ),
+        // Appended after links existed: left out of links while spec II, the default (issue 25).
+        ParamSpec::choice(
+            "ellipse",
+            "Elliptical potential",
+            ELLIPSE_CHOICES,
+            1,
+            "spec_i: stretched along the other's step v_β Δt (1995); spec_ii: along the relative step (v_β − v_α) Δt (2007).",
+        )
+        .omitted_at_default(),
     ];
 
     /// Largest speed `v_max = factor · v⁰` (m/s).
