@@ -257,7 +257,9 @@ impl PlannerConfig {
             PlannerConfig::Boids(p) => p.flow_field == FlowGuide::Goal,
             PlannerConfig::Orca(p) => has_obstacles && p.guidance == guidance::Guidance::FlowField,
             PlannerConfig::SocialForce(p) => has_obstacles && p.guidance == guidance::Guidance::FlowField,
-            PlannerConfig::CollisionFreeSpeed(p) => has_obstacles && p.guidance == guidance::Guidance::FlowField,
+            PlannerConfig::CollisionFreeSpeed(p) => {
+                has_obstacles && p.guidance == guidance::Guidance::FlowField
+            }
             PlannerConfig::Pso(_)
             | PlannerConfig::Firefly(_)
             | PlannerConfig::Forces(_)
