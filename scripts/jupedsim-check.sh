@@ -32,22 +32,28 @@ cargo build --release --quiet --bin flockpath
 rm -rf "$out"
 mkdir -p "$out"
 flockpath=./target/release/flockpath
-"$flockpath" validate --tests "$tests" --planners "$baselines" --json "$out/flockpath.json" > "$out/flockpath.txt"
-"$flockpath" validate --tests "$tests" --planners "$setter" --scenes-dir "$out/scenes" > /dev/null
+# One run gives the baselines' rows and the set-ups (the setter's runs; the others' are alike).
+planners="$baselines"
+case ",$baselines," in *",$setter,"*) ;; *) planners="$baselines,$setter" ;; esac
+"$flockpath" validate --tests "$tests" --planners "$planners" --json "$out/flockpath.json" \
+  --scenes-dir "$out/all-scenes" > "$out/flockpath.txt"
+mkdir -p "$out/scenes"
+mv "$out"/all-scenes/*-"$setter"*.json "$out/scenes/"
 for model in cfsm sfm; do
   "$venv/bin/python" scripts/jupedsim_runs.py "$out/scenes" "$out/$model" "$model" "jupedsim-$model" "$setter"
   "$flockpath" validate --tests "$tests" --planners "$setter" --replay "$out/$model" --label "jupedsim-$model" \
     --json "$out/$model.json" > "$out/$model.txt"
 done
 
-"$venv/bin/python" - "$out" <<'PY'
+"$venv/bin/python" - "$out" "$baselines" <<'PY'
 import json
 import pathlib
 import sys
 
 out = pathlib.Path(sys.argv[1])
-rows = []
-for name in ["flockpath", "cfsm", "sfm"]:
+shown = sys.argv[2].split(",")
+rows = [r for r in json.loads((out / "flockpath.json").read_text())["rows"] if r["planner"] in shown]
+for name in ["cfsm", "sfm"]:
     rows += json.loads((out / f"{name}.json").read_text())["rows"]
 tests = list(dict.fromkeys(r["test"] for r in rows))
 models = list(dict.fromkeys(r["planner"] for r in rows))
