@@ -74,6 +74,30 @@ pub struct RunSetup {
     pub frame_s: f32,
 }
 
+impl RunSetup {
+    /// The set-up of a run of `scene` whose walkers start at `starts` (px) in groups
+    /// `group_of`, with the periodic `band` (px), lasting `seconds`, sampled every `frame_s`.
+    pub fn new(
+        scene: &Scene,
+        starts: &[Vec2],
+        group_of: &[u32],
+        band: Option<(f32, f32)>,
+        seconds: f32,
+        frame_s: f32,
+    ) -> Self {
+        let ppm = scene.px_per_metre;
+        RunSetup {
+            scene: scene.clone(),
+            starts_m: starts.iter().map(|p| (*p / ppm).to_array()).collect(),
+            group_of: group_of.to_vec(),
+            desired_speed_m_s: scene.groups.iter().map(|g| desired_speed(&g.planner)).collect(),
+            periodic_band_m: band.map(|(a, b)| [a / ppm, b / ppm]),
+            seconds,
+            frame_s,
+        }
+    }
+}
+
 /// Trajectories another simulator wrote for a run, by the run's name (`--replay`).
 pub type Replay<'a> = &'a (dyn Fn(&str, Option<f32>) -> Result<Trajectories, String> + Sync);
 
@@ -104,14 +128,15 @@ impl Runs<'_> {
         let who = self.replay.map_or(kind.name(), |(_, label)| label);
         let name = format!("{}-{who}{variant}", spec.id);
         let period = band.map(|(a, b)| (b - a) / PX_PER_METRE);
-        let setup = self.keep.then(|| RunSetup {
-            scene: world.scene().clone(),
-            starts_m: world.positions().iter().map(|p| (*p / PX_PER_METRE).to_array()).collect(),
-            group_of: world.group_of().to_vec(),
-            desired_speed_m_s: world.scene().groups.iter().map(|g| desired_speed(&g.planner)).collect(),
-            periodic_band_m: band.map(|(a, b)| [a / PX_PER_METRE, b / PX_PER_METRE]),
-            seconds: steps as f32 / HZ as f32,
-            frame_s: every.max(1) as f32 / HZ as f32,
+        let setup = self.keep.then(|| {
+            RunSetup::new(
+                world.scene(),
+                world.positions(),
+                world.group_of(),
+                band,
+                steps as f32 / HZ as f32,
+                every.max(1) as f32 / HZ as f32,
+            )
         });
         let rec = match self.replay {
             Some((load, _)) => {
@@ -138,7 +163,7 @@ impl Runs<'_> {
 
 /// A planner configuration's walking speed (m/s): its desired speed, else its speed limit (the
 /// parameter [`config_at_speed`] sets), NaN when it has neither.
-fn desired_speed(config: &crate::model::params::PlannerConfig) -> f32 {
+pub fn desired_speed(config: &crate::model::params::PlannerConfig) -> f32 {
     let params = config.params_json();
     let specs = config.kind().param_specs();
     ["desired_speed", "preferred_speed", "pref_speed", "max_speed", "max_velocity"]
