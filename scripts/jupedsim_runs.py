@@ -15,7 +15,8 @@ Not JuPedSim's: the periodic corridor. JuPedSim has no periodic boundary, so a w
 centre leaves the band is removed and added back at the other end (same y, a new JuPedSim id,
 the same id in the output; when that place is taken it walks on and tries again at the next
 iteration); nobody sees neighbours across the seam, which is why the suite
-measures in the band's middle. A walker removed at an exit is written, from the next frame on,
+measures in the band's middle; the walkers start on a lattice over the band (JuPedSim refuses
+the overlapping bodies flockpath's random spawn allows at 5–6 persons/m²). A walker removed at an exit is written, from the next frame on,
 at the exit's centre (on the far side of the exit line), so the crossing is found between its
 last place and there (to within one frame).
 """
@@ -82,6 +83,28 @@ def model_and_agent(model):
     raise SystemExit(f"unknown model {model!r}")
 
 
+def lattice(starts, band, area, groups, group_of, ppm):
+    """The periodic corridor's walkers on a lattice over the band, in the starts' order:
+    flockpath spawns them at random and lets bodies touch, JuPedSim refuses overlapping bodies,
+    so at 5–6 persons/m² no random start is free. Hexagonal rows across the corridor's width,
+    the walkers spread evenly along each row."""
+    diameter = 2 * max(g["agent_radius"] for g in groups) / ppm + 1e-3
+    _, y0, _, y1 = area.bounds
+    width = y1 - y0
+    # Hexagonal rows: neighbouring rows offset by half a step may be 0.87 diameters apart.
+    rows = max(1, int((width - diameter) / (0.87 * diameter)) + 1)
+    n = len(starts)
+    per_row = math.ceil(n / rows)
+    length = band[1] - band[0]
+    out = []
+    for i in range(n):
+        r, c = i % rows, i // rows
+        x = band[0] + (c + 0.5 * (r % 2)) * length / per_row
+        y = (y0 + y1) / 2 if rows == 1 else y0 + diameter / 2 + r * (width - diameter) / (rows - 1)
+        out.append((min(x, band[1] - 1e-3), y))
+    return out
+
+
 def run(setup, model):
     """Runs one set-up with `model`; returns the trajectory text."""
     scene = setup["scene"]
@@ -110,7 +133,10 @@ def run(setup, model):
         radius = g["agent_radius"] / ppm
         ours[sim.add_agent(agent(tuple(pos), journey, stage, speed, radius))] = index
 
-    for index, start in enumerate(setup["starts_m"]):
+    starts = setup["starts_m"]
+    if band:
+        starts = lattice(starts, band, area, groups, group_of, ppm)
+    for index, start in enumerate(starts):
         # JuPedSim refuses a walker overlapping another where flockpath's spawn lets bodies
         # touch: nudge it along x by up to ±0.25 m, the nearest free place first.
         for nudge in [0.0] + [s * k * 0.025 for k in range(1, 11) for s in (1, -1)]:
@@ -149,8 +175,13 @@ def run(setup, model):
             lines.append(f"{i + 1} {k} {x:.4f} {y:.4f} 0")
         if k == frames or sim.agent_count() == 0:
             break
+        stopped = None
         for _ in range(per_frame):
-            sim.iterate()
+            try:
+                sim.iterate()
+            except RuntimeError as e:  # e.g. SFM pushing a walker out of a 0.5 m corridor
+                stopped = f"# stopped by JuPedSim at {sim.elapsed_time():.2f} s: {e}"
+                break
             if band:
                 wrap = []
                 for a in sim.agents():
@@ -171,6 +202,10 @@ def run(setup, model):
                         ours[jid] = i
                         continue
                     sim.mark_agent_for_removal(jid)
+        if stopped:
+            print(f"jupedsim-check: {setup['scene']['name']} {stopped[2:]}", file=sys.stderr)
+            lines.insert(2, stopped)
+            break
     return "\n".join(lines) + "\n"
 
 
