@@ -49,7 +49,11 @@ mod tests {
         let text = script(&scene, world.positions(), world.group_of(), 30.0, "cfsm");
         assert!(text.contains("def walkable_area(") && text.contains("def run(setup, model)"));
         assert!(text.contains("SETUP = json.loads(") && text.contains("run(SETUP, \"cfsm\")"));
-        assert_eq!(text.matches("if __name__ == \"__main__\":").count(), 1, "the suite's entry point is left out");
+        assert_eq!(
+            text.matches("if __name__ == \"__main__\":").count(),
+            1,
+            "the suite's entry point is left out"
+        );
         let json = &text[text.find("r\"\"\"").expect("json") + 4..text.rfind("\"\"\")").expect("end")];
         let setup: serde_json::Value = serde_json::from_str(json).expect("valid JSON");
         assert_eq!(setup["starts_m"].as_array().map(Vec::len), Some(world.positions().len()));

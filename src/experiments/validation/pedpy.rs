@@ -43,12 +43,18 @@ pub fn trajectory_text(traj: &Trajectories, period: Option<f32>, title: &str) ->
 /// walkers' order in the run's set-up, 1-based (no new id on a periodic wrap); a walker missing
 /// from a frame (removed at an exit) holds its last place, standing still. Velocities are
 /// central differences of the positions, taken across a periodic wrap of `period` metres.
+/// A `# stopped by …` comment (a run the simulator aborted) is an error naming why.
 pub fn parse_trajectory_text(text: &str, period: Option<f32>) -> Result<Trajectories, String> {
     let mut fps = None;
     let mut rows: Vec<(usize, usize, Vec2)> = vec![];
     for (n, line) in text.lines().enumerate() {
         let line = line.trim();
         if let Some(comment) = line.strip_prefix('#') {
+            // A run the other simulator aborted (scripts/jupedsim_runs.py writes why): its
+            // walkers after the abort are not walking, so nothing in it is measured.
+            if let Some(why) = comment.trim().strip_prefix("stopped by") {
+                return Err(format!("stopped by{why}"));
+            }
             if let Some(v) = comment.trim().strip_prefix("framerate:") {
                 fps = v.trim().parse::<f32>().ok().filter(|f| *f > 0.0);
             }
@@ -164,6 +170,8 @@ mod tests {
         let read = parse_trajectory_text(wrap, Some(20.0)).expect("reads");
         assert!((read.frames[0].vel[0].x - 1.0).abs() < 1e-3, "{:?}", read.frames[0].vel[0]);
         assert!(parse_trajectory_text("1 0 0 0 0\n", None).is_err(), "no frame rate");
+        let aborted = "# framerate: 10\n# stopped by JuPedSim at 0.74 s: outside\n1 0 0 0 0\n";
+        assert!(parse_trajectory_text(aborted, None).is_err_and(|e| e.contains("0.74 s")));
         assert!(parse_trajectory_text("# framerate: 10\n1 zero 0 0 0\n", None).is_err());
     }
 

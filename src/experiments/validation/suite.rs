@@ -607,10 +607,11 @@ fn in_wall(scene: &Scene, p: Vec2) -> bool {
 /// run, each run's count held after its last frame.
 fn out_curve(frame_s: f32, runs: &[(Vec<Option<f32>>, usize)]) -> Vec<Vec<f64>> {
     let frames = runs.iter().map(|r| r.1).max().unwrap_or(0);
+    let counts: Vec<Vec<u32>> = runs.iter().map(|(times, _)| out_over_time(times, frames, frame_s)).collect();
     (0..frames)
         .map(|k| {
             let mut row = vec![f64::from(k as f32 * frame_s)];
-            row.extend(runs.iter().map(|(times, _)| f64::from(out_over_time(times, k + 1, frame_s)[k])));
+            row.extend(counts.iter().map(|c| f64::from(c[k])));
             row
         })
         .collect()
