@@ -3,7 +3,7 @@
 
 use crate::scenes::load_scene;
 use crate::{failed, finite, out, usage, whole_number, write_file, CliError};
-use flockpath::experiments::validation::pedpy;
+use flockpath::experiments::validation::{jupedsim, pedpy};
 use flockpath::export::{self, ExportOptions};
 use flockpath::sim::activity_check::{Report, Status};
 use flockpath::sim::limits::{CLI_MAX_STEPS as MAX_STEPS, CLI_RECORDING_BUDGET_BYTES};
@@ -60,6 +60,11 @@ pub struct RunArgs {
     /// (at the scene's px_per_metre, default 20), with the frame rate in the header
     #[arg(long, value_name = "FILE")]
     pedpy: Option<String>,
+    /// Write a Python script that runs the scene in JuPedSim 1.4.2 (collision-free speed model)
+    /// from the same starts: walkable area = world minus obstacles, every goal an exit, each
+    /// group's body and desired speed; it writes the trajectories in the --pedpy format
+    #[arg(long, value_name = "FILE")]
+    jupedsim: Option<String>,
     /// Keyframes per second of the MEL/Python exports (1…240, default 24)
     #[arg(long, value_name = "F", value_parser = finite::<f32>, allow_negative_numbers = true)]
     fps: Option<f32>,
@@ -73,7 +78,7 @@ type Export = fn(&Scene, &Recording, ExportOptions) -> String;
 
 impl RunArgs {
     /// Every export: its flag, the file asked for, and what it writes.
-    fn exports(&self) -> [(&'static str, Option<&str>, Export); 6] {
+    fn exports(&self) -> [(&'static str, Option<&str>, Export); 7] {
         [
             ("--paths", self.paths.as_deref(), |scene, rec, _| export::paths_csv(scene, rec)),
             ("--paths-json", self.paths_json.as_deref(), |scene, rec, _| export::paths_json(scene, rec)),
@@ -83,6 +88,18 @@ impl RunArgs {
             ("--pedpy", self.pedpy.as_deref(), |scene, rec, _| {
                 let traj = pedpy::from_recording(scene, rec, scene.px_per_metre);
                 pedpy::trajectory_text(&traj, None, &scene.name)
+            }),
+            ("--jupedsim", self.jupedsim.as_deref(), |scene, rec, _| {
+                let starts: Vec<glam::Vec2> =
+                    rec.frame(0).iter().map(|a| glam::Vec2::new(a[0], a[1])).collect();
+                let group_of: Vec<u32> = scene
+                    .groups
+                    .iter()
+                    .enumerate()
+                    .flat_map(|(g, group)| std::iter::repeat_n(g as u32, group.count as usize))
+                    .collect();
+                let seconds = rec.steps().last().map_or(0.0, |&s| s as f32 * flockpath::model::scene::DT);
+                jupedsim::script(scene, &starts, &group_of, seconds.max(1.0), "cfsm")
             }),
         ]
     }

@@ -4,7 +4,7 @@
 
 use crate::progress::Progress;
 use crate::{failed, out, usage, write_file, CliError};
-use flockpath::experiments::validation::pedpy::trajectory_text;
+use flockpath::experiments::validation::pedpy::{parse_trajectory_text, trajectory_text};
 use flockpath::experiments::validation::suite::Run;
 use flockpath::experiments::validation::units::PX_PER_METRE;
 use flockpath::experiments::validation::{find_test, Curve, Outcome, Report, TestSpec, TESTS};
@@ -51,6 +51,19 @@ pub struct ValidateArgs {
     /// wraps gets a new id)
     #[arg(long, value_name = "DIR")]
     pedpy_dir: Option<PathBuf>,
+    /// Write every run's set-up as DIR/<run>.json (the scene JSON, the walkers' starts in
+    /// metres, each group's desired speed, the periodic band, the run's length and frame
+    /// interval): what another simulator needs to run the same (scripts/jupedsim-check.sh)
+    #[arg(long, value_name = "DIR")]
+    scenes_dir: Option<PathBuf>,
+    /// Measure trajectories another simulator wrote instead of simulating: DIR/<test>-<label>
+    /// [-<variant>].txt in the --pedpy-dir format (ids in the set-up's walker order, frame rate
+    /// in a `# framerate:` line); needs --label and one planner (which sets up the scenes)
+    #[arg(long, value_name = "DIR", requires = "label")]
+    replay: Option<PathBuf>,
+    /// The name the replayed trajectories' rows get instead of the planner's (e.g. jupedsim-cfsm)
+    #[arg(long, value_name = "NAME", requires = "replay")]
+    label: Option<String>,
 }
 
 /// The planners named in `value` (`all` for every one).
@@ -107,10 +120,21 @@ pub fn validate(args: &ValidateArgs) -> Result<(), CliError> {
     if let Some(dir) = &args.csv_dir {
         std::fs::create_dir_all(dir).map_err(|e| failed(format!("cannot create --csv-dir {dir:?}: {e}")))?;
     }
-    if let Some(dir) = &args.pedpy_dir {
-        std::fs::create_dir_all(dir)
-            .map_err(|e| failed(format!("cannot create --pedpy-dir {dir:?}: {e}")))?;
+    for (flag, dir) in [("--pedpy-dir", &args.pedpy_dir), ("--scenes-dir", &args.scenes_dir)] {
+        if let Some(dir) = dir {
+            std::fs::create_dir_all(dir).map_err(|e| failed(format!("cannot create {flag} {dir:?}: {e}")))?;
+        }
     }
+    if args.replay.is_some() && kinds.len() != 1 {
+        return Err(usage("--replay measures one simulator's runs: name one planner to set up the scenes"));
+    }
+    let replay_dir = args.replay.clone();
+    let load = move |name: &str, period: Option<f32>| -> Result<_, String> {
+        let dir = replay_dir.as_deref().unwrap_or(Path::new("."));
+        let file = dir.join(format!("{name}.txt"));
+        let text = std::fs::read_to_string(&file).map_err(|e| format!("cannot read {file:?}: {e}"))?;
+        parse_trajectory_text(&text, period)
+    };
     let pairs: Vec<(&TestSpec, PlannerKind)> =
         chosen.iter().flat_map(|&t| kinds.iter().map(move |&k| (t, k))).collect();
     let progress = Progress::new(pairs.len(), "runs");
@@ -121,13 +145,19 @@ pub fn validate(args: &ValidateArgs) -> Result<(), CliError> {
     let outcomes: Vec<Outcome> = pairs
         .par_iter()
         .map(|&(t, k)| {
-            let outcome = match &args.pedpy_dir {
-                Some(dir) => {
-                    let (outcome, runs) = t.run_with_trajectories(k);
-                    write_pedpy(dir, &runs)?;
+            let wants_runs = args.pedpy_dir.is_some() || args.scenes_dir.is_some();
+            let outcome = match (&args.label, wants_runs) {
+                (Some(label), _) => {
+                    let (outcome, runs) = t.run_replaying(k, label, &load);
+                    write_runs(args, &runs)?;
                     outcome
                 }
-                None => t.run(k),
+                (None, true) => {
+                    let (outcome, runs) = t.run_with_trajectories(k);
+                    write_runs(args, &runs)?;
+                    outcome
+                }
+                (None, false) => t.run(k),
             };
             progress.inc();
             Ok(outcome)
@@ -159,12 +189,20 @@ pub fn validate(args: &ValidateArgs) -> Result<(), CliError> {
     ))
 }
 
-/// `runs` as PedPy files, DIR/<run name>.txt.
-fn write_pedpy(dir: &Path, runs: &[Run]) -> Result<(), CliError> {
+/// `runs` as PedPy files, --pedpy-dir/<run name>.txt, and their set-ups as
+/// --scenes-dir/<run name>.json, as asked.
+fn write_runs(args: &ValidateArgs, runs: &[Run]) -> Result<(), CliError> {
     for run in runs {
-        let title = format!("flockpath validate run {}", run.name);
-        let file = dir.join(format!("{}.txt", run.name));
-        write_file("--pedpy-dir file", file, &trajectory_text(&run.traj, run.period, &title))?;
+        if let Some(dir) = &args.pedpy_dir {
+            let title = format!("flockpath validate run {}", run.name);
+            let file = dir.join(format!("{}.txt", run.name));
+            write_file("--pedpy-dir file", file, &trajectory_text(&run.traj, run.period, &title))?;
+        }
+        if let Some(dir) = &args.scenes_dir {
+            let json = serde_json::to_string(&run.setup)
+                .map_err(|e| failed(format!("cannot write the set-up of {}: {e}", run.name)))?;
+            write_file("--scenes-dir file", dir.join(format!("{}.json", run.name)), &format!("{json}\n"))?;
+        }
     }
     Ok(())
 }

@@ -1,7 +1,8 @@
 //! The suite's measurements as plain functions over recorded trajectories (metres, seconds), so
 //! each can be checked on hand-placed paths with a known answer: section speed, arrival times,
 //! closest approach, lane order, density and speed in a measurement area, where agents jam,
-//! exit flow, and the reference curves (Weidmann 1993, Seyfried et al. 2005).
+//! crossings of an exit line, exit flow, and the reference curves (Weidmann 1993, Seyfried et
+//! al. 2005).
 
 use glam::Vec2;
 
@@ -46,6 +47,52 @@ impl Area {
     }
 }
 
+/// A line walkers leave across, in metres: where RiMEA counts the persons out of a room or a
+/// corridor. Its two kinds are the ones the suite's scenes need (corridors along x or y).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ExitLine {
+    /// The line x = `x` for y in `span`, crossed towards larger x.
+    Rightward {
+        /// Where the line is (m).
+        x: f32,
+        /// Its extent in y (m).
+        span: (f32, f32),
+    },
+    /// The line y = `y` for x in `span`, crossed towards smaller y (up the canvas).
+    Upward {
+        /// Where the line is (m).
+        y: f32,
+        /// Its extent in x (m).
+        span: (f32, f32),
+    },
+}
+
+impl ExitLine {
+    /// Whether `p` is on the line's out side (the line itself included).
+    pub fn is_out(&self, p: Vec2) -> bool {
+        match *self {
+            ExitLine::Rightward { x, .. } => p.x >= x,
+            ExitLine::Upward { y, .. } => p.y <= y,
+        }
+    }
+
+    /// Where between `p` (inside) and `q` (out) the step from one to the other meets the line,
+    /// as a fraction of the step, when it meets it within the line's span; `None` when the
+    /// step does not go from in to out or passes beside the line.
+    fn crossing(&self, p: Vec2, q: Vec2) -> Option<f32> {
+        if self.is_out(p) || !self.is_out(q) {
+            return None;
+        }
+        let (from, to, at, lateral, span) = match *self {
+            ExitLine::Rightward { x, span } => (p.x, q.x, x, (p.y, q.y), span),
+            ExitLine::Upward { y, span } => (p.y, q.y, y, (p.x, q.x), span),
+        };
+        let f = ((at - from) / (to - from)).clamp(0.0, 1.0);
+        let across = lateral.0 + f * (lateral.1 - lateral.0);
+        (span.0..=span.1).contains(&across).then_some(f)
+    }
+}
+
 impl Trajectories {
     /// Number of agents.
     pub fn agents(&self) -> usize {
@@ -74,6 +121,21 @@ impl Trajectories {
     pub fn section_speed(&self, a: usize, x0: f32, x1: f32) -> Option<f32> {
         let (t0, t1) = (self.crossing_time(a, x0)?, self.crossing_time(a, x1)?);
         (t1 > t0).then(|| (x1 - x0) / (t1 - t0))
+    }
+
+    /// The first time each agent's centre crosses `line` from its inside to its out side
+    /// within its span (s, linear interpolation between frames), `None` for those that never
+    /// do: the times people pass an exit, from positions alone (a walker the world removed at
+    /// an exit stays where it left, on the out side).
+    pub fn crossing_times(&self, line: ExitLine) -> Vec<Option<f32>> {
+        (0..self.agents())
+            .map(|a| {
+                self.frames.windows(2).enumerate().find_map(|(k, w)| {
+                    let f = line.crossing(*w[0].pos.get(a)?, *w[1].pos.get(a)?)?;
+                    Some(self.time(k as f32 + f))
+                })
+            })
+            .collect()
     }
 
     /// The first time each agent's centre is inside `area` (s), `None` for those never inside.
@@ -232,6 +294,17 @@ pub fn exit_flow(exit_times: &[Option<f32>]) -> Option<f64> {
     times.sort_by(f32::total_cmp);
     let (first, last) = (*times.first()?, *times.last()?);
     (times.len() >= 2 && last > first).then(|| (times.len() - 1) as f64 / f64::from(last - first))
+}
+
+/// The number of agents out by each of `frames` frames `frame_s` apart, from their exit times:
+/// RiMEA's "persons out over time" curve.
+pub fn out_over_time(exit_times: &[Option<f32>], frames: usize, frame_s: f32) -> Vec<u32> {
+    (0..frames)
+        .map(|k| {
+            let t = k as f32 * frame_s;
+            exit_times.iter().flatten().filter(|&&e| e <= t).count() as u32
+        })
+        .collect()
 }
 
 /// The time the last agent arrived (s), or `None` if one never did.
@@ -400,6 +473,38 @@ mod tests {
         let times: Vec<Option<f32>> = (0..10).map(|k| Some(3.0 + k as f32 * 0.5)).chain([None]).collect();
         assert!((exit_flow(&times).expect("flow") - 2.0).abs() < 1e-9);
         assert_eq!(exit_flow(&[Some(1.0)]), None);
+    }
+
+    #[test]
+    fn exit_line_crossings_are_counted_once_inside_the_span() {
+        // Three walkers going up past y = 1: one inside the span x 10…12, one beside it, one
+        // that crosses, turns back and crosses again (counted once, at its first crossing).
+        let line = ExitLine::Upward { y: 1.0, span: (10.0, 12.0) };
+        let t = Trajectories {
+            frame_s: 0.5,
+            group: vec![0; 3],
+            frames: [3.0, 2.0, 0.5, 1.5, 0.5]
+                .iter()
+                .enumerate()
+                .map(|(k, &y)| Frame {
+                    pos: vec![
+                        Vec2::new(11.0, 3.0 - k as f32),
+                        Vec2::new(9.0, 3.0 - k as f32),
+                        Vec2::new(10.5, y),
+                    ],
+                    vel: vec![Vec2::ZERO; 3],
+                })
+                .collect(),
+        };
+        let times = t.crossing_times(line);
+        assert!((times[0].expect("crosses") - 1.0).abs() < 1e-6, "{times:?}");
+        assert_eq!(times[1], None, "passes beside the line");
+        assert!((times[2].expect("crosses") - (0.5 + 0.5 * (1.0 / 1.5))).abs() < 1e-6, "{times:?}");
+        assert_eq!(out_over_time(&times, 5, 0.5), vec![0, 0, 2, 2, 2]);
+        let right = ExitLine::Rightward { x: 5.0, span: (0.0, 2.0) };
+        assert!(right.is_out(Vec2::new(5.0, 1.0)) && !right.is_out(Vec2::new(4.9, 1.0)));
+        assert_eq!(right.crossing(Vec2::new(4.0, 1.0), Vec2::new(6.0, 1.0)), Some(0.5));
+        assert_eq!(right.crossing(Vec2::new(6.0, 1.0), Vec2::new(4.0, 1.0)), None, "walking back in");
     }
 
     #[test]

@@ -5,8 +5,10 @@
 //!
 //! Files: `units` (scale, body, speeds), `measure` (the measurements on trajectories),
 //! `scenes` (one builder per test), `record` (a run sampled into trajectories), `suite` (the
-//! tests), `report` (rows and curves), `pedpy` (trajectories in PedPy's text format).
+//! tests), `report` (rows and curves), `pedpy` (trajectories in PedPy's text format), `jupedsim` (a
+//! scene as a JuPedSim script).
 
+pub mod jupedsim;
 pub mod measure;
 pub mod pedpy;
 pub mod record;

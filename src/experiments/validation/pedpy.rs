@@ -38,6 +38,80 @@ pub fn trajectory_text(traj: &Trajectories, period: Option<f32>, title: &str) ->
     out
 }
 
+/// Trajectories another simulator wrote in the same text format (`id frame x y z`, metres,
+/// `# framerate: F` in a comment), for measuring them with the suite's own code. Ids are the
+/// walkers' order in the run's set-up, 1-based (no new id on a periodic wrap); a walker missing
+/// from a frame (removed at an exit) holds its last place, standing still. Velocities are
+/// central differences of the positions, taken across a periodic wrap of `period` metres.
+/// A `# stopped by …` comment (a run the simulator aborted) is an error naming why.
+pub fn parse_trajectory_text(text: &str, period: Option<f32>) -> Result<Trajectories, String> {
+    let mut fps = None;
+    let mut rows: Vec<(usize, usize, Vec2)> = vec![];
+    for (n, line) in text.lines().enumerate() {
+        let line = line.trim();
+        if let Some(comment) = line.strip_prefix('#') {
+            // A run the other simulator aborted (scripts/jupedsim_runs.py writes why): its
+            // walkers after the abort are not walking, so nothing in it is measured.
+            if let Some(why) = comment.trim().strip_prefix("stopped by") {
+                return Err(format!("stopped by{why}"));
+            }
+            if let Some(v) = comment.trim().strip_prefix("framerate:") {
+                fps = v.trim().parse::<f32>().ok().filter(|f| *f > 0.0);
+            }
+            continue;
+        }
+        if line.is_empty() {
+            continue;
+        }
+        let fields: Vec<&str> = line.split_whitespace().collect();
+        let bad = || format!("line {}: expected `id frame x y z`, got {line:?}", n + 1);
+        if fields.len() < 4 {
+            return Err(bad());
+        }
+        let id: usize = fields[0].parse().map_err(|_| bad())?;
+        let frame: usize = fields[1].parse().map_err(|_| bad())?;
+        let x: f32 = fields[2].parse().map_err(|_| bad())?;
+        let y: f32 = fields[3].parse().map_err(|_| bad())?;
+        if id == 0 {
+            return Err(format!("line {}: ids start at 1", n + 1));
+        }
+        rows.push((id - 1, frame, Vec2::new(x, y)));
+    }
+    let fps = fps.ok_or("no `# framerate: F` line")?;
+    let agents = rows.iter().map(|r| r.0 + 1).max().unwrap_or(0);
+    let frames = rows.iter().map(|r| r.1 + 1).max().unwrap_or(0);
+    let mut pos: Vec<Vec<Option<Vec2>>> = vec![vec![None; agents]; frames];
+    for (a, k, p) in rows {
+        pos[k][a] = Some(p);
+    }
+    // A walker missing from a frame stays where it was last (or first) seen.
+    for a in 0..agents {
+        let first = (0..frames).find_map(|k| pos[k][a]).ok_or(format!("walker {} never appears", a + 1))?;
+        let mut last = first;
+        for frame in pos.iter_mut() {
+            last = frame[a].unwrap_or(last);
+            frame[a] = Some(last);
+        }
+    }
+    let pos: Vec<Vec<Vec2>> = pos.into_iter().map(|f| f.into_iter().flatten().collect()).collect();
+    let dt = 1.0 / fps;
+    let unwrap = |d: Vec2| match period {
+        Some(l) if d.x.abs() > 0.5 * l => Vec2::new(d.x - l * d.x.signum(), d.y),
+        _ => d,
+    };
+    let vel_at = |k: usize, a: usize| {
+        let (lo, hi) = (k.saturating_sub(1), (k + 1).min(frames - 1));
+        if hi == lo {
+            return Vec2::ZERO;
+        }
+        unwrap(pos[hi][a] - pos[lo][a]) / ((hi - lo) as f32 * dt)
+    };
+    let frames_out = (0..frames)
+        .map(|k| Frame { pos: pos[k].clone(), vel: (0..agents).map(|a| vel_at(k, a)).collect() })
+        .collect();
+    Ok(Trajectories { frame_s: dt, group: vec![0; agents], frames: frames_out })
+}
+
 /// A recording (px, every `rec.every()` steps) of `scene` as trajectories in metres.
 pub fn from_recording(scene: &Scene, rec: &Recording, px_per_metre: f32) -> Trajectories {
     let group =
@@ -61,6 +135,45 @@ pub fn from_recording(scene: &Scene, rec: &Recording, px_per_metre: f32) -> Traj
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Our own text read back: the same positions (to the 4 decimals written), the frame rate,
+    /// velocities from the positions, and a walker that left standing where it left.
+    #[test]
+    fn trajectory_text_reads_back() {
+        let traj = Trajectories {
+            frame_s: 0.1,
+            group: vec![0, 0],
+            frames: (0..4)
+                .map(|k| Frame {
+                    pos: vec![Vec2::new(k as f32 * 0.1, 1.0), Vec2::new(5.0, 2.0 - k as f32 * 0.05)],
+                    vel: vec![Vec2::new(1.0, 0.0), Vec2::new(0.0, -0.5)],
+                })
+                .collect(),
+        };
+        let read = parse_trajectory_text(&trajectory_text(&traj, None, "t"), None).expect("reads");
+        assert!((read.frame_s - 0.1).abs() < 1e-5);
+        assert_eq!(read.agents(), 2);
+        assert_eq!(read.frames.len(), 4);
+        for (f, g) in read.frames.iter().zip(&traj.frames) {
+            for a in 0..2 {
+                assert!(f.pos[a].distance(g.pos[a]) < 1e-4);
+                assert!(f.vel[a].distance(g.vel[a]) < 1e-3, "{:?} vs {:?}", f.vel[a], g.vel[a]);
+            }
+        }
+        // Walker 2 removed after frame 0: it stays at its last place, still.
+        let gone = "# framerate: 10\n1 0 0 0 0\n2 0 3 3 0\n1 1 0.1 0 0\n";
+        let read = parse_trajectory_text(gone, None).expect("reads");
+        assert_eq!(read.frames[1].pos[1], Vec2::new(3.0, 3.0));
+        assert_eq!(read.frames[1].vel[1], Vec2::ZERO);
+        // Across a periodic wrap of 20 m the speed is the walk's, not the jump's.
+        let wrap = "# framerate: 10\n1 0 29.95 1 0\n1 1 10.05 1 0\n";
+        let read = parse_trajectory_text(wrap, Some(20.0)).expect("reads");
+        assert!((read.frames[0].vel[0].x - 1.0).abs() < 1e-3, "{:?}", read.frames[0].vel[0]);
+        assert!(parse_trajectory_text("1 0 0 0 0\n", None).is_err(), "no frame rate");
+        let aborted = "# framerate: 10\n# stopped by JuPedSim at 0.74 s: outside\n1 0 0 0 0\n";
+        assert!(parse_trajectory_text(aborted, None).is_err_and(|e| e.contains("0.74 s")));
+        assert!(parse_trajectory_text("# framerate: 10\n1 zero 0 0 0\n", None).is_err());
+    }
 
     #[test]
     fn text_has_frame_rate_unit_and_one_line_per_agent_and_frame() {

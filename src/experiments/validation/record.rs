@@ -10,8 +10,8 @@ use crate::sim::world::World;
 pub struct Recorded {
     /// Frames every `sample_every` steps, from the start.
     pub traj: Trajectories,
-    /// The world's metrics at the end.
-    pub metrics: Metrics,
+    /// The world's metrics at the end (`None` for trajectories another simulator wrote).
+    pub metrics: Option<Metrics>,
 }
 
 /// The world's agents now, in metres and m/s.
@@ -41,5 +41,5 @@ pub fn record(mut world: World, steps: u32, every: u32, done: impl Fn(&Frame) ->
             break;
         }
     }
-    Recorded { traj, metrics: world.metrics() }
+    Recorded { traj, metrics: Some(world.metrics()) }
 }

@@ -1,6 +1,7 @@
 //! The scene built for each test, in metres (drawn at [`PX_PER_METRE`]): corridors, a corner,
 //! rooms with doors, a bottleneck. Each builder takes the planner every group uses.
 
+use super::measure::ExitLine;
 use super::units::{config_at_speed, px, SetupError, BODY_RADIUS_M, PX_PER_METRE};
 use crate::model::geometry::Obstacle;
 use crate::model::params::{PlannerConfig, PlannerKind};
@@ -99,7 +100,8 @@ pub fn counter_flow(cfg: &PlannerConfig, count: u32) -> (Scene, (f32, f32)) {
 }
 
 /// The corner's geometry (m): a corridor `width` wide going right along the bottom for `leg`
-/// metres, then turning left (up the screen) for `leg` metres to the goal.
+/// metres, then turning left (up the screen) for `leg` metres to an exit at its end, and on
+/// beyond the exit for [`BEYOND_EXIT`] metres to the world's top border.
 #[derive(Clone, Copy, Debug)]
 pub struct Corner {
     /// Length of each leg along its outer wall (m).
@@ -108,27 +110,46 @@ pub struct Corner {
     pub width: f32,
 }
 
+/// How far the world goes on past an exit (m): an exit on the world's border is also a wall to
+/// the planners that keep off the border (Boids' containment), so the suite's exits are doors
+/// with room beyond them, as in RiMEA's drawings.
+pub const BEYOND_EXIT: f32 = 2.0;
+
+/// An exit across the end of a corridor `width` wide whose end's middle is `end` (m): a disc
+/// as wide as the corridor centred on the end. A walker's centre reaches it only past the
+/// line half a width before the end ([`ExitLine`]s are drawn there).
+fn corridor_exit(end: [f32; 2], width: f32) -> Goal {
+    goal(end, width * 0.5)
+}
+
 impl Corner {
-    /// The walls: the inside block, the outer bottom and the outer right.
+    /// The walls: the inside block, the outer bottom and the outer right; the exit across the
+    /// second leg's end, [`BEYOND_EXIT`] below the world's top border.
     pub fn scene(&self, name: &str, cfg: &PlannerConfig, count: u32, start_len: f32) -> Scene {
-        let (l, w) = (self.leg, self.width);
-        let mut s = world(name, l + 1.0, l + 1.0);
-        s.obstacles.push(wall([0.0, 0.0], [l - w, l - w]));
-        s.obstacles.push(wall([0.0, l], [l + 1.0, l + 1.0]));
-        s.obstacles.push(wall([l, 0.0], [l + 1.0, l]));
-        s.goals.push(goal([l - w * 0.5, 1.0], (w * 0.5).min(1.0)));
-        s.groups.push(walkers("crowd", 0, count, [0.2, l - w + 0.2], [start_len, l - 0.2], 0, cfg));
+        let (l, w, m) = (self.leg, self.width, BEYOND_EXIT);
+        let mut s = world(name, l + 1.0, l + 1.0 + m);
+        s.obstacles.push(wall([0.0, 0.0], [l - w, l - w + m]));
+        s.obstacles.push(wall([0.0, l + m], [l + 1.0, l + 1.0 + m]));
+        s.obstacles.push(wall([l, 0.0], [l + 1.0, l + m]));
+        s.goals.push(corridor_exit([l - w * 0.5, m], w));
+        s.groups.push(walkers("crowd", 0, count, [0.2, l - w + 0.2 + m], [start_len, l - 0.2 + m], 0, cfg));
         s
     }
 
-    /// Where the arrivals are counted: the last 2 m of the second leg (m).
-    pub fn arrived(&self, p: Vec2) -> bool {
-        p.y < 2.0 && p.x > self.leg - self.width
+    /// The exit line: across the second leg half a width before its end, where the exit
+    /// begins (m).
+    pub fn exit_line(&self) -> ExitLine {
+        ExitLine::Upward { y: BEYOND_EXIT + self.width * 0.5, span: (self.leg - self.width, self.leg) }
+    }
+
+    /// The exit's centre (m): a walker whose centre is within half a width of it has left.
+    pub fn exit_centre(&self) -> Vec2 {
+        Vec2::new(self.leg - self.width * 0.5, BEYOND_EXIT)
     }
 }
 
 /// T15's straight comparison: a corridor `length` × `width` m with the crowd in its first
-/// `start_len` metres and the goal at its end; arrivals counted in the last 2 m.
+/// `start_len` metres and an exit across its end ([`BEYOND_EXIT`] before the world's end).
 pub fn straight(
     name: &str,
     cfg: &PlannerConfig,
@@ -137,10 +158,15 @@ pub fn straight(
     width: f32,
     start_len: f32,
 ) -> Scene {
-    let mut s = world(name, length, width);
-    s.goals.push(goal([length - 1.0, width * 0.5], (width * 0.5).min(1.0)));
+    let mut s = world(name, length + BEYOND_EXIT, width);
+    s.goals.push(corridor_exit([length, width * 0.5], width));
     s.groups.push(walkers("crowd", 0, count, [0.2, 0.2], [start_len, width - 0.2], 0, cfg));
     s
+}
+
+/// The exit line of [`straight`]'s corridor: half a width before its end (m).
+pub fn straight_exit_line(length: f32, width: f32) -> ExitLine {
+    ExitLine::Rightward { x: length - width * 0.5, span: (0.0, width) }
 }
 
 /// Which wall of a room a door is in.
@@ -284,19 +310,36 @@ pub fn small_room(cfg: &PlannerConfig, count: u32) -> (Scene, Room) {
 }
 
 /// T12's bottleneck (m): room 10 × 10, corridor from x = 10 to 16, 2 m wide, second room
-/// from 16 to 26 with the goal in it.
+/// from 16 to 26 with its exit (a door as wide as the corridor) in its right wall at x = 26,
+/// [`BEYOND_EXIT`] before the world's border.
 pub const BOTTLENECK: (f32, f32, f32) = (10.0, 16.0, 2.0);
 
-/// T12: 150 walkers leave a room through a corridor into a second room.
+/// Where T12's last exit is (m): the door's middle in the second room's right wall.
+pub const BOTTLENECK_EXIT: [f32; 2] = [26.0, 5.0];
+
+/// T12: 150 walkers leave a room through a corridor into a second room and out of its exit.
 pub fn bottleneck(cfg: &PlannerConfig, count: u32) -> Scene {
     let (x_in, x_out, w) = BOTTLENECK;
-    let mut s = world("validate-t12-bottleneck", 26.0, 10.0);
+    let [x_exit, y_exit] = BOTTLENECK_EXIT;
+    let mut s = world("validate-t12-bottleneck", x_exit + BEYOND_EXIT, 10.0);
     let (y0, y1) = (5.0 - w * 0.5, 5.0 + w * 0.5);
     s.obstacles.push(wall([x_in, 0.0], [x_out, y0]));
     s.obstacles.push(wall([x_in, y1], [x_out, 10.0]));
-    s.goals.push(goal([23.0, 5.0], 2.0));
+    s.obstacles.push(wall([x_exit, 0.0], [x_exit + BEYOND_EXIT, y_exit - w * 0.5]));
+    s.obstacles.push(wall([x_exit, y_exit + w * 0.5], [x_exit + BEYOND_EXIT, 10.0]));
+    s.goals.push(corridor_exit(BOTTLENECK_EXIT, w));
     s.groups.push(walkers("crowd", 0, count, [0.3, 0.3], [8.0, 9.7], 0, cfg));
     s
+}
+
+/// T12's two counting lines (m): the corridor's end (the flow out of the bottleneck) and the
+/// last exit's line, 1 m before the door (where the exit begins).
+pub fn bottleneck_lines() -> (ExitLine, ExitLine) {
+    let (_, x_out, w) = BOTTLENECK;
+    (
+        ExitLine::Rightward { x: x_out, span: (5.0 - w * 0.5, 5.0 + w * 0.5) },
+        ExitLine::Rightward { x: BOTTLENECK_EXIT[0] - w * 0.5, span: (0.0, 10.0) },
+    )
 }
 
 /// T7's age groups: name and desired-speed range (m/s). Illustrative ranges in the shape of
