@@ -3,6 +3,7 @@
 //! other bodies and one heading for a moving goal (fields of their own).
 
 use flockpath::model::geometry::Obstacle;
+use flockpath::model::params::social_force::Ellipse;
 use flockpath::model::params::{FlowGuide, PlannerConfig, PlannerKind};
 use flockpath::model::scene::{Goal, GoalMotion, Region, Scene};
 use flockpath::presets;
@@ -31,12 +32,20 @@ pub fn scene() -> Scene {
         }
         config
     };
+    // Spec I, as when `PINNED` was computed (spec II became social force's default later).
+    let social_force_spec_i = || {
+        let mut config = PlannerKind::SocialForce.default_config();
+        if let PlannerConfig::SocialForce(p) = &mut config {
+            p.ellipse = Ellipse::SpecI;
+        }
+        config
+    };
     let plan: [(PlannerConfig, u32, f32); 9] = [
         (PlannerKind::Orca.default_config(), 0, 4.0),
         (PlannerKind::Orca.default_config(), 0, 4.0),
         (PlannerKind::Orca.default_config(), 0, 6.0),
-        (PlannerKind::SocialForce.default_config(), 0, 4.0),
-        (PlannerKind::SocialForce.default_config(), 0, 4.0),
+        (social_force_spec_i(), 0, 4.0),
+        (social_force_spec_i(), 0, 4.0),
         (boids_on_field(), 0, 4.0),
         (boids_on_field(), 0, 4.0),
         (boids_on_field(), 1, 4.0),
