@@ -44,6 +44,16 @@ pub enum ExportError {
     Scale(f32),
 }
 
+impl crate::model::refusal::Refusal for ExportError {
+    fn message(&self) -> crate::model::refusal::Message {
+        use crate::model::refusal::{Code, Message};
+        match self {
+            ExportError::FrameRate(x) => Message::new(Code::ExportFrameRate).with("value", x.to_string()),
+            ExportError::Scale(x) => Message::new(Code::ExportScale).with("value", x.to_string()),
+        }
+    }
+}
+
 impl Default for ExportOptions {
     fn default() -> Self {
         Self { fps: 24.0, scale: 0.01 }

@@ -78,6 +78,13 @@ impl TryRng for Rng {
 #[error("cannot draw a fresh seed: the system's random source failed ({0})")]
 pub struct EntropyError(getrandom::Error);
 
+impl EntropyError {
+    /// The random source's own words (for the message's `reason`).
+    pub fn source_text(&self) -> String {
+        self.0.to_string()
+    }
+}
+
 /// A fresh 32-bit seed from the operating system (natively) or `crypto.getRandomValues`
 /// (in the browser, through getrandom's `wasm_js` backend). For a front-end's "new seed" only:
 /// a run itself never draws entropy, so the same scene and seed replay the same run.

@@ -67,8 +67,8 @@ fn distinct_fields_over_the_memory_limit_are_refused_naming_the_group_and_the_li
     assert_eq!(cost::check(&many_groups(fit, fit)), Ok(()));
     let e = cost::check(&many_groups(fit + 1, fit + 1)).expect_err("one field more");
     assert!(matches!(e, SceneError::FlowFieldMemory { .. }), "{e:?}");
-    assert_eq!(e.code(), "flow_field_memory");
-    let arg = |name: &str| e.args().into_iter().find(|(k, _)| *k == name).map(|(_, v)| v);
+    assert_eq!(e.code(), "scene.flow_field_memory");
+    let arg = |name: &str| e.message().arg_text(name);
     assert_eq!(arg("path").as_deref(), Some(format!("groups[{fit}]").as_str()));
     assert_eq!(arg("limit_mb").as_deref(), Some("1024"));
     assert_eq!(arg("fields"), Some((fit + 1).to_string()));

@@ -27,7 +27,7 @@ fn pillars_with_group_name(name: &str) -> String {
 }
 
 fn arg(e: &SceneError, name: &str) -> String {
-    e.args().into_iter().find(|(k, _)| *k == name).map(|(_, v)| v).unwrap_or_default()
+    e.message().arg_text(name).unwrap_or_default()
 }
 
 #[test]
@@ -35,7 +35,7 @@ fn a_name_of_7_mib_is_refused_naming_the_field_and_the_limit() {
     let text = pillars_with_group_name(&"x".repeat(7 << 20));
     for e in [scene_from_json(&text).expect_err("JSON"), scene_from_any(&text).expect_err("the page's load")]
     {
-        assert_eq!(e.code(), "field");
+        assert_eq!(e.code(), "scene.field");
         assert_eq!(arg(&e, "path"), "groups[0].name");
         assert!(arg(&e, "value").starts_with("text of 7340032 character(s) (\"xxxx"), "{e}");
         assert_eq!(arg(&e, "allowed"), format!("text of at most {MAX_NAME_CHARS} characters on one line"));
@@ -45,7 +45,7 @@ fn a_name_of_7_mib_is_refused_naming_the_field_and_the_limit() {
     let mut scene = (presets::lookup("pillars").expect("preset").build)();
     scene.groups[0].name = "x".repeat(7 << 20);
     let e = scene_from_fragment(&scene_to_fragment(&scene)).expect_err("a 7 MiB link payload");
-    assert_eq!((e.code(), arg(&e, "limit")), ("too_large", MAX_SCENE_BYTES.to_string()));
+    assert_eq!((e.code(), arg(&e, "limit")), ("scene.too_large", MAX_SCENE_BYTES.to_string()));
     // …and a name just over the limit, which unpacks, is refused by name.
     scene.groups[0].name = "名".repeat(MAX_NAME_CHARS + 1);
     let e = scene_from_fragment(&scene_to_fragment(&scene)).expect_err("101 characters");
@@ -91,7 +91,7 @@ fn the_largest_scene_that_loads_round_trips_through_its_link_and_a_larger_one_is
 
     // A few groups more and its link would not open: refused on load, by the limit's name.
     let e = scene_from_json(&serde_json::to_string(&more).expect("JSON")).expect_err("too long a link");
-    assert_eq!(e.code(), "too_large");
+    assert_eq!(e.code(), "scene.too_large_bytes");
     assert_eq!((arg(&e, "what"), arg(&e, "limit")), ("the scene's link".into(), MAX_LINK_CHARS.to_string()));
     assert!(e.to_string().starts_with("the scene's link is too large ("), "{e}");
 }
@@ -123,7 +123,7 @@ fn scene_with_too_long_a_link() -> flockpath::Scene {
 fn a_link_longer_than_a_browser_keeps_is_refused_by_the_link_limit() {
     let scene = scene_with_too_long_a_link();
     let e = scene_from_json(&serde_json::to_string(&scene).expect("JSON")).expect_err("too long a link");
-    assert_eq!(e.code(), "too_large");
+    assert_eq!(e.code(), "scene.too_large_bytes");
     assert_eq!((arg(&e, "what"), arg(&e, "limit")), ("the scene's link".into(), MAX_LINK_CHARS.to_string()));
     assert!(e.to_string().starts_with("the scene's link is too large ("), "{e}");
     assert!(e.to_string().ends_with(&format!("; limit {MAX_LINK_CHARS} bytes)")), "{e}");

@@ -69,6 +69,27 @@ pub enum OptimizeError {
     NothingToRun,
 }
 
+impl crate::model::refusal::Refusal for crate::optim::UnknownName {
+    fn message(&self) -> crate::model::refusal::Message {
+        use crate::model::refusal::{Code, Message};
+        match self {
+            crate::optim::UnknownName::Algorithm(name) => {
+                let known: Vec<&str> = crate::optim::Algorithm::ALL.iter().map(|a| a.name()).collect();
+                Message::new(Code::LabUnknownAlgorithm).with("name", name.clone()).with("known", known)
+            }
+            crate::optim::UnknownName::Function(name, known) => Message::new(Code::LabUnknownFunction)
+                .with("name", name.clone())
+                .with("known", known.split(", ").collect::<Vec<_>>()),
+        }
+    }
+}
+
+impl crate::model::refusal::Refusal for OptimizeError {
+    fn message(&self) -> crate::model::refusal::Message {
+        crate::model::refusal::Message::new(crate::model::refusal::Code::OptimizeNothing)
+    }
+}
+
 /// One independent run: its final best value, best-so-far per iteration (index 0 = after
 /// initialisation), evaluations and time.
 #[derive(Clone, Debug, PartialEq)]

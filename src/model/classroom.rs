@@ -12,6 +12,7 @@
 //! refused with a message naming the option and the allowed names, never read as something else.
 
 use crate::model::edit::{Edit, ItemRef};
+use crate::model::refusal::{Arg, Code, Message, Refusal};
 use serde::Serialize;
 use std::collections::BTreeSet;
 
@@ -529,6 +530,28 @@ pub fn vocabulary() -> serde_json::Value {
         "lock": Field::Lock.names(),
         "hide": Field::Hide.names(),
     })
+}
+
+impl Refusal for ClassroomError {
+    fn message(&self) -> Message {
+        match self {
+            ClassroomError::UnknownName { field, name } => Message::new(Code::ClassroomUnknownName)
+                .with("field", field.key())
+                .with("name", name.clone())
+                .with("known", field.names()),
+            ClassroomError::TooLong { field, bytes } => Message::new(Code::ClassroomTooLong)
+                .with("field", field.key())
+                .with("bytes", *bytes)
+                .with("most", MAX_OPTION_BYTES),
+        }
+    }
+}
+
+impl Refusal for Locked {
+    fn message(&self) -> Message {
+        let part = self.part.name();
+        Message::new(Code::ClassroomLocked).with("part", Arg::term(format!("classroom.part.{part}"), part))
+    }
 }
 
 #[cfg(test)]

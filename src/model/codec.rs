@@ -30,6 +30,7 @@ use crate::model::activity::Activity;
 use crate::model::classroom::{Classroom, ClassroomError, Field, Options};
 use crate::model::geometry::Obstacle;
 use crate::model::params::{PlannerConfig, PlannerKind};
+use crate::model::refusal::{Code, Message};
 use crate::model::scene::{
     allowed_for, Goal, GoalMotion, Group, Hill, OnArrival, PathSpec, Region, Scene, SceneError, ViewOptions,
     DEFAULT_PX_PER_METRE,
@@ -85,7 +86,7 @@ fn as_written(error: SceneError, text: &str) -> SceneError {
 fn check_input_size(text: &str) -> Result<(), SceneError> {
     if text.len() > MAX_INPUT_BYTES {
         return Err(SceneError::TooLarge {
-            what: "the scene text",
+            what: Code::WhatSceneText,
             bytes: Some(text.len()),
             limit: MAX_INPUT_BYTES,
         });
@@ -135,7 +136,7 @@ pub fn check_link_fits(scene: &Scene) -> Result<(), SceneError> {
     let payload = link_payload(scene);
     if payload.len() > MAX_SCENE_BYTES {
         return Err(SceneError::TooLarge {
-            what: "the unpacked scene string",
+            what: Code::WhatUnpackedScene,
             bytes: Some(payload.len()),
             limit: MAX_SCENE_BYTES,
         });
@@ -147,7 +148,7 @@ pub fn check_link_fits(scene: &Scene) -> Result<(), SceneError> {
         let chars = FRAGMENT_VERSION.len() + 1 + pack(&payload).len();
         if chars > MAX_LINK_CHARS {
             return Err(SceneError::TooLarge {
-                what: "the scene's link",
+                what: Code::WhatSceneLink,
                 bytes: Some(chars),
                 limit: MAX_LINK_CHARS,
             });
@@ -163,22 +164,34 @@ fn pack(bytes: &[u8]) -> String {
 /// Base64url-decodes and inflates a payload into text.
 fn unpack(payload: &str) -> Result<String, SceneError> {
     let packed = URL_SAFE_NO_PAD.decode(payload.trim_end_matches('=')).map_err(|e| {
-        SceneError::Parse(format!("the scene string is not valid base64 ({e}); was it cut short?"))
+        SceneError::parse(Message::new(Code::SceneBadBase64).with("reason", base64_reason(&e)))
     })?;
     let bytes =
         miniz_oxide::inflate::decompress_to_vec_with_limit(&packed, MAX_SCENE_BYTES).map_err(|e| match e
             .status
         {
-            miniz_oxide::inflate::TINFLStatus::HasMoreOutput => SceneError::TooLarge {
-                what: "the unpacked scene string",
-                bytes: None,
-                limit: MAX_SCENE_BYTES,
-            },
-            _ => SceneError::Parse(
-                "the scene string is damaged or truncated: was it cut short when copied?".into(),
-            ),
+            miniz_oxide::inflate::TINFLStatus::HasMoreOutput => {
+                SceneError::TooLarge { what: Code::WhatUnpackedScene, bytes: None, limit: MAX_SCENE_BYTES }
+            }
+            _ => SceneError::parse(Message::new(Code::SceneDamaged)),
         })?;
-    String::from_utf8(bytes).map_err(|_| SceneError::Parse("the scene string does not hold text".into()))
+    String::from_utf8(bytes).map_err(|_| SceneError::parse(Message::new(Code::SceneNotText)))
+}
+
+/// base64's refusal as a message (its own words, from its typed error).
+fn base64_reason(e: &base64::DecodeError) -> Message {
+    match *e {
+        base64::DecodeError::InvalidByte(offset, byte) => {
+            Message::new(Code::Base64InvalidSymbol).with("symbol", byte).with("offset", offset)
+        }
+        base64::DecodeError::InvalidLastSymbol(offset, byte) => {
+            Message::new(Code::Base64InvalidLastSymbol).with("symbol", byte).with("offset", offset)
+        }
+        base64::DecodeError::InvalidLength(length) => {
+            Message::new(Code::Base64InvalidLength).with("length", length)
+        }
+        base64::DecodeError::InvalidPadding => Message::new(Code::Base64InvalidPadding),
+    }
 }
 
 /// Decodes a fragment value of any readable version; also accepts a whole URL or a `#s=…`
@@ -188,9 +201,7 @@ pub fn scene_from_fragment(input: &str) -> Result<Scene, SceneError> {
     let value = fragment_value(input.trim());
     check_input_size(value)?;
     let (version, payload) = value.split_once('.').ok_or_else(|| {
-        SceneError::Parse(format!(
-            "the scene string has no version prefix (expected \"{FRAGMENT_VERSION}.…\")"
-        ))
+        SceneError::parse(Message::new(Code::SceneNoVersion).with("expected", FRAGMENT_VERSION))
     })?;
     match version {
         "1" => scene_from_json(&unpack(payload)?),
@@ -206,11 +217,11 @@ pub fn scene_from_fragment(input: &str) -> Result<Scene, SceneError> {
                 scene_from_json(&text)
             }
         }
-        other => Err(SceneError::Parse(format!(
-            "unknown scene format version {:?}; this flockpath reads versions {}",
-            other.chars().take(12).collect::<String>(),
-            READABLE_VERSIONS.join(" and ")
-        ))),
+        other => Err(SceneError::parse(
+            Message::new(Code::SceneUnknownVersion)
+                .with("version", other.chars().take(12).collect::<String>())
+                .with("readable", READABLE_VERSIONS.to_vec()),
+        )),
     }
 }
 
@@ -223,7 +234,7 @@ pub fn scene_from_any(input: &str) -> Result<Scene, SceneError> {
     if trimmed.starts_with('{') {
         scene_from_json(trimmed)
     } else if trimmed.is_empty() {
-        Err(SceneError::Parse("the scene text is empty".into()))
+        Err(SceneError::parse(Message::new(Code::SceneEmpty)))
     } else if looks_like_preset_name(trimmed) {
         crate::model::presets::lookup(trimmed).map(|p| (p.build)())
     } else {
@@ -616,11 +627,9 @@ fn deserialize<T: serde::de::DeserializeOwned>(text: &str, layout: Layout) -> Re
     let value: T =
         serde_path_to_error::deserialize(&mut deserializer).map_err(|e| refusal(&e, text, layout))?;
     deserializer.end().map_err(|e| {
-        SceneError::Parse(format!(
-            "unexpected text after the end of the scene (line {}, column {})",
-            e.line(),
-            e.column()
-        ))
+        SceneError::parse(
+            Message::new(Code::SceneTrailingText).with("line", e.line()).with("column", e.column()),
+        )
     })?;
     Ok(value)
 }
@@ -629,9 +638,11 @@ fn deserialize<T: serde::de::DeserializeOwned>(text: &str, layout: Layout) -> Re
 fn refusal(error: &serde_path_to_error::Error<serde_json::Error>, text: &str, layout: Layout) -> SceneError {
     let inner = error.inner();
     let raw = inner.to_string();
-    let at = format!("line {}, column {}", inner.line(), inner.column());
+    let (line, column) = (inner.line(), inner.column());
     if inner.is_eof() {
-        return SceneError::Parse(format!("the scene text ends too early ({at}): was it cut short?"));
+        return SceneError::parse(
+            Message::new(Code::SceneCutShort).with("line", line).with("column", column),
+        );
     }
     let mut segments: Vec<Segment> = error.path().iter().cloned().collect();
     // Best-effort re-reads that locate the field; the parser's error itself is what is reported.
@@ -664,9 +675,12 @@ fn refusal(error: &serde_path_to_error::Error<serde_json::Error>, text: &str, la
     };
     let about_a_key = message.starts_with("missing field") || message.starts_with("unknown field");
     if path.is_empty() && !about_a_key {
-        return SceneError::Parse(match layout {
-            Layout::Keyed => format!("the text is not a scene object ({message}, {at})"),
-            Layout::Compact => format!("the scene string does not hold a version 2 scene ({message})"),
+        return SceneError::parse(match layout {
+            Layout::Keyed => Message::new(Code::SceneNotObject)
+                .with("reason", message)
+                .with("line", line)
+                .with("column", column),
+            Layout::Compact => Message::new(Code::SceneNotV2).with("reason", message),
         });
     }
     if let Some(bad) = bad_string {
@@ -683,9 +697,13 @@ fn refusal(error: &serde_path_to_error::Error<serde_json::Error>, text: &str, la
                 (token, hint.or_else(|| Some("a finite number (JSON has no NaN or Infinity)".into())))
             }
             None if inner.is_syntax() => {
-                return SceneError::Parse(format!(
-                    "the scene text is not valid JSON: {message} ({at}, in {path})"
-                ))
+                return SceneError::parse(
+                    Message::new(Code::SceneNotJson)
+                        .with("reason", message)
+                        .with("line", line)
+                        .with("column", column)
+                        .with("path", path),
+                )
             }
             None => ("refused".to_string(), hint),
         },

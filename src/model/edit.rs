@@ -3,6 +3,7 @@
 
 use crate::model::geometry::Obstacle;
 use crate::model::params::PlannerConfig;
+use crate::model::refusal::{Code, Message};
 use crate::model::scene::{Goal, GoalMotion, Group, PathSpec, Scene, SceneError, DEFAULT_PATH_RADIUS};
 
 /// A path is picked within this many px of its polyline (or the pick tolerance, if larger).
@@ -90,7 +91,7 @@ fn missing(item: ItemRef) -> SceneError {
         ItemRef::Group(i) => ("group", i),
         ItemRef::Path(i) => ("path", i),
     };
-    SceneError::BadReference(format!("there is no {what} {}", u64::from(i) + 1))
+    SceneError::no_such_item(what, u64::from(i) + 1)
 }
 
 fn translate(o: &mut Obstacle, d: Vec2) {
@@ -129,18 +130,18 @@ pub fn apply(scene: &Scene, edit: &Edit) -> Result<Scene, SceneError> {
                 match &mut target.planner {
                     PlannerConfig::Boids(p) => p.path = number,
                     other => {
-                        return Err(SceneError::OutOfRange(format!(
-                            "group {} uses {}; path following is part of Boids steering",
-                            g + 1,
-                            other.kind().label()
-                        )))
+                        return Err(SceneError::OutOfRange(
+                            Message::new(Code::ScenePathNeedsBoids)
+                                .with("group", g + 1)
+                                .with("planner", other.kind().label_term()),
+                        ))
                     }
                 }
             }
         }
         Edit::Move { item, dx, dy } => {
             if !dx.is_finite() || !dy.is_finite() {
-                return Err(SceneError::NotFinite("the move distance".into()));
+                return Err(SceneError::NotFinite(Message::new(Code::SceneMoveNotFinite)));
             }
             let d = Vec2::new(*dx, *dy);
             match *item {

@@ -2,6 +2,7 @@
 //! experiment (DESIGN §3.5) as plain data: presets build their scenes, `sim::fitness` gives each
 //! behaviour its measures' parameters and weights.
 
+use crate::model::refusal::{Code, Message, Refusal};
 use serde::{Deserialize, Serialize};
 
 /// A behaviour or environment code that names none of the paper's cases.
@@ -101,6 +102,19 @@ impl Environment {
             Environment::Open => "open",
             Environment::Narrow => "narrow passage",
             Environment::Cluttered => "cluttered",
+        }
+    }
+}
+
+impl Refusal for UnknownCase {
+    fn message(&self) -> Message {
+        match self {
+            UnknownCase::Behaviour(name) => {
+                Message::new(Code::TuneUnknownBehaviour).with("name", name.clone())
+            }
+            UnknownCase::Environment(name) => {
+                Message::new(Code::TuneUnknownEnvironment).with("name", name.clone())
+            }
         }
     }
 }

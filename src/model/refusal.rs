@@ -1,178 +1,562 @@
-//! Refusals in a form the pages can word in the reader's language: beside its English message
-//! (the `Display` text every front-end shows), each refusal has a stable `code` and named `args`
-//! (strings: a field path, the refused value, what is allowed, a limit, known names). The web
-//! layer puts them on the JS `Error` (`error.code`, `error.args`), and the page formats them with
-//! its strings tables (`www/js/core/errors.js`, keys `error.<code>`). Codes and argument names
-//! are a contract with those tables: add freely, never rename.
+//! Errors as data: every refusal a user can meet is a [`Message`], a stable [`Code`] with named,
+//! typed [`Arg`]s. Its English text (the `Display` of every core error, what the CLI prints and
+//! scripts read) is rendered from the code's English template ([`Code::english`]); the pages
+//! word the same code from their own template in the reader's language
+//! (`www/js/core/messages/<lang>.js`), so no front-end ever reads an English sentence to make
+//! another one. Codes and argument names are a contract with those files: add freely, never
+//! rename (a test checks every code has a template in every language with the same arguments).
 //!
-//! Layer: model (plain data about the model's own errors).
+//! Template syntax: `{name}` is an argument; `{name:?}` is a text argument in double quotes
+//! (Rust's `{:?}`); `{name:and}` / `{name:or}` are lists joined with "and" / "or"; a brace not
+//! followed by a name and `}` or `:` is literal text (`{…}`).
+//!
+//! Layer: model (plain data about the model's own errors; higher layers add their codes here).
 
-use crate::model::params::{ParamError, SetParamError, UnknownPlanner};
-use crate::model::scene::SceneError;
+use std::fmt;
 
-/// A refusal with a stable code and named string arguments beside its English message.
-pub trait Refusal: std::fmt::Display {
-    /// The stable name of this kind of refusal (`field`, `unknown_preset`, …).
-    fn code(&self) -> &'static str;
-    /// The refusal's parts by name, as text.
-    fn args(&self) -> Vec<(&'static str, String)>;
+/// A refusal with a stable code and typed arguments beside its English message.
+pub trait Refusal: fmt::Display {
+    /// The refusal as data: its code and arguments.
+    fn message(&self) -> Message;
+
+    /// The stable name of this kind of refusal (`scene.field`, `lab.unknown_algorithm`, …).
+    fn code(&self) -> &'static str {
+        self.message().code.as_str()
+    }
 }
 
-impl Refusal for SceneError {
-    fn code(&self) -> &'static str {
-        match self {
-            SceneError::Parse(_) => "parse",
-            SceneError::NotFinite(_) => "not_finite",
-            SceneError::OutOfRange(_) => "out_of_range",
-            SceneError::BadReference(_) => "bad_reference",
-            SceneError::Blocked(_) => "blocked",
-            SceneError::TooCostly(_) => "too_costly",
-            SceneError::Field(_) => "field",
-            SceneError::TooLarge { .. } => "too_large",
-            SceneError::FlowFieldMemory { .. } => "flow_field_memory",
-            SceneError::UnknownPreset { .. } => "unknown_preset",
-        }
+/// One argument of a message.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Arg {
+    /// Text shown as it is: a name, a field path, a value as the user wrote it.
+    Text(String),
+    /// A whole number (counts, indices counted from 1, limits).
+    Int(i64),
+    /// A number (a limit, a coordinate): the page formats it by its language's rules.
+    Num(f64),
+    /// Names (known presets, planners): joined by the template's `:and` / `:or`, or by commas.
+    List(Vec<String>),
+    /// A word the page has in its strings table (`planner.boids`, `unit.px/step`), with its
+    /// English: planner and parameter labels, units.
+    Term {
+        /// The strings table key.
+        key: String,
+        /// Its English words.
+        english: String,
+    },
+    /// A message inside a message (the reason a scene could not be read, what a field allows).
+    Message(Box<Message>),
+}
+
+impl Arg {
+    /// An `f32` as the number its shortest decimal text spells (`0.1`, not `0.100000001…`).
+    pub fn f32(x: f32) -> Arg {
+        Arg::Num(x.to_string().parse().unwrap_or(f64::from(x)))
     }
 
-    fn args(&self) -> Vec<(&'static str, String)> {
+    /// A term of the strings table ([`Arg::Term`]).
+    pub fn term(key: impl Into<String>, english: impl Into<String>) -> Arg {
+        Arg::Term { key: key.into(), english: english.into() }
+    }
+
+    fn render(&self, spec: &str, out: &mut String) {
         match self {
-            // Worded by the core only: the page matches the few it words itself (unknown
-            // version, the planning and density limits) by their text and shows the rest as given.
-            SceneError::Parse(m)
-            | SceneError::OutOfRange(m)
-            | SceneError::BadReference(m)
-            | SceneError::Blocked(m)
-            | SceneError::TooCostly(m) => vec![("message", m.clone())],
-            SceneError::NotFinite(what) => vec![("what", what.clone())],
-            SceneError::Field(f) => {
-                vec![("path", f.path.clone()), ("value", f.value.clone()), ("allowed", f.allowed.clone())]
+            Arg::Text(t) if spec == "?" => out.push_str(&format!("{t:?}")),
+            Arg::Text(t) => out.push_str(t),
+            Arg::Int(n) => out.push_str(&n.to_string()),
+            Arg::Num(x) => out.push_str(&x.to_string()),
+            Arg::List(items) => {
+                let items: Vec<String> = if spec == "?" {
+                    items.iter().map(|i| format!("{i:?}")).collect()
+                } else {
+                    items.clone()
+                };
+                let joined = match (spec, items.split_last()) {
+                    ("and" | "or", Some((last, rest))) if !rest.is_empty() => {
+                        format!("{} {spec} {last}", rest.join(", "))
+                    }
+                    _ => items.join(", "),
+                };
+                out.push_str(&joined);
             }
-            SceneError::TooLarge { what, bytes, limit } => {
-                let mut args = vec![("what", (*what).to_string()), ("limit", limit.to_string())];
-                if let Some(bytes) = bytes {
-                    args.push(("bytes", bytes.to_string()));
+            Arg::Term { english, .. } => out.push_str(english),
+            Arg::Message(m) => out.push_str(&m.to_string()),
+        }
+    }
+}
+
+impl From<String> for Arg {
+    fn from(s: String) -> Self {
+        Arg::Text(s)
+    }
+}
+
+impl From<&str> for Arg {
+    fn from(s: &str) -> Self {
+        Arg::Text(s.to_string())
+    }
+}
+
+impl From<Message> for Arg {
+    fn from(m: Message) -> Self {
+        Arg::Message(Box::new(m))
+    }
+}
+
+impl From<Vec<String>> for Arg {
+    fn from(items: Vec<String>) -> Self {
+        Arg::List(items)
+    }
+}
+
+impl From<Vec<&str>> for Arg {
+    fn from(items: Vec<&str>) -> Self {
+        Arg::List(items.into_iter().map(str::to_string).collect())
+    }
+}
+
+impl From<f64> for Arg {
+    fn from(x: f64) -> Self {
+        Arg::Num(x)
+    }
+}
+
+impl From<f32> for Arg {
+    fn from(x: f32) -> Self {
+        Arg::f32(x)
+    }
+}
+
+macro_rules! whole_numbers {
+    ($($t:ty),*) => {$(
+        impl From<$t> for Arg {
+            fn from(n: $t) -> Self {
+                Arg::Int(i64::try_from(n).unwrap_or(i64::MAX))
+            }
+        }
+    )*};
+}
+whole_numbers!(u8, u16, u32, u64, usize, i32, i64);
+
+/// A code with its arguments: what every front-end words.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Message {
+    /// What kind of message this is.
+    pub code: Code,
+    /// Its arguments by name, in the order given.
+    pub args: Vec<(&'static str, Arg)>,
+}
+
+impl Message {
+    /// A message of `code` without arguments (add them with [`Message::with`]).
+    pub fn new(code: Code) -> Self {
+        Message { code, args: Vec::new() }
+    }
+
+    /// The message with one more argument.
+    pub fn with(mut self, name: &'static str, value: impl Into<Arg>) -> Self {
+        // The templates of every language name the same arguments: one the template lacks
+        // would be lost in every language.
+        debug_assert!(self.code.arg_names().contains(&name), "{} has no argument {name}", self.code.as_str());
+        self.args.push((name, value.into()));
+        self
+    }
+
+    /// The argument `name`, if given.
+    pub fn arg(&self, name: &str) -> Option<&Arg> {
+        self.args.iter().find(|(n, _)| *n == name).map(|(_, a)| a)
+    }
+
+    /// The argument `name` as text (a text's own words, a number's digits, a message's English).
+    pub fn arg_text(&self, name: &str) -> Option<String> {
+        self.arg(name).map(|a| {
+            let mut out = String::new();
+            a.render("", &mut out);
+            out
+        })
+    }
+}
+
+impl fmt::Display for Message {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let mut out = String::new();
+        for piece in pieces(self.code.english()) {
+            match piece {
+                Piece::Text(t) => out.push_str(t),
+                Piece::Arg(name, spec) => match self.arg(name) {
+                    Some(arg) => arg.render(spec, &mut out),
+                    // A missing argument shows as its placeholder (a test guards against it).
+                    None => out.push_str(&format!("{{{name}}}")),
+                },
+            }
+        }
+        f.write_str(&out)
+    }
+}
+
+impl Refusal for Message {
+    fn message(&self) -> Message {
+        self.clone()
+    }
+}
+
+impl serde::Serialize for Arg {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeMap;
+        match self {
+            Arg::Text(t) => s.serialize_str(t),
+            Arg::Int(n) => s.serialize_i64(*n),
+            Arg::Num(x) => s.serialize_f64(*x),
+            Arg::List(items) => items.serialize(s),
+            Arg::Term { key, english } => {
+                let mut map = s.serialize_map(Some(2))?;
+                map.serialize_entry("term", key)?;
+                map.serialize_entry("english", english)?;
+                map.end()
+            }
+            Arg::Message(m) => m.serialize(s),
+        }
+    }
+}
+
+/// `{code, args, message}`: the shape every error crosses the wasm boundary in.
+impl serde::Serialize for Message {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeMap;
+        struct Args<'a>(&'a [(&'static str, Arg)]);
+        impl serde::Serialize for Args<'_> {
+            fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+                let mut map = s.serialize_map(Some(self.0.len()))?;
+                for (name, arg) in self.0 {
+                    map.serialize_entry(name, arg)?;
                 }
-                args
-            }
-            SceneError::FlowFieldMemory { path, fields, cells, bytes, limit } => vec![
-                ("path", path.clone()),
-                ("fields", fields.to_string()),
-                ("cells", cells.to_string()),
-                ("mb", bytes.div_ceil(1 << 20).to_string()),
-                ("limit_mb", (limit / (1 << 20)).to_string()),
-            ],
-            SceneError::UnknownPreset { name, known } => {
-                vec![("name", name.clone()), ("known", known.join(", "))]
+                map.end()
             }
         }
+        let mut map = s.serialize_map(Some(3))?;
+        map.serialize_entry("code", self.code.as_str())?;
+        map.serialize_entry("args", &Args(&self.args))?;
+        map.serialize_entry("message", &self.to_string())?;
+        map.end()
     }
 }
 
-impl Refusal for UnknownPlanner {
-    fn code(&self) -> &'static str {
-        "unknown_planner"
+/// A part of a template.
+#[derive(Debug, PartialEq)]
+enum Piece<'a> {
+    Text(&'a str),
+    /// An argument's name and its format (`""`, `"?"`, `"and"`, `"or"`).
+    Arg(&'a str, &'a str),
+}
+
+/// The pieces of `template` (see the module's syntax).
+fn pieces(template: &str) -> Vec<Piece<'_>> {
+    let mut out = Vec::new();
+    let mut rest = template;
+    while let Some(open) = rest.find('{') {
+        let after = &rest[open + 1..];
+        let name_len = after.find(|c: char| !(c.is_ascii_lowercase() || c == '_')).unwrap_or(after.len());
+        let placeholder = (name_len > 0)
+            .then(|| {
+                let tail = &after[name_len..];
+                if let Some(close) = tail.strip_prefix('}') {
+                    Some((&after[..name_len], "", close))
+                } else {
+                    let spec_and_more = tail.strip_prefix(':')?;
+                    let end = spec_and_more.find('}')?;
+                    Some((&after[..name_len], &spec_and_more[..end], &spec_and_more[end + 1..]))
+                }
+            })
+            .flatten();
+        match placeholder {
+            Some((name, spec, close)) => {
+                if open > 0 {
+                    out.push(Piece::Text(&rest[..open]));
+                }
+                out.push(Piece::Arg(name, spec));
+                rest = close;
+            }
+            None => {
+                out.push(Piece::Text(&rest[..open + 1]));
+                rest = after;
+            }
+        }
+    }
+    if !rest.is_empty() {
+        out.push(Piece::Text(rest));
+    }
+    out
+}
+
+macro_rules! codes {
+    ($( #[doc = $doc:literal] $variant:ident = $code:literal => $english:literal, )*) => {
+        /// Every kind of message the core can produce, with its English template.
+        #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+        pub enum Code {
+            $( #[doc = $doc] $variant, )*
+        }
+
+        impl Code {
+            /// Every code, in declaration order: what the template tests walk.
+            pub const ALL: &'static [Code] = &[ $( Code::$variant, )* ];
+
+            /// The stable dotted name (`scene.field`).
+            pub fn as_str(self) -> &'static str {
+                match self { $( Code::$variant => $code, )* }
+            }
+
+            /// The English template (see the module's syntax).
+            pub fn english(self) -> &'static str {
+                match self { $( Code::$variant => $english, )* }
+            }
+        }
+    };
+}
+
+impl Code {
+    /// The template's argument names, in order of first use.
+    pub fn arg_names(self) -> Vec<&'static str> {
+        let mut names = Vec::new();
+        for piece in pieces(self.english()) {
+            if let Piece::Arg(name, _) = piece {
+                if !names.contains(&name) {
+                    names.push(name);
+                }
+            }
+        }
+        names
     }
 
-    fn args(&self) -> Vec<(&'static str, String)> {
-        vec![("name", self.name.clone()), ("known", self.known().join(", "))]
+    /// The code named `name`, if any.
+    pub fn from_name(name: &str) -> Option<Code> {
+        Code::ALL.iter().copied().find(|c| c.as_str() == name)
     }
 }
 
-impl Refusal for ParamError {
-    fn code(&self) -> &'static str {
-        "param_range"
-    }
-
-    fn args(&self) -> Vec<(&'static str, String)> {
-        vec![
-            ("key", self.key.clone()),
-            ("label", self.label.to_string()),
-            ("value", self.value.clone()),
-            ("allowed", self.allowed.clone()),
-        ]
-    }
+codes! {
+    /// A scene text or string that could not be read.
+    SceneParse = "scene.parse" => "cannot read the scene: {reason}",
+    /// A scene string without `2.`.
+    SceneNoVersion = "scene.no_version" => "the scene string has no version prefix (expected \"{expected}.…\")",
+    /// A scene string of a version this build does not read.
+    SceneUnknownVersion = "scene.unknown_version" => "unknown scene format version {version:?}; this flockpath reads versions {readable:and}",
+    /// A scene string whose base64 does not decode.
+    SceneBadBase64 = "scene.bad_base64" => "the scene string is not valid base64 ({reason}); was it cut short?",
+    /// base64: a byte that is no base64 symbol.
+    Base64InvalidSymbol = "base64.invalid_symbol" => "Invalid symbol {symbol}, offset {offset}.",
+    /// base64: the last symbol has bits set past the data.
+    Base64InvalidLastSymbol = "base64.invalid_last_symbol" => "Invalid last symbol {symbol}, offset {offset}.",
+    /// base64: a length no encoding gives.
+    Base64InvalidLength = "base64.invalid_length" => "Invalid input length: {length}",
+    /// base64: padding where none belongs.
+    Base64InvalidPadding = "base64.invalid_padding" => "Invalid padding",
+    /// A scene string whose deflate data is broken.
+    SceneDamaged = "scene.damaged" => "the scene string is damaged or truncated: was it cut short when copied?",
+    /// A scene string that unpacks to bytes that are not UTF-8.
+    SceneNotText = "scene.not_text" => "the scene string does not hold text",
+    /// Nothing to read.
+    SceneEmpty = "scene.empty" => "the scene text is empty",
+    /// JSON that ends in the middle.
+    SceneCutShort = "scene.cut_short" => "the scene text ends too early (line {line}, column {column}): was it cut short?",
+    /// Text that is not JSON.
+    SceneNotJson = "scene.not_json" => "the scene text is not valid JSON: {reason} (line {line}, column {column}, in {path})",
+    /// JSON that is not a scene object.
+    SceneNotObject = "scene.not_object" => "the text is not a scene object ({reason}, line {line}, column {column})",
+    /// A scene string that does not hold a version 2 scene.
+    SceneNotV2 = "scene.not_v2" => "the scene string does not hold a version 2 scene ({reason})",
+    /// More text after the scene's JSON.
+    SceneTrailingText = "scene.trailing_text" => "unexpected text after the end of the scene (line {line}, column {column})",
+    /// A refused field: its path, its value and what is allowed.
+    SceneField = "scene.field" => "{path} is {value}; allowed: {allowed}",
+    /// Input over a size limit, size unknown.
+    SceneTooLarge = "scene.too_large" => "{what} is too large (limit {limit} bytes)",
+    /// Input over a size limit.
+    SceneTooLargeBytes = "scene.too_large_bytes" => "{what} is too large ({bytes} bytes; limit {limit} bytes)",
+    /// What was too large: the scene text.
+    WhatSceneText = "what.scene_text" => "the scene text",
+    /// What was too large: the unpacked scene string.
+    WhatUnpackedScene = "what.unpacked_scene" => "the unpacked scene string",
+    /// What was too large: the scene's link.
+    WhatSceneLink = "what.scene_link" => "the scene's link",
+    /// A bare name that names no preset.
+    SceneUnknownPreset = "scene.unknown_preset" => "unknown preset '{name}' (known: {known})",
+    /// A goal inside an obstacle.
+    SceneGoalInObstacle = "scene.goal_in_obstacle" => "goals[{goal}] at ({x}, {y}) is inside obstacles[{obstacle}]; a goal must lie outside every obstacle",
+    /// A group's crowd does not fit its spawn region.
+    SceneDensity = "scene.density" => "group {group} ({name}): {count} agents of radius {radius} px do not fit in its spawn region ({width}×{height} px): it holds at most {most} apart from each other, the obstacles and the other groups (the density limit)",
+    /// The groups' flow fields over their memory limit.
+    SceneFlowFieldMemory = "scene.flow_field_memory" => "{path}: the groups' {fields} distinct flow fields ({cells} cells each: one per goal and body radius among the groups guided by a field) would keep {mb} MB, over the {limit_mb} MB limit; let groups share a goal or steer straight at it (guidance: goal)",
+    /// IGSA planning over its limit.
+    ScenePlanningCost = "scene.planning_cost" => "group {group} ({name}): igsa path planning of all groups would check {checks} path segments (population × iterations × (waypoints + 1), this group {this}), over the limit of {limit}: lower the population or the iterations",
+    /// An edit or call names an item that does not exist.
+    SceneNoSuchItem = "scene.no_such_item" => "there is no {item} {number}",
+    /// A path given to a group whose planner does not follow paths.
+    ScenePathNeedsBoids = "scene.path_needs_boids" => "group {group} uses {planner}; path following is part of Boids steering",
+    /// A move by a distance that is not a number.
+    SceneMoveNotFinite = "scene.move_not_finite" => "the move distance is not a finite number",
+    /// Start positions that do not match the agents.
+    SceneStartPositions = "scene.start_positions" => "{given} start positions for {total} agents",
+    /// An activity the page sent that does not read.
+    SceneBadActivity = "scene.bad_activity" => "the activity is not valid: {reason}",
+    /// A planner name that names no planner.
+    PlannerUnknown = "planner.unknown" => "unknown planner {name:?}; known: {known}",
+    /// A planner parameter outside its table's range.
+    ParamRange = "param.range" => "{label} ({key}) is {value}; allowed: {allowed}",
+    /// A parameter key the planner does not have.
+    ParamUnknown = "param.unknown" => "{planner} has no parameter {key:?}",
+    /// A parameter value of the wrong JSON type.
+    ParamType = "param.type" => "{label}: {problem}",
+    /// Too many edited IGSA waypoints.
+    WaypointsTooMany = "waypoints.too_many" => "an edited path holds at most {most} waypoints, this one {count}",
+    /// An edited IGSA waypoint that is not a finite point.
+    WaypointNotFinite = "waypoints.not_finite" => "waypoint {number} is not a finite point",
+    /// Edited waypoints that are not a list of points.
+    WaypointsNotList = "waypoints.not_list" => "the waypoints are not a list of [x, y] points: {reason}",
+    /// Waypoints for a group that does not plan a path.
+    WaypointsNotIgsa = "waypoints.not_igsa" => "group {group} does not follow a planned path (its planner is not igsa)",
+    /// A parameter value the page sent that is not JSON.
+    ValueNotJson = "page.value_not_json" => "the value for {key:?} is not JSON: {reason}",
+    /// JSON from the page that does not read as the call's input.
+    PageUnreadable = "page.unreadable" => "cannot read the {what}: {reason}",
+    /// A theme name that names no theme.
+    ThemeUnknown = "theme.unknown" => "unknown theme {name:?}; known: {known}",
+    /// An export's frame rate outside 1…240.
+    ExportFrameRate = "export.frame_rate" => "the frame rate must be 1…240 fps, not {value}",
+    /// An export's scale that is not a number above 0.
+    ExportScale = "export.scale" => "the scale must be a number > 0, not {value}",
+    /// A comparison refused: the reason inside.
+    Compare = "compare.refused" => "comparison: {reason}",
+    /// A comparison spec over its size limit.
+    CompareSpecTooLarge = "compare.spec_too_large" => "the spec is {bytes} bytes, over the {limit}-byte limit",
+    /// An empty comparison spec.
+    CompareSpecEmpty = "compare.spec_empty" => "the spec is empty",
+    /// A spec without `1.`.
+    CompareSpecNoVersion = "compare.spec_no_version" => "the spec has no version prefix (expected \"{expected}.…\")",
+    /// A spec of another version.
+    CompareSpecVersion = "compare.spec_version" => "unknown spec version {version:?}; this flockpath reads version {readable}",
+    /// Too many panes.
+    ComparePanesTooMany = "compare.panes_too_many" => "{count} panes; at most {most}",
+    /// Panes outside 1…max.
+    ComparePanesCount = "compare.panes_count" => "{count} panes; a comparison has 1 to {most}",
+    /// A pane number that names no pane.
+    CompareNoPane = "compare.no_pane" => "there is no pane {number}",
+    /// A pane setting a group the scene does not have.
+    ComparePaneGroupMissing = "compare.pane_group_missing" => "the pane sets group {group} but the scene has {count} group(s)",
+    /// A group that is not a number.
+    ComparePaneNotGroup = "compare.pane_not_group" => "{text:?} is not a group number (groups count from 1)",
+    /// Group 0.
+    ComparePaneGroupZero = "compare.pane_group_zero" => "groups count from 1, not 0",
+    /// An empty pane.
+    ComparePaneEmpty = "compare.pane_empty" => "a pane is empty (write `scene` for the scene's own planners)",
+    /// A pane's every-group planner given twice.
+    ComparePaneAllTwice = "compare.pane_all_twice" => "a pane sets the planner for every group twice",
+    /// A pane setting one group twice.
+    ComparePaneGroupTwice = "compare.pane_group_twice" => "a pane sets group {group} twice",
+    /// A parameter list without `)`.
+    ComparePaneNoParen = "compare.pane_no_paren" => "{text:?}: the parameter list has no closing `)`",
+    /// More parameter values than the planner has.
+    ComparePaneParamCount = "compare.pane_param_count" => "{planner} takes {count} parameters, the pane gives {given}",
+    /// A parameter value that is not a number.
+    ComparePaneParamNumber = "compare.pane_param_number" => "{label} ({planner}) must be a number, not {value:?}",
+    /// A parameter value outside its range.
+    ComparePaneParamRange = "compare.pane_param_range" => "{label} ({planner}) = {value} is outside {min}…{max} {unit}",
+    /// A parameter value that is not finite.
+    ComparePaneParamFinite = "compare.pane_param_finite" => "{label} ({planner}) is not a finite number",
+    /// A choice parameter given another word.
+    ComparePaneParamChoice = "compare.pane_param_choice" => "{label} ({planner}) must be one of [{choices:?}], not {value:?}",
+    /// A planner refused inside a pane: its name and the reason.
+    ComparePanePlanner = "compare.pane_planner" => "{planner}: {reason}",
+    /// A parameter set on a pane that runs the scene's planners.
+    ComparePaneSceneParam = "compare.pane_scene_param" => "this pane runs the scene's own planners: pick a planner for it first",
+    /// An optimizer name that names no optimizer.
+    LabUnknownAlgorithm = "lab.unknown_algorithm" => "unknown algorithm {name:?}; known: {known}",
+    /// A benchmark function name that names none.
+    LabUnknownFunction = "lab.unknown_function" => "unknown function {name:?}; known: {known}",
+    /// A lab size outside the page's limits.
+    LabOutOfRange = "lab.out_of_range" => "{setting} {value} is outside {min}…{max}",
+    /// The lab's dimension.
+    LabDimension = "lab.dimension" => "dimension",
+    /// The lab's population.
+    LabPopulation = "lab.population" => "population",
+    /// The lab's iterations.
+    LabIterations = "lab.iterations" => "iterations",
+    /// Tuning settings that do not read.
+    TuneSettings = "tune.settings" => "cannot read the tuning settings: {reason}",
+    /// An unknown behaviour code.
+    TuneUnknownBehaviour = "tune.unknown_behaviour" => "unknown behaviour {name:?}; known: b1, b2, b3",
+    /// An unknown environment code.
+    TuneUnknownEnvironment = "tune.unknown_environment" => "unknown environment {name:?}; known: e1, e2, e3",
+    /// Frames per evaluation out of range.
+    TuneFrames = "tune.frames" => "frames {value} is outside 1…{most}",
+    /// Generations out of range.
+    TuneGenerations = "tune.generations" => "generations {value} is outside 1…{most}",
+    /// Population out of range.
+    TunePopulation = "tune.population" => "population {value} is outside 2…{most}",
+    /// Sample interval out of range.
+    TuneSampleEvery = "tune.sample_every" => "sample interval {every} is outside 1…{frames} (the frames per evaluation)",
+    /// Rates outside 0…1.
+    TuneRates = "tune.rates" => "crossover and mutation rates must be in 0…1",
+    /// A scene without agents to tune.
+    TuneNoAgents = "tune.no_agents" => "the scene has no agents to tune",
+    /// A run that evaluated nothing.
+    TuneNothing = "tune.nothing" => "the run evaluated nothing",
+    /// An unknown validation test.
+    ValidationUnknownTest = "validation.unknown_test" => "unknown test {name:?}",
+    /// An unknown planner name in the validation page.
+    ValidationUnknownPlanner = "validation.unknown_planner" => "unknown planner {name:?}",
+    /// An unknown reference curve.
+    ValidationUnknownCurve = "validation.unknown_curve" => "unknown reference curve {name:?}; known: {known}",
+    /// A planner without a speed parameter for the validation suite.
+    ValidationNoSpeed = "validation.no_speed_param" => "{planner} has no speed parameter to set",
+    /// A classroom option naming an unknown name.
+    ClassroomUnknownName = "classroom.unknown_name" => "{field}: unknown name {name:?}; allowed: {known} (or all, none)",
+    /// A classroom option too long.
+    ClassroomTooLong = "classroom.too_long" => "{field}: the value is {bytes} bytes long; at most {most}",
+    /// An edit of a locked part.
+    ClassroomLocked = "classroom.locked" => "the {part} are locked in this scene: the page cannot add, move, change or delete them",
+    /// The system's random source failed.
+    Entropy = "seed.entropy" => "cannot draw a fresh seed: the system's random source failed ({reason})",
+    /// The optimizer experiments had nothing to run.
+    OptimizeNothing = "optimize.nothing" => "optimize: nothing to run (no algorithm, function or run)",
+    /// A metrics series the run does not have.
+    NoSeries = "page.no_series" => "no metrics series {key:?} for group {group}",
+    /// A timeline call on a run without one.
+    NoTimeline = "page.no_timeline" => "this run keeps no timeline",
+    /// A selected item the page sent that does not read.
+    BadSelection = "page.bad_selection" => "cannot read the selected item: {reason}",
+    /// A classroom edit the page sent that does not read.
+    NotAnEdit = "page.not_an_edit" => "not an edit: {reason}",
 }
 
-impl Refusal for SetParamError {
-    fn code(&self) -> &'static str {
-        match self {
-            SetParamError::UnknownKey { .. } => "unknown_param",
-            SetParamError::WrongType { .. } => "param_type",
-            SetParamError::Refused(e) => e.code(),
-        }
-    }
-
-    fn args(&self) -> Vec<(&'static str, String)> {
-        match self {
-            SetParamError::UnknownKey { planner, key } => {
-                vec![("planner", planner.to_string()), ("key", key.clone())]
-            }
-            SetParamError::WrongType { label, problem } => {
-                vec![("label", label.to_string()), ("problem", problem.clone())]
-            }
-            SetParamError::Refused(e) => e.args(),
-        }
+impl Refusal for crate::rng::EntropyError {
+    fn message(&self) -> Message {
+        Message::new(Code::Entropy).with("reason", self.source_text())
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::codec;
-    use crate::model::params::PlannerKind;
-    use crate::model::presets;
 
-    fn arg<'a>(args: &'a [(&'static str, String)], name: &str) -> &'a str {
-        args.iter().find(|(k, _)| *k == name).map(|(_, v)| v.as_str()).unwrap_or("<absent>")
+    #[test]
+    fn codes_are_unique_and_dotted() {
+        let mut seen = std::collections::HashSet::new();
+        for code in Code::ALL {
+            assert!(seen.insert(code.as_str()), "{} twice", code.as_str());
+            assert!(code.as_str().contains('.'), "{}", code.as_str());
+            assert_eq!(Code::from_name(code.as_str()), Some(*code));
+        }
     }
 
     #[test]
-    fn a_field_refusal_names_path_value_and_allowed() {
-        let mut scene = (presets::ALL[0].build)();
-        scene.groups[0].agent_radius = 500.0;
-        let text = codec::scene_to_json(&scene);
-        let e = codec::scene_from_any(&text).expect_err("radius 500 is refused");
-        assert_eq!(e.code(), "field");
-        let args = e.args();
-        assert_eq!(arg(&args, "path"), "groups[0].agent_radius");
-        assert_eq!(arg(&args, "value"), "500");
-        assert!(arg(&args, "allowed").contains("0.5…100"), "{args:?}");
-        // The message is the same words, so English pages lose nothing.
-        assert!(e.to_string().starts_with("groups[0].agent_radius is 500"), "{e}");
-    }
-
-    #[test]
-    fn unknown_names_list_the_known_ones() {
-        let e = presets::lookup("no-such-preset").expect_err("unknown");
-        assert_eq!(e.code(), "unknown_preset");
-        assert_eq!(arg(&e.args(), "name"), "no-such-preset");
-        assert!(arg(&e.args(), "known").starts_with(presets::ALL[0].name));
-        let p = PlannerKind::parse("teleport").expect_err("unknown");
-        assert_eq!(p.code(), "unknown_planner");
-        assert_eq!(arg(&p.args(), "name"), "teleport");
-        assert!(arg(&p.args(), "known").contains("boids"));
-    }
-
-    #[test]
-    fn a_parameter_out_of_range_has_its_key_and_range() {
-        let mut config = PlannerKind::Boids.default_config();
-        let e = config.set_param("max_speed", serde_json::json!(1e6)).expect_err("too fast");
-        assert_eq!(e.code(), "param_range");
-        assert_eq!(arg(&e.args(), "key"), "max_speed");
-        assert_eq!(arg(&e.args(), "label"), "Max speed");
-        let unknown = config.set_param("warp", serde_json::json!(1)).expect_err("no such key");
-        assert_eq!(unknown.code(), "unknown_param");
-        assert_eq!(arg(&unknown.args(), "key"), "warp");
-    }
-
-    #[test]
-    fn an_unknown_version_is_a_parse_refusal_with_its_message() {
-        let e = codec::scene_from_any("9.abc").expect_err("version 9");
-        assert_eq!(e.code(), "parse");
-        assert!(
-            arg(&e.args(), "message").starts_with("unknown scene format version \"9\""),
-            "{:?}",
-            e.args()
+    fn templates_render_their_arguments() {
+        let m = Message::new(Code::SceneUnknownVersion).with("version", "9").with("readable", vec!["1", "2"]);
+        assert_eq!(
+            m.to_string(),
+            "unknown scene format version \"9\"; this flockpath reads versions 1 and 2"
         );
+        assert_eq!(Code::SceneUnknownVersion.arg_names(), ["version", "readable"]);
+        // A brace without a name is text.
+        assert_eq!(pieces("a {…} b"), [Piece::Text("a {"), Piece::Text("…} b")]);
     }
 }

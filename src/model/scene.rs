@@ -4,6 +4,7 @@ use crate::model::activity::Activity;
 use crate::model::geometry::{v, Obstacle};
 use crate::model::params::spec::number_text;
 use crate::model::params::PlannerConfig;
+use crate::model::refusal::{Arg, Code, Message, Refusal};
 use glam::Vec2;
 use serde::{Deserialize, Serialize};
 use std::fmt;
@@ -541,30 +542,32 @@ fn default_agent_radius() -> f32 {
     4.0
 }
 
-/// Why a scene was refused. Each message names the offending item.
+/// Why a scene was refused. Each message names the offending item; each is a coded
+/// [`Message`] (see [`crate::model::refusal`]), its English the `Display`.
 #[derive(Clone, Debug, PartialEq)]
 pub enum SceneError {
-    /// The text is not a scene (bad JSON, bad encoding, unknown version).
-    Parse(String),
+    /// The text is not a scene (bad JSON, bad encoding, unknown version): why, inside.
+    Parse(Message),
     /// A number is NaN or infinite.
-    NotFinite(String),
+    NotFinite(Message),
     /// A value is outside its allowed range.
-    OutOfRange(String),
+    OutOfRange(Message),
     /// Something refers to an item that does not exist.
-    BadReference(String),
+    BadReference(Message),
     /// The geometry makes the scene unusable (goal inside an obstacle, no room to spawn).
-    Blocked(String),
+    Blocked(Message),
     /// The scene asks for more work than the stated limit: IGSA path planning over its
     /// segment checks ([`crate::sim::cost`]).
-    TooCostly(String),
+    TooCostly(Message),
     /// One field's value is refused (wrong type, not a finite number, outside its limit, an
     /// unknown key, a missing one): the message names the field by its path, the value and what
     /// is allowed.
     Field(Box<FieldError>),
     /// The input is larger than a stated limit.
     TooLarge {
-        /// What was too large ("the scene text", "the unpacked scene string").
-        what: &'static str,
+        /// What was too large ([`Code::WhatSceneText`], [`Code::WhatUnpackedScene`],
+        /// [`Code::WhatSceneLink`]).
+        what: Code,
         /// Its size in bytes, when known (unpacking stops at the limit).
         bytes: Option<usize>,
         /// The limit in bytes.
@@ -619,6 +622,21 @@ impl SceneError {
         }))
     }
 
+    /// A scene text that could not be read, for `reason`.
+    pub fn parse(reason: Message) -> Self {
+        SceneError::Parse(reason)
+    }
+
+    /// "there is no `item` `number`" (`number` counted from 1; `item` a word of the strings
+    /// table's `item.*`: obstacle, goal, group, path, hill).
+    pub fn no_such_item(item: &str, number: u64) -> Self {
+        SceneError::BadReference(
+            Message::new(Code::SceneNoSuchItem)
+                .with("item", Arg::term(format!("item.{item}"), item))
+                .with("number", number),
+        )
+    }
+
     /// The parser's raw message and position behind this error, if it came from one.
     pub fn detail(&self) -> Option<&str> {
         match self {
@@ -628,36 +646,46 @@ impl SceneError {
     }
 }
 
-impl fmt::Display for SceneError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+impl Refusal for SceneError {
+    fn message(&self) -> Message {
         match self {
-            SceneError::Parse(m) => write!(f, "cannot read the scene: {m}"),
-            SceneError::NotFinite(m) => write!(f, "{m} is not a finite number"),
-            SceneError::OutOfRange(m)
+            SceneError::Parse(m) => Message::new(Code::SceneParse).with("reason", m.clone()),
+            SceneError::NotFinite(m)
+            | SceneError::OutOfRange(m)
             | SceneError::BadReference(m)
             | SceneError::Blocked(m)
-            | SceneError::TooCostly(m) => {
-                write!(f, "{m}")
-            }
-            SceneError::Field(e) => write!(f, "{} is {}; allowed: {}", e.path, e.value, e.allowed),
+            | SceneError::TooCostly(m) => m.clone(),
+            SceneError::Field(e) => Message::new(Code::SceneField)
+                .with("path", e.path.clone())
+                .with("value", e.value.clone())
+                .with("allowed", e.allowed.clone()),
             SceneError::TooLarge { what, bytes: Some(bytes), limit } => {
-                write!(f, "{what} is too large ({bytes} bytes; limit {limit} bytes)")
+                Message::new(Code::SceneTooLargeBytes)
+                    .with("what", Message::new(*what))
+                    .with("bytes", *bytes)
+                    .with("limit", *limit)
             }
             SceneError::TooLarge { what, bytes: None, limit } => {
-                write!(f, "{what} is too large (limit {limit} bytes)")
+                Message::new(Code::SceneTooLarge).with("what", Message::new(*what)).with("limit", *limit)
             }
-            SceneError::FlowFieldMemory { path, fields, cells, bytes, limit } => write!(
-                f,
-                "{path}: the groups' {fields} distinct flow fields ({cells} cells each: one per goal \
-                 and body radius among the groups guided by a field) would keep {} MB, over the {} MB \
-                 limit; let groups share a goal or steer straight at it (guidance: goal)",
-                bytes.div_ceil(1 << 20),
-                limit / (1 << 20),
-            ),
+            SceneError::FlowFieldMemory { path, fields, cells, bytes, limit } => {
+                Message::new(Code::SceneFlowFieldMemory)
+                    .with("path", path.clone())
+                    .with("fields", *fields)
+                    .with("cells", *cells)
+                    .with("mb", bytes.div_ceil(1 << 20))
+                    .with("limit_mb", limit / (1 << 20))
+            }
             SceneError::UnknownPreset { name, known } => {
-                write!(f, "unknown preset '{name}' (known: {})", known.join(", "))
+                Message::new(Code::SceneUnknownPreset).with("name", name.clone()).with("known", known.clone())
             }
         }
+    }
+}
+
+impl fmt::Display for SceneError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        self.message().fmt(f)
     }
 }
 
@@ -889,11 +917,13 @@ impl Scene {
             self.point_inside(|| format!("goals[{i}].position"), g.position)?;
             number_in(|| format!("goals[{i}].radius"), g.radius, 0.0, true, MAX_SIDE)?;
             if let Some(k) = self.obstacles.iter().position(|o| o.contains(v(g.position))) {
-                return Err(SceneError::Blocked(format!(
-                    "goals[{i}] at ({}, {}) is inside obstacles[{k}]; a goal must lie outside every obstacle",
-                    num(g.position[0]),
-                    num(g.position[1])
-                )));
+                return Err(SceneError::Blocked(
+                    Message::new(Code::SceneGoalInObstacle)
+                        .with("goal", i)
+                        .with("x", g.position[0])
+                        .with("y", g.position[1])
+                        .with("obstacle", k),
+                ));
             }
             if let Some(m) = &g.motion {
                 m.validate(&format!("goals[{i}].motion"), self)?;
@@ -1261,9 +1291,16 @@ mod tests {
         assert_eq!(
             e,
             SceneError::Blocked(
-                "goals[0] at (350, 150) is inside obstacles[0]; a goal must lie outside every obstacle"
-                    .into()
+                Message::new(Code::SceneGoalInObstacle)
+                    .with("goal", 0u32)
+                    .with("x", 350.0f32)
+                    .with("y", 150.0f32)
+                    .with("obstacle", 0u32)
             )
+        );
+        assert_eq!(
+            e.to_string(),
+            "goals[0] at (350, 150) is inside obstacles[0]; a goal must lie outside every obstacle"
         );
     }
 

@@ -17,6 +17,7 @@
 //! Example: `1.scene~pso~firefly(2,0.2)` or `1.boids~1=pso;2=firefly`.
 
 use crate::model::params::{PlannerConfig, PlannerKind};
+use crate::model::refusal::{Arg, Code, Message, Refusal};
 use crate::model::scene::{Scene, SceneError};
 use crate::sim::activity_check::{ActivityWatch, Page, Report};
 use crate::sim::limits;
@@ -46,11 +47,17 @@ const MAX_SPEC_BYTES: usize = 16 << 10;
 
 /// Why a comparison spec was refused; the message names the problem.
 #[derive(Clone, Debug, PartialEq)]
-pub struct SpecError(pub String);
+pub struct SpecError(pub Message);
+
+impl Refusal for SpecError {
+    fn message(&self) -> Message {
+        Message::new(Code::Compare).with("reason", self.0.clone())
+    }
+}
 
 impl std::fmt::Display for SpecError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "comparison: {}", self.0)
+        self.message().fmt(f)
     }
 }
 
@@ -58,12 +65,12 @@ impl std::error::Error for SpecError {}
 
 impl From<SceneError> for SpecError {
     fn from(e: SceneError) -> Self {
-        SpecError(e.to_string())
+        SpecError(e.message())
     }
 }
 
-fn err<T>(message: impl Into<String>) -> Result<T, SpecError> {
-    Err(SpecError(message.into()))
+fn err<T>(message: Message) -> Result<T, SpecError> {
+    Err(SpecError(message))
 }
 
 /// The planners of one pane.
@@ -97,7 +104,9 @@ impl PaneSpec {
         for (g, config) in &self.groups {
             let count = scene.groups.len();
             let group = scene.groups.get_mut(*g as usize).ok_or_else(|| {
-                SpecError(format!("the pane sets group {} but the scene has {count} group(s)", g + 1))
+                SpecError(
+                    Message::new(Code::ComparePaneGroupMissing).with("group", g + 1).with("count", count),
+                )
             })?;
             group.planner = config.clone();
         }
@@ -110,16 +119,16 @@ impl PaneSpec {
             return Ok(pane);
         }
         if text.is_empty() {
-            return err("a pane is empty (write `scene` for the scene's own planners)");
+            return err(Message::new(Code::ComparePaneEmpty));
         }
         for assignment in text.split(';') {
             let (group, planner) = match assignment.split_once('=') {
                 Some((g, p)) => {
-                    let n: u32 = g.parse().map_err(|_| {
-                        SpecError(format!("{g:?} is not a group number (groups count from 1)"))
-                    })?;
+                    let n: u32 = g
+                        .parse()
+                        .map_err(|_| SpecError(Message::new(Code::ComparePaneNotGroup).with("text", g)))?;
                     if n == 0 {
-                        return err("groups count from 1, not 0");
+                        return err(Message::new(Code::ComparePaneGroupZero));
                     }
                     (Some(n - 1), p)
                 }
@@ -127,10 +136,10 @@ impl PaneSpec {
             };
             let config = parse_planner(planner)?;
             match group {
-                None if pane.all.is_some() => return err("a pane sets the planner for every group twice"),
+                None if pane.all.is_some() => return err(Message::new(Code::ComparePaneAllTwice)),
                 None => pane.all = Some(config),
                 Some(g) if pane.groups.iter().any(|(h, _)| *h == g) => {
-                    return err(format!("a pane sets group {} twice", g + 1))
+                    return err(Message::new(Code::ComparePaneGroupTwice).with("group", g + 1))
                 }
                 Some(g) => pane.groups.push((g, config)),
             }
@@ -232,66 +241,90 @@ fn write_planner(config: &PlannerConfig, out: &mut String) {
     out.push(')');
 }
 
+/// A parameter's label as a term of the page's strings table.
+fn label(kind: PlannerKind, spec: &crate::model::params::ParamSpec) -> Arg {
+    Arg::term(format!("param.{}.{}", kind.name(), spec.key), spec.label)
+}
+
 fn parse_planner(text: &str) -> Result<PlannerConfig, SpecError> {
     let (name, values) = match text.split_once('(') {
         Some((name, rest)) => {
             let inner = rest
                 .strip_suffix(')')
-                .ok_or_else(|| SpecError(format!("{text:?}: the parameter list has no closing `)`")))?;
+                .ok_or_else(|| SpecError(Message::new(Code::ComparePaneNoParen).with("text", text)))?;
             (name, inner)
         }
         None => (text, ""),
     };
-    let kind = PlannerKind::parse(name).map_err(|e| SpecError(e.also_accepting(&["scene"]).to_string()))?;
+    let kind = PlannerKind::parse(name).map_err(|e| SpecError(e.also_accepting(&["scene"]).message()))?;
     let specs = kind.param_specs();
     let mut params = serde_json::Map::new();
     let values: Vec<&str> = if values.is_empty() { Vec::new() } else { values.split(',').collect() };
     if values.len() > specs.len() {
-        return err(format!(
-            "{} takes {} parameters, the pane gives {}",
-            kind.name(),
-            specs.len(),
-            values.len()
-        ));
+        return err(Message::new(Code::ComparePaneParamCount)
+            .with("planner", kind.name())
+            .with("count", specs.len())
+            .with("given", values.len()));
     }
     for (spec, value) in specs.iter().zip(values) {
         let json = if spec.choices.is_empty() {
             let x: f64 = value.parse().map_err(|_| {
-                SpecError(format!("{} ({}) must be a number, not {value:?}", spec.label, kind.name()))
+                SpecError(
+                    Message::new(Code::ComparePaneParamNumber)
+                        .with("label", label(kind, spec))
+                        .with("planner", kind.name())
+                        .with("value", value),
+                )
             })?;
             if !(spec.min..=spec.max).contains(&x) {
-                return err(format!(
-                    "{} ({}) = {value} is outside {}…{} {}",
-                    spec.label,
-                    kind.name(),
-                    spec.min,
-                    spec.max,
-                    spec.unit
-                ));
+                let unit = if spec.unit.is_empty() {
+                    Arg::from("")
+                } else {
+                    Arg::term(format!("unit.{}", spec.unit), spec.unit)
+                };
+                return err(Message::new(Code::ComparePaneParamRange)
+                    .with("label", label(kind, spec))
+                    .with("planner", kind.name())
+                    .with("value", value)
+                    .with("min", spec.min)
+                    .with("max", spec.max)
+                    .with("unit", unit));
             }
             if value.bytes().all(|b| b.is_ascii_digit() || b == b'-') {
                 serde_json::Value::from(x as i64)
             } else {
                 serde_json::Number::from_f64(x).map(serde_json::Value::Number).ok_or_else(|| {
-                    SpecError(format!("{} ({}) is not a finite number", spec.label, kind.name()))
+                    SpecError(
+                        Message::new(Code::ComparePaneParamFinite)
+                            .with("label", label(kind, spec))
+                            .with("planner", kind.name()),
+                    )
                 })?
             }
         } else if spec.choices.contains(&value) {
             serde_json::Value::from(value)
         } else {
-            return err(format!(
-                "{} ({}) must be one of {:?}, not {value:?}",
-                spec.label,
-                kind.name(),
-                spec.choices
-            ));
+            return err(Message::new(Code::ComparePaneParamChoice)
+                .with("label", label(kind, spec))
+                .with("planner", kind.name())
+                .with("choices", spec.choices.to_vec())
+                .with("value", value));
         };
         params.insert(spec.key.to_string(), json);
     }
-    let config: PlannerConfig =
-        serde_json::from_value(serde_json::json!({ "kind": kind.name(), "params": params }))
-            .map_err(|e| SpecError(format!("{}: {e}", kind.name())))?;
-    config.check().map_err(|e| SpecError(format!("{}: {e}", kind.name())))?;
+    let config: PlannerConfig = serde_json::from_value(
+        serde_json::json!({ "kind": kind.name(), "params": params }),
+    )
+    .map_err(|e| {
+        SpecError(
+            Message::new(Code::ComparePanePlanner).with("planner", kind.name()).with("reason", e.to_string()),
+        )
+    })?;
+    config.check().map_err(|e| {
+        SpecError(
+            Message::new(Code::ComparePanePlanner).with("planner", kind.name()).with("reason", e.message()),
+        )
+    })?;
     Ok(config)
 }
 
@@ -316,23 +349,26 @@ impl ComparisonSpec {
     pub fn parse(input: &str) -> Result<Self, SpecError> {
         let value = spec_value(input.trim());
         if value.len() > MAX_SPEC_BYTES {
-            return err(format!("the spec is {} bytes, over the {MAX_SPEC_BYTES}-byte limit", value.len()));
+            return err(Message::new(Code::CompareSpecTooLarge)
+                .with("bytes", value.len())
+                .with("limit", MAX_SPEC_BYTES));
         }
         if value.is_empty() {
-            return err("the spec is empty");
+            return err(Message::new(Code::CompareSpecEmpty));
         }
         let (version, body) = value.split_once('.').ok_or_else(|| {
-            SpecError(format!("the spec has no version prefix (expected \"{SPEC_VERSION}.…\")"))
+            SpecError(Message::new(Code::CompareSpecNoVersion).with("expected", SPEC_VERSION))
         })?;
         if version != SPEC_VERSION {
-            return err(format!(
-                "unknown spec version {:?}; this flockpath reads version {SPEC_VERSION}",
-                version.chars().take(12).collect::<String>()
-            ));
+            return err(Message::new(Code::CompareSpecVersion)
+                .with("version", version.chars().take(12).collect::<String>())
+                .with("readable", SPEC_VERSION));
         }
         let panes = body.split('~').map(PaneSpec::parse).collect::<Result<Vec<_>, _>>()?;
         if panes.len() > MAX_PANES {
-            return err(format!("{} panes; at most {MAX_PANES}", panes.len()));
+            return err(Message::new(Code::ComparePanesTooMany)
+                .with("count", panes.len())
+                .with("most", MAX_PANES));
         }
         Ok(Self { panes })
     }
@@ -503,7 +539,9 @@ impl Comparison {
     /// Builds every pane from `scene` (the same seed in every pane).
     pub fn new(scene: Scene, spec: ComparisonSpec) -> Result<Self, SpecError> {
         if spec.panes.is_empty() || spec.panes.len() > MAX_PANES {
-            return err(format!("{} panes; a comparison has 1 to {MAX_PANES}", spec.panes.len()));
+            return err(Message::new(Code::ComparePanesCount)
+                .with("count", spec.panes.len())
+                .with("most", MAX_PANES));
         }
         scene.validate()?;
         let panes = spec.panes.into_iter().map(|p| Pane::new(&scene, p)).collect::<Result<Vec<_>, _>>()?;
@@ -578,10 +616,11 @@ impl Comparison {
         value: serde_json::Value,
     ) -> Result<(), SpecError> {
         let mut spec = self.spec();
-        let config = pane_slot(&mut spec, pane)?.all.as_mut().ok_or_else(|| {
-            SpecError("this pane runs the scene's own planners: pick a planner for it first".into())
-        })?;
-        config.set_param(key, value).map_err(|e| SpecError(e.to_string()))?;
+        let config = pane_slot(&mut spec, pane)?
+            .all
+            .as_mut()
+            .ok_or_else(|| SpecError(Message::new(Code::ComparePaneSceneParam)))?;
+        config.set_param(key, value).map_err(|e| SpecError(e.message()))?;
         self.set_spec(spec)
     }
 
@@ -673,7 +712,9 @@ impl Comparison {
 
 /// Pane `pane` of `spec`, or an error naming it (counted from 1).
 fn pane_slot(spec: &mut ComparisonSpec, pane: usize) -> Result<&mut PaneSpec, SpecError> {
-    spec.panes.get_mut(pane).ok_or_else(|| SpecError(format!("there is no pane {}", pane as u64 + 1)))
+    spec.panes
+        .get_mut(pane)
+        .ok_or_else(|| SpecError(Message::new(Code::CompareNoPane).with("number", pane as u64 + 1)))
 }
 
 /// Quotes a CSV field when it holds a comma, quote or line break.

@@ -32,6 +32,7 @@
 //! costs per planner.
 
 use crate::model::params::PlannerConfig;
+use crate::model::refusal::{Code, Message};
 use crate::model::scene::{Group, Scene, SceneError};
 use crate::spatial::ObstacleIndex;
 
@@ -114,14 +115,14 @@ pub fn check(scene: &Scene) -> Result<(), SceneError> {
     if planning > MAX_PLANNING_SEGMENT_CHECKS {
         let most = scene.groups.iter().enumerate().max_by_key(|(_, g)| planning_segment_checks(g));
         if let Some((i, g)) = most {
-            return Err(SceneError::TooCostly(format!(
-                "group {} ({}): igsa path planning of all groups would check {planning} path \
-                 segments (population × iterations × (waypoints + 1), this group {}), over the \
-                 limit of {MAX_PLANNING_SEGMENT_CHECKS}: lower the population or the iterations",
-                i + 1,
-                g.name,
-                planning_segment_checks(g),
-            )));
+            return Err(SceneError::TooCostly(
+                Message::new(Code::ScenePlanningCost)
+                    .with("group", i + 1)
+                    .with("name", g.name.clone())
+                    .with("checks", planning)
+                    .with("this", planning_segment_checks(g))
+                    .with("limit", MAX_PLANNING_SEGMENT_CHECKS),
+            ));
         }
     }
     Ok(())

@@ -2,6 +2,7 @@
 //! over its spawn region, in O(N), with the density limit that refuses a region too small.
 
 use crate::model::geometry::{v, Aabb};
+use crate::model::refusal::{Code, Message};
 use crate::model::scene::{Scene, SceneError};
 use crate::rng::Rng;
 use crate::spatial::ObstacleIndex;
@@ -130,17 +131,16 @@ fn place_group(
             break (lattice, free);
         }
         if spacing <= finest {
-            return Err(SceneError::Blocked(format!(
-                "group {} ({}): {} agents of radius {r} px do not fit in its spawn region \
-                 ({}×{} px): it holds at most {} apart from each other, the obstacles and the \
-                 other groups (the density limit)",
-                gi + 1,
-                g.name,
-                g.count,
-                g.spawn.max[0] - g.spawn.min[0],
-                g.spawn.max[1] - g.spawn.min[1],
-                free.len()
-            )));
+            return Err(SceneError::Blocked(
+                Message::new(Code::SceneDensity)
+                    .with("group", gi + 1)
+                    .with("name", g.name.clone())
+                    .with("count", g.count)
+                    .with("radius", r)
+                    .with("width", g.spawn.max[0] - g.spawn.min[0])
+                    .with("height", g.spawn.max[1] - g.spawn.min[1])
+                    .with("most", free.len()),
+            ));
         }
         // Refine towards the spacing the free share suggests, at least a little each time.
         let ratio = (free.len() as f32 / (1.1 * wanted as f32)).sqrt().clamp(0.25, 0.9);

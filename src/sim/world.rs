@@ -2,6 +2,7 @@
 
 use crate::model::geometry::{Aabb, Obstacle};
 use crate::model::params::PlannerConfig;
+use crate::model::refusal::{Code, Message};
 use crate::model::scene::{OnArrival, Scene, SceneError};
 use crate::planners::{GroupView, Planner, StepContext};
 use crate::rng::Rng;
@@ -166,10 +167,11 @@ impl World {
             }
             Some(positions) if positions.len() == total => (positions, vec![Vec2::X; total]),
             Some(positions) => {
-                return Err(SceneError::BadReference(format!(
-                    "{} start positions for {total} agents",
-                    positions.len()
-                )))
+                return Err(SceneError::BadReference(
+                    Message::new(Code::SceneStartPositions)
+                        .with("given", positions.len())
+                        .with("total", total),
+                ))
             }
         };
         if cost_limit {
@@ -397,7 +399,7 @@ impl World {
     /// Replaces the planner parameters of group `g` without restarting the run.
     pub fn set_group_planner(&mut self, g: usize, config: PlannerConfig) -> Result<(), SceneError> {
         if g >= self.scene.groups.len() {
-            return Err(SceneError::BadReference(format!("there is no group {}", g + 1)));
+            return Err(SceneError::no_such_item("group", g as u64 + 1));
         }
         // Checked against the scene too (a Boids group follows a path that exists), so the
         // scene's link stays loadable.

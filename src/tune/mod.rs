@@ -66,6 +66,30 @@ pub enum TuneError {
     NothingEvaluated,
 }
 
+impl crate::model::refusal::Refusal for TuneError {
+    fn message(&self) -> crate::model::refusal::Message {
+        use crate::model::refusal::{Code, Message};
+        match self {
+            TuneError::Settings(reason) => Message::new(Code::TuneSettings).with("reason", reason.clone()),
+            TuneError::UnknownCase(e) => e.message(),
+            TuneError::Frames(n) => Message::new(Code::TuneFrames).with("value", *n).with("most", MAX_FRAMES),
+            TuneError::Generations(n) => {
+                Message::new(Code::TuneGenerations).with("value", *n).with("most", 1000u32)
+            }
+            TuneError::Population(n) => {
+                Message::new(Code::TunePopulation).with("value", *n).with("most", 100_000u32)
+            }
+            TuneError::SampleEvery { every, frames } => {
+                Message::new(Code::TuneSampleEvery).with("every", *every).with("frames", *frames)
+            }
+            TuneError::Rates => Message::new(Code::TuneRates),
+            TuneError::NoAgents => Message::new(Code::TuneNoAgents),
+            TuneError::Scene(e) => e.message(),
+            TuneError::NothingEvaluated => Message::new(Code::TuneNothing),
+        }
+    }
+}
+
 /// Bits per gene.
 pub const GENE_BITS: u32 = 10;
 /// Genes per chromosome (s1…s5).

@@ -4,6 +4,7 @@
 
 use super::{scene_error, to_json, Sim};
 use crate::model::activity::Activity;
+use crate::model::refusal::{Code, Message};
 use crate::model::scene::SceneError;
 use wasm_bindgen::prelude::*;
 
@@ -27,8 +28,11 @@ impl Sim {
         let activity: Option<Activity> = if text.is_empty() {
             None
         } else {
-            serde_json::from_str(text)
-                .map_err(|e| scene_error(SceneError::Parse(format!("the activity is not valid: {e}"))))?
+            serde_json::from_str(text).map_err(|e| {
+                scene_error(SceneError::parse(
+                    Message::new(Code::SceneBadActivity).with("reason", e.to_string()),
+                ))
+            })?
         };
         let mut scene = self.run.world().scene().clone();
         scene.activity = activity;

@@ -3,10 +3,11 @@
 //! Share dialog's ticks back as link options and attributes. Conversion only; the rules are
 //! `model::classroom`'s.
 
-use super::js_error;
+use super::{coded, js_error, refused};
 use crate::model::classroom::{self, ClassroomError, Named, Options};
 use crate::model::codec;
 use crate::model::edit::Edit;
+use crate::model::refusal::{Code, Message};
 use wasm_bindgen::prelude::*;
 
 /// A refused option as a JS `Error` whose message is the core's, with `field` (the option),
@@ -70,11 +71,11 @@ impl Classroom {
     /// throws an `Error` with `part` (the locked part's name) when a lock refuses it.
     pub fn check_edit(&self, edit_json: &str) -> Result<String, JsValue> {
         let edit: Edit = serde_json::from_str(edit_json)
-            .map_err(|e| JsValue::from(js_error(format!("not an edit: {e}"))))?;
+            .map_err(|e| refused(Message::new(Code::NotAnEdit).with("reason", e.to_string())))?;
         match self.inner.check_edit(&edit) {
             Ok(allowed) => serde_json::to_string(&allowed).map_err(|e| js_error(e).into()),
             Err(locked) => {
-                let error = js_sys::Error::new(&locked.to_string());
+                let error = coded(&locked);
                 let _ = js_sys::Reflect::set(
                     &error,
                     &JsValue::from_str("part"),

@@ -1,9 +1,10 @@
 //! The compare page's bindings: an opaque handle over `crate::sim::compare::Comparison` with one
 //! renderer per pane. Conversion and errors only; the panes, series and summary are the core's.
 
-use super::{js_error, refusal, scene_error, to_json, worded};
+use super::{js_error, refusal, refused, scene_error, to_json};
 use crate::model::codec;
 use crate::model::params::PlannerKind;
+use crate::model::refusal::{Code, Message};
 use crate::model::scene::Scene;
 use crate::render::Renderer;
 use crate::sim::compare::{Comparison, ComparisonSpec, MAX_PANES, PANE_COLORS, PANE_NAMES, SERIES_KEYS};
@@ -24,7 +25,7 @@ fn spec_for(scene: &Scene, spec_text: &str) -> Result<ComparisonSpec, JsValue> {
     if spec_text.trim().is_empty() {
         Ok(ComparisonSpec::default_for(scene))
     } else {
-        ComparisonSpec::parse(spec_text).map_err(worded("compare"))
+        ComparisonSpec::parse(spec_text).map_err(refusal)
     }
 }
 
@@ -46,7 +47,7 @@ impl CompareSim {
         console_error_panic_hook::set_once();
         let scene = codec::scene_from_any(scene_text).map_err(scene_error)?;
         let spec = spec_for(&scene, spec_text)?;
-        let comparison = Comparison::new(scene, spec).map_err(worded("compare"))?;
+        let comparison = Comparison::new(scene, spec).map_err(refusal)?;
         let mut sim = CompareSim { comparison, renderers: Vec::new(), width, height };
         sim.fit_renderers();
         Ok(sim)
@@ -100,7 +101,7 @@ impl CompareSim {
 
     /// Restarts every pane from step 0.
     pub fn reset(&mut self) -> Result<(), JsValue> {
-        self.comparison.reset().map_err(worded("compare"))?;
+        self.comparison.reset().map_err(refusal)?;
         self.fit_renderers();
         Ok(())
     }
@@ -108,7 +109,7 @@ impl CompareSim {
     /// Replaces the scene, keeping the panes' planners; on error nothing changes.
     pub fn load(&mut self, scene_text: &str) -> Result<(), JsValue> {
         let scene = codec::scene_from_any(scene_text).map_err(scene_error)?;
-        self.comparison.set_scene(scene).map_err(worded("compare"))?;
+        self.comparison.set_scene(scene).map_err(refusal)?;
         self.fit_renderers();
         Ok(())
     }
@@ -119,15 +120,15 @@ impl CompareSim {
     pub fn load_with_spec(&mut self, scene_text: &str, spec_text: &str) -> Result<(), JsValue> {
         let scene = codec::scene_from_any(scene_text).map_err(scene_error)?;
         let spec = spec_for(&scene, spec_text)?;
-        self.comparison = Comparison::new(scene, spec).map_err(worded("compare"))?;
+        self.comparison = Comparison::new(scene, spec).map_err(refusal)?;
         self.fit_renderers();
         Ok(())
     }
 
     /// Replaces the panes by a spec string (restarts); on error nothing changes.
     pub fn set_spec(&mut self, spec_text: &str) -> Result<(), JsValue> {
-        let spec = ComparisonSpec::parse(spec_text).map_err(worded("compare"))?;
-        self.comparison.set_spec(spec).map_err(worded("compare"))?;
+        let spec = ComparisonSpec::parse(spec_text).map_err(refusal)?;
+        self.comparison.set_spec(spec).map_err(refusal)?;
         self.fit_renderers();
         Ok(())
     }
@@ -136,16 +137,17 @@ impl CompareSim {
     /// that planner's defaults; restarts every pane.
     pub fn set_pane_planner(&mut self, pane: u32, planner_name: &str) -> Result<(), JsValue> {
         let kind = pane_planner(planner_name)?;
-        self.comparison.set_pane_planner(pane as usize, kind).map_err(worded("compare"))?;
+        self.comparison.set_pane_planner(pane as usize, kind).map_err(refusal)?;
         self.fit_renderers();
         Ok(())
     }
 
     /// Sets one parameter of pane `pane`'s every-group planner from a JSON value; restarts.
     pub fn set_pane_param(&mut self, pane: u32, key: &str, value_json: &str) -> Result<(), JsValue> {
-        let value: serde_json::Value = serde_json::from_str(value_json)
-            .map_err(|e| worded("compare")(format!("the value for {key:?} is not JSON: {e}")))?;
-        self.comparison.set_pane_param(pane as usize, key, value).map_err(worded("compare"))?;
+        let value: serde_json::Value = serde_json::from_str(value_json).map_err(|e| {
+            refused(Message::new(Code::ValueNotJson).with("key", key).with("reason", e.to_string()))
+        })?;
+        self.comparison.set_pane_param(pane as usize, key, value).map_err(refusal)?;
         self.fit_renderers();
         Ok(())
     }
@@ -153,14 +155,14 @@ impl CompareSim {
     /// Adds a pane running `planner_name` (or `"scene"`); restarts. Throws past the limit.
     pub fn add_pane(&mut self, planner_name: &str) -> Result<(), JsValue> {
         let kind = pane_planner(planner_name)?;
-        self.comparison.add_pane(kind).map_err(worded("compare"))?;
+        self.comparison.add_pane(kind).map_err(refusal)?;
         self.fit_renderers();
         Ok(())
     }
 
     /// Removes pane `pane`; restarts. Throws for the last pane.
     pub fn remove_pane(&mut self, pane: u32) -> Result<(), JsValue> {
-        self.comparison.remove_pane(pane as usize).map_err(worded("compare"))?;
+        self.comparison.remove_pane(pane as usize).map_err(refusal)?;
         self.fit_renderers();
         Ok(())
     }
@@ -317,5 +319,5 @@ impl CompareSim {
 /// throws with the reason.
 #[wasm_bindgen]
 pub fn compare_spec_check(spec_text: &str) -> Result<String, JsValue> {
-    ComparisonSpec::parse(spec_text).map(|s| s.to_spec_string()).map_err(worded("compare"))
+    ComparisonSpec::parse(spec_text).map(|s| s.to_spec_string()).map_err(refusal)
 }

@@ -2,7 +2,8 @@
 //! explanation, overlay switches, stuck flags and the metrics time series. Conversion only; the
 //! work is done by [`crate::sim::diagnose`], [`crate::sim::run`] (the metric series) and the renderer.
 
-use super::{js_error, to_json, Sim};
+use super::{refused, to_json, Sim};
+use crate::model::refusal::{Code, Message};
 use crate::render::{Overlays, ARROW_COLORS};
 use crate::sim::diagnose;
 use crate::sim::metric_series::SERIES;
@@ -95,15 +96,15 @@ impl Sim {
 
     /// One series of the metrics history (`key` from `history_json`), for `group` (-1: the
     /// whole run); NaN marks a missing value. Throws for an unknown key or group.
-    pub fn history_series(&mut self, key: &str, group: i32) -> Result<Vec<f32>, JsError> {
+    pub fn history_series(&mut self, key: &str, group: i32) -> Result<Vec<f32>, JsValue> {
         let group = usize::try_from(group).ok();
         if self.run.metric_series().steps().is_empty() {
             return Ok(Vec::new());
         }
-        self.run
-            .metric_series()
-            .series(key, group)
-            .ok_or_else(|| js_error(format!("no metrics series {key:?} for group {group:?}")))
+        self.run.metric_series().series(key, group).ok_or_else(|| {
+            let group = group.map_or_else(|| "None".to_string(), |g| format!("Some({g})"));
+            refused(Message::new(Code::NoSeries).with("key", key).with("group", group))
+        })
     }
 
     /// The metrics history as CSV (`step,time_s,group,<series…>`).

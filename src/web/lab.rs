@@ -2,18 +2,19 @@
 //! opaque handle, its 2-D picture as a pointer into wasm memory, and single seeded runs for the
 //! page's worker. Conversion only; the runs and the pixels are `crate::optim::lab`.
 
-use super::{to_json, worded};
+use super::{refusal, refused, to_json};
 use crate::experiments::tables::Summary;
+use crate::model::refusal::{Code, Message};
 use crate::optim::lab::{self, LabRun};
 use crate::optim::{Algorithm, Function, Settings};
 use wasm_bindgen::prelude::*;
 
 fn algorithm(name: &str) -> Result<Algorithm, JsValue> {
-    Algorithm::parse(name).map_err(worded("lab"))
+    Algorithm::parse(name).map_err(refusal)
 }
 
 fn function(name: &str) -> Result<Function, JsValue> {
-    Function::parse(name).map_err(worded("lab"))
+    Function::parse(name).map_err(refusal)
 }
 
 /// The run's sizes, each refused by name with its range when outside the page's limits (the
@@ -22,11 +23,19 @@ fn settings(dim: u32, population: u32, iterations: u32) -> Result<Settings, JsVa
     use crate::sim::limits::{
         PAGE_LAB_DIMENSION as DIM, PAGE_LAB_ITERATIONS as ITERS, PAGE_LAB_POPULATION as POP,
     };
-    for (field, value, min, max) in
-        [("dimension", dim, 1, DIM), ("population", population, 2, POP), ("iterations", iterations, 1, ITERS)]
-    {
+    for (setting, value, min, max) in [
+        (Code::LabDimension, dim, 1, DIM),
+        (Code::LabPopulation, population, 2, POP),
+        (Code::LabIterations, iterations, 1, ITERS),
+    ] {
         if !(min..=max).contains(&value) {
-            return Err(worded("lab")(format!("{field} {value} is outside {min}…{max}")));
+            return Err(refused(
+                Message::new(Code::LabOutOfRange)
+                    .with("setting", Message::new(setting))
+                    .with("value", value)
+                    .with("min", min)
+                    .with("max", max),
+            ));
         }
     }
     Ok(Settings { population: population as usize, iterations, ..Settings::default() })

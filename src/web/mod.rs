@@ -15,7 +15,7 @@ use crate::model::codec;
 use crate::model::edit::{self, Edit, ItemRef};
 use crate::model::params::PlannerKind;
 use crate::model::presets;
-use crate::model::refusal::Refusal;
+use crate::model::refusal::{Arg, Code, Message, Refusal};
 use crate::model::scene::ViewOptions;
 use crate::render::{Renderer, Theme};
 use crate::sim::run::{Run, RunOptions};
@@ -38,81 +38,49 @@ pub fn init() {
     console_error_panic_hook::set_once();
 }
 
-/// A JS `Error` with the core's message.
+/// A JS `Error` with the core's message, for what no user can cause (a value that does not
+/// serialise): a bug, not a refusal.
 fn js_error(e: impl Display) -> JsError {
     JsError::new(&e.to_string())
 }
 
-/// A refusal as a JS `Error`: its message is the core's English text; `code` and `args` (an
-/// object of strings, [`Refusal`]) let the page word it in the reader's language.
+/// A refusal as a JS `Error` in the one shape every error crosses in: `message` is the core's
+/// English text; `code` (a [`Code`] name) and `args` (its typed arguments: strings, numbers,
+/// lists, `{term, english}` words of the strings table and nested `{code, args, message}`)
+/// let the page word it from its template in the reader's language.
 fn coded(e: &impl Refusal) -> js_sys::Error {
-    let error = js_sys::Error::new(&e.to_string());
-    let args = js_sys::Object::new();
-    for (name, value) in e.args() {
-        // Setting a property on a fresh object cannot fail.
-        let _ = js_sys::Reflect::set(&args, &JsValue::from_str(name), &JsValue::from_str(&value));
-    }
-    let _ = js_sys::Reflect::set(&error, &JsValue::from_str("code"), &JsValue::from_str(e.code()));
+    let message = e.message();
+    let error = js_sys::Error::new(&message.to_string());
+    // The message serialises to JSON by construction (strings, numbers, maps).
+    let shape = serde_json::to_string(&message).ok().and_then(|json| js_sys::JSON::parse(&json).ok());
+    let args = shape
+        .and_then(|shape| js_sys::Reflect::get(&shape, &JsValue::from_str("args")).ok())
+        .unwrap_or_else(|| js_sys::Object::new().into());
+    // Setting a property on a fresh Error object cannot fail.
+    let _ =
+        js_sys::Reflect::set(&error, &JsValue::from_str("code"), &JsValue::from_str(message.code.as_str()));
     let _ = js_sys::Reflect::set(&error, &JsValue::from_str("args"), &args);
     error
-}
-
-/// JSON from the page that does not read as the call's input (an edit with a negative count):
-/// `cannot read the <what>: <the reader's words>`, coded `unreadable`.
-struct Unreadable {
-    what: &'static str,
-    reason: String,
-}
-
-impl Display for Unreadable {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "cannot read the {}: {}", self.what, self.reason)
-    }
-}
-
-impl Refusal for Unreadable {
-    fn code(&self) -> &'static str {
-        "unreadable"
-    }
-
-    fn args(&self) -> Vec<(&'static str, String)> {
-        vec![("what", self.what.to_string()), ("reason", self.reason.clone())]
-    }
-}
-
-/// An error the core words alone, coded by the page concern it arose in (`compare`, `lab`,
-/// `tune`, `validation`, `export`, `theme`, `play`) with its English words as the one argument `message`: the
-/// page words the ones it knows in the reader's language (`www/js/core/refusals.js`, matched by
-/// their English words) and shows any other as given.
-struct Worded {
-    code: &'static str,
-    message: String,
-}
-
-impl Display for Worded {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(&self.message)
-    }
-}
-
-impl Refusal for Worded {
-    fn code(&self) -> &'static str {
-        self.code
-    }
-
-    fn args(&self) -> Vec<(&'static str, String)> {
-        vec![("message", self.message.clone())]
-    }
-}
-
-/// For `map_err`: the error as a JS `Error` with the core's message, coded `code` ([`Worded`]).
-fn worded<E: Display>(code: &'static str) -> impl Fn(E) -> JsValue {
-    move |e| refusal(Worded { code, message: e.to_string() })
 }
 
 /// A coded refusal ([`coded`]) as a JS value, for `map_err`.
 fn refusal(e: impl Refusal) -> JsValue {
     coded(&e).into()
+}
+
+/// A message of `code` with `args` as a refused JS value ([`coded`]).
+fn refused(message: Message) -> JsValue {
+    refusal(message)
+}
+
+/// JSON from the page that does not read as the call's input (an edit with a negative count):
+/// `cannot read the <what>: <the reader's words>`.
+fn unreadable(what: &'static str, reason: impl Display) -> JsValue {
+    refused(
+        Message::new(Code::PageUnreadable)
+            .with("what", Arg::term(format!("what.{what}"), what))
+            .with("reason", reason.to_string()),
+    )
 }
 
 /// A refused scene as a JS `Error` ([`coded`]), and its `details` property (when the parser had
@@ -126,13 +94,9 @@ fn scene_error(e: crate::model::scene::SceneError) -> JsValue {
     error.into()
 }
 
-/// "there is no group n" (`group` counts from 0, the message from 1), coded like the core's
-/// other missing items (`bad_reference`).
+/// "there is no group n" (`group` counts from 0, the message from 1).
 fn no_group(group: u32) -> JsValue {
-    scene_error(crate::model::scene::SceneError::BadReference(format!(
-        "there is no group {}",
-        u64::from(group) + 1
-    )))
+    scene_error(crate::model::scene::SceneError::no_such_item("group", u64::from(group) + 1))
 }
 
 fn to_json<T: serde::Serialize>(value: &T) -> Result<String, JsError> {
@@ -168,8 +132,8 @@ impl Sim {
     }
 
     /// Stores new view options in the scene (no restart) and shows them.
-    fn set_view(&mut self, view: ViewOptions) -> Result<(), JsError> {
-        self.run.set_view(view).map_err(js_error)?;
+    fn set_view(&mut self, view: ViewOptions) -> Result<(), JsValue> {
+        self.run.set_view(view).map_err(scene_error)?;
         self.show_scene_view();
         Ok(())
     }
@@ -274,8 +238,9 @@ impl Sim {
 
     /// Sets one planner parameter of a group (0-based) from a JSON value, live, without a reset.
     pub fn set_group_param(&mut self, group: u32, key: &str, value_json: &str) -> Result<(), JsValue> {
-        let value: serde_json::Value = serde_json::from_str(value_json)
-            .map_err(|e| worded("play")(format!("the value for {key:?} is not JSON: {e}")))?;
+        let value: serde_json::Value = serde_json::from_str(value_json).map_err(|e| {
+            refused(Message::new(Code::ValueNotJson).with("key", key).with("reason", e.to_string()))
+        })?;
         let mut config = self
             .run
             .world()
@@ -297,8 +262,7 @@ impl Sim {
 
     /// Applies an editor operation (JSON of `crate::model::edit::Edit`); on error nothing changes.
     pub fn edit(&mut self, edit_json: &str) -> Result<(), JsValue> {
-        let edit: Edit = serde_json::from_str(edit_json)
-            .map_err(|e| refusal(Unreadable { what: "edit", reason: e.to_string() }))?;
+        let edit: Edit = serde_json::from_str(edit_json).map_err(|e| unreadable("edit", e))?;
         let scene = edit::apply(self.run.world().scene(), &edit).map_err(scene_error)?;
         self.run.edit_scene(scene).map_err(scene_error)?;
         if self.run.world().step_count() == 0 {
@@ -340,21 +304,21 @@ impl Sim {
     }
 
     /// Outlines an item (JSON item reference) or nothing (`"null"`).
-    pub fn set_selection(&mut self, item_json: &str) -> Result<(), JsError> {
+    pub fn set_selection(&mut self, item_json: &str) -> Result<(), JsValue> {
         let item: Option<ItemRef> = serde_json::from_str(item_json)
-            .map_err(|e| js_error(format!("cannot read the selected item: {e}")))?;
+            .map_err(|e| refused(Message::new(Code::BadSelection).with("reason", e.to_string())))?;
         self.renderer.set_selection(item);
         Ok(())
     }
 
     /// Turns trails on or off (saved in the scene's view options, so shared links keep it).
-    pub fn set_trails(&mut self, on: bool) -> Result<(), JsError> {
+    pub fn set_trails(&mut self, on: bool) -> Result<(), JsValue> {
         self.set_view(ViewOptions { trails: on, ..self.run.world().scene().view })
     }
 
     /// Share of a trail's visibility lost every two steps (0 = permanent, 1 = the newest segments
     /// only); saved in the scene's view options. Throws outside 0…1.
-    pub fn set_trail_fade(&mut self, fade: f32) -> Result<(), JsError> {
+    pub fn set_trail_fade(&mut self, fade: f32) -> Result<(), JsValue> {
         self.set_view(ViewOptions { trail_fade: fade, ..self.run.world().scene().view })
     }
 
@@ -363,7 +327,7 @@ impl Sim {
     pub fn set_theme(&mut self, name: &str) -> Result<(), JsValue> {
         let theme = Theme::from_name(name).ok_or_else(|| {
             let known: Vec<&str> = Theme::ALL.iter().map(|t| t.name()).collect();
-            worded("theme")(format!("unknown theme {name:?}; known: {}", known.join(", ")))
+            refused(Message::new(Code::ThemeUnknown).with("name", name).with("known", known))
         })?;
         self.renderer.set_theme(theme);
         Ok(())
@@ -403,13 +367,13 @@ impl Sim {
 
     /// A Maya MEL script keyframing one locator per agent at `fps`, scene px × `scale`.
     pub fn export_maya_mel(&self, fps: f32, scale: f32) -> Result<String, JsValue> {
-        let options = ExportOptions::checked(fps, scale).map_err(worded("export"))?;
+        let options = ExportOptions::checked(fps, scale).map_err(refusal)?;
         Ok(export::maya_mel(self.run.world().scene(), self.run.recording(), options))
     }
 
     /// A Blender Python script keyframing one empty per agent at `fps`, scene px × `scale`.
     pub fn export_blender_py(&self, fps: f32, scale: f32) -> Result<String, JsValue> {
-        let options = ExportOptions::checked(fps, scale).map_err(worded("export"))?;
+        let options = ExportOptions::checked(fps, scale).map_err(refusal)?;
         Ok(export::blender_py(self.run.world().scene(), self.run.recording(), options))
     }
 

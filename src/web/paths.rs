@@ -1,8 +1,9 @@
 //! The playground's path-editing bindings: an IGSA group's planned path, picking and moving its
 //! waypoints. Conversion only; the core plans, validates and flags crossings.
 
-use super::{no_group, scene_error, to_json, worded, Sim};
+use super::{no_group, refused, scene_error, to_json, Sim};
 use crate::model::params::PlannerConfig;
+use crate::model::refusal::{Code, Message};
 use glam::Vec2;
 use wasm_bindgen::prelude::*;
 
@@ -29,15 +30,12 @@ impl Sim {
     /// `[]`: the path is planned in slices, see [`Sim::advance_planning`]).
     pub fn set_group_waypoints(&mut self, group: u32, points_json: &str) -> Result<String, JsValue> {
         let points: Vec<[f32; 2]> = serde_json::from_str(points_json)
-            .map_err(|e| worded("play")(format!("the waypoints are not a list of [x, y] points: {e}")))?;
+            .map_err(|e| refused(Message::new(Code::WaypointsNotList).with("reason", e.to_string())))?;
         let g = group as usize;
         let mut config =
             self.run.world().scene().groups.get(g).ok_or_else(|| no_group(group))?.planner.clone();
         let PlannerConfig::Igsa(params) = &mut config else {
-            return Err(worded("play")(format!(
-                "group {} does not follow a planned path (its planner is not igsa)",
-                u64::from(group) + 1
-            )));
+            return Err(refused(Message::new(Code::WaypointsNotIgsa).with("group", u64::from(group) + 1)));
         };
         params.waypoints = points;
         self.run.set_group_planner(g, config).map_err(scene_error)?;

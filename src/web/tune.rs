@@ -2,17 +2,17 @@
 //! Worker advances one generation per call, so the page never waits on it. Converts and calls
 //! the core's [`Tuner`]; no tuning logic lives here.
 
-use super::{scene_error, to_json, worded};
+use super::{refusal, scene_error, to_json};
 use crate::model::codec;
 use crate::tune::{TuneError, TuneSetup, Tuner};
 use wasm_bindgen::prelude::*;
 
-/// A refused setup as a JS `Error`: a refused scene with its own code, anything else coded
-/// `tune` ([`worded`]).
+/// A refused setup as a JS `Error`: a refused scene with its `details`, anything else coded
+/// by the core ([`super::coded`]).
 fn tune_error(e: TuneError) -> JsValue {
     match e {
         TuneError::Scene(e) => scene_error(e),
-        other => worded("tune")(other),
+        other => refusal(other),
     }
 }
 

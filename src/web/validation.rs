@@ -3,10 +3,11 @@
 //! the reference curves for the fundamental-diagram plot. Conversion only; the suite is
 //! `crate::experiments::validation`.
 
-use super::{to_json, worded};
+use super::{refused, to_json};
 use crate::experiments::validation::measure::{seyfried_speed, weidmann_specific_flow, weidmann_speed};
 use crate::experiments::validation::{find_test, TESTS};
 use crate::model::params::PlannerKind;
+use crate::model::refusal::{Code, Message};
 use serde::Serialize;
 use wasm_bindgen::prelude::*;
 
@@ -56,10 +57,10 @@ pub fn validation_options_json() -> Result<String, JsError> {
 #[wasm_bindgen]
 pub fn validation_run_json(test_id: &str, planner: &str) -> Result<String, JsValue> {
     console_error_panic_hook::set_once();
-    let refused = worded("validation");
-    let test = find_test(test_id).ok_or_else(|| refused(format!("unknown test {test_id:?}")))?;
-    let kind =
-        PlannerKind::from_name(planner).ok_or_else(|| refused(format!("unknown planner {planner:?}")))?;
+    let test = find_test(test_id)
+        .ok_or_else(|| refused(Message::new(Code::ValidationUnknownTest).with("name", test_id)))?;
+    let kind = PlannerKind::from_name(planner)
+        .ok_or_else(|| refused(Message::new(Code::ValidationUnknownPlanner).with("name", planner)))?;
     Ok(to_json(&test.run(kind))?)
 }
 
@@ -71,9 +72,11 @@ pub fn validation_reference_speeds(curve: &str, densities: &[f64]) -> Result<Vec
         "weidmann" => weidmann_speed,
         "seyfried" => seyfried_speed,
         _ => {
-            return Err(worded("validation")(format!(
-                "unknown reference curve {curve:?}; known: weidmann, seyfried"
-            )))
+            return Err(refused(
+                Message::new(Code::ValidationUnknownCurve)
+                    .with("name", curve)
+                    .with("known", vec!["weidmann", "seyfried"]),
+            ))
         }
     };
     Ok(densities.iter().map(|&d| f(d)).collect())

@@ -121,7 +121,7 @@ test('the core’s planners, parameters, choices, units, presets, series and val
 test('the core’s refusals are worded in Chinese (real errors from the wasm module, no browser)', async () => {
   const m = await wasmModule();
   const i18n = await pageModule('core', 'i18n.js');
-  const { refusalText } = await pageModule('core', 'refusals.js');
+  const { errorText: refusalText } = await pageModule('core', 'messages.js');
   const base = JSON.parse(m.preset_scene_json('open-field'));
   const dense = structuredClone(base);
   Object.assign(dense.groups[0], { count: 5000, spawn: { min: [10, 10], max: [60, 60] } });
@@ -151,7 +151,7 @@ test('the core’s refusals are worded in Chinese (real errors from the wasm mod
   // Identifiers the messages quote (preset and planner names) are no language.
   const names = new Set(JSON.parse(m.presets_json()).map((p) => p.name));
   try {
-    assert.equal(refusalText(cases.density), null, 'English pages show the core’s words');
+    for (const [k, e] of Object.entries(cases)) assert.equal(refusalText(e), e.message, `${k}: the English template is the core’s words`);
     i18n.setLanguage('zh', null);
     const zh = Object.fromEntries(Object.entries(cases).map(([k, e]) => [k, refusalText(e)]));
     for (const [k, text] of Object.entries(zh)) {
@@ -161,7 +161,7 @@ test('the core’s refusals are worded in Chinese (real errors from the wasm mod
       assert.deepEqual(english, [], `${k}: no English words left in ${text}`);
     }
     assert.equal(zh.density, '群组 1（flock）：5000 个半径 4 像素的个体放不进其出生区域（50×50 像素）：在彼此、障碍物和其他群组之间保持间隔时最多只能放 49 个（密度上限）');
-    assert.equal(cases.memory.code, 'flow_field_memory');
+    assert.equal(cases.memory.code, 'scene.flow_field_memory');
     assert.match(cases.memory.message, /^groups\[570\]: the groups' 571 distinct flow fields \(156816 cells each.* over the 1024 MB limit/);
     assert.match(zh.memory, /^groups\[570\]：各群组共需 571 个不同的流场（每个 156816 个格子.*超过 1024 MB 的上限/);
     assert.equal(zh.range, '最大速度（max_speed）的值为 1000000；允许：0.1…20 像素/步 之间的数');
@@ -181,7 +181,7 @@ function englishWords(text, names) {
 test('every other refusal is worded in Chinese too: scene fields, items, compare specs, lab, tune, validation, export, theme (real errors from the wasm module)', async () => {
   const m = await wasmModule();
   const i18n = await pageModule('core', 'i18n.js');
-  const { refusalText } = await pageModule('core', 'refusals.js');
+  const { errorText: refusalText } = await pageModule('core', 'messages.js');
   const en = await table('en');
   const zhTable = await table('zh');
   const base = JSON.parse(m.preset_scene_json('open-field'));
@@ -256,7 +256,7 @@ test('every other refusal is worded in Chinese too: scene fields, items, compare
   }
   try {
     for (const [k, e] of Object.entries(cases)) assert.equal(typeof e.code, 'string', `${k} carries a code (${e.message})`);
-    assert.equal(refusalText(cases.spec_planner), null, 'English pages show the core’s words');
+    for (const [k, e] of Object.entries(cases)) assert.equal(refusalText(e), e.message, `${k}: the English template is the core’s words`);
     assert.match(cases.spec_planner.message, /^comparison: unknown planner "zz"/, 'the English message is unchanged');
     i18n.setLanguage('zh', null);
     const zh = Object.fromEntries(Object.entries(cases).map(([k, e]) => [k, refusalText(e)]));
@@ -279,7 +279,7 @@ test('every other refusal is worded in Chinese too: scene fields, items, compare
 test('names, strings that are no text, links too long and lab sizes are refused by field and limit, in English and Chinese (wasm module, no browser)', async () => {
   const m = await wasmModule();
   const i18n = await pageModule('core', 'i18n.js');
-  const { refusalText } = await pageModule('core', 'refusals.js');
+  const { errorText: refusalText } = await pageModule('core', 'messages.js');
   const base = JSON.parse(m.preset_scene_json('open-field'));
   const withName = (name) => {
     const s = structuredClone(base);
@@ -315,7 +315,7 @@ test('names, strings that are no text, links too long and lab sizes are refused 
   assert.deepEqual([max('lab-dim'), max('lab-pop'), max('lab-iters')], [200, 500, 10000]);
   new m.Lab('pso', 'sphere', max('lab-dim'), max('lab-pop'), max('lab-iters'), 1).free();
   try {
-    for (const e of Object.values(cases)) assert.equal(refusalText(e), null, 'English pages show the core’s words');
+    for (const [k, e] of Object.entries(cases)) assert.equal(refusalText(e), e.message, `${k}: the English template is the core’s words`);
     i18n.setLanguage('zh', null);
     const zh = Object.fromEntries(Object.entries(cases).map(([k, e]) => [k, refusalText(e)]));
     assert.equal(zh.long_name, 'groups[0].name 的值为 7340032 个字符的文本（"xxxxxxxxxxxxxxxxxxxxxxxx"…）；允许：单行文本，最多 100 个字符');
@@ -595,7 +595,7 @@ test('refused input is worded in Chinese: a field out of range, an unknown scene
         return { message: error.message, code: error.code };
       }
     });
-    assert.equal(thrown.code, 'unknown_preset');
+    assert.equal(thrown.code, 'scene.unknown_preset');
     assert.match(thrown.message, /^unknown preset 'no-such-preset'/);
     assert.match(await banner(), /^未知的预设场景“no-such-preset”（可用的有：pillars, /);
     assertNoUnexpectedErrors(errors);

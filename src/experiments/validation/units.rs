@@ -18,6 +18,19 @@ pub enum SetupError {
     Scene(#[from] SceneError),
 }
 
+impl crate::model::refusal::Refusal for SetupError {
+    fn message(&self) -> crate::model::refusal::Message {
+        use crate::model::refusal::{Code, Message};
+        match self {
+            SetupError::NoSpeedParameter(planner) => {
+                Message::new(Code::ValidationNoSpeed).with("planner", *planner)
+            }
+            SetupError::Param(e) => e.message(),
+            SetupError::Scene(e) => e.message(),
+        }
+    }
+}
+
 /// Pixels per metre of the suite's scenes: the scenes' default scale (20 px = 1 m), which
 /// every scene of the suite states as its `px_per_metre`.
 pub const PX_PER_METRE: f32 = DEFAULT_PX_PER_METRE;

@@ -2,6 +2,7 @@
 //! table the panel, the codec and validation read. The planner itself is in `crate::planners::igsa`.
 
 use super::spec::ParamSpec;
+use crate::model::refusal::{Code, Message, Refusal};
 use serde::{Deserialize, Serialize};
 
 /// Most waypoints an edited path may hold.
@@ -167,4 +168,15 @@ pub enum WaypointError {
     /// Waypoint number `k` (from 1) has a NaN or infinite coordinate.
     #[error("waypoint {0} is not a finite point")]
     NotFinite(usize),
+}
+
+impl Refusal for WaypointError {
+    fn message(&self) -> Message {
+        match *self {
+            WaypointError::TooMany(n) => {
+                Message::new(Code::WaypointsTooMany).with("most", MAX_EDITED_WAYPOINTS).with("count", n)
+            }
+            WaypointError::NotFinite(k) => Message::new(Code::WaypointNotFinite).with("number", k),
+        }
+    }
 }

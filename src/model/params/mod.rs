@@ -14,6 +14,7 @@ pub mod pso;
 pub mod social_force;
 pub mod spec;
 
+use crate::model::refusal::{Arg, Code, Message, Refusal};
 pub use boids::{Arbitration, BoidsParams, FlowGuide, Leader, Role};
 pub use collision_free_speed::CollisionFreeSpeedParams;
 pub use firefly::FireflyParams;
@@ -85,6 +86,11 @@ impl PlannerKind {
     /// [`Self::from_name`] for user input: an unknown name is refused with the known ones.
     pub fn parse(name: &str) -> Result<Self, UnknownPlanner> {
         Self::from_name(name).ok_or_else(|| UnknownPlanner::new(name))
+    }
+
+    /// The label as a term of the page's strings table (`planner.<name>`), for messages.
+    pub fn label_term(self) -> Arg {
+        Arg::term(format!("planner.{}", self.name()), self.label())
     }
 
     /// Human-readable label.
@@ -165,16 +171,20 @@ impl UnknownPlanner {
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum SetParamError {
     /// The planner's table has no such key.
-    #[error("{planner} has no parameter {key:?}")]
+    #[error("{} has no parameter {key:?}", planner.label())]
     UnknownKey {
-        /// The planner's label (`Boids steering`).
-        planner: &'static str,
+        /// The planner.
+        planner: PlannerKind,
         /// The key asked for.
         key: String,
     },
     /// The value has the wrong JSON type for the parameter (a string for a number, …).
     #[error("{label}: {problem}")]
     WrongType {
+        /// The planner.
+        planner: PlannerKind,
+        /// The parameter's key.
+        key: &'static str,
         /// The parameter's label on its slider.
         label: &'static str,
         /// The JSON reader's words.
@@ -270,9 +280,10 @@ impl PlannerConfig {
     /// Checks every parameter against its table range (and IGSA's edited waypoints); a refusal
     /// names the parameter by its key, value and range.
     pub fn check(&self) -> Result<(), ParamError> {
-        check_params(self.kind().param_specs(), &self.params_json())?;
+        check_params(self.kind().name(), self.kind().param_specs(), &self.params_json())?;
         match self {
             PlannerConfig::Igsa(p) => p.check_waypoints().map_err(|problem| ParamError {
+                planner: PlannerKind::Igsa.name(),
                 key: "waypoints".into(),
                 label: "Waypoints",
                 value: problem.to_string(),
@@ -303,15 +314,55 @@ impl PlannerConfig {
             .param_specs()
             .iter()
             .find(|s| s.key == key)
-            .ok_or_else(|| SetParamError::UnknownKey { planner: kind.label(), key: key.to_string() })?;
+            .ok_or_else(|| SetParamError::UnknownKey { planner: kind, key: key.to_string() })?;
         let mut params = self.params_json();
         params.insert(spec.key.to_string(), value);
         let tagged = serde_json::json!({ "kind": kind.name(), "params": params });
-        let updated: PlannerConfig = serde_json::from_value(tagged)
-            .map_err(|e| SetParamError::WrongType { label: spec.label, problem: e.to_string() })?;
+        let updated: PlannerConfig =
+            serde_json::from_value(tagged).map_err(|e| SetParamError::WrongType {
+                planner: kind,
+                key: spec.key,
+                label: spec.label,
+                problem: e.to_string(),
+            })?;
         updated.check()?;
         *self = updated;
         Ok(())
+    }
+}
+
+impl Refusal for UnknownPlanner {
+    fn message(&self) -> Message {
+        Message::new(Code::PlannerUnknown).with("name", self.name.clone()).with("known", self.known())
+    }
+}
+
+/// A parameter's label as a term of the page's strings table (`param.<planner>.<key>`).
+fn param_label(planner: &str, key: &str, label: &str) -> Arg {
+    Arg::term(format!("param.{planner}.{key}"), label)
+}
+
+impl Refusal for ParamError {
+    fn message(&self) -> Message {
+        Message::new(Code::ParamRange)
+            .with("label", param_label(self.planner, &self.key, self.label))
+            .with("key", self.key.clone())
+            .with("value", self.value.clone())
+            .with("allowed", self.allowed.clone())
+    }
+}
+
+impl Refusal for SetParamError {
+    fn message(&self) -> Message {
+        match self {
+            SetParamError::UnknownKey { planner, key } => Message::new(Code::ParamUnknown)
+                .with("planner", planner.label_term())
+                .with("key", key.clone()),
+            SetParamError::WrongType { planner, key, label, problem } => Message::new(Code::ParamType)
+                .with("label", param_label(planner.name(), key, label))
+                .with("problem", problem.clone()),
+            SetParamError::Refused(e) => e.message(),
+        }
     }
 }
 
@@ -373,7 +424,7 @@ mod tests {
         assert!(matches!(&refused, SetParamError::Refused(e) if e.key == "max_speed"), "{refused:?}");
         assert_eq!(
             c.set_param("nope", serde_json::json!(1)),
-            Err(SetParamError::UnknownKey { planner: "Boids steering", key: "nope".into() })
+            Err(SetParamError::UnknownKey { planner: PlannerKind::Boids, key: "nope".into() })
         );
         let wrong = c.set_param("max_speed", serde_json::json!("fast")).expect_err("a string");
         assert!(matches!(&wrong, SetParamError::WrongType { label: "Max speed", .. }), "{wrong:?}");

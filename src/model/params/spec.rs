@@ -99,6 +99,8 @@ impl ParamSpec {
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 #[error("{label} ({key}) is {value}; allowed: {allowed}")]
 pub struct ParamError {
+    /// The name of the planner whose table refused it (`boids`).
+    pub planner: &'static str,
     /// The parameter's key in the planner's params (`max_speed`).
     pub key: String,
     /// Its label on the slider (`Max speed`).
@@ -127,12 +129,14 @@ impl ParamSpec {
 }
 
 pub(super) fn check_params(
+    planner: &'static str,
     specs: &[ParamSpec],
     params: &serde_json::Map<String, serde_json::Value>,
 ) -> Result<(), ParamError> {
     for spec in specs {
         let Some(value) = params.get(spec.key) else { continue };
         let refuse = |shown: String| ParamError {
+            planner,
             key: spec.key.to_string(),
             label: spec.label,
             value: shown,

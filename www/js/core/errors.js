@@ -1,7 +1,7 @@
 // Messages for the user: a dismissable banner for refused input, a loud panel for a crash.
 
 import { t } from './i18n.js';
-import { refusalText } from './refusals.js';
+import { errorText } from './messages.js';
 
 const banner = () => document.getElementById('banner');
 
@@ -20,8 +20,8 @@ export function messageOf(error) {
 }
 
 function readableText(error) {
-  // A refusal from the core in the page's language (English pages: the core's own words).
-  const worded = refusalText(error);
+  // A refusal from the core, worded from its code's template in the page's language.
+  const worded = errorText(error);
   if (worded) return worded;
   if (error instanceof Error) return error.message || String(error);
   if (typeof error === 'string') return error;

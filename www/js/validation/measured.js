@@ -5,7 +5,6 @@
 // runs the suite's tests in Chinese and fails on English words left).
 
 import { language, t } from '../core/i18n.js';
-import { wordsText } from '../core/refusals.js';
 
 const NUM = '[-+]?[\\d.]+';
 
@@ -61,7 +60,7 @@ const PATTERNS = [
     (g) => ({ speeds: g.speeds, times: g.times.split(', ').map((x) => (/^\d+ out$/.test(x) ? t('validation.measured.out', { n: x.replace(/ out$/, '') }) : x)).join(t('list.comma')) })],
   [/^first out: short (?<a>.+?) ≤ corner (?<b>.+?) ≤ long (?<c>.+?); last out: short (?<d>.+?) ≤ corner (?<e>.+?) \(long (?<f>.+)\)$/, 'corner_crowd',
     (g) => ({ a: firstOut(g.a), b: firstOut(g.b), c: firstOut(g.c), d: seconds(g.d), e: seconds(g.e), f: seconds(g.f) })],
-  [/^not measured: (?<message>.*)$/, 'not_measured', (g) => ({ message: wordsText(g.message) ?? g.message })],
+  [/^not measured: (?<message>.*)$/, 'not_measured'],
 ];
 
 /** T4's band: the properties a diagram fails, as the core names them (suite.rs `fd_properties_failed`). */
