@@ -920,8 +920,8 @@ impl Scene {
                 return Err(SceneError::Blocked(
                     Message::new(Code::SceneGoalInObstacle)
                         .with("goal", i)
-                        .with("x", g.position[0])
-                        .with("y", g.position[1])
+                        .with("x", num(g.position[0]))
+                        .with("y", num(g.position[1]))
                         .with("obstacle", k),
                 ));
             }
@@ -1293,8 +1293,8 @@ mod tests {
             SceneError::Blocked(
                 Message::new(Code::SceneGoalInObstacle)
                     .with("goal", 0u32)
-                    .with("x", 350.0f32)
-                    .with("y", 150.0f32)
+                    .with("x", "350")
+                    .with("y", "150")
                     .with("obstacle", 0u32)
             )
         );

@@ -230,7 +230,7 @@ export function translatePage(root = document) {
   }
 }
 
-/** The English table (the reference; refusals.js finds a label's key by its English words). */
+/** The English table (the reference). */
 export { en };
 
 /** Every shipped table, for the missing-key test. */

@@ -1236,7 +1236,7 @@ export default {
   'compare.describe.intro.other': '{n} panes run this scene side by side, each with its own planner.',
   'compare.describe.pane': 'Pane {pane}, {label}:',
 
-  // — refusals and words of the other pages (compare spec, lab, tune, validation, export, theme; refusals.js) —
+  // — words of refused fields and of the other pages (what a field allows, values; refusals.js) —
   "item.obstacle": "obstacle",
   "item.goal": "goal",
   "item.group": "group",

@@ -1236,7 +1236,7 @@ export default {
   'compare.describe.intro.other': '{n} 个窗格并排运行此场景，各用自己的规划器。',
   'compare.describe.pane': '窗格 {pane}，{label}：',
 
-  // — refusals and words of the other pages (compare spec, lab, tune, validation, export, theme; refusals.js) —
+  // — words of refused fields and of the other pages (what a field allows, values; refusals.js) —
   "item.obstacle": "障碍物",
   "item.goal": "目标",
   "item.group": "群组",
