@@ -65,7 +65,7 @@ fn the_default_scale_is_left_out_of_json_and_links() {
 
 fn refused_field(result: Result<flockpath::Scene, SceneError>) -> (String, String) {
     match result {
-        Err(SceneError::Field(f)) => (f.path, f.value),
+        Err(SceneError::Field(f)) => (f.path, f.value.to_string()),
         other => panic!("expected a field refusal, got {other:?}"),
     }
 }

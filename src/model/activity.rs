@@ -19,6 +19,7 @@
 //! assert_eq!(activity.validate(1), Ok(()));
 //! ```
 
+use crate::model::refusal::{Arg, Code, Message};
 use serde::{Deserialize, Serialize};
 
 /// Longest prompt (characters).
@@ -194,15 +195,15 @@ impl Op {
 pub struct ActivityFault {
     /// Path from the scene's root.
     pub path: String,
-    /// The refused value, shortened.
-    pub value: String,
+    /// The refused value, shortened (text as written, or a `value.*` message).
+    pub value: Arg,
     /// What the field accepts.
     pub allowed: String,
 }
 
 fn fault<T>(
     path: impl Into<String>,
-    value: impl Into<String>,
+    value: impl Into<Arg>,
     allowed: impl Into<String>,
 ) -> Result<T, ActivityFault> {
     Err(ActivityFault { path: path.into(), value: value.into(), allowed: allowed.into() })
@@ -210,10 +211,13 @@ fn fault<T>(
 
 /// A text's description as a refused value: its length, and its start (a name or prompt of
 /// megabytes is not repeated in the message).
-pub(crate) fn text_value(text: &str) -> String {
+pub(crate) fn text_value(text: &str) -> Message {
     let n = text.chars().count();
     let start: String = text.chars().take(24).collect();
-    format!("text of {n} character(s) ({start:?}{})", if n > 24 { "…" } else { "" })
+    Message::new(Code::ValueTextOf)
+        .with("count", n)
+        .with("start", start)
+        .with("more", if n > 24 { "…" } else { "" })
 }
 
 /// Refuses `text` at `path` unless it has 1…`max` characters, not only spaces, and no control
@@ -230,7 +234,8 @@ fn text_in(path: &str, text: &str, max: usize, multiline: bool) -> Result<(), Ac
         return fault(path, text_value(text), allowed());
     }
     if let Some(c) = text.chars().find(|&c| c.is_control() && !(multiline && (c == '\n' || c == '\t'))) {
-        return fault(path, format!("text holding the control character U+{:04X}", u32::from(c)), allowed());
+        let character = format!("U+{:04X}", u32::from(c));
+        return fault(path, Message::new(Code::ValueTextControl).with("character", character), allowed());
     }
     Ok(())
 }
@@ -246,7 +251,7 @@ impl Activity {
             if !(MIN_CHOICES..=MAX_CHOICES).contains(&n) {
                 return fault(
                     "activity.prediction.choices",
-                    format!("a list of {n}"),
+                    Message::new(Code::ValueListOf).with("count", n),
                     format!("{MIN_CHOICES}…{MAX_CHOICES} choices"),
                 );
             }
@@ -283,7 +288,7 @@ impl Check {
         if n == 0 || n > MAX_CONDITIONS {
             return fault(
                 "activity.check.conditions",
-                format!("a list of {n}"),
+                Message::new(Code::ValueListOf).with("count", n),
                 format!("1…{MAX_CONDITIONS} conditions"),
             );
         }
@@ -427,7 +432,7 @@ mod tests {
         a.prompt = "x".repeat(MAX_PROMPT_CHARS + 1);
         let f = a.validate(1).expect_err("too long");
         assert_eq!(f.path, "activity.prompt");
-        assert!(f.value.contains("1001 character"), "{}", f.value);
+        assert!(f.value.to_string().contains("1001 character"), "{}", f.value);
         assert!(f.allowed.contains("1…1000"), "{}", f.allowed);
         a.prompt = "ok".into();
         if let Some(p) = &mut a.prediction {
@@ -438,6 +443,9 @@ mod tests {
             p.choices = vec!["a".into(), "b\u{0}".into()];
         }
         let f = a.validate(1).expect_err("control character");
-        assert_eq!((f.path.as_str(), f.value.contains("U+0000")), ("activity.prediction.choices[1]", true));
+        assert_eq!(
+            (f.path.as_str(), f.value.to_string().contains("U+0000")),
+            ("activity.prediction.choices[1]", true)
+        );
     }
 }

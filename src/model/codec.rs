@@ -30,7 +30,7 @@ use crate::model::activity::Activity;
 use crate::model::classroom::{Classroom, ClassroomError, Field, Options};
 use crate::model::geometry::Obstacle;
 use crate::model::params::{PlannerConfig, PlannerKind};
-use crate::model::refusal::{Code, Message};
+use crate::model::refusal::{Arg, Code, Message};
 use crate::model::scene::{
     allowed_for, Goal, GoalMotion, Group, Hill, OnArrival, PathSpec, Region, Scene, SceneError, ViewOptions,
     DEFAULT_PX_PER_METRE,
@@ -61,7 +61,14 @@ pub fn scene_from_json(text: &str) -> Result<Scene, SceneError> {
 /// and the message should show what the user typed.
 fn as_written(error: SceneError, text: &str) -> SceneError {
     let SceneError::Field(mut field) = error else { return error };
-    if !field.value.contains("infinite") {
+    // An f32 field past its range holds `infinite …` as text; a planner parameter holds the
+    // `value.not_finite` words.
+    let not_finite = match &field.value {
+        Arg::Text(v) => v.contains("infinite"),
+        Arg::Message(m) => m.code == Code::ValueNotFinite,
+        _ => false,
+    };
+    if !not_finite {
         return SceneError::Field(field);
     }
     // Only to show the number as typed: the text already parsed as a scene, and if this re-read
@@ -78,7 +85,7 @@ fn as_written(error: SceneError, text: &str) -> SceneError {
         }
     }
     if let Some(number) = node.filter(|n| n.is_number()) {
-        field.value = render(number);
+        field.value = render(number).into();
     }
     SceneError::Field(field)
 }
@@ -587,7 +594,7 @@ fn planner_with(name: &str, values: &[serde_json::Value]) -> Result<PlannerConfi
     if values.len() > specs.len() {
         return Err(SceneError::field(
             "planner.params",
-            format!("a list of {} values", values.len()),
+            Message::new(Code::ValueListOfValues).with("count", values.len()),
             format!("at most {} values for {} (its parameter table)", specs.len(), kind.label()),
         ));
     }
@@ -602,7 +609,8 @@ fn planner_with(name: &str, values: &[serde_json::Value]) -> Result<PlannerConfi
     let config: PlannerConfig = serde_path_to_error::deserialize(&keyed).map_err(|e| {
         let segments: Vec<Segment> = e.path().iter().cloned().collect();
         let path = format!("planner.{}", keyed_path(&segments));
-        let value = walk(&keyed, &segments).map_or_else(|| "refused".to_string(), render);
+        let value: Arg = walk(&keyed, &segments)
+            .map_or_else(|| Message::new(Code::ValueRefused).into(), |v| render(v).into());
         let message = e.inner().to_string();
         let hint = param_allowed(kind, &path);
         field_refusal(path, value, &message, hint, None)
@@ -688,13 +696,13 @@ fn refusal(error: &serde_path_to_error::Error<serde_json::Error>, text: &str, la
     }
     let hint = planner_param_allowed(&path, structure.as_ref());
     let value = json.as_ref().and_then(|j| walk(j, &segments)).map(render);
-    let (value, hint) = match value {
-        Some(v) => (v, hint),
+    let (value, hint): (Arg, _) = match value {
+        Some(v) => (v.into(), hint),
         // Not JSON at all (NaN, Infinity, 1e999): show the word at the error's position.
         None => match token.map(|(_, _, word)| word) {
             Some(token) => {
                 let hint = hint.or_else(|| allowed_for(&path));
-                (token, hint.or_else(|| Some("a finite number (JSON has no NaN or Infinity)".into())))
+                (token.into(), hint.or_else(|| Some("a finite number (JSON has no NaN or Infinity)".into())))
             }
             None if inner.is_syntax() => {
                 return SceneError::parse(
@@ -705,7 +713,7 @@ fn refusal(error: &serde_path_to_error::Error<serde_json::Error>, text: &str, la
                         .with("path", path),
                 )
             }
-            None => ("refused".to_string(), hint),
+            None => (Message::new(Code::ValueRefused).into(), hint),
         },
     };
     field_refusal(path, value, &message, hint, Some(raw))
@@ -735,7 +743,7 @@ fn param_allowed(kind: PlannerKind, path: &str) -> Option<String> {
 /// has one, else the parser's expectation translated.
 fn field_refusal(
     path: String,
-    value: String,
+    value: Arg,
     message: &str,
     hint: Option<String>,
     detail: Option<String>,
@@ -746,15 +754,15 @@ fn field_refusal(
         let allowed =
             if known.is_empty() { "no keys here".to_string() } else { format!("one of the keys {known}") };
         let path = if path.ends_with(&key) { path } else { format!("{path}.{key}") };
-        return with_detail(SceneError::field(path, "an unknown key", allowed), detail);
+        return with_detail(SceneError::field(path, Message::new(Code::ValueUnknownKey), allowed), detail);
     } else if message.ends_with("expected \"kind\" or \"params\"") {
         // serde's words for an unknown key beside a planner's kind and params.
         let allowed = "one of the keys \"kind\", \"params\"";
-        return with_detail(SceneError::field(path, "an unknown key", allowed), detail);
+        return with_detail(SceneError::field(path, Message::new(Code::ValueUnknownKey), allowed), detail);
     } else if let Some(key) = between(message, "missing field `", "`") {
         let path = if path.is_empty() { key.clone() } else { format!("{path}.{key}") };
         let allowed = allowed_for(&path).unwrap_or_else(|| "a value: this key is required".into());
-        return with_detail(SceneError::field(path, "missing", allowed), detail);
+        return with_detail(SceneError::field(path, Message::new(Code::ValueMissing), allowed), detail);
     } else if message.contains("untagged enum CompactObstacle") {
         (value, "a circle [x, y, radius], a rectangle [x0, y0, x1, y1] or a polygon [[x, y], …]".to_string())
     } else if message.contains("untagged enum Condition") {
@@ -938,7 +946,7 @@ struct InvalidString {
     start: usize,
     end: usize,
     /// The fault as a refused value: `an invalid string (the lone surrogate \ud800)`.
-    value: String,
+    value: Message,
     /// The rule it breaks.
     allowed: &'static str,
 }
@@ -983,7 +991,7 @@ fn invalid_string_at(text: &str, line: usize, column: usize) -> Option<InvalidSt
         }
     };
     let literal = &text[start + 1..end - 1];
-    let fault = |value: String, allowed| Some(InvalidString { start, end, value, allowed });
+    let fault = |value: Message, allowed| Some(InvalidString { start, end, value, allowed });
     fn hex(s: &str) -> Option<&str> {
         s.get(..4).filter(|h| h.bytes().all(|b| b.is_ascii_hexdigit()))
     }
@@ -992,7 +1000,7 @@ fn invalid_string_at(text: &str, line: usize, column: usize) -> Option<InvalidSt
         rest = &rest[c.len_utf8()..];
         if c < ' ' {
             let named =
-                format!("an invalid string (the control character U+{:04X} written as it is)", u32::from(c));
+                Message::new(Code::ValueRawControl).with("character", format!("U+{:04X}", u32::from(c)));
             return fault(named, ALLOWED_CONTROL);
         }
         if c != '\\' {
@@ -1005,7 +1013,8 @@ fn invalid_string_at(text: &str, line: usize, column: usize) -> Option<InvalidSt
             'u' => {
                 let Some(h) = hex(rest) else {
                     let written: String = rest.chars().take(4).collect();
-                    return fault(format!("an invalid string (the escape \\u{written})"), ALLOWED_ESCAPES);
+                    let escape = format!("\\u{written}");
+                    return fault(Message::new(Code::ValueBadEscape).with("escape", escape), ALLOWED_ESCAPES);
                 };
                 rest = &rest[4..];
                 let n = u16::from_str_radix(h, 16).ok()?;
@@ -1018,15 +1027,19 @@ fn invalid_string_at(text: &str, line: usize, column: usize) -> Option<InvalidSt
                 match n {
                     0xD800..=0xDBFF if low_follows() => rest = &rest[6..],
                     0xD800..=0xDFFF => {
+                        let escape = format!("\\u{h}");
                         return fault(
-                            format!("an invalid string (the lone surrogate \\u{h})"),
+                            Message::new(Code::ValueLoneSurrogate).with("escape", escape),
                             ALLOWED_SURROGATES,
-                        )
+                        );
                     }
                     _ => {}
                 }
             }
-            other => return fault(format!("an invalid string (the escape \\{other})"), ALLOWED_ESCAPES),
+            other => {
+                let escape = format!("\\{other}");
+                return fault(Message::new(Code::ValueBadEscape).with("escape", escape), ALLOWED_ESCAPES);
+            }
         }
     }
     None
@@ -1280,7 +1293,7 @@ mod tests {
             let e = scene_from_json(&text).expect_err(written);
             let SceneError::Field(f) = &e else { panic!("{written}: {e}") };
             assert_eq!(
-                (f.path.as_str(), f.value.as_str(), f.allowed.as_str()),
+                (f.path.as_str(), f.value.to_string().as_str(), f.allowed.as_str()),
                 ("groups[0].name", value, allowed),
                 "{written}"
             );

@@ -37,13 +37,8 @@ pub enum Arg {
     /// Names (known presets, planners): joined by the template's `:and` / `:or`, or by commas.
     List(Vec<String>),
     /// A word the page has in its strings table (`planner.boids`, `unit.px/step`), with its
-    /// English: planner and parameter labels, units.
-    Term {
-        /// The strings table key.
-        key: String,
-        /// Its English words.
-        english: String,
-    },
+    /// English: planner and parameter labels, units. Boxed to keep every error small.
+    Term(Box<Term>),
     /// A message inside a message (the reason a scene could not be read, what a field allows).
     Message(Box<Message>),
 }
@@ -56,7 +51,7 @@ impl Arg {
 
     /// A term of the strings table ([`Arg::Term`]).
     pub fn term(key: impl Into<String>, english: impl Into<String>) -> Arg {
-        Arg::Term { key: key.into(), english: english.into() }
+        Arg::Term(Box::new(Term { key: key.into(), english: english.into() }))
     }
 
     fn render(&self, spec: &str, out: &mut String) {
@@ -79,9 +74,44 @@ impl Arg {
                 };
                 out.push_str(&joined);
             }
-            Arg::Term { english, .. } => out.push_str(english),
+            Arg::Term(term) => out.push_str(&term.english),
             Arg::Message(m) => out.push_str(&m.to_string()),
         }
+    }
+}
+
+/// A word of the page's strings table ([`Arg::Term`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Term {
+    /// The strings table key.
+    pub key: String,
+    /// Its English words.
+    pub english: String,
+}
+
+impl Arg {
+    /// The text of a [`Arg::Text`].
+    pub fn as_text(&self) -> Option<&str> {
+        match self {
+            Arg::Text(t) => Some(t),
+            _ => None,
+        }
+    }
+}
+
+/// As the English message shows it.
+impl fmt::Display for Arg {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let mut out = String::new();
+        self.render("", &mut out);
+        f.write_str(&out)
+    }
+}
+
+/// A text argument equals its text (a value as written: `f.value == "NaN"`).
+impl PartialEq<&str> for Arg {
+    fn eq(&self, other: &&str) -> bool {
+        self.as_text() == Some(*other)
     }
 }
 
@@ -208,10 +238,10 @@ impl serde::Serialize for Arg {
             Arg::Int(n) => s.serialize_i64(*n),
             Arg::Num(x) => s.serialize_f64(*x),
             Arg::List(items) => items.serialize(s),
-            Arg::Term { key, english } => {
+            Arg::Term(term) => {
                 let mut map = s.serialize_map(Some(2))?;
-                map.serialize_entry("term", key)?;
-                map.serialize_entry("english", english)?;
+                map.serialize_entry("term", &term.key)?;
+                map.serialize_entry("english", &term.english)?;
                 map.end()
             }
             Arg::Message(m) => m.serialize(s),
@@ -468,6 +498,40 @@ codes! {
     ComparePanePlanner = "compare.pane_planner" => "{planner}: {reason}",
     /// A parameter set on a pane that runs the scene's planners.
     ComparePaneSceneParam = "compare.pane_scene_param" => "this pane runs the scene's own planners: pick a planner for it first",
+    /// A refused value: none given.
+    ValueMissing = "value.missing" => "missing",
+    /// A refused value: a key the object does not have.
+    ValueUnknownKey = "value.unknown_key" => "an unknown key",
+    /// A refused value: a number JSON could not hold.
+    ValueNotFinite = "value.not_finite" => "not a finite number (too large, infinite or NaN)",
+    /// A refused value the reader could not show.
+    ValueRefused = "value.refused" => "refused",
+    /// A refused list, by its length.
+    ValueListOf = "value.list_of" => "a list of {count}",
+    /// A refused list of parameter values, by its length.
+    ValueListOfValues = "value.list_of_values" => "a list of {count} values",
+    /// Polygon points over the scene's limit.
+    ValuePolygonPoints = "value.polygon_points" => "{count} polygon points in all",
+    /// Agents over the scene's limit.
+    ValueAgentsInAll = "value.agents_in_all" => "{count} agents in all",
+    /// A polygon of too few distinct points.
+    ValuePolygonFew = "value.polygon_few" => "a polygon of {count} distinct point(s)",
+    /// A polygon without area.
+    ValuePolygonNoArea = "value.polygon_no_area" => "a polygon with no area (its points lie on one line)",
+    /// A polygon folding back on itself (edges as `2→3`).
+    ValuePolygonFolds = "value.polygon_folds" => "a polygon whose edges {a} and {b} fold back onto each other",
+    /// A polygon whose edges cross.
+    ValuePolygonCross = "value.polygon_cross" => "a polygon whose edges {a} and {b} cross or touch",
+    /// A JSON string with a lone surrogate escape.
+    ValueLoneSurrogate = "value.lone_surrogate" => "an invalid string (the lone surrogate {escape})",
+    /// A JSON string with an unknown escape.
+    ValueBadEscape = "value.bad_escape" => "an invalid string (the escape {escape})",
+    /// A JSON string with a raw control character.
+    ValueRawControl = "value.raw_control" => "an invalid string (the control character {character} written as it is)",
+    /// A text by its length and start (`start` quoted; `more` is `…` when cut).
+    ValueTextOf = "value.text_of" => "text of {count} character(s) ({start:?}{more})",
+    /// A text holding a control character (`U+000A`).
+    ValueTextControl = "value.text_control" => "text holding the control character {character}",
     /// An optimizer name that names no optimizer.
     LabUnknownAlgorithm = "lab.unknown_algorithm" => "unknown algorithm {name:?}; known: {known}",
     /// A benchmark function name that names none.

@@ -603,8 +603,9 @@ pub struct FieldError {
     /// Path to the field as the scene JSON spells it: `groups[2].planner.params.max_speed`
     /// (indices count from 0, like the JSON arrays they index).
     pub path: String,
-    /// The refused value as written (`"abc"`, `NaN`, `1e30`), or `missing` / `an unknown key`.
-    pub value: String,
+    /// The refused value as written (`"abc"`, `NaN`, `1e30`: text), or in words (a `value.*`
+    /// message: `missing`, `an unknown key`, `a list of 3`).
+    pub value: Arg,
     /// What the field accepts, with its unit and limit (`a number in 0.1…20 px/step`).
     pub allowed: String,
     /// The parser's own words and position, for a "details" disclosure; not part of the message.
@@ -613,7 +614,7 @@ pub struct FieldError {
 
 impl SceneError {
     /// A refused field (see [`FieldError`]).
-    pub fn field(path: impl Into<String>, value: impl Into<String>, allowed: impl Into<String>) -> Self {
+    pub fn field(path: impl Into<String>, value: impl Into<Arg>, allowed: impl Into<String>) -> Self {
         SceneError::Field(Box::new(FieldError {
             path: path.into(),
             value: value.into(),
@@ -798,7 +799,7 @@ fn name_in(path: impl Fn() -> String, name: &str) -> Result<(), SceneError> {
         return Err(SceneError::field(path(), crate::model::activity::text_value(name), name_text()));
     }
     if let Some(c) = name.chars().find(|c| c.is_control()) {
-        let value = format!("text holding the control character U+{:04X}", u32::from(c));
+        let value = Message::new(Code::ValueTextControl).with("character", format!("U+{:04X}", u32::from(c)));
         return Err(SceneError::field(path(), value, name_text()));
     }
     Ok(())
@@ -906,7 +907,7 @@ impl Scene {
         if polygon_points > MAX_POLYGON_POINTS_TOTAL {
             return Err(SceneError::field(
                 "obstacles",
-                format!("{polygon_points} polygon points in all"),
+                Message::new(Code::ValuePolygonPoints).with("count", polygon_points),
                 format!("at most {MAX_POLYGON_POINTS_TOTAL} polygon points over all polygons"),
             ));
         }
@@ -934,7 +935,7 @@ impl Scene {
             let path = if self.groups.len() == 1 { "groups[0].count" } else { "groups" };
             return Err(SceneError::field(
                 path,
-                format!("{total} agents in all"),
+                Message::new(Code::ValueAgentsInAll).with("count", total),
                 format!("at most {MAX_AGENTS} agents over all groups"),
             ));
         }
@@ -1098,7 +1099,7 @@ impl Scene {
                 check_simple_polygon(points).map_err(|problem| {
                     SceneError::field(
                         format!("obstacles[{i}].points"),
-                        problem.to_string(),
+                        problem.message(),
                         "a simple polygon: edges meet only at shared corners, non-zero area",
                     )
                 })?;
@@ -1114,7 +1115,7 @@ fn count_in(path: impl Fn() -> String, n: usize, lo: usize, hi: usize) -> Result
         let path = path();
         let fallback = if lo == 0 { format!("at most {hi} items") } else { format!("{lo}…{hi} items") };
         let allowed = allowed(&path, &fallback);
-        return Err(SceneError::field(path, format!("a list of {n}"), allowed));
+        return Err(SceneError::field(path, Message::new(Code::ValueListOf).with("count", n), allowed));
     }
     Ok(())
 }
@@ -1177,20 +1178,33 @@ fn check_simple_polygon(points: &[[f32; 2]]) -> Result<(), PolygonFault> {
 
 /// Why points do not form a simple polygon; shown as the refused value of `obstacles[i].points`.
 /// Edges are named by their end points' indices (from 0): `[2, 3]` is the edge 2→3.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum PolygonFault {
     /// Fewer than three distinct points (repeats counted once).
-    #[error("a polygon of {0} distinct point(s)")]
     TooFewPoints(usize),
     /// Every point lies on one line.
-    #[error("a polygon with no area (its points lie on one line)")]
     NoArea,
     /// Two neighbouring edges fold back onto each other.
-    #[error("a polygon whose edges {}→{} and {}→{} fold back onto each other", .0[0], .0[1], .1[0], .1[1])]
     FoldsBack([usize; 2], [usize; 2]),
     /// Two edges that are not neighbours cross or touch.
-    #[error("a polygon whose edges {}→{} and {}→{} cross or touch", .0[0], .0[1], .1[0], .1[1])]
     EdgesCross([usize; 2], [usize; 2]),
+}
+
+impl PolygonFault {
+    /// The fault as the refused value's words.
+    fn message(self) -> Message {
+        let edge = |e: [usize; 2]| format!("{}→{}", e[0], e[1]);
+        match self {
+            PolygonFault::TooFewPoints(n) => Message::new(Code::ValuePolygonFew).with("count", n),
+            PolygonFault::NoArea => Message::new(Code::ValuePolygonNoArea),
+            PolygonFault::FoldsBack(a, b) => {
+                Message::new(Code::ValuePolygonFolds).with("a", edge(a)).with("b", edge(b))
+            }
+            PolygonFault::EdgesCross(a, b) => {
+                Message::new(Code::ValuePolygonCross).with("a", edge(a)).with("b", edge(b))
+            }
+        }
+    }
 }
 
 /// Twice the signed area of triangle `a, b, c`, in f64 (scene coordinates are f32).

@@ -286,7 +286,7 @@ impl PlannerConfig {
                 planner: PlannerKind::Igsa.name(),
                 key: "waypoints".into(),
                 label: "Waypoints",
-                value: problem.to_string(),
+                value: problem.message().into(),
                 allowed: "finite points".into(),
             }),
             _ => Ok(()),

@@ -2,6 +2,7 @@
 //! default, help) that drives a slider, the range check and the docs, and the refusal a row
 //! gives ([`ParamError`]).
 
+use crate::model::refusal::{Code, Message};
 use serde::Serialize;
 
 /// One row of a planner's parameter table: drives a slider, the range check and the docs.
@@ -105,8 +106,8 @@ pub struct ParamError {
     pub key: String,
     /// Its label on the slider (`Max speed`).
     pub label: &'static str,
-    /// The refused value as written.
-    pub value: String,
+    /// The refused value as written (text), or in words (a `value.*` message).
+    pub value: crate::model::refusal::Arg,
     /// What is allowed, with the unit (`a number in 0.1…20 px/step`).
     pub allowed: String,
 }
@@ -135,7 +136,7 @@ pub(super) fn check_params(
 ) -> Result<(), ParamError> {
     for spec in specs {
         let Some(value) = params.get(spec.key) else { continue };
-        let refuse = |shown: String| ParamError {
+        let refuse = |shown: crate::model::refusal::Arg| ParamError {
             planner,
             key: spec.key.to_string(),
             label: spec.label,
@@ -146,18 +147,18 @@ pub(super) fn check_params(
             // JSON cannot hold NaN or infinity: serialising the f32 parameters turned them (and
             // numbers past f32's range, which became infinite) into null.
             if value.is_null() {
-                return Err(refuse("not a finite number (too large, infinite or NaN)".into()));
+                return Err(refuse(Message::new(Code::ValueNotFinite).into()));
             }
             // Compared as f32, the parameters' type: 0.01 stored as f32 is below 0.01 as f64, and
             // a slider at its minimum must be accepted.
-            let x = value.as_f64().ok_or_else(|| refuse(value.to_string()))? as f32;
+            let x = value.as_f64().ok_or_else(|| refuse(value.to_string().into()))? as f32;
             if !x.is_finite() || x < spec.min as f32 || x > spec.max as f32 {
-                return Err(refuse(number_text(x)));
+                return Err(refuse(number_text(x).into()));
             }
         } else {
             let s = value.as_str().unwrap_or_default();
             if !spec.choices.contains(&s) {
-                return Err(refuse(value.to_string()));
+                return Err(refuse(value.to_string().into()));
             }
         }
     }

@@ -10,7 +10,7 @@
 import { language, t, tOr } from './i18n.js';
 import en from './messages/en.js';
 import zh from './messages/zh.js';
-import { allowedText, reasonText, valueText } from './refusals.js';
+import { allowedText, reasonText } from './refusals.js';
 
 const TEMPLATES = { en, zh };
 
@@ -21,10 +21,9 @@ function template(code, lang) {
 
 /**
  * Text arguments whose words still come from the core's English (what a scene field allows, the
- * refused value, the JSON reader's reason): worded through refusals.js until the core sends them
- * as messages too.
+ * JSON reader's reason): worded through refusals.js until the core sends them as messages too.
  */
-const ENGLISH_ARGS = { allowed: allowedText, value: valueText, reason: reasonText, problem: reasonText };
+const ENGLISH_ARGS = { allowed: allowedText, reason: reasonText, problem: reasonText };
 
 /** One argument as text, in `lang`, formatted as the placeholder's `spec` says. */
 function argText(name, value, spec, lang) {

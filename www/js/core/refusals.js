@@ -1,8 +1,8 @@
 // The words inside a refused scene field that the core still sends as English text: what a field
-// allows (`a number in 0.5…100 px`), the refused value (`missing`, `a list of 3`) and the JSON
-// reader's reason (serde's `invalid type: …`). messages.js words every refusal from its code's
-// template; it asks these tables only for those three text arguments, in languages other than
-// English. They go when the core sends allowed, value and reason as coded messages too.
+// allows (`a number in 0.5…100 px`) and the JSON reader's reason (serde's `invalid type: …`).
+// messages.js words every refusal from its code's template; it asks these tables only for those
+// two text arguments, in languages other than English. They go when the core sends allowed and
+// reason as coded messages too.
 
 import { t, tOr } from './i18n.js';
 
@@ -119,32 +119,6 @@ function kindText(text) {
     if (m) return t(key, { ...m.groups });
   }
   return text;
-}
-
-/** Values the core writes in words. */
-const VALUES = { missing: 'value.missing', 'an unknown key': 'value.unknown_key', 'not a finite number (too large, infinite or NaN)': 'value.not_finite', refused: 'value.refused' };
-
-/** Values the core writes in words with figures: [regex, table key]. */
-const VALUE_PATTERNS = [
-  [/^a list of (?<n>\d+)$/, 'value.list_of'],
-  [/^(?<n>\d+) polygon points in all$/, 'value.polygon_points'],
-  [/^(?<n>\d+) agents in all$/, 'value.agents_in_all'],
-  [/^a polygon of (?<n>\d+) distinct point\(s\)$/, 'value.polygon_few'],
-  [/^a polygon with no area \(its points lie on one line\)$/, 'value.polygon_no_area'],
-  [/^a polygon whose edges (?<a>\d+→\d+) and (?<b>\d+→\d+) fold back onto each other$/, 'value.polygon_folds'],
-  [/^a polygon whose edges (?<a>\d+→\d+) and (?<b>\d+→\d+) cross or touch$/, 'value.polygon_cross'],
-  [/^an invalid string \(the lone surrogate (?<escape>\\u[0-9a-fA-F]{4})\)$/, 'value.lone_surrogate'],
-  [/^an invalid string \(the escape (?<escape>\\.*)\)$/, 'value.bad_escape'],
-  [/^an invalid string \(the control character (?<code>U\+[0-9A-F]{4,}) written as it is\)$/, 'value.raw_control'],
-  [/^text of (?<n>\d+) character\(s\) \((?<start>".*?")(?<more>…?)\)$/, 'value.text_of'],
-  [/^text holding the control character (?<code>U\+[0-9A-F]{4,})$/, 'value.text_control'],
-];
-
-/** A refused value in the reader's language (words through the tables; JSON values as they are). */
-export function valueText(value) {
-  if (typeof value !== 'string') return value;
-  if (VALUES[value]) return t(VALUES[value]);
-  return match(VALUE_PATTERNS, value) ?? value;
 }
 
 /** The first pattern of `list` matching `text`, as `t(key, groups)`; null when none does. */
