@@ -62,13 +62,21 @@ fn the_page_handle_runs_the_same_tuning() {
 #[wasm_bindgen_test]
 fn bad_settings_throw_readable_errors() {
     let refused = TuneRun::new(r#"{"behaviour": "b9"}"#).err();
-    assert_eq!(refused.as_ref().map(code).as_deref(), Some("tune.unknown_behaviour"), "coded for the page's words");
+    assert_eq!(
+        refused.as_ref().map(code).as_deref(),
+        Some("tune.unknown_behaviour"),
+        "coded for the page's words"
+    );
     let unknown = refused.map(message).unwrap_or_default();
     assert!(unknown.contains("unknown behaviour"), "{unknown}");
     let population = TuneRun::new(r#"{"population": 1}"#).err().map(message).unwrap_or_default();
     assert!(population.contains("population"), "{population}");
     let refused = TuneRun::new(r#"{"scene": "2.not-a-scene"}"#).err();
-    assert_eq!(refused.as_ref().map(code).as_deref(), Some("scene.parse"), "a refused scene keeps its own code");
+    assert_eq!(
+        refused.as_ref().map(code).as_deref(),
+        Some("scene.parse"),
+        "a refused scene keeps its own code"
+    );
     let scene = refused.map(message).unwrap_or_default();
     assert!(scene.contains("scene"), "{scene}");
     let typo = TuneRun::new(r#"{"populaton": 20}"#).err().map(message).unwrap_or_default();
