@@ -352,7 +352,8 @@ pub const AGE_GROUPS: &[(&str, f32, f32)] =
 pub const SUBGROUPS: usize = 5;
 
 /// T7: each age group walks its own 3 m lane of a 50 m × 12 m hall to its goal; its walkers
-/// are [`SUBGROUPS`] groups of two with speeds drawn (seeded) from its range. Returns the scene
+/// are [`SUBGROUPS`] groups of two with speeds drawn (seeded) from its range, all starting
+/// within the first 4.5 m (before the measured section). Returns the scene
 /// and each group's (age group index, desired speed m/s).
 pub fn demographics(kind: PlannerKind) -> Result<(Scene, Vec<(usize, f32)>), SetupError> {
     let mut s = world("validate-t7-demographics", 50.0, 12.0);
@@ -364,13 +365,15 @@ pub fn demographics(kind: PlannerKind) -> Result<(Scene, Vec<(usize, f32)>), Set
         for k in 0..SUBGROUPS {
             let v = rng.range(lo, hi);
             let cfg = config_at_speed(kind, v)?;
-            let x = k as f32 * 1.6;
+            // Every start before the x = 5 m line the speed is measured from (at 1.6 m
+            // apart the last two pairs started at 6.4–7.8 m and were never measured).
+            let x = k as f32 * 0.9;
             s.groups.push(walkers(
                 &format!("{name} {}", k + 1),
                 a,
                 2,
-                [x + 0.2, y + 0.3],
-                [x + 1.4, y + 2.7],
+                [x + 0.05, y + 0.3],
+                [x + 0.85, y + 2.7],
                 a as u32,
                 &cfg,
             ));
@@ -452,6 +455,21 @@ mod tests {
             let name = s.name.clone();
             crate::sim::world::World::new_beyond_cost_limit(s).unwrap_or_else(|e| panic!("{name}: {e}"));
         }
+    }
+
+    #[test]
+    fn every_t7_walker_starts_before_the_measured_section() {
+        // T7 measures each walker's speed from x = 5 m: one that starts beyond it is never
+        // measured and fails the test whatever its planner does.
+        let (scene, _) = demographics(PlannerKind::Boids).expect("speeds");
+        let world = crate::sim::world::World::new_beyond_cost_limit(scene).expect("valid");
+        let beyond: Vec<f32> = world
+            .positions()
+            .iter()
+            .map(|p| p.x / PX_PER_METRE)
+            .filter(|&x| x + BODY_RADIUS_M >= 5.0)
+            .collect();
+        assert!(beyond.is_empty(), "starts at x ≥ 5 m: {beyond:?}");
     }
 
     #[test]
