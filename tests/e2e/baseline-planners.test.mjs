@@ -15,12 +15,12 @@ const BASELINES = [
 test('ORCA and social force are chosen in the panel, run, and every agent arrives', async () => {
   const { page, errors, close } = await openPage();
   try {
-    // 30 agents cross 28 m of open field (20 px per metre) to a goal 3 m in radius, which holds
+    // 30 agents cross 28 m of open field (20 px per metre) to a goal 4 m in radius, which holds
     // them all (arrived means inside it now; social force's body forces keep a crowd loose).
     await page.evaluate(async (scene) => {
       await window.flockpath.pause();
       await window.flockpath.load(scene);
-    }, simpleScene({ goals: [{ position: [700, 250], radius: 60 }] }));
+    }, simpleScene({ goals: [{ position: [700, 250], radius: 80 }] }));
     const offered = await page.$$eval('#planner option', (options) => options.map((o) => o.value));
     for (const { name, slider, unit, value } of BASELINES) {
       assert.ok(offered.includes(name), `${name} is in the planner picker: ${offered}`);

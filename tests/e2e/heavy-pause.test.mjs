@@ -310,6 +310,23 @@ const REUSE_WAIT_MS = 300;
  * When the worker is still inside a long step of the last case's scene (up to ~18 s here), the
  * page is reloaded instead of waiting for it (the worker ends with the page).
  */
+/**
+ * Goes on in a new tab at `url` and closes the shared one without waiting for it: a renderer
+ * busy with a huge scene's frames can hold a reload of its own page past any timeout (the
+ * worker ends with the closed tab).
+ */
+async function replacePage(url) {
+  const old = shared.page;
+  const fresh = await shared.context.newPage();
+  fresh.on('console', (msg) => {
+    if (msg.type() === 'error') shared.errors.push(`console: ${msg.text()}`);
+  });
+  fresh.on('pageerror', (error) => shared.errors.push(`page error: ${error.message}`));
+  old.close({ runBeforeUnload: false }).catch(() => {});
+  shared.page = fresh;
+  await fresh.goto(url);
+}
+
 async function loadShared(scene) {
   const idle = await Promise.race([
     shared.page
@@ -321,7 +338,7 @@ async function loadShared(scene) {
     new Promise((resolve) => setTimeout(() => resolve(false), REUSE_WAIT_MS)),
   ]);
   if (!idle) {
-    await shared.page.reload();
+    await replacePage(shared.server.url);
     await shared.page.waitForFunction(() => window.flockpath !== undefined, null, { timeout: 30_000 });
     reloads += 1;
   }
@@ -338,9 +355,10 @@ async function loadShared(scene) {
 
 /** Loads `scene` in the shared playground and checks Pause while it steps, or its refusal. */
 async function playgroundCase(name, scene, options = {}) {
-  const { page, errors } = shared;
+  const { errors } = shared;
   errors.length = 0;
   const refusal = await loadShared(scene);
+  const { page } = shared;
   if (refusal) {
     console.log(`${name}: refused: ${refusal}`);
     assertReadableRefusal(refusal);
@@ -382,7 +400,8 @@ for (const kind of ['boids', 'pso', 'firefly', 'forces', 'igsa', 'social_force',
 
 test('heavy link: seeking far back in the ORCA scene at its limit shows its progress and answers Pause', { timeout: 180_000 }, async () => {
   const limit = await limitOf('orca');
-  const { page, errors } = shared;
+  let { page } = shared;
+  const { errors } = shared;
   errors.length = 0;
   // The ORCA case's scene when it is still loaded (its case ran just before), else loaded here.
   const scene = plannerScene('orca', limit, limit);
@@ -394,6 +413,7 @@ test('heavy link: seeking far back in the ORCA scene at its limit shows its prog
       assertReadableRefusal(refusal);
       return;
     }
+    ({ page } = shared);
   }
   // A history of SEEK_HISTORY steps, all after the first checkpoint (step 0).
   await page.evaluate(() => {
@@ -463,9 +483,10 @@ test('heavy link: the compare page with four heavy panes answers Pause', { timeo
   const scene = { ...plannerScene('orca', 85_000, 85_000), name: 'heavy-compare' };
   scene.groups[0].planner = { kind: 'orca', params: {} };
   const spec = `1.${['orca', 'boids', 'firefly'].map((k) => `${k}(${largest(k).values})`).join('~')}~scene`;
-  const { page, server, errors } = shared;
+  const { server, errors } = shared;
   errors.length = 0;
-  await page.goto(`${server.url}compare.html#s=${encodeURIComponent(JSON.stringify(scene))}&c=${encodeURIComponent(spec)}`);
+  await replacePage(`${server.url}compare.html#s=${encodeURIComponent(JSON.stringify(scene))}&c=${encodeURIComponent(spec)}`);
+  const { page } = shared;
   await page.waitForFunction(() => window.flockpathCompare !== undefined, null, { timeout: 30_000 });
   const refusal = await page.evaluate(async () => {
     try {
