@@ -49,6 +49,8 @@ export class RemoteSim extends EventTarget {
     this.subscribed = new Map();
     /** key → { method, args, at } of the subscribed reads the page made. */
     this.wanted = new Map();
+    /** Whether a message asking the worker for newly wanted reads is queued. */
+    this.asking = false;
     this.calls = new Map();
     this.nextId = 1;
     this.controlSeq = 0;
@@ -172,7 +174,15 @@ export class RemoteSim extends EventTarget {
       const key = `${method}|${JSON.stringify(args)}`;
       const fresh = !this.wanted.has(key);
       this.wanted.set(key, { method, args, at: performance.now() });
-      if (fresh) this.control({ render: true });
+      // A new read asks the worker once for all reads asked in this task (one message, not one
+      // per read: a panel may ask for hundreds at once).
+      if (fresh && !this.asking) {
+        this.asking = true;
+        queueMicrotask(() => {
+          this.asking = false;
+          this.control({ render: true });
+        });
+      }
       const entry = this.subscribed.get(key);
       if (!entry) throw new Pending(method);
       return unwrap(entry);

@@ -10,7 +10,7 @@
 
 import { drawPlot, formatTick } from '../core/plot.js';
 import { Pending } from '../core/sim-proxy.js';
-import { onLanguageChange, setText as bindText, t, tOr } from '../core/i18n.js';
+import { onLanguageChange, setAttr, setText as bindText, t, tOr } from '../core/i18n.js';
 import { unitText } from '../core/params-form.js';
 import { METRIC_KEYS, describeMetric, metricsGlossary } from '../core/metric-words.js';
 
@@ -19,6 +19,13 @@ import { METRIC_KEYS, describeMetric, metricsGlossary } from '../core/metric-wor
  * card explain the key (core/metric-words.js). An optional row shows only when the metrics have
  * its key (`waiting_agents` comes with goals that fill).
  */
+/**
+ * The most groups the plots draw one line each: past a dozen the lines are a tangle no one can
+ * tell apart (and each is one more series the worker sends every frame); with more groups the
+ * plots draw the whole run only and the table below lists each group.
+ */
+const MAX_PLOTTED_GROUPS = 12;
+
 const ROWS = [
   ['steps', 'metrics.steps', (m) => m.steps.toLocaleString('en-US')],
   ['agents', 'metrics.agents', (m) => m.agents.toLocaleString('en-US')],
@@ -68,6 +75,33 @@ const GROUP_COLUMNS = [
   ['fitness', 'metrics.col.gsum', (v) => (v ? v.gsum.toFixed(1) : '–')],
 ];
 
+/**
+ * Rows the per-group table shows at once; more groups are paged. Every row costs a layout of the
+ * whole table when a value changes: 5,000 rows took ~250 ms of the main thread per refresh.
+ */
+const TABLE_PAGE = 50;
+
+/** The table's pager: `‹ Groups 51–100 of 5,000 ›` (hidden while the groups fit one page). */
+function buildPager() {
+  const box = document.createElement('div');
+  box.className = 'group-pager';
+  box.hidden = true;
+  const button = (key, text) => {
+    const b = document.createElement('button');
+    b.type = 'button';
+    b.textContent = text;
+    setAttr(b, 'aria-label', key);
+    setAttr(b, 'title', key);
+    return b;
+  };
+  const previous = button('metrics.groups.previous', '‹');
+  const next = button('metrics.groups.next', '›');
+  const range = document.createElement('span');
+  range.setAttribute('aria-live', 'polite');
+  box.append(previous, range, next);
+  return { box, previous, next, range };
+}
+
 /** Colour of the whole-run line in the plots. */
 const OVERALL_COLOR = '#17202c';
 
@@ -100,26 +134,34 @@ export function setupMetrics(app) {
   app.remote?.addEventListener('frame', () => {
     if (!app.playing) forced = true;
   });
-  // Paused, a frame from the worker is the only news: it brings the state after a step, a load or
-  // a seek, and the plots' series the panel asked for (the first read of a series only asks).
-  // While playing, the refresh interval paces the panel instead.
-  app.remote?.addEventListener('frame', () => {
-    if (!app.playing) forced = true;
-  });
 
   const groupTable = document.getElementById('metrics-groups');
   const plotBox = document.getElementById('plots');
+  const plotNote = document.getElementById('plots-note');
   let plots = [];
+  /** The groups drawn one line each: all of them, or none when there are more than MAX_PLOTTED_GROUPS. */
   let plotGroups = [];
+  /** Whether the plots draw a whole-run line (the scene has more than one group). */
+  let plotOverall = false;
   /** What the plots show now (samples, last step, groups): unchanged history, no redraw. */
   let plotted = null;
+  const plotTip = ({ label, unit }) => t(plotGroups.length > 0 || !plotOverall ? 'plots.tip' : 'plots.tip.overall', { label, unit });
   const buildPlots = () => {
     const meta = app.guard((sim) => JSON.parse(sim.history_json()));
     if (!meta.ok || !plotBox) return;
-    plotGroups = meta.value.groups;
+    const { groups } = meta.value;
+    plotGroups = groups.length <= MAX_PLOTTED_GROUPS ? groups : [];
+    plotOverall = groups.length > 1;
+    if (plotNote) {
+      if (groups.length <= MAX_PLOTTED_GROUPS) bindText(plotNote, 'plots.note');
+      else bindText(plotNote, 'plots.note.overall', { groups: groups.length.toLocaleString('en-US'), max: MAX_PLOTTED_GROUPS });
+    }
     plotted = null;
     const keys = meta.value.series.map((s) => s.key).join();
-    if (plots.map((p) => p.key).join() === keys) return;
+    if (plots.map((p) => p.key).join() === keys) {
+      for (const plot of plots) plot.canvas.title = plotTip(plot);
+      return;
+    }
     plotBox.replaceChildren();
     plots = meta.value.series.map((series) => {
       const canvas = document.createElement('canvas');
@@ -127,9 +169,10 @@ export function setupMetrics(app) {
       canvas.dataset.key = series.key;
       const label = tOr(`series.${series.key}`, series.label);
       const unit = unitText(series.unit);
-      canvas.title = t('plots.tip', { label, unit });
+      const plot = { ...series, label, unit, canvas };
+      canvas.title = plotTip(plot);
       plotBox.append(canvas);
-      return { ...series, label, unit, canvas };
+      return plot;
     });
   };
   const drawPlots = () => {
@@ -139,7 +182,7 @@ export function setupMetrics(app) {
     }
     const result = app.guard((sim) => {
       const steps = sim.history_steps();
-      const shown = `${steps.length}:${steps.at(-1)}:${plotGroups.map((g) => g.color).join()}`;
+      const shown = `${steps.length}:${steps.at(-1)}:${plotOverall}:${plotGroups.map((g) => g.color).join()}`;
       if (shown === plotted) return [];
       // A series' first read only asks the worker for it: ask for all of them in one go, and draw
       // (and remember what is drawn) only once every one has arrived.
@@ -155,7 +198,8 @@ export function setupMetrics(app) {
       };
       const drawn = plots.map((p) => {
         const lines = plotGroups.map((g, i) => ({ values: series(p.key, i), color: g.color }));
-        if (plotGroups.length > 1) lines.push({ values: series(p.key, -1), color: OVERALL_COLOR, width: 1 });
+        // Beside the groups' lines the whole run's is thin; alone it is drawn at the usual width.
+        if (plotOverall) lines.push({ values: series(p.key, -1), color: OVERALL_COLOR, width: plotGroups.length > 0 ? 1 : undefined });
         return { plot: p, steps, lines };
       });
       if (pending) throw pending;
@@ -172,6 +216,26 @@ export function setupMetrics(app) {
   };
   /** The columns shown now (optional ones only when the metrics have their key). */
   let columns = [];
+  /** The first group the table shows (a multiple of TABLE_PAGE). */
+  let pageStart = 0;
+  const pager = groupTable ? buildPager() : null;
+  groupTable?.parentElement.after(pager.box);
+  const turn = (by) => {
+    pageStart = Math.max(0, pageStart + by * TABLE_PAGE);
+    forced = true;
+  };
+  pager?.previous.addEventListener('click', () => turn(-1));
+  pager?.next.addEventListener('click', () => turn(1));
+  /** Shows the pager when the groups fill more than one page, saying which ones the table shows. */
+  const showPager = (total) => {
+    const paged = total > TABLE_PAGE;
+    if (pager.box.hidden === paged) pager.box.hidden = !paged;
+    if (!paged) return;
+    const to = Math.min(pageStart + TABLE_PAGE, total);
+    bindText(pager.range, 'metrics.groups.page', { from: WHOLE.format(pageStart + 1), to: WHOLE.format(to), total: WHOLE.format(total) });
+    pager.previous.disabled = pageStart === 0;
+    pager.next.disabled = to >= total;
+  };
   const fillGroups = (m) => {
     if (!groupTable) return;
     const body = groupTable.tBodies[0] ?? groupTable.createTBody();
@@ -189,13 +253,18 @@ export function setupMetrics(app) {
         head.append(th);
       }
     }
-    while (body.rows.length > m.groups.length) body.deleteRow(-1);
-    while (body.rows.length < m.groups.length) {
+    const total = m.groups.length;
+    pageStart = Math.min(pageStart, Math.max(0, Math.floor((total - 1) / TABLE_PAGE) * TABLE_PAGE));
+    const shownGroups = m.groups.slice(pageStart, pageStart + TABLE_PAGE);
+    showPager(total);
+    while (body.rows.length > shownGroups.length) body.deleteRow(-1);
+    while (body.rows.length < shownGroups.length) {
       const row = body.insertRow();
       for (let c = 0; c <= columns.length; c += 1) row.insertCell();
     }
-    m.groups.forEach((g, i) => {
-      const row = body.rows[i];
+    shownGroups.forEach((g, k) => {
+      const i = pageStart + k;
+      const row = body.rows[k];
       row.dataset.group = String(i);
       const color = app.scene.groups?.[i]?.color ?? '#888';
       const name = row.cells[0];
