@@ -3,7 +3,8 @@
 # Idempotent: skips the build when nothing under src/, Cargo.toml, Cargo.lock or .cargo/ changed
 # since the last one (stamp file www/pkg/.build-stamp). Pass --force to rebuild anyway.
 # Either way it then rewrites www/pkg/precache.js (scripts/precache.mjs): the offline service
-# worker's file list and version, which follow every change to www/ too.
+# worker's file list and version, which follow every change to www/ too, and the precompressed
+# copies of www/ (scripts/precompress.mjs), rewritten only where a file changed.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 export PATH="$HOME/.cargo/bin:$PATH"
@@ -25,6 +26,7 @@ if [ $force = 0 ] && [ -f "$wasm" ] && [ -f "$out/flockpath.js" ] && [ -f "$stam
    && [ "$(cat "$stamp")" = "$hash" ]; then
   echo "[build-wasm] up to date ($(stat -c %s "$wasm") bytes): $wasm"
   node scripts/precache.mjs
+  node scripts/precompress.mjs
   exit 0
 fi
 
@@ -45,3 +47,5 @@ raw=$(stat -c %s "$wasm")
 gz=$(gzip -9 -c "$wasm" | wc -c)
 echo "[build-wasm] $wasm: $raw bytes ($gz gzipped)"
 node scripts/precache.mjs
+# Brotli and gzip copies beside every page, script and the wasm, for servers that send them.
+node scripts/precompress.mjs
