@@ -70,11 +70,12 @@ async function freshSibling(file, info, encoding) {
  * ('/', '/course/demo/') to a folder; the longest matching prefix wins, a folder's URL serves its
  * index.html. Options: `cors` (true, or a function of the path saying for which files),
  * `cacheControl` (default `no-cache`: revalidate, so a rebuilt wasm never meets a cached
- * flockpath.js), `compress` (default true), `onRequest(req, res)` (return false to leave the
+ * flockpath.js), `compress` (default true), `validators` (ETag and Last-Modified, default true;
+ * false serves as the project's server did before issue 29, for benchmarks), `onRequest(req, res)` (return false to leave the
  * request unanswered: the caller handled or dropped it). Resolves to `{ origin, port, close }`.
  */
 export async function serveStatic(mounts, options = {}) {
-  const { cors = false, cacheControl = 'no-cache', compress = true, onRequest = null, port = 0, bind = '127.0.0.1', log = null } = options;
+  const { cors = false, cacheControl = 'no-cache', compress = true, validators = true, onRequest = null, port = 0, bind = '127.0.0.1', log = null } = options;
   const prefixes = Object.keys(mounts).sort((a, b) => b.length - a.length);
   const server = createServer(async (req, res) => {
     if (onRequest && onRequest(req, res) === false) return;
@@ -126,12 +127,11 @@ export async function serveStatic(mounts, options = {}) {
     const headers = {
       'content-type': MIME[ext] ?? 'application/octet-stream',
       'cache-control': cacheControl,
-      etag,
-      'last-modified': new Date(info.mtimeMs).toUTCString(),
+      ...(validators ? { etag, 'last-modified': new Date(info.mtimeMs).toUTCString() } : {}),
       ...corsHeaders,
     };
     const match = req.headers['if-none-match'];
-    if (match && match.split(',').some((tag) => tag.trim() === etag || tag.trim() === '*')) {
+    if (validators && match && match.split(',').some((tag) => tag.trim() === etag || tag.trim() === '*')) {
       res.writeHead(304, headers).end();
       log?.(`${req.method} ${pathname} 304`);
       return;
