@@ -46,6 +46,8 @@ function helpBody(planners) {
     ])),
     text('h3', 'help.keys_title'),
     el('dl', { className: 'help-keys' }, keys.flatMap(([key, words]) => [el('dt', {}, [el('kbd', { textContent: key })]), text('dd', words)])),
+    text('h3', 'help.activities_title'),
+    el('p', {}, [t('help.activities'), ' ', el('a', { href: 'activities.html', id: 'help-activities', textContent: t('help.activities_link') })]),
     text('h3', 'help.share_title'),
     text('p', 'help.share'),
   ];
