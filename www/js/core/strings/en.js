@@ -1212,7 +1212,7 @@ export default {
   "activities.col_time": "Time",
   "activities.col_open": "Open",
   "activities.open": "Open in the playground",
-  "activities.open_named": "Open “{title}” in the playground",
+  "activities.open_named": "Open in the playground: {title}",
   "activities.goal_by": "{conditions}, at the same step, by step {steps}.",
   "activities.and": " and ",
   "activities.expected_mark": "(the expected answer)",

@@ -1212,7 +1212,7 @@ export default {
   "activities.col_time": "时间",
   "activities.col_open": "打开",
   "activities.open": "在演练场中打开",
-  "activities.open_named": "在演练场中打开“{title}”",
+  "activities.open_named": "在演练场中打开：{title}",
   "activities.goal_by": "第 {steps} 步之前，{conditions}（在同一步同时成立）。",
   "activities.and": "，且",
   "activities.expected_mark": "（预期答案）",
