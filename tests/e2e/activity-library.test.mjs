@@ -118,18 +118,21 @@ test('every library activity runs to the verdict its teacher notes give; the pag
       assert.equal(zh.sameScene, true, `${a.id}: the zh link's scene is the en link's`);
     }
 
-    // The student handout: the last activity's page printed after its run.
-    await page.evaluate(async (value) => {
+    // The student handout: the U-trap (four groups, the longest legend and table) printed at step 400.
+    const trap = ACTIVITIES.find((a) => a.id === 'u-trap');
+    const groups = await page.evaluate(async (value) => {
       await window.flockpath.load(value);
       await window.flockpath.step(400);
       await window.flockpath.settled();
-    }, MEASURED[ACTIVITIES[0].id].links.en);
+      return window.flockpath.scene().groups.length;
+    }, MEASURED[trap.id].links.en);
     await frames(page, 3);
     await page.evaluate(() => window.dispatchEvent(new Event('beforeprint')));
     const handout = await page.pdf({ format: 'A4', printBackground: true });
     await writeFile(path.join(ARTIFACTS, 'handout.pdf'), handout);
     const handoutPages = pdfPages(handout);
     assert.ok(handoutPages >= 1 && handoutPages <= 2, `handout on ${handoutPages} pages`);
+    await page.evaluate(() => window.dispatchEvent(new Event('beforeprint'))); // as a browser's Print does
     await page.emulateMedia({ media: 'print' });
     await page.setViewportSize({ width: 794, height: 1123 });
     const printed = await page.evaluate(() => {
@@ -145,8 +148,8 @@ test('every library activity runs to the verdict its teacher notes give; the pag
         question: shown(document.querySelector('#activity .fp-activity')),
       };
     });
-    assert.equal(printed.title, ACTIVITIES[0].en.title);
-    assert.equal(printed.legend.length, 1, printed.legend.join(' | '));
+    assert.equal(printed.title, trap.en.title);
+    assert.equal(printed.legend.length, groups, printed.legend.join(' | '));
     assert.ok(printed.stillWidth >= printed.pageWidth * 0.95, `the canvas at full width (${printed.stillWidth} of ${printed.pageWidth} px)`);
     assert.deepEqual(printed.controls, [], 'no button, field or slider printed');
     assert.equal(printed.metrics, true);

@@ -2,7 +2,7 @@
 // canvas gives the scene's title, its description (the preset's line; an activity's prompt is on
 // its card) and a legend of the groups (colour, name, planner); under
 // `@media print` (style.css) the canvas's still (core/print.js) takes the full width at the
-// canvas's own aspect, followed by the metrics card and the activity's question, and every
+// canvas's own aspect, followed by the activity's question, the metrics card and the plots, and every
 // button, slider and other panel is left out, so a run prints on at most two A4 pages.
 
 import { onLanguageChange, setText, t, tOr } from '../core/i18n.js';
@@ -20,7 +20,8 @@ export function setupHandout(app) {
   const head = el('section', { id: 'handout-head', className: 'handout-head' });
   head.setAttribute('aria-hidden', 'true'); // a copy of what the page already shows, for paper only
   stage.before(head);
-  document.querySelector('section.card [id="metrics-title"]')?.closest('section.card')?.classList.add('handout-keep');
+  // The metrics and the plots over time print; every other card (settings, editing) does not.
+  for (const id of ['metrics-title', 'plots-title']) document.getElementById(id)?.closest('section.card')?.classList.add('handout-keep');
 
   const fill = () => {
     const scene = app.scene ?? {};
