@@ -181,7 +181,7 @@ export const ACTIVITIES = [
     en: {
       title: 'IGSA plans a path',
       prompt:
-        'Before anyone moves, an improved gravitational search algorithm (IGSA) searches for three waypoints that make a short path keeping 12 px away from the obstacles; the group then follows the path. Select the group to see its waypoints and drag one. The goal: 95 % arrive with no agent inside an obstacle.',
+        'Before anyone moves, an improved gravitational search algorithm (IGSA) searches for three waypoints that make a short path keeping 12 px away from the obstacles; the group then follows the path. With the Select tool you can drag a waypoint (a handle on the path). The goal: 95 % arrive with no agent inside an obstacle.',
       question: 'Will the planned path bring the whole group through without touching an obstacle?',
       choices: ['Yes, the path keeps clear', 'No, some agents cut a corner into an obstacle'],
       variant: 'Set the clearance to 0 and plan again.',
@@ -192,7 +192,7 @@ export const ACTIVITIES = [
     zh: {
       title: 'IGSA 规划路径',
       prompt:
-        '在任何人移动之前，改进的引力搜索算法（IGSA）会寻找三个路径点，组成一条离障碍物至少 12 像素的短路径；然后群体沿着这条路径走。选中群体可以看到它的路径点，并拖动其中一个。目标：95% 到达，且没有个体进入障碍物。',
+        '在任何人移动之前，改进的引力搜索算法（IGSA）会寻找三个路径点，组成一条离障碍物至少 12 像素的短路径；然后群体沿着这条路径走。用选择工具可以拖动路径点（路径上的手柄）。目标：95% 到达，且没有个体进入障碍物。',
       question: '规划出的路径能让整个群体不碰障碍物地通过吗？',
       choices: ['能，路径保持了距离', '不能，有些个体抄近路进入障碍物'],
       variant: '把间隙设为 0，重新规划。',
