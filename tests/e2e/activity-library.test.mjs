@@ -62,6 +62,13 @@ test('every library activity runs to the verdict its teacher notes give; the pag
     const guide = await page.pdf({ format: 'A4' });
     await writeFile(path.join(ARTIFACTS, 'teacher-guide.pdf'), guide);
     assert.equal(pdfPages(guide), ACTIVITIES.length, 'one page per activity');
+    // The guide in Chinese: the same pages, in Chinese words.
+    await page.goto(`${server.url}activities.html?lang=zh`);
+    await page.waitForFunction(() => window.flockpathActivities !== undefined);
+    assert.equal(pdfPages(await page.pdf({ format: 'A4' })), ACTIVITIES.length, 'one page per activity in Chinese too');
+    assert.equal(await page.locator(`#guide-${ACTIVITIES[0].id} h3`).textContent(), ACTIVITIES[0].zh.title);
+    await openActivities();
+
     await page.emulateMedia({ media: 'print' });
     for (const a of ACTIVITIES) {
       const text = await page.locator(`#guide-${a.id}`).innerText();
