@@ -10,7 +10,7 @@
 import { writeFile } from 'node:fs/promises';
 import path from 'node:path';
 import { ROOT, openPage } from '../tests/e2e/helpers.mjs';
-import { ACTIVITIES } from '../www/js/activities/library.js';
+import { ACTIVITIES, sceneOf } from '../www/js/activities/library.js';
 
 const OUT = path.join(ROOT, 'www', 'js', 'activities', 'measured.js');
 
@@ -33,7 +33,6 @@ const { page, errors, close } = await openPage();
 const out = {};
 try {
   for (const activity of ACTIVITIES) {
-    const { sceneOf } = await import('../www/js/activities/library.js');
     const base = await page.evaluate(async (name) => (await window.flockpath.load(name), window.flockpath.scene()), activity.preset);
     const links = {};
     for (const lang of ['en', 'zh']) {

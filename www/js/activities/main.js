@@ -6,12 +6,11 @@
 // The page prints the guide (activities.css); "Print teacher guide" only calls print().
 
 import { language, onLanguageChange, setText, t, translatePage } from '../core/i18n.js';
-import { formatValue } from '../core/activity-card.js';
+import { OPS, formatValue } from '../core/activity-card.js';
 import { ACTIVITIES, LEVELS, TOPICS } from './library.js';
 import { MEASURED } from './measured.js';
 
 const $ = (id) => document.getElementById(id);
-const OPS = { '>=': '≥', '<=': '≤', '>': '>', '<': '<', '=': '=' };
 
 const el = (tag, props = {}, ...children) => {
   const node = Object.assign(document.createElement(tag), props);
