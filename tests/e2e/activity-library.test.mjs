@@ -169,12 +169,13 @@ test('every library activity runs to the verdict its teacher notes give; the pag
   }
 });
 
-test('the playground links the Activities page from its header menu and its Help dialog', { timeout: 60_000 }, async () => {
+test('the playground links the Activities page from its header menu, its welcome card and its Help dialog', { timeout: 60_000 }, async () => {
   const { page, server, errors, close } = await launchBrowser({ viewport: { width: 1366, height: 768 }, serviceWorkers: 'block' });
   try {
     await page.goto(`${server.url}index.html`);
     await page.waitForFunction(() => window.flockpath !== undefined);
     assert.equal(await page.locator('#topbar-menu a#to-activities').getAttribute('href'), 'activities.html');
+    assert.equal(await page.locator('#welcome a#welcome-activities').getAttribute('href'), 'activities.html', 'the first-visit welcome says where the activities are');
     await page.click('#help');
     await page.locator('#help-dialog a#help-activities').waitFor();
     assert.equal(await page.locator('#help-dialog a#help-activities').getAttribute('href'), 'activities.html');
