@@ -354,7 +354,7 @@ test('the validation suite’s "measured" words are Chinese for every test (real
 // ---- static scan of the pages' HTML ----
 
 /** Pages a student meets; bench.html is a developer benchmark (not linked from any page). */
-const PAGES = ['index.html', 'embed.html', 'compare.html', 'tune.html', 'lab.html', 'validation.html'];
+const PAGES = ['index.html', 'embed.html', 'compare.html', 'tune.html', 'lab.html', 'validation.html', 'activities.html'];
 
 /** Words that are no language: units, proper names, file formats, key names. */
 const NEUTRAL_WORDS = new Set(['fps', 'px', 'flock', 'path', 'flockpath', 'Ctrl', 'Esc', 'Del', 'Space', 'Enter', 'Boids', 'PSO',
@@ -475,6 +475,7 @@ const ZH_PAGES = [
   { page: 'tune.html', ready: () => document.getElementById('loading').hidden, chinese: { '#tune': '调优', '#setup-title': '设置', '#status': '尚未开始。' }, scan: 'header, .panel' },
   { page: 'lab.html', ready: () => window.flockpathLab !== undefined || document.querySelector('#lab-function option') !== null, chinese: { '#lab-play': '播放', '#lab-plot-title': '收敛曲线（目前最优，对数坐标）' }, scan: 'header, .lab-toolbar' },
   { page: 'validation.html', ready: () => document.querySelector('#val-planners input') !== null, chinese: { '#val-run': '运行', '#val-table-title': '结果' }, scan: 'header, #val-run-title, fieldset legend, .row-buttons' },
+  { page: 'activities.html', ready: () => window.flockpathActivities !== undefined, chinese: { '#print-guide': '打印教师指南', '#topic-flocking': '群集行为' }, scan: 'header, main' },
   { page: 'embed.html#s=open-field', ready: () => document.getElementById('embedded')?.host !== undefined && document.getElementById('embedded').host !== null, chinese: { '#open-full': '在 flockpath 中打开 ↗' }, scan: 'body' },
 ];
 

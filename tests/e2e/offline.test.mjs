@@ -98,7 +98,8 @@ test('after one visit the pages open offline, under a sub-path, and a new build 
     assert.deepEqual(Object.keys(caches1), [`flockpath ${scope} ${version}`], 'one cache, named for this build');
     const listed = caches1[`flockpath ${scope} ${version}`];
     for (const file of ['index.html', 'embed.html', 'examples/course-notes.html', 'style.css', 'manifest.webmanifest',
-      'icon.svg', 'js/flock-path.js', 'js/core/offline.js', 'js/play/main.js', 'pkg/flockpath.js', 'pkg/flockpath_bg.wasm']) {
+      'icon.svg', 'js/flock-path.js', 'js/core/offline.js', 'js/play/main.js', 'pkg/flockpath.js', 'pkg/flockpath_bg.wasm',
+      'activities.html', 'activities.css', 'js/activities/main.js', 'js/activities/library.js', 'js/activities/measured.js']) {
       assert.ok(listed.includes(file), `${file} is cached (cached: ${listed.join(', ')})`);
     }
     assert.ok(!listed.includes('sw.js') && !listed.includes('pkg/precache.js'), 'the worker and its list are not');
@@ -136,6 +137,11 @@ test('after one visit the pages open offline, under a sub-path, and a new build 
       const frame = document.getElementById('corridor').contentWindow;
       return frame.flockpathEmbed && frame.flockpathEmbed.steps > 10;
     }, null, { timeout: 30_000 });
+    // The Activities page, and an activity opened from it.
+    await page.goto(`${server.url}activities.html`);
+    await page.waitForFunction(() => window.flockpathActivities !== undefined, null, { timeout: 30_000 });
+    await page.locator('a.activity-open').first().click();
+    await page.locator('#activity .fp-activity .fp-prompt').waitFor({ timeout: 30_000 });
     assert.equal(server.state.requests.length > 0, true);
     assertNoUnexpectedErrors(errors);
 

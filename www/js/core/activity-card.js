@@ -59,7 +59,8 @@ function adoptStyle(root) {
 const SHARES = new Set(['arrived_share', 'queue_order']);
 /** Metrics keys that count (shown as whole numbers). */
 const COUNTS = new Set(['collisions_agent_agent', 'collisions_moving', 'penetrations_agent_obstacle', 'stuck_agents']);
-const OPS = { '>=': '≥', '<=': '≤', '>': '>', '<': '<', '=': '=' };
+/** Each comparison as the card writes it (also the Activities page's teacher guide). */
+export const OPS = { '>=': '≥', '<=': '≤', '>': '>', '<': '<', '=': '=' };
 
 /** A metric's value in the card's words. */
 export function formatValue(metric, value) {

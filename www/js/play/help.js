@@ -24,6 +24,11 @@ function tries() {
   return el('ol', { className: 'help-tries' }, TRIES.map((key) => text('li', key)));
 }
 
+/** Where the ready activities and the teacher guide are: a line with a link to the Activities page. */
+function activitiesLine(id) {
+  return el('p', { className: 'help-activities' }, [t('help.activities'), ' ', el('a', { href: 'activities.html', id, textContent: t('help.activities_link') })]);
+}
+
 /** The Help dialog's contents for `planners` (name, label). */
 function helpBody(planners) {
   const keys = [
@@ -46,6 +51,8 @@ function helpBody(planners) {
     ])),
     text('h3', 'help.keys_title'),
     el('dl', { className: 'help-keys' }, keys.flatMap(([key, words]) => [el('dt', {}, [el('kbd', { textContent: key })]), text('dd', words)])),
+    text('h3', 'help.activities_title'),
+    activitiesLine('help-activities'),
     text('h3', 'help.share_title'),
     text('p', 'help.share'),
   ];
@@ -86,6 +93,7 @@ function showWelcome(openHelp) {
     title,
     text('p', 'help.what'),
     tries(),
+    activitiesLine('welcome-activities'),
     el('div', { className: 'row-buttons' }, [close, more]),
   ]);
   card.setAttribute('aria-labelledby', 'welcome-title');

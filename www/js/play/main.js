@@ -28,6 +28,7 @@ import { prefersReducedMotion } from '../core/motion.js';
 import { t, tOr } from '../core/i18n.js';
 import { setupNewScene } from './new-scene.js';
 import { setupHelp } from './help.js';
+import { setupHandout } from './handout.js';
 
 bootPage(t('boot.what_play'), async ({ module, wasm }) => {
   const canvas = document.getElementById('scene-canvas');
@@ -72,6 +73,7 @@ bootPage(t('boot.what_play'), async ({ module, wasm }) => {
   setupCapacityNotice(app);
   setupInspector(app);
   setupActivity(app);
+  setupHandout(app);
   // The canvas in words for screen readers (core/describe.js), beside the canvas.
   setupDescription(app, overlay, () => ({
     scene: app.scene,
