@@ -26,7 +26,8 @@ function tries() {
 
 /** Where the ready activities and the teacher guide are: a line with a link to the Activities page. */
 function activitiesLine(id) {
-  return el('p', { className: 'help-activities' }, [t('help.activities'), ' ', el('a', { href: 'activities.html', id, textContent: t('help.activities_link') })]);
+  // Bound to their keys (setText), so a language switch rewords the open card too.
+  return el('p', { className: 'help-activities' }, [text('span', 'help.activities'), ' ', text('a', 'help.activities_link', { href: 'activities.html', id })]);
 }
 
 /** The Help dialog's contents for `planners` (name, label). */
