@@ -31,7 +31,38 @@ const METHODS = {
   digest: (el) => el.digest(),
   isPlaying: (el) => el.playing,
   classroom: (el) => el.classroom(),
+  setClassroom: (el, options) => setClassroom(el, options),
 };
+
+/** The options a host may set with `setClassroom`. */
+const CLASSROOM_OPTIONS = ['controls', 'lock', 'hide', 'openLink'];
+
+/**
+ * The teacher's options set by the host page instead of the iframe's URL (issue 27 §4), so a
+ * student never meets them in an address bar: `{controls, lock, hide}` as comma lists or arrays
+ * (null: back to everything allowed), `openLink: false` hides the "Open in flockpath" link (the
+ * one way out to an editable link). Resolves to `classroom()`; a refused name is an error naming
+ * the option and the allowed names (the other options still apply, as on the element).
+ */
+function setClassroom(el, options) {
+  if (!options || typeof options !== 'object' || Array.isArray(options)) {
+    throw new Error(`setClassroom expects one object {${CLASSROOM_OPTIONS.join(', ')}}`);
+  }
+  const unknown = Object.keys(options).find((key) => !CLASSROOM_OPTIONS.includes(key));
+  if (unknown !== undefined) throw new Error(`setClassroom: unknown option ${JSON.stringify(unknown)}; known: ${CLASSROOM_OPTIONS.join(', ')}`);
+  for (const name of ['controls', 'lock', 'hide']) {
+    if (!(name in options)) continue;
+    const value = options[name];
+    // Back to everything allowed: a bare `controls` shows them all; no `lock`/`hide`, nothing.
+    if (value === null && name === 'controls') el.setAttribute(name, '');
+    else if (value === null) el.removeAttribute(name);
+    else el.setAttribute(name, Array.isArray(value) ? value.join(',') : String(value));
+  }
+  if ('openLink' in options) openLink.hidden = options.openLink === false;
+  refreshOpenLink();
+  if (el.classroomErrors?.length) throw new Error(el.classroomErrors.join(' '));
+  return el.classroom();
+}
 
 const el = document.getElementById('embedded');
 const openLink = document.getElementById('open-full');
