@@ -10,7 +10,7 @@
 //!
 //! | layer | what it is |
 //! |---|---|
-//! | [`rng`], [`digest`] | the one seeded, portable generator; the one fingerprint of bit patterns (leaves) |
+//! | [`rng`], [`digest`], [`csv`] | the one seeded, portable generator; the one fingerprint of bit patterns; CSV fields (leaves) |
 //! | [`model`] | what users draw and share: scene, geometry, planner parameters, codec, edits, presets |
 //! | [`spatial`] | neighbour queries: the agents' grid, the obstacle index, the flow field |
 //! | [`optim`] | optimizers on R^d and benchmark functions (a leaf beside the crowd) |
@@ -30,6 +30,7 @@
 //! assert!(m.overall.arrived_share > 0.5);
 //! ```
 
+pub mod csv;
 pub mod digest;
 pub mod experiments;
 pub mod export;

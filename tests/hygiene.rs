@@ -216,6 +216,8 @@ const LAYERS: &[(&str, &[&str])] = &[
     ("rng", &[]),
     // A leaf: the one fingerprint of bit patterns (run digests, cache keys).
     ("digest", &[]),
+    // A leaf: CSV fields, for every CSV the project writes.
+    ("csv", &[]),
     // What users draw and share.
     ("model", &["rng"]),
     // Neighbour queries: the agents' grid, the obstacle index, the flow field.
@@ -225,7 +227,7 @@ const LAYERS: &[(&str, &[&str])] = &[
     // The Planner trait at the bottom, one planner per file above it; IGSA plans with optim.
     ("planners", &["model", "spatial", "optim", "rng"]),
     // A run: the world's step calls the planners; metrics, recording, replay, comparison.
-    ("sim", &["model", "spatial", "planners", "rng", "digest"]),
+    ("sim", &["model", "spatial", "planners", "rng", "digest", "csv"]),
     // The papers' tables and validation runs as data.
     ("experiments", &["model", "spatial", "planners", "optim", "sim", "rng"]),
     // The GA over the five force weights.
