@@ -152,7 +152,7 @@ test('the core’s refusals are worded in Chinese (real errors from the wasm mod
   const names = new Set(JSON.parse(m.presets_json()).map((p) => p.name));
   try {
     for (const [k, e] of Object.entries(cases)) assert.equal(refusalText(e), e.message, `${k}: the English template is the core’s words`);
-    i18n.setLanguage('zh', null);
+    await i18n.setLanguage('zh', null);
     const zh = Object.fromEntries(Object.entries(cases).map(([k, e]) => [k, refusalText(e)]));
     for (const [k, text] of Object.entries(zh)) {
       assert.equal(typeof cases[k].code, 'string', `${k} carries a code`);
@@ -169,7 +169,7 @@ test('the core’s refusals are worded in Chinese (real errors from the wasm mod
     assert.equal(zh.field, 'groups[0].agent_radius 的值为 500；允许：0.5…100 像素 之间的数');
     assert.equal(zh.negative, '无法读取编辑操作：无效的值：整数 -5，应为 u32');
   } finally {
-    i18n.setLanguage('en', null);
+    await i18n.setLanguage('en', null);
   }
 });
 
@@ -258,7 +258,7 @@ test('every other refusal is worded in Chinese too: scene fields, items, compare
     for (const [k, e] of Object.entries(cases)) assert.equal(typeof e.code, 'string', `${k} carries a code (${e.message})`);
     for (const [k, e] of Object.entries(cases)) assert.equal(refusalText(e), e.message, `${k}: the English template is the core’s words`);
     assert.match(cases.spec_planner.message, /^comparison: unknown planner "zz"/, 'the English message is unchanged');
-    i18n.setLanguage('zh', null);
+    await i18n.setLanguage('zh', null);
     const zh = Object.fromEntries(Object.entries(cases).map(([k, e]) => [k, refusalText(e)]));
     for (const [k, text] of Object.entries(zh)) {
       assert.ok(text && /[\u4e00-\u9fff]/.test(text), `${k} in Chinese: ${text} (core: ${cases[k].message})`);
@@ -270,7 +270,7 @@ test('every other refusal is worded in Chinese too: scene fields, items, compare
     assert.match(zh.polygon, /^obstacles\[\d+\]\.points 的值为 边 \d+→\d+ 与 \d+→\d+ 相交或接触的多边形；允许：简单多边形/);
     assert.match(zh.tune_scene, /^无法读取场景：未知的场景格式版本“7”/, 'a tuning scene keeps its own code');
   } finally {
-    i18n.setLanguage('en', null);
+    await i18n.setLanguage('en', null);
   }
 });
 
@@ -316,7 +316,7 @@ test('names, strings that are no text, links too long and lab sizes are refused 
   new m.Lab('pso', 'sphere', max('lab-dim'), max('lab-pop'), max('lab-iters'), 1).free();
   try {
     for (const [k, e] of Object.entries(cases)) assert.equal(refusalText(e), e.message, `${k}: the English template is the core’s words`);
-    i18n.setLanguage('zh', null);
+    await i18n.setLanguage('zh', null);
     const zh = Object.fromEntries(Object.entries(cases).map(([k, e]) => [k, refusalText(e)]));
     assert.equal(zh.long_name, 'groups[0].name 的值为 7340032 个字符的文本（"xxxxxxxxxxxxxxxxxxxxxxxx"…）；允许：单行文本，最多 100 个字符');
     assert.equal(zh.surrogate, 'groups[0].name 的值为 无效的字符串（孤立的代理项 \\ud800）；允许：文本，其中每个 \\ud800…\\udbff 转义之后必须紧跟一个 \\udc00…\\udfff 转义（代理对）');
@@ -326,7 +326,7 @@ test('names, strings that are no text, links too long and lab sizes are refused 
     assert.equal(zh.lab_population, '种群规模 501 超出 2…500 的范围');
     assert.equal(zh.lab_iterations, '迭代次数 10001 超出 1…10000 的范围');
   } finally {
-    i18n.setLanguage('en', null);
+    await i18n.setLanguage('en', null);
   }
 });
 
@@ -340,14 +340,14 @@ test('the validation suite’s "measured" words are Chinese for every test (real
   }
   try {
     assert.equal(measuredText(rows[0].measured), rows[0].measured, 'English pages show the core’s words');
-    i18n.setLanguage('zh', null);
+    await i18n.setLanguage('zh', null);
     for (const row of rows) {
       const text = measuredText(row.measured);
       assert.match(text, /[\u4e00-\u9fff]/, `${row.test}: ${text}`);
       assert.deepEqual(englishWords(text, new Set()), [], `${row.test}: no English words left in ${text} (core: ${row.measured})`);
     }
   } finally {
-    i18n.setLanguage('en', null);
+    await i18n.setLanguage('en', null);
   }
 });
 
@@ -540,6 +540,8 @@ test('switching language in the menu keeps the scene and the run, and is remembe
     await page.waitForFunction((s) => location.hash.includes(s.slice(0, 20)), before.scene);
 
     await page.selectOption('#lang-select', 'zh');
+    // The Chinese table is fetched on the first switch (an English page does not download it).
+    await page.waitForFunction(() => document.documentElement.lang === 'zh-Hans');
     assert.equal((await page.textContent('#play')).trim(), '播放', 'the paused Play button in Chinese');
     assert.equal((await page.textContent('#planner-title')).trim(), '规划器');
     assert.equal(await page.evaluate(() => document.documentElement.lang), 'zh-Hans');
@@ -565,6 +567,7 @@ test('switching language in the menu keeps the scene and the run, and is remembe
     await page.waitForFunction(() => window.flockpathCompare !== undefined);
     assert.equal((await page.textContent('#add-pane')).trim(), '添加窗格');
     await page.selectOption('#lang-select', 'en');
+    await page.waitForFunction(() => document.documentElement.lang === 'en');
     assert.equal((await page.textContent('#add-pane')).trim(), 'Add pane');
     assertNoUnexpectedErrors(errors);
   } finally {
