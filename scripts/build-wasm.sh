@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Builds the page's wasm module into www/pkg (release, wasm-opt -O, SIMD) and prints its size.
-# Idempotent: skips the build when nothing under src/, Cargo.toml, Cargo.lock or .cargo/ changed
-# since the last one (stamp file www/pkg/.build-stamp). Pass --force to rebuild anyway.
+# Idempotent: skips the build when nothing under src/, Cargo.toml, Cargo.lock or .cargo/ changed,
+# nor scripts/jupedsim_runs.py (the JuPedSim export includes it word for word), since the last one (stamp file www/pkg/.build-stamp). Pass --force to rebuild anyway.
 # Either way it then rewrites www/pkg/precache.js (scripts/precache.mjs): the offline service
 # worker's file list and version, which follow every change to www/ too, and the precompressed
 # copies of www/ (scripts/precompress.mjs), rewritten only where a file changed.
@@ -18,7 +18,7 @@ force=0
 
 # A fingerprint of every input: a changed, added or removed file changes it.
 inputs_hash() {
-  find src Cargo.toml Cargo.lock .cargo -type f -print0 | sort -z | xargs -0 sha256sum | sha256sum | cut -d' ' -f1
+  find src Cargo.toml Cargo.lock .cargo scripts/jupedsim_runs.py -type f -print0 | sort -z | xargs -0 sha256sum | sha256sum | cut -d' ' -f1
 }
 
 hash=$(inputs_hash)
