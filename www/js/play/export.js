@@ -7,6 +7,7 @@ import { download } from '../core/download.js';
 import { fileStem } from './share.js';
 import { formatNumber, onLanguageChange, setAttr, setText, t } from '../core/i18n.js';
 import { withDuration } from './webm-duration.js';
+import { setupScormExport } from './export-scorm.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -102,6 +103,7 @@ export function setupExport(app, canvas) {
   }
 
   setupVideo(app, canvas, status);
+  setupScormExport(app, status);
 }
 
 /**
