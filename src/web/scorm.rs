@@ -1,7 +1,7 @@
 //! The SCORM package and its grade for the pages: conversion only. The package, the files it
 //! takes and the scoring rule are `crate::package::scorm`'s.
 
-use super::{js_error, refusal, to_json, unreadable};
+use super::{refusal, to_json, unreadable};
 use crate::model::activity::Activity;
 use crate::package::scorm::{grade, is_page_file, scorm_package};
 use crate::sim::activity_check::Status;
@@ -50,5 +50,5 @@ pub fn scorm_grade(activity_json: &str, status: &str, answer: Option<u32>) -> Re
         "unavailable" => Status::Unavailable,
         other => return Err(unreadable("activity", format!("unknown check status {other:?}"))),
     };
-    to_json(&grade(&activity, status, answer)).map_err(|e| js_error(e).into())
+    to_json(&grade(&activity, status, answer)).map_err(JsValue::from)
 }
