@@ -5,7 +5,8 @@
 // activity (Play, the prediction, the run to its check); the test reads what the runtime recorded
 // (`cmi.core.lesson_status`, `cmi.core.score.raw`, `cmi.suspend_data`, LMSFinish), reopens the
 // SCO with that state and checks the prediction is restored, and opens the package with no
-// runtime around it to see it work as the embed view.
+// runtime around it to see it work as the embed view. The playground's Export → LMS package,
+// which builds the zip in the browser from the files the page fetches, gives the CLI's bytes.
 
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
@@ -15,7 +16,7 @@ import { copyFile, mkdtemp, readFile, rm, stat, writeFile } from 'node:fs/promis
 import { homedir, tmpdir } from 'node:os';
 import path from 'node:path';
 import { chromium } from 'playwright-core';
-import { ARTIFACTS, CHROMIUM_ARGS, ROOT, WWW } from './helpers.mjs';
+import { ARTIFACTS, assertNoUnexpectedErrors, CHROMIUM_ARGS, openPage, ROOT, screenshot, WWW } from './helpers.mjs';
 
 /** The link of the `flockpath scorm --link '…'` example in docs/course-notes.md. */
 async function documentedLink() {
@@ -74,7 +75,9 @@ window.startLms = (state) => {
   frame.style.cssText = 'width: 900px; height: 700px; border: 0';
   document.body.append(frame);
 };
-window.cmi = () => ({ lesson_status: API.cmi.core.lesson_status, score_raw: API.cmi.core.score.raw, score_max: API.cmi.core.score.max, suspend_data: API.cmi.suspend_data, exit: API.cmi.core.exit });
+window.cmi = () => ({ lesson_status: API.cmi.core.lesson_status, score_raw: API.cmi.core.score.raw, score_max: API.cmi.core.score.max, suspend_data: API.cmi.suspend_data });
+// cmi.core.exit is write-only in SCORM 1.2: what the SCO set is read from the calls.
+window.lastSet = (element) => window.lmsCalls.filter(([name, el]) => name === 'LMSSetValue' && el === element).map(([, , value]) => value).pop() ?? null;
 </script></head><body></body></html>`;
 
 /** The SCO's frame once its simulation is ready. */
@@ -147,10 +150,10 @@ test('a SCORM package reports completion, score and the prediction to scorm-agai
     await page.evaluate(() => document.querySelector('iframe').remove());
     await page.waitForFunction(() => window.lmsCalls.some(([name]) => name === 'LMSFinish'), null, { timeout: 10_000 });
     const finished = await page.evaluate(() => window.cmi());
-    assert.equal(finished.exit, 'suspend');
-    const calls = await page.evaluate(() => window.lmsCalls.map(([name, , , result]) => [name, result]));
+    assert.equal(await page.evaluate(() => window.lastSet('cmi.core.exit')), 'suspend');
+    const calls = await page.evaluate(() => window.lmsCalls.map((call) => [call[0], call[call.length - 1]]));
     assert.deepEqual(calls.filter(([name]) => name === 'LMSInitialize').length, 1);
-    assert.ok(calls.every(([name, result]) => name === 'LMSGetValue' || name === 'LMSSetValue' || result === 'true' || result === true), JSON.stringify(calls));
+    assert.ok(calls.every(([name, result]) => name === 'LMSGetValue' || String(result) === 'true'), JSON.stringify(calls));
     const failedSets = await page.evaluate(() => window.lmsCalls.filter(([name, , , result]) => name === 'LMSSetValue' && String(result) !== 'true'));
     assert.deepEqual(failedSets, [], 'every value set is one scorm-again accepts');
 
@@ -181,6 +184,48 @@ test('a SCORM package reports completion, score and the prediction to scorm-agai
     await context.close().catch(() => {});
     await server.close();
     await rm(profile, { recursive: true, force: true });
+    await rm(dir, { recursive: true, force: true });
+  }
+});
+
+test('Export → LMS package builds in the browser, with the Share dialog\'s options, the same zip as the CLI', { timeout: 300_000 }, async () => {
+  const link = await documentedLink();
+  const dir = await mkdtemp(path.join(tmpdir(), 'flockpath-scorm-page-'));
+  const zip = path.join(dir, 'cli.zip');
+  flockpath(['scorm', '--link', link, '--www', WWW, '--out', zip]);
+  // The teacher opens the scene unlocked and ticks the link's options under Share… → Lock….
+  const fragment = link.slice(link.indexOf('#') + 1);
+  const options = Object.fromEntries(fragment.split('&').map((part) => part.split('=')));
+  const { page, errors, close } = await openPage({ hash: `#s=${options.s}` });
+  try {
+    await page.evaluate((wanted) => {
+      for (const box of document.querySelectorAll('#share-lock input[data-classroom]')) {
+        const [field, name] = box.dataset.classroom.split(':');
+        box.checked = (wanted[field] ?? '').split(',').includes(name);
+        box.dispatchEvent(new Event('change'));
+      }
+    }, { controls: options.controls, lock: options.lock, hide: options.hide });
+    await page.click('#export');
+    await page.locator('#export-scorm').waitFor({ state: 'visible' });
+    await screenshot(page, 'scorm-export-dialog');
+    const [download] = await Promise.all([page.waitForEvent('download', { timeout: 60_000 }), page.click('#export-scorm')]);
+    assert.match(download.suggestedFilename(), /-scorm\.zip$/);
+    const fromPage = await readFile(await download.path());
+    const fromCli = await readFile(zip);
+    assert.ok(fromPage.length > 1_000_000, `a package with the wasm (${fromPage.length} bytes)`);
+    assert.ok(fromPage.equals(fromCli), `the page's zip (${fromPage.length} bytes) is the CLI's (${fromCli.length} bytes)`);
+    assert.match(await page.textContent('#export-status'), /-scorm\.zip/);
+
+    // A scene without an activity is refused in words, and nothing downloads.
+    await page.evaluate(async () => {
+      await window.flockpath.load('pillars');
+    });
+    await page.click('#export-scorm');
+    await page.waitForFunction(() => /Not exported/.test(document.querySelector('#export-status').textContent));
+    assert.match(await page.textContent('#export-status'), /Not exported: .*no activity/);
+    assertNoUnexpectedErrors(errors);
+  } finally {
+    await close();
     await rm(dir, { recursive: true, force: true });
   }
 });

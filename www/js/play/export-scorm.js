@@ -40,8 +40,11 @@ export async function scormPackage(module, link) {
   return module.scorm_package_zip(link, JSON.stringify(listed), all);
 }
 
-/** Wires the Export dialog's "LMS package (SCORM 1.2)" button. */
-export function setupScormExport(app, status) {
+/**
+ * Wires the Export dialog's "LMS package (SCORM 1.2)" button. The package carries the Share
+ * dialog's "For students" options (`share.classroomOptions()`: they start as the page's own).
+ */
+export function setupScormExport(app, status, share = null) {
   const button = document.getElementById('export-scorm');
   if (!button) return;
   button.addEventListener('click', async () => {
@@ -49,7 +52,7 @@ export function setupScormExport(app, status) {
     status.textContent = t('export.scorm_building');
     try {
       const scene = app.guard((sim) => sim.scene_string(), { rethrow: true }).value;
-      const options = app.classroom?.fragment;
+      const options = share ? share.classroomOptions().fragment : app.classroom?.fragment;
       const link = `s=${scene}${options ? `&${options}` : ''}`;
       const zip = await scormPackage(app.module, link);
       const name = `${fileStem(app.scene)}-scorm.zip`;

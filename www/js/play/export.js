@@ -41,7 +41,7 @@ export function describeRecording(info) {
   return { line, note };
 }
 
-export function setupExport(app, canvas) {
+export function setupExport(app, canvas, share = null) {
   const dialog = $('export-dialog');
   const status = $('export-status');
   const info = $('recording-info');
@@ -103,7 +103,7 @@ export function setupExport(app, canvas) {
   }
 
   setupVideo(app, canvas, status);
-  setupScormExport(app, status);
+  setupScormExport(app, status, share);
 }
 
 /**
