@@ -90,21 +90,17 @@ async function scoFrame(page) {
 
 const card = 'flock-path .fp-activity';
 
-test('a SCORM package reports completion, score and the prediction to scorm-again, and restores the prediction', { timeout: 300_000 }, async () => {
+/**
+ * The documented package built by the CLI, unzipped beside the host page and scorm-again, served,
+ * and Chromium with a fresh profile. Returns { page, server, errors, close }.
+ */
+async function hostedPackage() {
   const link = await documentedLink();
   const dir = await mkdtemp(path.join(tmpdir(), 'flockpath-scorm-'));
   const zip = path.join(dir, 'crossing-scorm.zip');
   const printed = flockpath(['scorm', '--link', link, '--www', WWW, '--out', zip]);
   assert.match(printed, /SCORM 1\.2, \d+ files/);
-  // The zip's central directory lists what the manifest lists.
-  const listing = execFileSync('python3', ['-m', 'zipfile', '-l', zip], { encoding: 'utf8' });
   execFileSync('python3', ['-m', 'zipfile', '-e', zip, path.join(dir, 'sco')]);
-  const names = listing.split('\n').slice(1).map((l) => l.trim().split(/\s+/)[0]).filter(Boolean).sort();
-  const manifest = await readFile(path.join(dir, 'sco', 'imsmanifest.xml'), 'utf8');
-  const listed = [...manifest.matchAll(/<file href="([^"]+)"\/>/g)].map((m) => m[1]).concat('imsmanifest.xml').sort();
-  assert.deepEqual(listed, names);
-  assert.ok(names.includes('pkg/flockpath_bg.wasm') && names.includes('js/core/scorm.js'), names.join(' '));
-
   await writeFile(path.join(dir, 'lms.html'), HOST_PAGE);
   await copyFile(path.join(ROOT, 'node_modules', 'scorm-again', 'dist', 'scorm12.js'), path.join(dir, 'scorm12.js'));
   const server = await serve(dir);
@@ -122,7 +118,26 @@ test('a SCORM package reports completion, score and the prediction to scorm-agai
     if (msg.type() === 'error') errors.push(`console: ${msg.text()}`);
   });
   page.on('pageerror', (error) => errors.push(`page error: ${error.message}`));
+  const close = async () => {
+    await context.close().catch(() => {});
+    await server.close();
+    await rm(profile, { recursive: true, force: true });
+    await rm(dir, { recursive: true, force: true });
+  };
+  return { page, server, errors, dir, zip, close };
+}
+
+test('a SCORM package reports completion, score and the prediction to scorm-again, and restores the prediction', { timeout: 300_000 }, async () => {
+  const { page, server, errors, dir, zip, close } = await hostedPackage();
   try {
+    // The zip's central directory lists what the manifest lists.
+    const listing = execFileSync('python3', ['-m', 'zipfile', '-l', zip], { encoding: 'utf8' });
+    const names = listing.split('\n').slice(1).map((l) => l.trim().split(/\s+/)[0]).filter(Boolean).sort();
+    const manifest = await readFile(path.join(dir, 'sco', 'imsmanifest.xml'), 'utf8');
+    const listed = [...manifest.matchAll(/<file href="([^"]+)"\/>/g)].map((m) => m[1]).concat('imsmanifest.xml').sort();
+    assert.deepEqual(listed, names);
+    assert.ok(names.includes('pkg/flockpath_bg.wasm') && names.includes('js/core/scorm.js'), names.join(' '));
+
     // First visit: a student opens the activity in the LMS.
     await page.goto(`${server.url}lms.html`);
     await page.evaluate(() => window.startLms(null));
@@ -181,10 +196,27 @@ test('a SCORM package reports completion, score and the prediction to scorm-agai
     const unexpected = errors.filter((e) => !/sw\.js|service ?worker/i.test(e));
     assert.deepEqual(unexpected, []);
   } finally {
-    await context.close().catch(() => {});
-    await server.close();
-    await rm(profile, { recursive: true, force: true });
-    await rm(dir, { recursive: true, force: true });
+    await close();
+  }
+});
+
+test('a wrong prediction with the check met passes with 50', { timeout: 300_000 }, async () => {
+  const { page, server, errors, close } = await hostedPackage();
+  try {
+    await page.goto(`${server.url}lms.html`);
+    await page.evaluate(() => window.startLms(null));
+    const sco = await scoFrame(page);
+    await sco.click('flock-path .play');
+    await sco.locator(`${card} label.fp-choice`, { hasText: 'Under half' }).click();
+    await sco.click(`${card} .fp-lock`);
+    await page.waitForFunction(() => window.API.cmi.core.score.raw !== '', null, { timeout: 120_000 });
+    const graded = await page.evaluate(() => window.cmi());
+    assert.equal(graded.lesson_status, 'passed', 'the check decides the status');
+    assert.equal(String(graded.score_raw), '50', 'check met (50), prediction wrong (0)');
+    assert.deepEqual(JSON.parse(graded.suspend_data), { answer: 0 });
+    assert.deepEqual(errors.filter((e) => !/sw\.js|service ?worker/i.test(e)), []);
+  } finally {
+    await close();
   }
 });
 
