@@ -3,7 +3,7 @@
 
 use super::{refusal, to_json, unreadable};
 use crate::model::activity::Activity;
-use crate::package::scorm::{grade, is_page_file, scorm_package};
+use crate::package::scorm::{grade, is_page_file, packaged_scene, scorm_package};
 use crate::sim::activity_check::Status;
 use wasm_bindgen::prelude::*;
 
@@ -14,6 +14,13 @@ pub fn scorm_page_files(paths_json: &str) -> Result<String, JsValue> {
     let paths: Vec<String> = serde_json::from_str(paths_json).map_err(|e| unreadable("files", e))?;
     let wanted: Vec<&String> = paths.iter().filter(|p| is_page_file(p)).collect();
     to_json(&wanted).map_err(JsValue::from)
+}
+
+/// Checks that `link` can be packaged (an activity with a check one scene decides) before the
+/// page fetches its files; throws the same coded refusal as [`scorm_package_zip`] would.
+#[wasm_bindgen]
+pub fn scorm_check_link(link: &str) -> Result<(), JsValue> {
+    packaged_scene(link).map(|_| ()).map_err(refusal)
 }
 
 /// The SCORM 1.2 zip of the activity in `link`, with the page files whose names and byte

@@ -252,9 +252,12 @@ test('Export → LMS package builds in the browser, with the Share dialog\'s opt
     await page.evaluate(async () => {
       await window.flockpath.load('pillars');
     });
+    const fetched = [];
+    page.on('request', (request) => fetched.push(request.url()));
     await page.click('#export-scorm');
     await page.waitForFunction(() => /Not exported/.test(document.querySelector('#export-status').textContent));
     assert.match(await page.textContent('#export-status'), /Not exported: .*no activity/);
+    assert.deepEqual(fetched.filter((url) => url.endsWith('.wasm')), [], 'refused before fetching the files');
     assertNoUnexpectedErrors(errors);
   } finally {
     await close();

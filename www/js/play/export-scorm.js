@@ -22,6 +22,8 @@ async function buildFiles() {
 
 /** The package's bytes for the link `link` (`s=…&lock=…`), made by the core. */
 export async function scormPackage(module, link) {
+  // A link with nothing to grade is refused before 3 MB of files are fetched.
+  module.scorm_check_link(link);
   const wanted = JSON.parse(module.scorm_page_files(JSON.stringify(await buildFiles())));
   const parts = await Promise.all(
     wanted.map(async (name) => {
