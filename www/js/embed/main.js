@@ -1,6 +1,7 @@
 // embed.html: one <flock-path> filling the iframe, its scene from the fragment (`#s=…`,
-// `&autoplay=1`, `&controls=0`, `&scorm=1` from a SCORM package's launch page: core/scorm.js; the teacher's `&controls=play,step`, `&lock=…`, `&hide=…` become
-// the element's attributes), an "open in flockpath" link carrying the current scene and those
+// `&autoplay=1`, `&controls=0`; the teacher's `&controls=play,step`, `&lock=…`, `&hide=…` become
+// the element's attributes; `&scorm=1`, from a SCORM package's launch page, reports the activity
+// to the LMS: core/scorm.js), an "open in flockpath" link carrying the current scene and those
 // options (so the playground it opens is locked the same way), and a
 // postMessage API so the host page can script the iframe like the page API:
 //
