@@ -17,6 +17,7 @@
 //! | [`planners`] | the Planner trait and one file per planner |
 //! | [`sim`] | a run: the world's step, spawn, cost limits, metrics, one bounded series, recording, replay, comparison, and [`sim::run::Run`] (what the page and the CLI drive), budgets in [`sim::limits`] |
 //! | [`experiments`], [`tune`], [`render`], [`export`] | tables, GA tuning, pixels, files |
+//! | [`package`] | a store-only zip and the SCORM 1.2 package of an activity (what an LMS grades) |
 //! | `web` | wasm32 only: conversion and errors for the pages |
 //!
 //! ```
@@ -36,6 +37,7 @@ pub mod experiments;
 pub mod export;
 pub mod model;
 pub mod optim;
+pub mod package;
 pub mod planners;
 pub mod render;
 pub mod rng;

@@ -236,10 +236,24 @@ const LAYERS: &[(&str, &[&str])] = &[
     ("render", &["model", "spatial", "planners", "sim"]),
     // Files for other tools.
     ("export", &["model", "sim"]),
+    // Zips and SCORM packages for an LMS.
+    ("package", &["model", "sim"]),
     // wasm32 only: conversion and errors over everything below.
     (
         "web",
-        &["model", "spatial", "planners", "optim", "sim", "experiments", "tune", "render", "export", "rng"],
+        &[
+            "model",
+            "spatial",
+            "planners",
+            "optim",
+            "sim",
+            "experiments",
+            "tune",
+            "render",
+            "export",
+            "package",
+            "rng",
+        ],
     ),
 ];
 

@@ -28,6 +28,7 @@ pub mod classroom;
 mod compare;
 pub mod lab;
 mod paths;
+mod scorm;
 mod seed;
 mod timeline;
 pub mod tune;

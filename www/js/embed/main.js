@@ -1,6 +1,7 @@
 // embed.html: one <flock-path> filling the iframe, its scene from the fragment (`#s=…`,
 // `&autoplay=1`, `&controls=0`; the teacher's `&controls=play,step`, `&lock=…`, `&hide=…` become
-// the element's attributes), an "open in flockpath" link carrying the current scene and those
+// the element's attributes; `&scorm=1`, from a SCORM package's launch page, reports the activity
+// to the LMS: core/scorm.js), an "open in flockpath" link carrying the current scene and those
 // options (so the playground it opens is locked the same way), and a
 // postMessage API so the host page can script the iframe like the page API:
 //
@@ -17,6 +18,7 @@
 
 import '../flock-path.js';
 import { decodeValue, fragmentOptions } from '../core/fragment.js';
+import { connectScorm } from '../core/scorm.js';
 
 /** The methods a host may call, each mirroring the page API of the same name. */
 const METHODS = {
@@ -74,6 +76,9 @@ else if (options.controls !== undefined) el.setAttribute('controls', decodeValue
 for (const name of ['lock', 'hide']) {
   if (options[name] !== undefined) el.setAttribute(name, decodeValue(options[name]));
 }
+/** Opened from a SCORM package (its launch page adds `&scorm=1`): the playground is not in it. */
+const inPackage = options.scorm === '1';
+if (inPackage) openLink.remove();
 
 /** Points the link at the full page with the scene as it is now (edits via the API included). */
 function refreshOpenLink() {
@@ -132,6 +137,8 @@ window.addEventListener('message', async (event) => {
 booted.then(
   () => {
     refreshOpenLink();
+    // In an LMS the activity reports its completion and score to the LMS's SCORM runtime.
+    if (inPackage) window.flockpathScorm = connectScorm(el.activity);
     window.flockpathEmbed = el;
     if (window.parent !== window) window.parent.postMessage({ flockpath: 1, event: 'ready' }, '*');
   },

@@ -8,6 +8,7 @@ import { download } from '../core/download.js';
 import { fileStem } from './share.js';
 import { formatNumber, onLanguageChange, setAttr, setText, t } from '../core/i18n.js';
 import { withDuration } from './webm-duration.js';
+import { setupScormExport } from './export-scorm.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -43,7 +44,7 @@ export function describeRecording(info) {
   return { line, note };
 }
 
-export function setupExport(app, canvas) {
+export function setupExport(app, canvas, share = null) {
   const dialog = $('export-dialog');
   const status = $('export-status');
   const info = $('recording-info');
@@ -105,6 +106,7 @@ export function setupExport(app, canvas) {
   }
 
   setupVideo(app, canvas, status);
+  setupScormExport(app, status, share);
 }
 
 /**

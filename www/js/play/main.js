@@ -63,8 +63,8 @@ bootPage(t('boot.what_play'), async ({ module, wasm }) => {
   setupHistoryButtons(app, editor);
   watchLocation(app);
   keepLocationInSync(app);
-  setupShare(app);
-  setupExport(app, canvas);
+  const share = setupShare(app);
+  setupExport(app, canvas, share);
   setupTimeline(app);
   setupSceneLinks(app);
   setupNewScene(app);

@@ -319,6 +319,10 @@ export default {
   'export.svg': 'SVG trails',
   'export.png': 'PNG snapshot',
   'export.record': 'Record WebM',
+  'export.lms': 'For an LMS',
+  'export.scorm': 'LMS package (SCORM 1.2)',
+  'export.scorm_title': 'A zip your LMS (Moodle, Canvas, Blackboard, Brightspace) imports: the activity reports completion and a score',
+  'export.scorm_building': 'Packaging the activity with the page files…',
   'export.stop': 'Stop recording',
   'export.rec': 'REC',
   'export.rec_title': 'Recording the canvas: click to stop and download the WebM',
@@ -722,6 +726,8 @@ export default {
 
   // — refusals: more codes —
   'what.edit': 'edit',
+  'what.files': 'files',
+  'what.activity': 'activity',
   'reason.invalid_value': 'invalid value: integer `{value}`, expected {type}',
   'reason.invalid_type': 'invalid type: {found}, expected {type}',
   'reason.base64_symbol': 'Invalid symbol {symbol}, offset {offset}.',

@@ -319,6 +319,10 @@ export default {
   'export.svg': 'SVG 轨迹',
   'export.png': 'PNG 快照',
   'export.record': '录制 WebM',
+  'export.lms': '用于 LMS',
+  'export.scorm': 'LMS 课件包（SCORM 1.2）',
+  'export.scorm_title': '一个可导入 LMS（Moodle、Canvas、Blackboard、Brightspace）的 zip：活动会报告完成情况和分数',
+  'export.scorm_building': '正在将活动与页面文件一起打包…',
   'export.stop': '停止录制',
   'export.rec': '录制中',
   'export.rec_title': '正在录制画布：单击停止并下载 WebM',
@@ -722,6 +726,8 @@ export default {
 
   // — refusals: more codes —
   'what.edit': '编辑操作',
+  'what.files': '文件',
+  'what.activity': '活动',
   'reason.invalid_value': '无效的值：整数 {value}，应为 {type}',
   'reason.invalid_type': '类型无效：{found}，应为 {type}',
   'reason.base64_symbol': '第 {offset} 位的字符无效（编码 {symbol}）',
