@@ -98,10 +98,12 @@ test('Export → PedPy trajectories and JuPedSim script are the CLI\'s texts for
 
     // Both entries are worded in Chinese too.
     await page.selectOption('#lang-select', 'zh');
+    await page.waitForFunction(() => document.documentElement.lang.startsWith('zh'));
     assert.equal(await page.textContent('[data-export="pedpy"]'), 'PedPy 轨迹');
     assert.equal(await page.textContent('[data-export="jupedsim"]'), 'JuPedSim 脚本');
     await screenshot(page, 'export-crowd-science-zh');
     await page.selectOption('#lang-select', 'en');
+    await page.waitForFunction(() => document.documentElement.lang === 'en');
     assertNoUnexpectedErrors(errors);
   } finally {
     await close();

@@ -655,8 +655,10 @@ test('in Chinese: a per-group compare pane’s label, a refused comparison and p
     assert.match(thrown, /^obstacles\[0\]\.points is a polygon whose edges 0→1 and 2→3 cross or touch; allowed: a simple polygon/);
     assert.equal(await page.textContent('#banner-text'), 'obstacles[0].points 的值为 边 0→1 与 2→3 相交或接触的多边形；允许：简单多边形：边只在共同的角点相交，面积不为零');
     await page.selectOption('#lang-select', 'en');
+    await page.waitForFunction(() => document.documentElement.lang === 'en');
     assert.equal(await page.getAttribute('link[rel="manifest"]', 'href'), 'manifest.webmanifest', 'English again');
     await page.selectOption('#lang-select', 'zh');
+    await page.waitForFunction(() => document.documentElement.lang.startsWith('zh'));
 
     // The tune worker's refusal comes back with its code and is worded in the page's language.
     await page.goto(`${url}tune.html?lang=zh`);
