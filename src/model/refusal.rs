@@ -408,6 +408,12 @@ codes! {
     SceneNotObject = "scene.not_object" => "the text is not a scene object ({reason}, line {line}, column {column})",
     /// A scene string that does not hold a version 2 scene.
     SceneNotV2 = "scene.not_v2" => "the scene string does not hold a version 2 scene ({reason})",
+    /// A scene text the parser refused where the typed check found nothing (a key given twice).
+    SceneUnreadableAt = "scene.unreadable_at" => "the scene text cannot be read at line {line}, column {column}",
+    /// JSON with a character out of place (the character as written).
+    JsonUnexpected = "json.unexpected" => "unexpected character {character:?}",
+    /// A value of the wrong shape where the scene starts (the value as written, shortened).
+    ShapeFound = "shape.found" => "found {value}",
     /// More text after the scene's JSON.
     SceneTrailingText = "scene.trailing_text" => "unexpected text after the end of the scene (line {line}, column {column})",
     /// A refused field: its path, its value and what is allowed.
