@@ -500,9 +500,9 @@ fn english_regexes(text: &str) -> Vec<String> {
     for (start, _) in text.match_indices("/^").chain(text.match_indices("new RegExp(")) {
         let source: String = text[start..].chars().skip(2).take_while(|&c| c != '/' && c != '\n').collect();
         let words: Vec<&str> = source.split(' ').collect();
-        let prose = words.windows(3).any(|w| {
-            w.iter().all(|word| word.len() > 1 && word.chars().all(|c| c.is_ascii_alphabetic()))
-        });
+        let prose = words
+            .windows(3)
+            .any(|w| w.iter().all(|word| word.len() > 1 && word.chars().all(|c| c.is_ascii_alphabetic())));
         if prose {
             found.push(source);
         }
@@ -542,7 +542,9 @@ fn no_page_module_reads_the_cores_english_with_regular_expressions() {
         let english = english_regexes(&text);
         match (listed, english.is_empty()) {
             (false, false) => offenders.push(format!("{rel}: {:?}", english)),
-            (true, true) => offenders.push(format!("{rel} no longer reads English: take it off ENGLISH_REGEX_LEFT")),
+            (true, true) => {
+                offenders.push(format!("{rel} no longer reads English: take it off ENGLISH_REGEX_LEFT"))
+            }
             _ => {}
         }
     }

@@ -346,7 +346,8 @@ test('the validation suite’s "measured" words are Chinese for every test (real
     for (const row of [...rows, { test: 'not measured', words: failed, measured: '' }]) {
       const text = messageText(row.words.code, row.words.args);
       assert.match(text, /[\u4e00-\u9fff]/, `${row.test}: ${text}`);
-      assert.deepEqual(englishWords(text, new Set()), [], `${row.test}: no English words left in ${text} (core: ${row.measured})`);
+      // Boids is a proper name (the planner's Chinese label keeps it).
+      assert.deepEqual(englishWords(text, new Set(['Boids'])), [], `${row.test}: no English words left in ${text} (core: ${row.measured})`);
     }
   } finally {
     await i18n.setLanguage('en', null);
