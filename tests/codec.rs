@@ -241,3 +241,95 @@ fn fragment_of(json: &str) -> String {
     let packed = miniz_oxide::deflate::compress_to_vec(json.as_bytes(), 9);
     format!("2.{}", base64::engine::general_purpose::URL_SAFE_NO_PAD.encode(packed))
 }
+
+/// A garbled scene of each shape fault is refused as a `scene.field` message whose typed
+/// arguments name the field, its value as written and what is allowed, worded from what the
+/// scene's types report (`model::shape`), not from the JSON parser's English; and the typed
+/// check itself reports each fault as data.
+#[test]
+fn each_kind_of_garbled_scene_gives_its_code_and_arguments() {
+    use flockpath::model::refusal::{Arg, Code, Message, Refusal};
+    use flockpath::model::shape::{check, Expected, Fault};
+
+    let base: serde_json::Value = serde_json::from_str(&scene_to_json(&presets::corridor())).expect("json");
+    let garbled = |edit: &dyn Fn(&mut serde_json::Value)| {
+        let mut json = base.clone();
+        edit(&mut json);
+        json
+    };
+    let unknown_key = garbled(&|j| j["widht"] = 800.into());
+    let wrong_kind = garbled(&|j| j["width"] = "abc".into());
+    let missing = garbled(&|j| {
+        j.as_object_mut().expect("object").remove("height");
+    });
+    let bad_tag = garbled(&|j| j["obstacles"][0]["shape"] = "hexagon".into());
+    let short_tuple = garbled(&|j| j["groups"][0]["spawn"]["min"] = serde_json::json!([1]));
+    let negative_seed = garbled(&|j| j["seed"] = (-1).into());
+    let unknown: Message = Message::new(Code::ValueUnknownKey);
+    let missing_value: Message = Message::new(Code::ValueMissing);
+    // `None`: the value is the refused object as written, not pinned here.
+    let cases: Vec<(String, &str, Option<Arg>, &str)> = vec![
+        (unknown_key.to_string(), "widht", Some(unknown.into()), "one of the keys \"name\", \"width\""),
+        (wrong_kind.to_string(), "width", Some("\"abc\"".into()), "a number in 10…20000 px"),
+        (missing.to_string(), "height", Some(missing_value.into()), "a number in 10…20000 px"),
+        (
+            bad_tag.to_string(),
+            "obstacles[0].shape",
+            Some("\"hexagon\"".into()),
+            "\"circle\", \"rect\" or \"polygon\"",
+        ),
+        (short_tuple.to_string(), "groups[0].spawn.min", Some("[1]".into()), "a list of 2 numbers"),
+        (negative_seed.to_string(), "seed", Some("-1".into()), "a whole number 0…4294967295"),
+        // Words JSON does not have, found in the text where the parser stopped.
+        (
+            base.to_string().replacen("\"width\":900.0", "\"width\":NaN", 1),
+            "width",
+            Some("NaN".into()),
+            "a number in 10…20000 px",
+        ),
+        (
+            base.to_string().replacen("\"height\":500.0", "\"height\":1e999", 1),
+            "height",
+            Some("1e999".into()),
+            "a number in 10…20000 px",
+        ),
+    ];
+    for (text, path, value, allowed) in cases {
+        let error = scene_from_json(&text).expect_err(path);
+        let message = error.message();
+        assert_eq!(message.code, Code::SceneField, "{error}");
+        assert_eq!(message.arg("path"), Some(&Arg::from(path)), "{error}");
+        if let Some(value) = value {
+            assert_eq!(message.arg("value"), Some(&value), "{error}");
+        }
+        let words = message.arg_text("allowed").expect("allowed");
+        assert!(
+            words.starts_with(allowed),
+            "{path}: allowed {words:?}, expected it to start with {allowed:?}"
+        );
+    }
+
+    // The typed check reports the fault and what the type asked for as data.
+    let fault = |json: &serde_json::Value| check::<Scene>(json).expect_err("garbled");
+    let (_, e) = fault(&unknown_key);
+    assert!(
+        matches!(&e.fault, Fault::UnknownKey { name, known } if name == "widht" && known.contains(&"width")),
+        "{e}"
+    );
+    let (_, e) = fault(&wrong_kind);
+    assert_eq!((e.fault, e.expected), (Fault::WrongKind, Some(Expected::Number)));
+    let (_, e) = fault(&missing);
+    assert_eq!(e.fault, Fault::MissingKey { name: "height" });
+    let (_, e) = fault(&bad_tag);
+    assert!(
+        matches!(&e.fault, Fault::UnknownVariant { name, known } if name == "hexagon" && known.contains(&"rect")),
+        "{e}"
+    );
+    let (_, e) = fault(&short_tuple);
+    assert_eq!((e.fault, e.expected), (Fault::Length { len: 1 }, Some(Expected::ListOf(2))));
+    let (_, e) = fault(&negative_seed);
+    assert_eq!(
+        (e.fault, e.expected),
+        (Fault::BadValue { text: None }, Some(Expected::Whole { max: u32::MAX.into() }))
+    );
+}

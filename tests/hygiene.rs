@@ -480,3 +480,78 @@ fn the_layer_scanner_resolves_paths() {
     let world = sources.iter().find(|(p, _)| p == "src/sim/world.rs").expect("sim/world.rs exists");
     assert!(named_paths(&world.0, &world.1).iter().any(|p| p.first().is_some_and(|f| f == "planners")));
 }
+
+/// Page files that still word a core text by a regular expression over its English, each with
+/// what replaces it. The list only shrinks: a file that no longer does is refused here too, so
+/// it is taken off, and a new file that starts doing it fails the test.
+const ENGLISH_REGEX_LEFT: &[(&str, &str)] = &[
+    // What a scene field allows (`allowed`) and text reasons from src/web's serde readers:
+    // until they cross as messages (issue 26 §1).
+    ("www/js/core/refusals.js", "allowed texts and reasons as typed messages"),
+    // The Diagnose card's composed explanation words: until explanation_json sends codes.
+    ("www/js/play/inspector.js", "explanation words as codes"),
+];
+
+/// Regular expressions in `text` (literals anchored with `/^` and `new RegExp(` calls) whose
+/// source spells three English words in a row: a pattern over a sentence, not over a name or
+/// a number.
+fn english_regexes(text: &str) -> Vec<String> {
+    let mut found = Vec::new();
+    for (start, _) in text.match_indices("/^").chain(text.match_indices("new RegExp(")) {
+        let source: String = text[start..].chars().skip(2).take_while(|&c| c != '/' && c != '\n').collect();
+        let words: Vec<&str> = source.split(' ').collect();
+        let prose = words
+            .windows(3)
+            .any(|w| w.iter().all(|word| word.len() > 1 && word.chars().all(|c| c.is_ascii_alphabetic())));
+        if prose {
+            found.push(source);
+        }
+    }
+    found
+}
+
+fn js_files(dir: &Path, out: &mut Vec<PathBuf>) {
+    for entry in std::fs::read_dir(dir).unwrap_or_else(|e| panic!("cannot list {}: {e}", dir.display())) {
+        let path = entry.expect("directory entry").path();
+        if path.is_dir() {
+            js_files(&path, out);
+        } else if path.extension().is_some_and(|e| e == "js" || e == "mjs") {
+            out.push(path);
+        }
+    }
+}
+
+/// Messages are data until the page words them (STYLE 12b): no page module reads an English
+/// sentence of the core (a refusal, a validation report) with a regular expression to make
+/// another one. The validation page's measured.js (14 patterns over the report's English) is
+/// gone; the files still doing it are listed in [`ENGLISH_REGEX_LEFT`].
+#[test]
+fn no_page_module_reads_the_cores_english_with_regular_expressions() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut files = Vec::new();
+    js_files(&root.join("www/js"), &mut files);
+    files.sort();
+    assert!(files.len() >= 20, "expected the page modules under www/js, found {}", files.len());
+    assert!(!root.join("www/js/validation/measured.js").exists(), "measured.js came back");
+    let mut offenders = Vec::new();
+    for path in &files {
+        let rel = path.strip_prefix(root).expect("under the crate").to_string_lossy().replace('\\', "/");
+        let text = std::fs::read_to_string(path).expect("page module is readable UTF-8");
+        let imports_gone_module = text.contains("validation/measured.js")
+            || (rel.starts_with("www/js/validation/") && text.contains("./measured.js"));
+        assert!(!imports_gone_module, "{rel} imports the validation page's measured.js");
+        let listed = ENGLISH_REGEX_LEFT.iter().any(|(file, _)| *file == rel);
+        let english = english_regexes(&text);
+        match (listed, english.is_empty()) {
+            (false, false) => offenders.push(format!("{rel}: {:?}", english)),
+            (true, true) => {
+                offenders.push(format!("{rel} no longer reads English: take it off ENGLISH_REGEX_LEFT"))
+            }
+            _ => {}
+        }
+    }
+    assert!(offenders.is_empty(), "page modules reading the core's English:\n{}", offenders.join("\n"));
+    // The scanner finds what it is meant to: the deleted module's first pattern.
+    assert_eq!(english_regexes("[/^did not walk from 5 m to 35 m within 50 s$/, 'x']").len(), 1);
+    assert!(english_regexes("const KEY = /^[a-z_]+$/;").is_empty());
+}

@@ -606,14 +606,29 @@ fn planner_with(name: &str, values: &[serde_json::Value]) -> Result<PlannerConfi
         params.insert(key.clone(), value.clone());
     }
     let keyed = serde_json::json!({ "kind": kind.name(), "params": params });
-    let config: PlannerConfig = serde_path_to_error::deserialize(&keyed).map_err(|e| {
-        let segments: Vec<Segment> = e.path().iter().cloned().collect();
+    let config: PlannerConfig = check(&keyed).map_err(|(segments, error)| {
         let path = format!("planner.{}", keyed_path(&segments));
         let value: Arg = walk(&keyed, &segments)
             .map_or_else(|| Message::new(Code::ValueRefused).into(), |v| render(v).into());
-        let message = e.inner().to_string();
-        let hint = param_allowed(kind, &path);
-        field_refusal(path, value, &message, hint, None)
+        match error.fault {
+            Fault::UnknownKey { name, known } => {
+                let allowed = format!("one of the keys {}", names_as_serde_lists(known));
+                let path = if path.ends_with(&name) { path } else { joined(&path, &name) };
+                SceneError::field(path, Message::new(Code::ValueUnknownKey), allowed)
+            }
+            Fault::MissingKey { name } => {
+                let path = joined(&path, name);
+                let allowed =
+                    param_allowed(kind, &path).unwrap_or_else(|| "a value: this key is required".into());
+                SceneError::field(path, Message::new(Code::ValueMissing), allowed)
+            }
+            _ => {
+                let allowed = param_allowed(kind, &path)
+                    .or_else(|| error.expected.and_then(expected_words))
+                    .unwrap_or_else(|| "a value of another kind".into());
+                SceneError::field(path, value, allowed)
+            }
+        }
     })?;
     config.check().map_err(|e| SceneError::field(format!("planner.params.{}", e.key), e.value, e.allowed))?;
     Ok(config)
@@ -627,13 +642,17 @@ enum Layout {
     Compact,
 }
 
-use serde_path_to_error::Segment;
+use crate::model::shape::{check, path_at, Expected, Fault, Segment, ShapeError};
 
 /// Deserialises `text`, refusing with the field's path, its value and what is allowed.
+///
+/// The text is read straight into `T` (fast, and every scene that loads is read this way);
+/// only when that fails is it read again as a `serde_json::Value` and checked against `T` as
+/// typed data ([`crate::model::shape`]), so a refusal is worded from what the types report, not
+/// from the parser's English.
 fn deserialize<T: serde::de::DeserializeOwned>(text: &str, layout: Layout) -> Result<T, SceneError> {
     let mut deserializer = serde_json::Deserializer::from_str(text);
-    let value: T =
-        serde_path_to_error::deserialize(&mut deserializer).map_err(|e| refusal(&e, text, layout))?;
+    let value = T::deserialize(&mut deserializer).map_err(|e| refusal::<T>(&e, text, layout))?;
     deserializer.end().map_err(|e| {
         SceneError::parse(
             Message::new(Code::SceneTrailingText).with("line", e.line()).with("column", e.column()),
@@ -642,81 +661,266 @@ fn deserialize<T: serde::de::DeserializeOwned>(text: &str, layout: Layout) -> Re
     Ok(value)
 }
 
-/// Words for a refused decode: which field, what it held, what it may hold.
-fn refusal(error: &serde_path_to_error::Error<serde_json::Error>, text: &str, layout: Layout) -> SceneError {
-    let inner = error.inner();
-    let raw = inner.to_string();
-    let (line, column) = (inner.line(), inner.column());
-    if inner.is_eof() {
+/// Words for a refused decode: which field, what it held, what it may hold. `error` gives only
+/// its kind (cut short or not) and position; the rest is read from the text as data.
+fn refusal<T: serde::de::DeserializeOwned>(
+    error: &serde_json::Error,
+    text: &str,
+    layout: Layout,
+) -> SceneError {
+    let (line, column) = (error.line(), error.column());
+    if error.is_eof() {
         return SceneError::parse(
             Message::new(Code::SceneCutShort).with("line", line).with("column", column),
         );
     }
-    let mut segments: Vec<Segment> = error.path().iter().cloned().collect();
-    // Best-effort re-reads that locate the field; the parser's error itself is what is reported.
-    let json: Option<serde_json::Value> = serde_json::from_str(text).ok();
-    let token = token_at(text, inner.line(), inner.column());
-    // A string that is no text (a lone surrogate escape, an unknown escape, a raw control
-    // character): its fault in words, and its place, which the structure below leaves empty.
-    let bad_string = (inner.is_syntax() && json.is_none())
-        .then(|| invalid_string_at(text, inner.line(), inner.column()))
-        .flatten();
-    // The text's structure with a word JSON cannot hold (NaN) replaced by 0, or a string that
-    // is no text by "": it tells a compact circle [x, y, r] from a polygon and finds a group's
-    // planner.
-    let structure = json.clone().or_else(|| match &bad_string {
-        Some(bad) => serde_json::from_str(&format!("{}\"\"{}", &text[..bad.start], &text[bad.end..])).ok(),
-        None => {
-            let (start, end, _) = token.as_ref()?;
-            serde_json::from_str(&format!("{}0{}", &text[..*start], &text[*end..])).ok()
-        }
-    });
-    let message = raw.rsplit_once(" at line ").map_or(raw.as_str(), |(m, _)| m).to_string();
-    // Internally tagged obstacles and goal motions report errors at the object: read it again
-    // as its variant's fields to find the field.
-    if let Some(inner) = json.as_ref().and_then(|j| walk(j, &segments)).and_then(tagged_field_path) {
-        segments.extend(inner);
+    let detail = Some(error.to_string());
+    match serde_json::from_str::<serde_json::Value>(text) {
+        Ok(json) => match check::<T>(&json) {
+            Err((segments, fault)) => shape_refusal(&json, segments, fault, layout, (line, column), detail),
+            // The typed check reads a key given twice as its last value; the parser refuses it.
+            Ok(_) => SceneError::parse(
+                Message::new(Code::SceneUnreadableAt).with("line", line).with("column", column),
+            ),
+        },
+        Err(syntax) => syntax_refusal(text, &syntax, layout, detail),
     }
-    let path = match layout {
-        Layout::Keyed => keyed_path(&segments),
-        Layout::Compact => compact_path(&segments, structure.as_ref()),
+}
+
+/// A text that is no JSON where the parser stopped: a word JSON does not have (`NaN`,
+/// `Infinity`, `1e999`), a string that is no text, or another character out of place.
+fn syntax_refusal(
+    text: &str,
+    error: &serde_json::Error,
+    layout: Layout,
+    detail: Option<String>,
+) -> SceneError {
+    let (line, column) = (error.line(), error.column());
+    if error.is_eof() {
+        return SceneError::parse(
+            Message::new(Code::SceneCutShort).with("line", line).with("column", column),
+        );
+    }
+    let offset = byte_offset(text, line, column);
+    // A word JSON does not have; a number JSON has is not the fault (the parser stopped after it).
+    let token =
+        token_at(text, line, column).filter(|(_, _, word)| !word.parse::<f64>().is_ok_and(f64::is_finite));
+    let bad_string = invalid_string_at(text, line, column);
+    // The text's structure with a word JSON cannot hold replaced by 0, or a string that is no
+    // text by "": it tells a compact circle [x, y, r] from a polygon and finds a group's planner.
+    let (segments, structure) = match (&bad_string, &token) {
+        (Some(bad), _) => (
+            path_at(text, bad.start),
+            serde_json::from_str(&format!("{}\"\"{}", &text[..bad.start], &text[bad.end..])).ok(),
+        ),
+        (None, Some((start, end, _))) => (
+            path_at(text, *start),
+            serde_json::from_str(&format!("{}0{}", &text[..*start], &text[*end..])).ok(),
+        ),
+        (None, None) => (path_at(text, offset), None),
     };
-    let about_a_key = message.starts_with("missing field") || message.starts_with("unknown field");
-    if path.is_empty() && !about_a_key {
-        return SceneError::parse(match layout {
+    let path = layout_path(layout, &segments, structure.as_ref());
+    let unexpected = || {
+        let character =
+            text.get(offset.saturating_sub(1)..).and_then(|rest| rest.chars().next()).unwrap_or(' ');
+        Message::new(Code::JsonUnexpected).with("character", character.to_string())
+    };
+    if let Some(bad) = bad_string {
+        return with_detail(SceneError::field(path, bad.value, bad.allowed), detail);
+    }
+    match token {
+        Some((_, _, word)) if !path.is_empty() => {
+            let allowed = planner_param_allowed(&path, structure.as_ref())
+                .or_else(|| allowed_for(&path))
+                .unwrap_or_else(|| "a finite number (JSON has no NaN or Infinity)".into());
+            with_detail(SceneError::field(path, word, allowed), detail)
+        }
+        _ if path.is_empty() => SceneError::parse(match layout {
             Layout::Keyed => Message::new(Code::SceneNotObject)
-                .with("reason", message)
+                .with("reason", unexpected())
                 .with("line", line)
                 .with("column", column),
-            Layout::Compact => Message::new(Code::SceneNotV2).with("reason", message),
+            Layout::Compact => Message::new(Code::SceneNotV2).with("reason", unexpected()),
+        }),
+        _ => SceneError::parse(
+            Message::new(Code::SceneNotJson)
+                .with("reason", unexpected())
+                .with("line", line)
+                .with("column", column)
+                .with("path", path),
+        ),
+    }
+}
+
+/// The byte offset of (1-based) `line`, `column` (serde_json counts columns in bytes).
+fn byte_offset(text: &str, line: usize, column: usize) -> usize {
+    let row_start: usize = text.split_inclusive('\n').take(line.saturating_sub(1)).map(str::len).sum();
+    (row_start + column).min(text.len())
+}
+
+/// The keyed path of `segments` in `layout` (a compact form's positions named as the keyed
+/// scene names them).
+fn layout_path(layout: Layout, segments: &[Segment], structure: Option<&serde_json::Value>) -> String {
+    match layout {
+        Layout::Keyed => keyed_path(segments),
+        Layout::Compact => compact_path(segments, structure),
+    }
+}
+
+/// A JSON value that does not fit the scene's types, as a refusal: the field's path, its value
+/// as written and what is allowed (the limits table's words for the field, else the kind of
+/// value its type asks for).
+fn shape_refusal(
+    json: &serde_json::Value,
+    mut segments: Vec<Segment>,
+    mut error: ShapeError,
+    layout: Layout,
+    (line, column): (usize, usize),
+    detail: Option<String>,
+) -> SceneError {
+    // Internally tagged obstacles and goal motions report faults at the object: read it again
+    // as its variant's fields to find the field.
+    if let Some((inner, inner_error)) = walk(json, &segments).and_then(tagged_field) {
+        segments.extend(inner);
+        error = inner_error;
+    }
+    let path = layout_path(layout, &segments, Some(json));
+    let value: Option<Arg> = walk(json, &segments).map(|v| render(v).into());
+    let about_a_key = matches!(error.fault, Fault::MissingKey { .. } | Fault::UnknownKey { .. });
+    if path.is_empty() && !about_a_key {
+        let found = Message::new(Code::ShapeFound)
+            .with("value", walk(json, &segments).map(render).unwrap_or_default());
+        return SceneError::parse(match layout {
+            Layout::Keyed => Message::new(Code::SceneNotObject)
+                .with("reason", found)
+                .with("line", line)
+                .with("column", column),
+            Layout::Compact => Message::new(Code::SceneNotV2).with("reason", found),
         });
     }
-    if let Some(bad) = bad_string {
-        return with_detail(SceneError::field(path, bad.value, bad.allowed), Some(raw));
-    }
-    let hint = planner_param_allowed(&path, structure.as_ref());
-    let value = json.as_ref().and_then(|j| walk(j, &segments)).map(render);
-    let (value, hint): (Arg, _) = match value {
-        Some(v) => (v.into(), hint),
-        // Not JSON at all (NaN, Infinity, 1e999): show the word at the error's position.
-        None => match token.map(|(_, _, word)| word) {
-            Some(token) => {
-                let hint = hint.or_else(|| allowed_for(&path));
-                (token.into(), hint.or_else(|| Some("a finite number (JSON has no NaN or Infinity)".into())))
-            }
-            None if inner.is_syntax() => {
-                return SceneError::parse(
-                    Message::new(Code::SceneNotJson)
-                        .with("reason", message)
-                        .with("line", line)
-                        .with("column", column)
-                        .with("path", path),
-                )
-            }
-            None => (Message::new(Code::ValueRefused).into(), hint),
-        },
+    let refused = || value.clone().unwrap_or_else(|| Message::new(Code::ValueRefused).into());
+    let hint = || planner_param_allowed(&path, Some(json)).or_else(|| allowed_for(&path));
+    let field = match error.fault {
+        Fault::UnknownKey { name, known } => {
+            let allowed = if known.is_empty() {
+                "no keys here".to_string()
+            } else {
+                format!("one of the keys {}", names_as_serde_lists(known))
+            };
+            let path = if path.ends_with(&name) { path } else { joined(&path, &name) };
+            SceneError::field(path, Message::new(Code::ValueUnknownKey), allowed)
+        }
+        // A tagged planner's unknown key (beside `kind` and `params`) arrives as a refused text.
+        Fault::BadValue { text: Some(_) } if matches!(error.expected, Some(Expected::Object(_))) => {
+            let keys = match error.expected {
+                Some(Expected::Object(keys)) => keys.iter().map(|k| format!("\"{k}\"")).collect::<Vec<_>>(),
+                _ => Vec::new(),
+            };
+            SceneError::field(
+                path,
+                Message::new(Code::ValueUnknownKey),
+                format!("one of the keys {}", keys.join(", ")),
+            )
+        }
+        Fault::MissingKey { name } => {
+            let path = joined(&path, name);
+            let allowed = allowed_for(&path).unwrap_or_else(|| "a value: this key is required".into());
+            SceneError::field(path, Message::new(Code::ValueMissing), allowed)
+        }
+        Fault::NoShapeFits => {
+            let allowed = untagged_allowed(layout, &segments)
+                .map(str::to_string)
+                .or_else(hint)
+                .or_else(|| error.expected.and_then(expected_words))
+                .unwrap_or_else(|| "a value of another shape".into());
+            SceneError::field(path, refused(), allowed)
+        }
+        Fault::UnknownVariant { known, .. } => {
+            let allowed = hint().unwrap_or_else(|| format!("one of {}", names_as_serde_lists(known)));
+            SceneError::field(path, refused(), allowed)
+        }
+        Fault::DuplicateKey { name } => {
+            let path = joined(&path, name);
+            let allowed = allowed_for(&path).unwrap_or_else(|| "one value".into());
+            SceneError::field(path, refused(), allowed)
+        }
+        Fault::WrongKind | Fault::BadValue { .. } | Fault::Length { .. } => {
+            let allowed = hint()
+                .or_else(|| error.expected.and_then(expected_words))
+                .or_else(|| tagged_allowed(&path).map(str::to_string))
+                .unwrap_or_else(|| "a value of another kind".into());
+            SceneError::field(path, refused(), allowed)
+        }
     };
-    field_refusal(path, value, &message, hint, Some(raw))
+    with_detail(field, detail)
+}
+
+/// `path.key`, or `key` at the top.
+fn joined(path: &str, key: &str) -> String {
+    if path.is_empty() {
+        key.to_string()
+    } else {
+        format!("{path}.{key}")
+    }
+}
+
+/// Names in quotes as a list: `"a"`, `"a" or "b"`, `"a", "b", "c"` (the words refusals have
+/// always used for allowed keys and choices).
+fn names_as_serde_lists(names: &[&str]) -> String {
+    let quoted: Vec<String> = names.iter().map(|n| format!("\"{n}\"")).collect();
+    match quoted.as_slice() {
+        [a, b] => format!("{a} or {b}"),
+        _ => quoted.join(", "),
+    }
+}
+
+/// What an untagged choice at `segments` allows: a compact obstacle or goal, an activity's
+/// condition.
+fn untagged_allowed(layout: Layout, segments: &[Segment]) -> Option<&'static str> {
+    let index = |k: usize| match segments.get(k) {
+        Some(Segment::Seq { index }) => Some(*index),
+        _ => None,
+    };
+    let in_conditions = segments.len() >= 2
+        && matches!(segments.last(), Some(Segment::Seq { .. }))
+        && matches!(&segments[segments.len() - 2], Segment::Map { key } if key == "conditions");
+    match layout {
+        _ if in_conditions => Some("a condition {\"metric\": key, \"op\": \">=\", \"value\": number} (optional \"group\" or \"pane\") or {\"before\": [{\"group\": i} | {\"pane\": i}, …], \"share\": 0.9}"),
+        Layout::Compact if segments.len() == 2 && index(0) == Some(4) => {
+            Some("a circle [x, y, radius], a rectangle [x0, y0, x1, y1] or a polygon [[x, y], …]")
+        }
+        Layout::Compact if segments.len() == 2 && index(0) == Some(5) => Some(
+            "[x, y, radius], [x, y, radius, motion] or [x, y, radius, motion or null, \"gather\" | \"exit\"]",
+        ),
+        _ => None,
+    }
+}
+
+/// What an internally tagged value at `path` allows when it is not even an object.
+fn tagged_allowed(path: &str) -> Option<&'static str> {
+    let pattern = crate::model::scene::index_free(path);
+    match pattern.as_str() {
+        "obstacles[]" => Some("an obstacle {\"shape\": \"circle\" | \"rect\" | \"polygon\", …}"),
+        "goals[].motion" => Some("a goal motion {\"kind\": \"circle\" | \"polyline\", …}"),
+        _ => None,
+    }
+}
+
+/// The kind of value a type asks for, in a user's words.
+fn expected_words(expected: Expected) -> Option<String> {
+    Some(match expected {
+        Expected::Number => "a number".into(),
+        Expected::Whole { max } if max == u64::from(u32::MAX) => "a whole number 0…4294967295".into(),
+        Expected::Whole { .. } => "a whole number ≥ 0".into(),
+        Expected::Integer => "a whole number".into(),
+        Expected::Text => "text in quotes".into(),
+        Expected::Bool => "true or false".into(),
+        Expected::List => "a list […]".into(),
+        Expected::ListOf(n) => format!("a list of {n} numbers"),
+        Expected::Object(_) => "an object {…}".into(),
+        Expected::OneOf(names) => format!("one of {}", names_as_serde_lists(names)),
+        Expected::Unit => "null".into(),
+    })
 }
 
 /// What a planner parameter at `path` (`groups[2].planner.params.max_speed`) accepts, from the
@@ -739,54 +943,6 @@ fn param_allowed(kind: PlannerKind, path: &str) -> Option<String> {
     kind.param_specs().iter().find(|s| s.key == key).map(|s| s.allowed())
 }
 
-/// A refused field from the parser's `message`, in words: the table's limit for `path` when it
-/// has one, else the parser's expectation translated.
-fn field_refusal(
-    path: String,
-    value: Arg,
-    message: &str,
-    hint: Option<String>,
-    detail: Option<String>,
-) -> SceneError {
-    let (value, allowed) = if let Some(key) = between(message, "unknown field `", "`") {
-        let known = message.split_once("expected ").map_or("", |(_, k)| k).replace('`', "\"");
-        let known = known.trim_start_matches("one of ");
-        let allowed =
-            if known.is_empty() { "no keys here".to_string() } else { format!("one of the keys {known}") };
-        let path = if path.ends_with(&key) { path } else { format!("{path}.{key}") };
-        return with_detail(SceneError::field(path, Message::new(Code::ValueUnknownKey), allowed), detail);
-    } else if message.ends_with("expected \"kind\" or \"params\"") {
-        // serde's words for an unknown key beside a planner's kind and params.
-        let allowed = "one of the keys \"kind\", \"params\"";
-        return with_detail(SceneError::field(path, Message::new(Code::ValueUnknownKey), allowed), detail);
-    } else if let Some(key) = between(message, "missing field `", "`") {
-        let path = if path.is_empty() { key.clone() } else { format!("{path}.{key}") };
-        let allowed = allowed_for(&path).unwrap_or_else(|| "a value: this key is required".into());
-        return with_detail(SceneError::field(path, Message::new(Code::ValueMissing), allowed), detail);
-    } else if message.contains("untagged enum CompactObstacle") {
-        (value, "a circle [x, y, radius], a rectangle [x0, y0, x1, y1] or a polygon [[x, y], …]".to_string())
-    } else if message.contains("untagged enum Condition") {
-        let allowed = "a condition {\"metric\": key, \"op\": \">=\", \"value\": number} (optional \"group\" or \"pane\") or {\"before\": [{\"group\": i} | {\"pane\": i}, …], \"share\": 0.9}";
-        (value, allowed.to_string())
-    } else if message.contains("untagged enum CompactGoal") {
-        (
-            value,
-            "[x, y, radius], [x, y, radius, motion] or [x, y, radius, motion or null, \"gather\" | \"exit\"]"
-                .to_string(),
-        )
-    } else if message.starts_with("number out of range") {
-        let allowed = hint
-            .or_else(|| allowed_for(&path))
-            .unwrap_or_else(|| "a number within ±3.4e38 (a 32-bit float)".into());
-        (value, allowed)
-    } else {
-        let expected = message.rsplit_once("expected ").map(|(_, e)| expected_in_words(e));
-        let allowed = hint.or_else(|| allowed_for(&path)).or(expected).unwrap_or_else(|| message.to_string());
-        (value, allowed)
-    };
-    with_detail(SceneError::field(path, value, allowed), detail)
-}
-
 fn with_detail(error: SceneError, detail: Option<String>) -> SceneError {
     match error {
         SceneError::Field(mut f) => {
@@ -794,33 +950,6 @@ fn with_detail(error: SceneError, detail: Option<String>) -> SceneError {
             SceneError::Field(f)
         }
         other => other,
-    }
-}
-
-/// The text between `start` and the next `end` in `s`.
-fn between(s: &str, start: &str, end: &str) -> Option<String> {
-    let rest = s.split_once(start)?.1;
-    Some(rest.split_once(end)?.0.to_string())
-}
-
-/// serde's description of an expected type, in a user's words.
-fn expected_in_words(expected: &str) -> String {
-    let e = expected.trim();
-    match e {
-        "f32" | "f64" => "a number".into(),
-        "u32" => "a whole number 0…4294967295".into(),
-        "u64" | "usize" => "a whole number ≥ 0".into(),
-        "a string" => "text in quotes".into(),
-        "a boolean" => "true or false".into(),
-        "a sequence" => "a list […]".into(),
-        _ if e.starts_with("an array of length") => {
-            format!("a list of {} numbers", e.trim_start_matches("an array of length ").trim())
-        }
-        _ if e.starts_with("struct ") || e.starts_with("a map") => "an object {…}".into(),
-        _ if e.starts_with("internally tagged enum Obstacle") => {
-            "an obstacle {\"shape\": \"circle\" | \"rect\" | \"polygon\", …}".into()
-        }
-        _ => e.replace('`', "\""),
     }
 }
 
@@ -871,10 +1000,13 @@ mod tagged {
     }
 }
 
-/// The path below an obstacle or goal motion `node` to its refused field, if one is refused.
-fn tagged_field_path(node: &serde_json::Value) -> Option<Vec<Segment>> {
-    fn first_error<T: serde::de::DeserializeOwned>(fields: serde_json::Value) -> Option<Vec<Segment>> {
-        serde_path_to_error::deserialize::<_, T>(fields).err().map(|e| e.path().iter().cloned().collect())
+/// The path below an obstacle or goal motion `node` to its refused field and why, if one is
+/// refused.
+fn tagged_field(node: &serde_json::Value) -> Option<(Vec<Segment>, ShapeError)> {
+    fn first_error<T: serde::de::DeserializeOwned>(
+        fields: &serde_json::Value,
+    ) -> Option<(Vec<Segment>, ShapeError)> {
+        check::<T>(fields).err()
     }
     let mut fields = node.as_object()?.clone();
     let (tag, variant) = if let Some(shape) = fields.remove("shape") {
@@ -883,15 +1015,16 @@ fn tagged_field_path(node: &serde_json::Value) -> Option<Vec<Segment>> {
         ("kind", fields.remove("kind")?)
     };
     let fields = serde_json::Value::Object(fields);
-    let path = match (tag, variant.as_str()?) {
-        ("shape", "circle") => first_error::<tagged::Circle>(fields),
-        ("shape", "rect") => first_error::<tagged::Rect>(fields),
-        ("shape", "polygon") => first_error::<tagged::Polygon>(fields),
-        ("kind", "circle") => first_error::<tagged::CircleMotion>(fields),
-        ("kind", "polyline") => first_error::<tagged::PolylineMotion>(fields),
+    let (path, error) = match (tag, variant.as_str()?) {
+        ("shape", "circle") => first_error::<tagged::Circle>(&fields),
+        ("shape", "rect") => first_error::<tagged::Rect>(&fields),
+        ("shape", "polygon") => first_error::<tagged::Polygon>(&fields),
+        ("kind", "circle") => first_error::<tagged::CircleMotion>(&fields),
+        ("kind", "polyline") => first_error::<tagged::PolylineMotion>(&fields),
         _ => None,
     }?;
-    (!path.is_empty()).then_some(path)
+    (!path.is_empty() || matches!(error.fault, Fault::MissingKey { .. } | Fault::UnknownKey { .. }))
+        .then_some((path, error))
 }
 
 /// Follows `segments` into `json`.

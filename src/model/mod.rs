@@ -16,3 +16,4 @@ pub mod params;
 pub mod presets;
 pub mod refusal;
 pub mod scene;
+pub mod shape;

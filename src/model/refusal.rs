@@ -41,6 +41,9 @@ pub enum Arg {
     Term(Box<Term>),
     /// A message inside a message (the reason a scene could not be read, what a field allows).
     Message(Box<Message>),
+    /// Arguments of any kind as one list (figures and worded figures, properties as messages):
+    /// joined like [`Arg::List`], each item worded by its own kind.
+    Items(Vec<Arg>),
 }
 
 impl Arg {
@@ -76,6 +79,10 @@ impl Arg {
             }
             Arg::Term(term) => out.push_str(&term.english),
             Arg::Message(m) => out.push_str(&m.to_string()),
+            Arg::Items(items) => {
+                let words: Vec<String> = items.iter().map(Arg::to_string).collect();
+                Arg::List(words).render(spec, out);
+            }
         }
     }
 }
@@ -130,6 +137,12 @@ impl From<&str> for Arg {
 impl From<Message> for Arg {
     fn from(m: Message) -> Self {
         Arg::Message(Box::new(m))
+    }
+}
+
+impl From<Vec<Arg>> for Arg {
+    fn from(items: Vec<Arg>) -> Self {
+        Arg::Items(items)
     }
 }
 
@@ -245,6 +258,7 @@ impl serde::Serialize for Arg {
                 map.end()
             }
             Arg::Message(m) => m.serialize(s),
+            Arg::Items(items) => items.serialize(s),
         }
     }
 }
@@ -394,6 +408,12 @@ codes! {
     SceneNotObject = "scene.not_object" => "the text is not a scene object ({reason}, line {line}, column {column})",
     /// A scene string that does not hold a version 2 scene.
     SceneNotV2 = "scene.not_v2" => "the scene string does not hold a version 2 scene ({reason})",
+    /// A scene text the parser refused where the typed check found nothing (a key given twice).
+    SceneUnreadableAt = "scene.unreadable_at" => "the scene text cannot be read at line {line}, column {column}",
+    /// JSON with a character out of place (the character as written).
+    JsonUnexpected = "json.unexpected" => "unexpected character {character:?}",
+    /// A value of the wrong shape where the scene starts (the value as written, shortened).
+    ShapeFound = "shape.found" => "found {value}",
     /// More text after the scene's JSON.
     SceneTrailingText = "scene.trailing_text" => "unexpected text after the end of the scene (line {line}, column {column})",
     /// A refused field: its path, its value and what is allowed.
@@ -572,6 +592,80 @@ codes! {
     ValidationUnknownCurve = "validation.unknown_curve" => "unknown reference curve {name:?}; known: {known}",
     /// A planner without a speed parameter for the validation suite.
     ValidationNoSpeed = "validation.no_speed_param" => "{planner} has no speed parameter to set",
+    /// A validation row's measurement: T1's speed and time over 40 m.
+    MeasuredSpeedForty = "validation.measured.speed_forty" => "{v} m/s ({dev}%): 40 m in {t} s",
+    /// T1: the walker never crossed the measured section.
+    MeasuredNoWalk = "validation.measured.no_walk" => "did not walk from 5 m to 35 m within 50 s",
+    /// A fundamental diagram against its reference (`verdict`: empty or [`Code::MeasuredFails`]).
+    MeasuredDiagram = "validation.measured.diagram" => "{verdict}mean |Δv| {mean} m/s (largest {worst} at {at} {unit}); mean |ΔJ| {mean_flow} {flow_unit}, peak J {peak} at {peak_at} {unit}",
+    /// The properties of T4's band a diagram fails (a list of `validation.measured.prop_*`).
+    MeasuredFails = "validation.measured.fails" => "fails {list}; ",
+    /// T4's property: the free speed.
+    MeasuredPropFree = "validation.measured.prop_free" => "free speed",
+    /// T4's property: speed falls with density.
+    MeasuredPropMonotone = "validation.measured.prop_monotone" => "monotone fall",
+    /// T4's property: a jam stands.
+    MeasuredPropJam = "validation.measured.prop_jam" => "jam below 0.2 m/s",
+    /// T4's property: the flow's peak.
+    MeasuredPropPeak = "validation.measured.prop_peak" => "flow peak 1.2…2.0",
+    /// A density per area.
+    MeasuredUnitM2 = "validation.measured.unit_m2" => "persons/m²",
+    /// A density along a line.
+    MeasuredUnitM = "validation.measured.unit_m" => "persons/m",
+    /// A flow through a line.
+    MeasuredFlowUnitM = "validation.measured.flow_unit_m" => "persons/s",
+    /// A specific flow.
+    MeasuredFlowUnitM2 = "validation.measured.flow_unit_m2" => "persons/(m·s)",
+    /// T6: walkers out across the exit line (`flow`, `world`: nested or empty).
+    MeasuredExitLine = "validation.measured.exit_line" => "{out}/{total} out across the exit line ({flow}{world}), {crossings} crossed a wall",
+    /// T6's flow.
+    MeasuredExitFlow = "validation.measured.exit_flow" => "flow {f}/s",
+    /// T6: no flow measured.
+    MeasuredNoFlow = "validation.measured.no_flow" => "no flow",
+    /// T6: the world's own count of walkers out.
+    MeasuredWorldCounted = "validation.measured.world_counted" => "; the world counted {n} exits",
+    /// T2/T3 (rotation): arrival times straight and turned.
+    MeasuredRotation = "validation.measured.rotation" => "mean arrival {mean_straight} s vs {mean_turned} s turned, last {last_straight} s vs {last_turned} s: {rel}%",
+    /// Rotation: not everybody arrived.
+    MeasuredRotationFailed = "validation.measured.rotation_failed" => "arrived {straight}/10, turned {turned}/10 within 40 s",
+    /// Head-on: the closest gap and whether both arrived.
+    MeasuredGap = "validation.measured.gap" => "closest gap {gap}, {arrived}",
+    /// A gap in metres.
+    MeasuredGapM = "validation.measured.gap_m" => "{gap} m",
+    /// Head-on: both walkers arrived.
+    MeasuredBothArrived = "validation.measured.both_arrived" => "both arrived",
+    /// Head-on: not both arrived.
+    MeasuredNotBothArrived = "validation.measured.not_both_arrived" => "not both arrived in 30 s",
+    /// Lanes: the order parameter at the end and the start.
+    MeasuredLanes = "validation.measured.lanes" => "lane order {end} over the last 10 s (start {start})",
+    /// T9: flows with four and two exits.
+    MeasuredExits = "validation.measured.exits" => "flow {flow_four} with 4 exits ({out_four} out), {flow_two} with 2 ({out_two} out) in {s} s: ratio {ratio}",
+    /// A flow in persons per second.
+    MeasuredFlow = "validation.measured.flow" => "{f}/s",
+    /// No flow measured.
+    MeasuredFlowNone = "validation.measured.flow_none" => "none",
+    /// T12: flows at the corridor's end and the last exit.
+    MeasuredBottleneck = "validation.measured.bottleneck" => "flow out of the corridor {a}, at the last exit {b}; {out}/{total} out in {s} s",
+    /// T7: walkers inside their speed range.
+    MeasuredRange = "validation.measured.range" => "{inside}/{n} walkers inside their range",
+    /// T8: evacuation times by desired speed (`times`: figures or `validation.measured.out`).
+    MeasuredEvacuation = "validation.measured.evacuation" => "evacuation at {speeds} m/s: {times} s",
+    /// T8: how many were out when a run ended before everybody was.
+    MeasuredOut = "validation.measured.out" => "{n} out",
+    /// T15: first and last out, straight corridors against the corner.
+    MeasuredCornerCrowd = "validation.measured.corner_crowd" => "first out: short {a} ≤ corner {b} ≤ long {c}; last out: short {d} ≤ corner {e} (long {f})",
+    /// T15: nobody out.
+    MeasuredNobodyOut = "validation.measured.nobody_out" => "nobody out",
+    /// A time in seconds.
+    MeasuredSeconds = "validation.measured.seconds" => "{t} s",
+    /// T15: not everybody out.
+    MeasuredNotAllOut = "validation.measured.not_all_out" => "not all out in 60 s",
+    /// A run that could not be measured, and why.
+    MeasuredNot = "validation.measured.not_measured" => "not measured: {reason}",
+    /// Replayed trajectories that could not be read.
+    MeasuredReplayUnread = "validation.measured.replay_unread" => "{name}: {reason}",
+    /// Replayed trajectories of another crowd than the scene's.
+    MeasuredReplayWalkers = "validation.measured.replay_walkers" => "{name}: {found} walkers in the trajectories, {expected} in the scene",
     /// A classroom option naming an unknown name.
     ClassroomUnknownName = "classroom.unknown_name" => "{field}: unknown name {name:?}; allowed: {known} (or all, none)",
     /// A classroom option too long.

@@ -5,7 +5,7 @@
 
 use super::{refused, to_json};
 use crate::experiments::validation::measure::{seyfried_speed, weidmann_specific_flow, weidmann_speed};
-use crate::experiments::validation::{find_test, TESTS};
+use crate::experiments::validation::{find_test, Curve, Row, TESTS};
 use crate::model::params::PlannerKind;
 use crate::model::refusal::{Code, Message};
 use serde::Serialize;
@@ -52,8 +52,25 @@ pub fn validation_options_json() -> Result<String, JsError> {
     })
 }
 
+/// A table row as the page reads it: the row as `flockpath validate --json` writes it, and its
+/// measurement as a message (`words: {code, args, message}`) for the page to word.
+#[derive(Serialize)]
+struct PageRow<'a> {
+    #[serde(flatten)]
+    row: &'a Row,
+    words: &'a Message,
+}
+
+/// The suite's `Outcome` with [`PageRow`]s.
+#[derive(Serialize)]
+struct PageOutcome<'a> {
+    rows: Vec<PageRow<'a>>,
+    curves: &'a [Curve],
+}
+
 /// Runs test `test_id` with planner `planner` (by name): `{rows: [...], curves: [...]}` as
-/// `flockpath validate --json` writes them.
+/// `flockpath validate --json` writes them, each row with its measurement as a message too
+/// (`words`).
 #[wasm_bindgen]
 pub fn validation_run_json(test_id: &str, planner: &str) -> Result<String, JsValue> {
     console_error_panic_hook::set_once();
@@ -61,7 +78,9 @@ pub fn validation_run_json(test_id: &str, planner: &str) -> Result<String, JsVal
         .ok_or_else(|| refused(Message::new(Code::ValidationUnknownTest).with("name", test_id)))?;
     let kind = PlannerKind::from_name(planner)
         .ok_or_else(|| refused(Message::new(Code::ValidationUnknownPlanner).with("name", planner)))?;
-    Ok(to_json(&test.run(kind))?)
+    let outcome = test.run(kind);
+    let rows = outcome.rows.iter().map(|row| PageRow { row, words: &row.words }).collect();
+    Ok(to_json(&PageOutcome { rows, curves: &outcome.curves })?)
 }
 
 /// The reference speed (m/s) at each density of `densities`: Weidmann (1993) for `"weidmann"`

@@ -1,6 +1,7 @@
 //! What the suite returns: a table row per test and planner, and curves (a fundamental diagram,
 //! a lane-order series, a sweep) as columns of numbers.
 
+use crate::model::refusal::Message;
 use serde::Serialize;
 
 /// One line of the table: a test run with one planner.
@@ -14,8 +15,12 @@ pub struct Row {
     pub value: Option<f64>,
     /// Unit of `value`.
     pub unit: String,
-    /// The measurement in words, with the figures behind the value.
+    /// The measurement in words, with the figures behind the value: the English of `words`,
+    /// kept as text for `flockpath validate`'s tables and JSON and the scripts that read them.
     pub measured: String,
+    /// The measurement as a message (code and figures), which the page words in its language.
+    #[serde(skip)]
+    pub words: Message,
     /// The criterion, in words.
     pub criterion: String,
     /// Whether the criterion holds.

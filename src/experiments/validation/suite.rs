@@ -15,6 +15,7 @@ use super::scenes::{
 use super::units::{config_at_speed, SetupError, BODY_RADIUS_M, FREE_SPEED, PX_PER_METRE};
 use crate::model::codec::scene_to_fragment;
 use crate::model::params::PlannerKind;
+use crate::model::refusal::{Arg, Code, Message, Refusal};
 use crate::model::scene::Scene;
 use crate::sim::world::World;
 use glam::Vec2;
@@ -140,14 +141,15 @@ impl Runs<'_> {
         });
         let rec = match self.replay {
             Some((load, _)) => {
-                let mut traj = load(&name, period).map_err(|e| format!("{name}: {e}"))?;
+                let mut traj = load(&name, period).map_err(|e| {
+                    Message::new(Code::MeasuredReplayUnread).with("name", name.as_str()).with("reason", e)
+                })?;
                 if traj.agents() != world.group_of().len() {
-                    return Err(format!(
-                        "{name}: {} walkers in the trajectories, {} in the scene",
-                        traj.agents(),
-                        world.group_of().len()
-                    )
-                    .into());
+                    return Err(Message::new(Code::MeasuredReplayWalkers)
+                        .with("name", name.as_str())
+                        .with("found", traj.agents())
+                        .with("expected", world.group_of().len())
+                        .into());
                 }
                 traj.group = world.group_of().to_vec();
                 Recorded { traj, metrics: None }
@@ -176,21 +178,21 @@ pub fn desired_speed(config: &crate::model::params::PlannerConfig) -> f32 {
         .unwrap_or(f32::NAN)
 }
 
-/// A run that could not be measured: the message, and the scene when one was built.
+/// A run that could not be measured: why, and the scene when one was built.
 pub struct Failure {
-    message: String,
+    reason: Message,
     scene: Option<Box<Scene>>,
 }
 
-impl From<String> for Failure {
-    fn from(message: String) -> Self {
-        Self { message, scene: None }
+impl From<Message> for Failure {
+    fn from(reason: Message) -> Self {
+        Self { reason, scene: None }
     }
 }
 
 impl From<SetupError> for Failure {
     fn from(e: SetupError) -> Self {
-        Self { message: e.to_string(), scene: None }
+        Self { reason: e.message(), scene: None }
     }
 }
 
@@ -234,7 +236,7 @@ impl TestSpec {
                 kind,
                 None,
                 "",
-                format!("not measured: {}", f.message),
+                Message::new(Code::MeasuredNot).with("reason", f.reason),
                 false,
                 f.scene.as_deref(),
             )],
@@ -248,7 +250,7 @@ impl TestSpec {
         kind: PlannerKind,
         value: Option<f64>,
         unit: &str,
-        measured: String,
+        measured: Message,
         pass: bool,
         scene: Option<&Scene>,
     ) -> Row {
@@ -257,7 +259,8 @@ impl TestSpec {
             planner: kind.name().into(),
             value: value.filter(|v| v.is_finite()),
             unit: unit.into(),
-            measured,
+            measured: measured.to_string(),
+            words: measured,
             criterion: self.criterion.into(),
             pass,
             scene: scene.map(scene_to_fragment).unwrap_or_default(),
@@ -387,7 +390,7 @@ fn world(scene: &Scene, starts: Option<Vec<Vec2>>) -> Result<World, Failure> {
         Some(p) => World::new_at(scene.clone(), p),
         None => World::new_beyond_cost_limit(scene.clone()),
     };
-    built.map_err(|e| Failure { message: e.to_string(), scene: Some(Box::new(scene.clone())) })
+    built.map_err(|e| Failure { reason: e.message(), scene: Some(Box::new(scene.clone())) })
 }
 
 /// Steps per second.
@@ -401,9 +404,13 @@ fn t1(spec: &TestSpec, kind: PlannerKind, runs: &mut Runs) -> Result<Outcome, Fa
         Some(v) => {
             let dev = v / f64::from(FREE_SPEED) - 1.0;
             let forty = 40.0 / v;
-            (format!("{v:.3} m/s ({:+.1}%): 40 m in {forty:.1} s", 100.0 * dev), t1_passes(forty))
+            let words = Message::new(Code::MeasuredSpeedForty)
+                .with("v", format!("{v:.3}"))
+                .with("dev", format!("{:+.1}", 100.0 * dev))
+                .with("t", format!("{forty:.1}"));
+            (words, t1_passes(forty))
         }
-        None => ("did not walk from 5 m to 35 m within 50 s".into(), false),
+        None => (Message::new(Code::MeasuredNoWalk), false),
     };
     Ok(Outcome { rows: vec![spec.row(kind, v, "m/s", measured, pass, Some(&scene))], curves: vec![] })
 }
@@ -482,9 +489,8 @@ fn diagram(
     width: f32,
     per_metre: bool,
     reference: fn(f64) -> f64,
-    name: &str,
     runs: &mut Runs,
-    judge: fn(&[Vec<f64>], f64) -> (bool, String),
+    judge: fn(&[Vec<f64>], f64) -> (bool, Arg),
 ) -> Result<Outcome, Failure> {
     let length = T4_CORRIDOR.0;
     let mut rows = vec![];
@@ -513,11 +519,22 @@ fn diagram(
     };
     let (worst, at) = largest(6, f64::abs);
     let (peak, peak_at) = largest(3, |f| f);
-    let flow_unit = if per_metre { "persons/s" } else { "persons/(m·s)" };
+    let (unit_code, flow_unit) = if per_metre {
+        (Code::MeasuredUnitM, Code::MeasuredFlowUnitM)
+    } else {
+        (Code::MeasuredUnitM2, Code::MeasuredFlowUnitM2)
+    };
     let (pass, verdict) = judge(&rows, mean);
-    let measured = format!(
-        "{verdict}mean |Δv| {mean:.2} m/s (largest {worst:.2} at {at:.2} {name}); mean |ΔJ| {mean_flow:.2} {flow_unit}, peak J {peak:.2} at {peak_at:.2} {name}"
-    );
+    let measured = Message::new(Code::MeasuredDiagram)
+        .with("verdict", verdict)
+        .with("mean", format!("{mean:.2}"))
+        .with("worst", format!("{worst:.2}"))
+        .with("at", format!("{at:.2}"))
+        .with("unit", Message::new(unit_code))
+        .with("mean_flow", format!("{mean_flow:.2}"))
+        .with("flow_unit", Message::new(flow_unit))
+        .with("peak", format!("{peak:.2}"))
+        .with("peak_at", format!("{peak_at:.2}"));
     let unit = if per_metre { "persons_per_m" } else { "persons_per_m2" };
     let columns = [
         &format!("density_nominal_{unit}") as &str,
@@ -547,11 +564,14 @@ pub fn diagram_row(nominal: f64, point: Option<FdPoint>, reference: fn(f64) -> f
 }
 
 fn t4(spec: &TestSpec, kind: PlannerKind, runs: &mut Runs) -> Result<Outcome, Failure> {
-    diagram(spec, kind, T4_DENSITIES, T4_CORRIDOR.1, false, weidmann_speed, "persons/m²", runs, |rows, _| {
+    diagram(spec, kind, T4_DENSITIES, T4_CORRIDOR.1, false, weidmann_speed, runs, |rows, _| {
         let points: Vec<(f64, f64, f64)> = rows.iter().map(|r| (r[1], r[2], r[3])).collect();
         let failed = fd_properties_failed(&points);
-        let pass = failed.is_empty();
-        (pass, if pass { String::new() } else { format!("fails {}; ", failed.join(", ")) })
+        if failed.is_empty() {
+            return (true, Arg::from(""));
+        }
+        let properties: Vec<Arg> = failed.iter().map(|p| Message::new(fd_property_code(p)).into()).collect();
+        (false, Message::new(Code::MeasuredFails).with("list", properties).into())
     })
 }
 
@@ -589,12 +609,29 @@ pub fn fd_properties_failed(points: &[(f64, f64, f64)]) -> Vec<&'static str> {
     failed
 }
 
+/// The message code of a property [`fd_properties_failed`] names.
+fn fd_property_code(property: &str) -> Code {
+    match property {
+        "free speed" => Code::MeasuredPropFree,
+        "monotone fall" => Code::MeasuredPropMonotone,
+        "jam below 0.2 m/s" => Code::MeasuredPropJam,
+        _ => Code::MeasuredPropPeak,
+    }
+}
+
 /// T16's line densities (persons/m).
 pub const T16_DENSITIES: &[f32] = &[0.5, 1.0, 1.5, 2.0, 2.5];
 
 fn t16(spec: &TestSpec, kind: PlannerKind, runs: &mut Runs) -> Result<Outcome, Failure> {
-    diagram(spec, kind, T16_DENSITIES, 0.5, true, seyfried_speed, "persons/m", runs, |_, mean| {
-        (mean.is_finite() && mean <= 0.2, String::new())
+    diagram(spec, kind, T16_DENSITIES, 0.5, true, seyfried_speed, runs, |_, mean| {
+        (mean.is_finite() && mean <= 0.2, Arg::from(""))
+    })
+}
+
+/// A flow in persons per second (`1.23/s`), or `none`.
+fn flow_words(flow: Option<f64>) -> Message {
+    flow.map_or(Message::new(Code::MeasuredFlowNone), |f| {
+        Message::new(Code::MeasuredFlow).with("f", format!("{f:.2}"))
     })
 }
 
@@ -639,14 +676,18 @@ fn t6(spec: &TestSpec, kind: PlannerKind, runs: &mut Runs) -> Result<Outcome, Fa
     let crossings = rec.traj.agents_ever_inside(|p| in_wall(&scene, p));
     let times = rec.traj.crossing_times(line);
     let out = times.iter().flatten().count();
-    let flow = exit_flow(&times).map_or("no flow".into(), |f| format!("flow {f:.2}/s"));
-    let world_count = rec
-        .metrics
-        .as_ref()
-        .map_or(String::new(), |m| format!("; the world counted {} exits", m.overall.exited_agents));
-    let measured = format!(
-        "{out}/{T6_AGENTS} out across the exit line ({flow}{world_count}), {crossings} crossed a wall"
-    );
+    let flow = exit_flow(&times).map_or(Message::new(Code::MeasuredNoFlow), |f| {
+        Message::new(Code::MeasuredExitFlow).with("f", format!("{f:.2}"))
+    });
+    let world_count = rec.metrics.as_ref().map_or(Arg::from(""), |m| {
+        Message::new(Code::MeasuredWorldCounted).with("n", m.overall.exited_agents).into()
+    });
+    let measured = Message::new(Code::MeasuredExitLine)
+        .with("out", out)
+        .with("total", T6_AGENTS)
+        .with("flow", flow)
+        .with("world", world_count)
+        .with("crossings", crossings);
     let pass = crossings == 0 && out == T6_AGENTS;
     Ok(Outcome {
         rows: vec![spec.row(kind, Some(out as f64), "out", measured, pass, Some(&scene))],
@@ -690,14 +731,18 @@ fn rotation(spec: &TestSpec, kind: PlannerKind, runs: &mut Runs) -> Result<Outco
             let rel = ((m1 - m0) / m0).abs().max(((l1 - l0) / l0).abs());
             (
                 Some(100.0 * rel),
-                format!(
-                    "mean arrival {m0:.2} s vs {m1:.2} s turned, last {l0:.2} s vs {l1:.2} s: {:.2}%",
-                    100.0 * rel
-                ),
+                Message::new(Code::MeasuredRotation)
+                    .with("mean_straight", format!("{m0:.2}"))
+                    .with("mean_turned", format!("{m1:.2}"))
+                    .with("last_straight", format!("{l0:.2}"))
+                    .with("last_turned", format!("{l1:.2}"))
+                    .with("rel", format!("{:.2}", 100.0 * rel)),
                 rel <= 0.02,
             )
         }
-        _ => (None, format!("arrived {n0}/10, turned {n1}/10 within 40 s"), false),
+        _ => {
+            (None, Message::new(Code::MeasuredRotationFailed).with("straight", n0).with("turned", n1), false)
+        }
     };
     Ok(Outcome { rows: vec![spec.row(kind, value, "%", measured, pass, first.as_ref())], curves: vec![] })
 }
@@ -709,10 +754,11 @@ fn head_on_test(spec: &TestSpec, kind: PlannerKind, runs: &mut Runs) -> Result<O
     let rec = runs.record(spec, kind, "", None, world(&scene, Some(starts))?, 30 * HZ, 1, at_goal)?;
     let gap = rec.traj.min_gap(0, 1, BODY_RADIUS_M, BODY_RADIUS_M).map(f64::from);
     let arrived = (0..2).all(|i| rec.traj.arrival_times(|p| p.distance(goals[i]) < 0.5)[i].is_some());
-    let gap_text = gap.map_or("?".into(), |g| format!("{g:.3} m"));
-    let measured = format!(
-        "closest gap {gap_text}, {}",
-        if arrived { "both arrived" } else { "not both arrived in 30 s" }
+    let gap_text = gap
+        .map_or(Arg::from("?"), |g| Message::new(Code::MeasuredGapM).with("gap", format!("{g:.3}")).into());
+    let measured = Message::new(Code::MeasuredGap).with("gap", gap_text).with(
+        "arrived",
+        Message::new(if arrived { Code::MeasuredBothArrived } else { Code::MeasuredNotBothArrived }),
     );
     let pass = arrived && gap.is_some_and(|g| g >= 0.0);
     Ok(Outcome { rows: vec![spec.row(kind, gap, "m", measured, pass, Some(&scene))], curves: vec![] })
@@ -734,7 +780,9 @@ fn lanes(spec: &TestSpec, kind: PlannerKind, runs: &mut Runs) -> Result<Outcome,
     let last: Vec<f64> = series.iter().rev().take(10).map(|r| r[1]).filter(|x| x.is_finite()).collect();
     let end = last.iter().sum::<f64>() / last.len().max(1) as f64;
     let start = series.first().map_or(f64::NAN, |r| r[1]);
-    let measured = format!("lane order {end:.2} over the last 10 s (start {start:.2})");
+    let measured = Message::new(Code::MeasuredLanes)
+        .with("end", format!("{end:.2}"))
+        .with("start", format!("{start:.2}"));
     Ok(Outcome {
         rows: vec![spec.row(kind, Some(end), "order", measured, end >= 0.75, Some(&scene))],
         curves: vec![spec.curve(kind, "lane-order", &["time_s", "lane_order"], series)],
@@ -782,13 +830,13 @@ fn t9(spec: &TestSpec, kind: PlannerKind, runs: &mut Runs) -> Result<Outcome, Fa
         (Some(a), Some(b)) if a > 0.0 => Some(b / a),
         _ => None,
     };
-    let fmt = |f: Option<f64>| f.map_or("none".into(), |f| format!("{f:.2}/s"));
-    let measured = format!(
-        "flow {} with 4 exits ({n4} out), {} with 2 ({n2} out) in {T9_SECONDS} s: ratio {}",
-        fmt(f4),
-        fmt(f2),
-        ratio.map_or("?".into(), |r| format!("{r:.2}"))
-    );
+    let measured = Message::new(Code::MeasuredExits)
+        .with("flow_four", flow_words(f4))
+        .with("out_four", n4)
+        .with("flow_two", flow_words(f2))
+        .with("out_two", n2)
+        .with("s", T9_SECONDS)
+        .with("ratio", ratio.map_or("?".into(), |r| format!("{r:.2}")));
     let pass = ratio.is_some_and(|r| (1.5..=2.5).contains(&r));
     let frames = cumulative.iter().map(Vec::len).max().unwrap_or(0);
     let rows = (0..frames)
@@ -817,12 +865,12 @@ fn t12(spec: &TestSpec, kind: PlannerKind, runs: &mut Runs) -> Result<Outcome, F
     let out_times = rec.traj.crossing_times(last_exit);
     let out = out_times.iter().flatten().count();
     let (j_corridor, j_last) = (exit_flow(&through), exit_flow(&out_times));
-    let fmt = |f: Option<f64>| f.map_or("none".into(), |f| format!("{f:.2}/s"));
-    let measured = format!(
-        "flow out of the corridor {}, at the last exit {}; {out}/{T12_AGENTS} out in {T12_SECONDS} s",
-        fmt(j_corridor),
-        fmt(j_last)
-    );
+    let measured = Message::new(Code::MeasuredBottleneck)
+        .with("a", flow_words(j_corridor))
+        .with("b", flow_words(j_last))
+        .with("out", out)
+        .with("total", T12_AGENTS)
+        .with("s", T12_SECONDS);
     let ratio = match (j_corridor, j_last) {
         (Some(c), Some(l)) if c > 0.0 => Some(l / c),
         _ => None,
@@ -873,7 +921,7 @@ fn t7(spec: &TestSpec, kind: PlannerKind, runs: &mut Runs) -> Result<Outcome, Fa
     }
     let n = rec.traj.agents();
     let share = inside as f64 / n as f64;
-    let measured = format!("{inside}/{n} walkers inside their range");
+    let measured = Message::new(Code::MeasuredRange).with("inside", inside).with("n", n);
     Ok(Outcome {
         rows: vec![spec.row(kind, Some(100.0 * share), "%", measured, inside == n, Some(&scene))],
         curves: vec![spec.curve(
@@ -906,12 +954,19 @@ fn t8(spec: &TestSpec, kind: PlannerKind, runs: &mut Runs) -> Result<Outcome, Fa
     }
     let all_out = rows.iter().all(|r| r[1].is_finite());
     let falling = rows.windows(2).all(|w| w[1][1] < w[0][1]);
-    let times: Vec<String> = rows
+    let times: Vec<Arg> = rows
         .iter()
-        .map(|r| if r[1].is_finite() { format!("{:.1}", r[1]) } else { format!("{} out", r[2]) })
+        .map(|r| {
+            if r[1].is_finite() {
+                format!("{:.1}", r[1]).into()
+            } else {
+                Message::new(Code::MeasuredOut).with("n", r[2].to_string()).into()
+            }
+        })
         .collect();
     let at_free = rows.iter().find(|r| r[0] as f32 == FREE_SPEED).map(|r| r[1]);
-    let measured = format!("evacuation at {:?} m/s: {} s", T8_SPEEDS, times.join(", "));
+    let measured =
+        Message::new(Code::MeasuredEvacuation).with("speeds", format!("{T8_SPEEDS:?}")).with("times", times);
     Ok(Outcome {
         rows: vec![spec.row(kind, at_free, "s", measured, all_out && falling, shown.as_ref())],
         curves: vec![spec.curve(
@@ -950,18 +1005,19 @@ fn t15(spec: &TestSpec, kind: PlannerKind, runs: &mut Runs) -> Result<Outcome, F
     }
     let first = |r: &(Vec<Option<f32>>, usize)| r.0.iter().flatten().copied().min_by(f32::total_cmp);
     let last = |r: &(Vec<Option<f32>>, usize)| evacuation_time(&r.0);
-    let fmt = |t: Option<f32>| t.map_or("not all out in 60 s".into(), |t| format!("{t:.1} s"));
-    let fmt_first = |t: Option<f32>| t.map_or("nobody out".into(), |t| format!("{t:.1} s"));
+    let seconds = |t: Option<f32>, none: Code| {
+        t.map_or(Message::new(none), |t| Message::new(Code::MeasuredSeconds).with("t", format!("{t:.1}")))
+    };
+    let fmt = |t| seconds(t, Code::MeasuredNotAllOut);
+    let fmt_first = |t| seconds(t, Code::MeasuredNobodyOut);
     let (short, long) = (&straights[0], &straights[1]);
-    let measured = format!(
-        "first out: short {} ≤ corner {} ≤ long {}; last out: short {} ≤ corner {} (long {})",
-        fmt_first(first(short)),
-        fmt_first(first(&corner_run)),
-        fmt_first(first(long)),
-        fmt(last(short)),
-        fmt(last(&corner_run)),
-        fmt(last(long)),
-    );
+    let measured = Message::new(Code::MeasuredCornerCrowd)
+        .with("a", fmt_first(first(short)))
+        .with("b", fmt_first(first(&corner_run)))
+        .with("c", fmt_first(first(long)))
+        .with("d", fmt(last(short)))
+        .with("e", fmt(last(&corner_run)))
+        .with("f", fmt(last(long)));
     let pass = t15_passes(
         [first(short), first(&corner_run), first(long)],
         [last(short), last(&corner_run), last(long)],

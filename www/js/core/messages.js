@@ -29,7 +29,9 @@ const ENGLISH_ARGS = { allowed: allowedText, reason: reasonText, problem: reason
 function argText(name, value, spec, lang) {
   if (value === null || value === undefined) return '';
   if (Array.isArray(value)) {
-    const items = spec === '?' ? value.map((v) => JSON.stringify(String(v))) : value.map(String);
+    // A list of names, or of any arguments (figures beside worded figures, messages).
+    const item = (v) => (v !== null && typeof v === 'object' ? argText(name, v, '', lang) : String(v));
+    const items = spec === '?' ? value.map((v) => JSON.stringify(String(v))) : value.map(item);
     if ((spec === 'and' || spec === 'or') && items.length > 1) {
       const last = items.pop();
       return `${items.join(', ')} ${lang === 'en' ? spec : t(`list.${spec}`)} ${last}`;

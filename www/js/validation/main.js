@@ -7,7 +7,12 @@
 import { errorFromData, messageOf, setupBanner, showMessage } from '../core/errors.js';
 import { drawPlot } from '../core/plot.js';
 import { onLanguageChange, t, tOr } from '../core/i18n.js';
-import { measuredText } from './measured.js';
+import { messageText } from '../core/messages.js';
+
+/** A row's measurement in the page's language: its message (`words`, a code with its figures) worded from the message files; the core's English when a row has none. */
+function measuredText(words, english) {
+  return typeof words?.code === 'string' ? messageText(words.code, words.args ?? {}) ?? english : english;
+}
 
 const $ = (id) => document.getElementById(id);
 
@@ -105,9 +110,10 @@ async function boot() {
     test.append(link);
     const [coreCriterion, criterion] = criteria.get(row.test) ?? [];
     const shown = row.criterion === coreCriterion ? criterion : row.criterion;
-    const cells = [row.planner, measuredText(row.measured), shown].map((text) => Object.assign(document.createElement('td'), { textContent: text }));
-    // The core's words, to word the cell again after a language switch.
+    const cells = [row.planner, measuredText(row.words, row.measured), shown].map((text) => Object.assign(document.createElement('td'), { textContent: text }));
+    // The core's English and its message, to word the cell again after a language switch.
     cells[1].dataset.measured = row.measured;
+    cells[1].dataset.words = JSON.stringify(row.words ?? null);
     const result = Object.assign(document.createElement('td'), { textContent: row.pass ? t('validation.pass') : t('validation.fail'), className: row.pass ? 'pass' : 'fail' });
     tr.append(test, ...cells, result);
     tbody.append(tr);
@@ -231,7 +237,7 @@ async function boot() {
     drawDiagram();
     drawSweep();
     describeTests();
-    for (const cell of tbody.querySelectorAll('td[data-measured]')) cell.textContent = measuredText(cell.dataset.measured);
+    for (const cell of tbody.querySelectorAll('td[data-measured]')) cell.textContent = measuredText(JSON.parse(cell.dataset.words ?? 'null'), cell.dataset.measured);
   });
   window.flockpathValidation = { rows: () => state.rows, running: () => state.worker !== null };
 }
