@@ -1,0 +1,99 @@
+// The notebook widget in a real JupyterLab (issue 28): a notebook's cells show two FlockPath
+// widgets, step them from Python, and print what the browser wrote back; each digest equals the
+// CLI's (`flockpath run`) for the same scene and steps, so the widget runs the same simulation,
+// each its own. Needs the venv and package of scripts/test-python.sh (which runs this file).
+
+import assert from 'node:assert/strict';
+import { mkdir } from 'node:fs/promises';
+import path from 'node:path';
+import { after, before, test } from 'node:test';
+import { ARTIFACTS } from '../e2e/helpers.mjs';
+import { cliDigest, notebook, startJupyterLab } from './jupyter-helpers.mjs';
+
+const RUNS = { first: { scene: 'pillars', steps: 300 }, second: { scene: 'corridor', steps: 120 } };
+
+const CELLS = [
+  'from flockpath import FlockPath\nfirst = FlockPath("pillars")\nfirst',
+  'second = FlockPath("corridor", controls="play,step", theme="projector")\nsecond',
+  `first.step(${RUNS.first.steps})\nsecond.step(${RUNS.second.steps})`,
+  'print("first", first.steps, first.digest, "second", second.steps, second.digest, "errors", repr(first.error + second.error))',
+];
+
+let lab;
+
+before(async () => {
+  lab = await startJupyterLab({ 'widgets.ipynb': notebook(CELLS) });
+});
+
+after(async () => {
+  await lab?.close();
+});
+
+/** Runs the notebook's cell `index` in place (Ctrl+Enter in its editor, as a reader would). */
+async function runCell(index) {
+  const cell = lab.page.locator('.jp-Notebook .jp-CodeCell').nth(index);
+  await cell.locator('.cm-content').click();
+  await lab.page.keyboard.press('Control+Enter');
+  return cell;
+}
+
+test('two widgets in JupyterLab step from Python and report the CLI digest', { timeout: 240_000 }, async () => {
+  const { page } = lab;
+  await page.goto(lab.url('lab/tree/widgets.ipynb'));
+  await page.locator('.jp-Notebook .jp-CodeCell').nth(CELLS.length - 1).waitFor({ timeout: 60_000 });
+
+  // Cells 1 and 2 show the widgets: each loads its own simulation (the wasm from the kernel's server).
+  for (const index of [0, 1]) {
+    const cell = await runCell(index);
+    await cell.locator('flock-path canvas').waitFor({ timeout: 60_000 });
+    await cell.locator('flock-path .loading').waitFor({ state: 'hidden', timeout: 60_000 });
+  }
+  const shown = await page.evaluate(() =>
+    [...document.querySelectorAll('flock-path')].map((el) => ({ name: el.scene().name, steps: el.steps, bar: !el.shadowRoot.querySelector('.bar').hidden })),
+  );
+  assert.deepEqual(shown.map((s) => s.name), ['pillars', 'corridor']);
+  assert.deepEqual(shown.map((s) => s.steps), [0, 0], 'playing=False by default: they wait at step 0');
+  assert.ok(shown.every((s) => s.bar), 'controls shown');
+  const secondButtons = await page.evaluate(() =>
+    [...document.querySelectorAll('flock-path')[1].shadowRoot.querySelectorAll('.bar button')].filter((b) => !b.hidden).map((b) => b.className),
+  );
+  assert.deepEqual(secondButtons, ['play', 'step'], 'controls="play,step" shows only those');
+
+  // Cell 3 asks the browser to step; each element gets there on its own.
+  await runCell(2);
+  await page.waitForFunction(
+    (want) => {
+      const els = [...document.querySelectorAll('flock-path')];
+      return els.length === 2 && els[0].steps === want[0] && els[1].steps === want[1];
+    },
+    [RUNS.first.steps, RUNS.second.steps],
+    { timeout: 60_000 },
+  );
+  await mkdir(ARTIFACTS, { recursive: true });
+  await page.screenshot({ path: path.join(ARTIFACTS, 'notebook-jupyterlab.png') });
+  const widgets = page.locator('flock-path');
+  await widgets.nth(0).screenshot({ path: path.join(ARTIFACTS, 'notebook-widget-pillars.png') });
+  await widgets.nth(1).screenshot({ path: path.join(ARTIFACTS, 'notebook-widget-corridor.png') });
+
+  // Cell 4 prints what the kernel heard back (the widget's answer arrives after cell 3 ended).
+  let printed = '';
+  for (let attempt = 0; attempt < 20; attempt += 1) {
+    const cell = await runCell(3);
+    const output = cell.locator('.jp-OutputArea-output');
+    await page.waitForTimeout(300);
+    await output.first().waitFor({ timeout: 30_000 });
+    printed = (await output.first().innerText()).trim();
+    if (printed.includes(`first ${RUNS.first.steps} `) && printed.includes(`second ${RUNS.second.steps} `)) break;
+    await page.waitForTimeout(500);
+  }
+  const match = /^first (\d+) ([0-9a-f]{16}) second (\d+) ([0-9a-f]{16}) errors '(.*)'$/.exec(printed);
+  assert.ok(match, `the kernel printed the widgets' state: ${printed}`);
+  const [, firstSteps, firstDigest, secondSteps, secondDigest, errors] = match;
+  assert.equal(Number(firstSteps), RUNS.first.steps);
+  assert.equal(Number(secondSteps), RUNS.second.steps);
+  assert.equal(errors, '', 'no widget error');
+  assert.equal(firstDigest, cliDigest(RUNS.first.scene, RUNS.first.steps), 'pillars: the CLI digest');
+  assert.equal(secondDigest, cliDigest(RUNS.second.scene, RUNS.second.steps), 'corridor: the CLI digest');
+  assert.notEqual(firstDigest, secondDigest);
+  assert.deepEqual(lab.errors, [], 'no console or page errors');
+});
