@@ -4,19 +4,26 @@
 // each its own. Needs the venv and package of scripts/test-python.sh (which runs this file).
 
 import assert from 'node:assert/strict';
-import { mkdir } from 'node:fs/promises';
+import { mkdir, readFile } from 'node:fs/promises';
 import path from 'node:path';
 import { after, before, test } from 'node:test';
-import { ARTIFACTS } from '../e2e/helpers.mjs';
+import { ARTIFACTS, ROOT } from '../e2e/helpers.mjs';
 import { cliDigest, notebook, startJupyterLab } from './jupyter-helpers.mjs';
 
-const RUNS = { first: { scene: 'pillars', steps: 300 }, second: { scene: 'corridor', steps: 120 } };
-
+// The cells are docs/notebooks.md's example ("In a notebook"), as a course author copies them; the
+// test adds a cell that prints what the kernel heard back.
+const DOC = await readFile(path.join(ROOT, 'docs', 'notebooks.md'), 'utf8');
+const section = DOC.slice(DOC.indexOf('## In a notebook'), DOC.indexOf('## Options and state'));
+const DOC_CELLS = [...section.matchAll(/```python\n([\s\S]*?)```/g)].map((m) => m[1].trimEnd());
+/** name → { scene, steps } as the example's cells make and step them. */
+const RUNS = {};
+for (const [, name, scene] of DOC_CELLS.join('\n').matchAll(/^(\w+) = FlockPath\("([\w-]+)"/gm)) RUNS[name] = { scene };
+for (const [, name, steps] of DOC_CELLS.join('\n').matchAll(/^(\w+)\.step\((\d+)\)$/gm)) RUNS[name].steps = Number(steps);
+const NAMES = Object.keys(RUNS);
+// The doc's last cell only reads (its answer is quoted in the text below it); this one prints.
 const CELLS = [
-  'from flockpath import FlockPath\nfirst = FlockPath("pillars")\nfirst',
-  'second = FlockPath("corridor", controls="play,step", theme="projector")\nsecond',
-  `first.step(${RUNS.first.steps})\nsecond.step(${RUNS.second.steps})`,
-  'print("first", first.steps, first.digest, "second", second.steps, second.digest, "errors", repr(first.error + second.error))',
+  ...DOC_CELLS.slice(0, -1),
+  `print(${NAMES.map((n) => `"${n}", ${n}.steps, ${n}.digest`).join(', ')}, "errors", repr(${NAMES.map((n) => `${n}.error`).join(' + ')}))`,
 ];
 
 let lab;
@@ -51,7 +58,7 @@ test('two widgets in JupyterLab step from Python and report the CLI digest', { t
   const shown = await page.evaluate(() =>
     [...document.querySelectorAll('flock-path')].map((el) => ({ name: el.scene().name, steps: el.steps, bar: !el.shadowRoot.querySelector('.bar').hidden })),
   );
-  assert.deepEqual(shown.map((s) => s.name), ['pillars', 'corridor']);
+  assert.deepEqual(shown.map((s) => s.name), NAMES.map((n) => RUNS[n].scene));
   assert.deepEqual(shown.map((s) => s.steps), [0, 0], 'playing=False by default: they wait at step 0');
   assert.ok(shown.every((s) => s.bar), 'controls shown');
   const secondButtons = await page.evaluate(() =>
@@ -60,6 +67,8 @@ test('two widgets in JupyterLab step from Python and report the CLI digest', { t
   assert.deepEqual(secondButtons, ['play', 'step'], 'controls="play,step" shows only those');
 
   // Cell 3 asks the browser to step; each element gets there on its own.
+  assert.deepEqual(NAMES, ['first', 'second'], `the example's widgets: ${JSON.stringify(RUNS)}`);
+  assert.ok(NAMES.every((n) => RUNS[n].steps > 0), 'the example steps each widget');
   await runCell(2);
   await page.waitForFunction(
     (want) => {
@@ -78,7 +87,7 @@ test('two widgets in JupyterLab step from Python and report the CLI digest', { t
   // Cell 4 prints what the kernel heard back (the widget's answer arrives after cell 3 ended).
   let printed = '';
   for (let attempt = 0; attempt < 20; attempt += 1) {
-    const cell = await runCell(3);
+    const cell = await runCell(CELLS.length - 1);
     const output = cell.locator('.jp-OutputArea-output');
     await page.waitForTimeout(300);
     await output.first().waitFor({ timeout: 30_000 });
@@ -95,5 +104,7 @@ test('two widgets in JupyterLab step from Python and report the CLI digest', { t
   assert.equal(firstDigest, cliDigest(RUNS.first.scene, RUNS.first.steps), 'pillars: the CLI digest');
   assert.equal(secondDigest, cliDigest(RUNS.second.scene, RUNS.second.steps), 'corridor: the CLI digest');
   assert.notEqual(firstDigest, secondDigest);
+  // The answer the doc quotes under its last cell is the one the widget gave.
+  assert.ok(section.includes(`(${RUNS.first.steps}, '${firstDigest}', `), 'docs/notebooks.md quotes the digest the widget gives');
   assert.deepEqual(lab.errors, [], 'no console or page errors');
 });
