@@ -19,7 +19,15 @@ fi
 
 if [ ! -x "$VENV/bin/python" ]; then
   log "creating $VENV"
-  python3 -m venv "$VENV"
+  # Debian's own python3 keeps venv in a package of its own.
+  if ! python3 -m venv "$VENV" 2>/dev/null; then
+    log "installing Debian's python3-venv"
+    rm -rf "$VENV"
+    export DEBIAN_FRONTEND=noninteractive
+    apt-get update -qq
+    apt-get install -y -qq python3-venv >/dev/null
+    python3 -m venv "$VENV"
+  fi
 fi
 log "installing ${PACKAGES[*]} from PyPI (about a minute the first time)"
 "$VENV/bin/python" -m pip install --quiet --disable-pip-version-check "${PACKAGES[@]}"

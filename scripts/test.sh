@@ -28,7 +28,7 @@ section "end-to-end tests (headless Chromium)"
 bash scripts/test-e2e.sh
 
 section "notebook widget (Python, JupyterLab)"
-bash scripts/test-python.sh
+bash scripts/test-notebooks.sh
 
 # Every benchmark script at a hundredth of its sizes: they keep running (figures mean nothing).
 section "benchmark smoke run"

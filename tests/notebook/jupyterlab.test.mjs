@@ -1,10 +1,10 @@
 // The notebook widget in a real JupyterLab (issue 28): a notebook's cells show two FlockPath
 // widgets, step them from Python, and print what the browser wrote back; each digest equals the
 // CLI's (`flockpath run`) for the same scene and steps, so the widget runs the same simulation,
-// each its own. Needs the venv and package of scripts/test-python.sh (which runs this file).
+// each its own. Needs the venv and package of scripts/test-notebooks.sh (which runs this file).
 
 import assert from 'node:assert/strict';
-import { mkdir, readFile } from 'node:fs/promises';
+import { mkdir, readFile, writeFile } from 'node:fs/promises';
 import path from 'node:path';
 import { after, before, test } from 'node:test';
 import { ARTIFACTS, ROOT } from '../e2e/helpers.mjs';
@@ -36,23 +36,59 @@ after(async () => {
   await lab?.close();
 });
 
-/** Runs the notebook's cell `index` in place (Ctrl+Enter in its editor, as a reader would). */
+/**
+ * Runs the notebook's cell `index` in place (Ctrl+Enter in its editor, as a reader would), and
+ * waits until JupyterLab has taken it (its prompt shows `[*]` or a number): a key pressed while
+ * the page is still wiring its shortcuts is lost, so it is pressed again then.
+ */
 async function runCell(index) {
   const cell = lab.page.locator('.jp-Notebook .jp-CodeCell').nth(index);
-  await cell.locator('.cm-content').click();
-  await lab.page.keyboard.press('Control+Enter');
-  return cell;
+  const prompt = cell.locator('.jp-InputPrompt');
+  const before = (await prompt.innerText()).trim();
+  for (let attempt = 0; attempt < 5; attempt += 1) {
+    await cell.locator('.cm-content').click();
+    await lab.page.keyboard.press('Control+Enter');
+    const taken = await lab.page
+      .waitForFunction(
+        ([el, was]) => {
+          const now = el.textContent.trim();
+          return now !== was || now.includes('*');
+        },
+        [await prompt.elementHandle(), before],
+        { timeout: 10_000 },
+      )
+      .then(() => true)
+      .catch(() => false);
+    if (taken) return cell;
+  }
+  throw new Error(`cell ${index} was not run (its prompt stayed "${before}")`);
 }
 
-test('two widgets in JupyterLab step from Python and report the CLI digest', { timeout: 240_000 }, async () => {
+test('two widgets in JupyterLab step from Python and report the CLI digest', { timeout: 360_000 }, async () => {
+  try {
+    await runNotebook();
+  } catch (error) {
+    // What JupyterLab and the page said, for the failure's reader.
+    await mkdir(ARTIFACTS, { recursive: true });
+    await lab.page.screenshot({ path: path.join(ARTIFACTS, 'notebook-jupyterlab-failed.png') }).catch(() => {});
+    await writeFile(path.join(ARTIFACTS, 'notebook-jupyterlab.log'), lab.log());
+    error.message += `\npage errors: ${lab.errors.join(' | ') || 'none'}; JupyterLab's log: test-artifacts/notebook-jupyterlab.log`;
+    throw error;
+  }
+});
+
+async function runNotebook() {
   const { page } = lab;
   await page.goto(lab.url('lab/tree/widgets.ipynb'));
   await page.locator('.jp-Notebook .jp-CodeCell').nth(CELLS.length - 1).waitFor({ timeout: 60_000 });
+  // The kernel is up (the status bar says Idle) before the first cell runs.
+  await page.locator('.jp-StatusBar-TextItem', { hasText: /\|\s*Idle/ }).first().waitFor({ timeout: 150_000 });
 
   // Cells 1 and 2 show the widgets: each loads its own simulation (the wasm from the kernel's server).
   for (const index of [0, 1]) {
     const cell = await runCell(index);
-    await cell.locator('flock-path canvas').waitFor({ timeout: 60_000 });
+    // The first cell waits for the kernel to start: up to a minute or two on a busy machine.
+    await cell.locator('flock-path canvas').waitFor({ timeout: 150_000 });
     await cell.locator('flock-path .loading').waitFor({ state: 'hidden', timeout: 60_000 });
   }
   const shown = await page.evaluate(() =>
@@ -107,4 +143,4 @@ test('two widgets in JupyterLab step from Python and report the CLI digest', { t
   // The answer the doc quotes under its last cell is the one the widget gave.
   assert.ok(section.includes(`(${RUNS.first.steps}, '${firstDigest}', `), 'docs/notebooks.md quotes the digest the widget gives');
   assert.deepEqual(lab.errors, [], 'no console or page errors');
-});
+}

@@ -5,14 +5,15 @@
 // kernel) import this module by URL, so its relative imports and the wasm resolve against where
 // it is served (the Python package serves its copy of www/ from the kernel: python/).
 //
-// Model state, set by the author (Python traitlets, or the directive's JSON):
+// Model state, set by the author (Python traitlets, or the directive's JSON, where an absent key
+// takes the default named here):
 //   scene     a preset name, a link's fragment value or whole link, or scene JSON ('' : the first preset)
-//   controls  'all', 'none' or a list such as 'play,step,reset' (the element's `controls`)
+//   controls  'all' (default), 'none' or a list such as 'play,step,reset' (the element's `controls`)
 //   lock, hide  the teacher's options of a link, as the element takes them ('' : none)
-//   theme     'standard' or 'projector' (the canvas as the playground's projector theme draws it)
-//   playing   whether it runs; the widget writes it back when the reader presses Play / Pause
+//   theme     'standard' (default) or 'projector' (the canvas as the playground's projector theme draws it)
+//   playing   whether it runs (default false); the widget writes it back when the reader presses Play / Pause
 //   height    a CSS length for the box ('' : as tall as the scene's aspect ratio)
-// Written by the widget: step, metrics (the metrics object), digest (16 hex digits, as the CLI's
+// Written by the widget: steps, metrics (the metrics object), digest (16 hex digits, as the CLI's
 // `flockpath run` prints), activity_report (null without an activity), error ('' : none).
 // Custom messages from the kernel: {type: 'step', n}, {type: 'reset'}; each is answered by
 // writing the state above once the simulation has done it.
@@ -25,12 +26,22 @@ import './flock-path.js';
 /** How often a playing widget writes its step, metrics and digest back to the model (ms). */
 const REPORT_EVERY_MS = 500;
 
-/** The element's `controls` attribute for a model's `controls` value (absent: no bar). */
+/** The element's `controls` attribute for a model's `controls` value (null: no bar; unset: all). */
 function controlsAttribute(value) {
-  const text = String(value ?? '').trim();
+  const text = String(value ?? 'all').trim();
   if (text === 'none' || text === '') return null;
   return text === 'all' ? '' : text;
 }
+
+/** Listens to each of `names` (one event each: a host's model need not split a list). */
+function listen(model, names, fn) {
+  for (const name of names) model.on(name, fn);
+  return () => {
+    for (const name of names) model.off(name, fn);
+  };
+}
+
+const OPTION_EVENTS = ['change:controls', 'change:lock', 'change:hide', 'change:height'];
 
 /** Sets or removes an attribute (null or '': removed, except where '' means something). */
 function setAttribute(element, name, value, { keepEmpty = false } = {}) {
@@ -123,17 +134,22 @@ function render({ model, el }) {
 
   let timer = null;
   let stopped = false;
+  const unlisten = [];
   element.ready
     .then(async () => {
       if (stopped) return;
       applyTheme();
       await applyPlaying();
       element.host.addEventListener('playing', followButton);
-      model.on('change:scene', onScene);
-      model.on('change:controls change:lock change:hide change:height', applyOptions);
-      model.on('change:theme', applyTheme);
-      model.on('change:playing', applyPlaying);
-      model.on('msg:custom', onMessage);
+      // The reader's Step and Reset buttons (and the element's own API) report like a message.
+      element.host.addEventListener('stepped', report);
+      unlisten.push(
+        listen(model, ['change:scene'], onScene),
+        listen(model, OPTION_EVENTS, applyOptions),
+        listen(model, ['change:theme'], applyTheme),
+        listen(model, ['change:playing'], applyPlaying),
+        listen(model, ['msg:custom'], onMessage),
+      );
       // While it plays, the step, metrics and digest follow a few times a second.
       timer = setInterval(() => {
         if (element.playing) report();
@@ -145,11 +161,9 @@ function render({ model, el }) {
   return () => {
     stopped = true;
     clearInterval(timer);
-    model.off('change:scene', onScene);
-    model.off('change:controls change:lock change:hide change:height', applyOptions);
-    model.off('change:theme', applyTheme);
-    model.off('change:playing', applyPlaying);
-    model.off('msg:custom', onMessage);
+    element.host?.removeEventListener('stepped', report);
+    element.host?.removeEventListener('playing', followButton);
+    for (const off of unlisten) off();
     element.remove();
   };
 }
