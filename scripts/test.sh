@@ -27,7 +27,7 @@ bash scripts/test-wasm.sh
 section "end-to-end tests (headless Chromium)"
 bash scripts/test-e2e.sh
 
-section "notebook widget (Python, JupyterLab)"
+section "notebook widget (Python, JupyterLab, MyST)"
 bash scripts/test-notebooks.sh
 
 # Every benchmark script at a hundredth of its sizes: they keep running (figures mean nothing).
