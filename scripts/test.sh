@@ -27,6 +27,9 @@ bash scripts/test-wasm.sh
 section "end-to-end tests (headless Chromium)"
 bash scripts/test-e2e.sh
 
+section "notebook widget (Python, JupyterLab, MyST)"
+bash scripts/test-notebooks.sh
+
 # Every benchmark script at a hundredth of its sizes: they keep running (figures mean nothing).
 section "benchmark smoke run"
 bash scripts/bench.sh --smoke
