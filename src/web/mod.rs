@@ -31,6 +31,7 @@ mod seed;
 mod timeline;
 pub mod tune;
 pub mod validation;
+mod zoom;
 
 /// Installs the panic hook so a Rust panic shows its message in the console (runs on load).
 #[wasm_bindgen(start)]
@@ -144,6 +145,8 @@ impl Sim {
         self.run.load(scene).map_err(scene_error)?;
         self.renderer.set_selection(None);
         self.renderer.clear_trails();
+        // A new scene shows whole (an edit of the same scene keeps the zoom).
+        self.renderer.fit_view();
         self.show_scene_view();
         Ok(())
     }
