@@ -413,11 +413,8 @@ export class Editor {
     } catch {
       // Already released: the drag still pans while the pointer is over the canvas.
     }
-    // Space pressed to pan is not Space pressed to play: the press's Play/Pause is undone.
-    if (!this.app.zoom.spaceUsed) {
-      this.app.zoom.spaceUsed = true;
-      this.app.setPlaying(!this.app.playing);
-    }
+    // Space pressed to pan is not Space pressed to play (zoom.js plays on its release otherwise).
+    this.app.zoom.spaceUsed = true;
     this.drag = { pointerId: e.pointerId, pan: true, panned: false, client: [e.clientX, e.clientY], start: null, current: null };
   }
 

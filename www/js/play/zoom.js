@@ -37,10 +37,7 @@ export function setupZoom(app, canvas, overlay) {
     app.guard((sim) => sim.fit_view());
     app.dirty = true;
   };
-  /**
-   * What other modules use: `spaceUsed` is set once a Space press has panned (its Play/Pause is
-   * then undone once, editor.js).
-   */
+  /** What other modules use: `spaceUsed` is set once a drag has panned with Space held (editor.js). */
   const controls = {
     zoomBy: (factor) => zoomBy(factor),
     fit: () => fit(),
@@ -118,16 +115,21 @@ export function setupZoom(app, canvas, overlay) {
     }, true);
   }
 
-  // Space held: a drag with any tool pans (the editor asks `spaceHeld()`).
+  // Space held: a drag with any tool pans (the editor asks `spaceHeld()`). So that holding Space
+  // to pan does not play meanwhile, on this page Space plays or pauses when it is released, and
+  // only when no drag used it (its press is taken here, before the page's shortcuts).
   let space = false;
   document.addEventListener('keydown', (e) => {
-    if (e.key === ' ' && !e.repeat && onPage(e)) {
-      space = true;
-      controls.spaceUsed = false;
-    }
+    if (e.key !== ' ' || e.altKey || e.ctrlKey || e.metaKey || app.crashed || !onPage(e)) return;
+    e.preventDefault();
+    if (e.repeat) return;
+    space = true;
+    controls.spaceUsed = false;
   }, true);
   document.addEventListener('keyup', (e) => {
-    if (e.key === ' ') space = false;
+    if (e.key !== ' ' || !space) return;
+    space = false;
+    if (!controls.spaceUsed && !app.crashed) app.setPlaying(!app.playing);
   }, true);
   window.addEventListener('blur', () => (space = false));
 
