@@ -53,7 +53,7 @@ impl ViewTransform {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Theme {
     /// The everyday look: a warm light field, two-pixel trails in the group colour darkened to
-    /// 55 % (every Okabe–Ito colour, yellow included, at ≥ 3:1 against the field, so trails
+    /// 47 % (every Okabe–Ito colour, yellow included, at ≥ 3:1 against the field, so trails
     /// stay visible on a washed-out projector), agents at their size.
     #[default]
     Standard,
@@ -115,7 +115,8 @@ pub struct Style {
 
 /// The [`Theme::Standard`] style. Its trails were 1 px at 35 % opacity in the full group colour
 /// (1.1–1.7:1 against the field: gone on a projector, issue 27); now 2 px at 86 % opacity at
-/// 55 % brightness: 3.1:1 (yellow) to 7:1 (blue) for a fresh trail.
+/// 47 % brightness: 3.8:1 (yellow) to 8:1 (blue) where a fresh trail covers a pixel fully
+/// (tests/e2e/trail-contrast.test.mjs measures the page's screenshot).
 pub const STANDARD: Style = Style {
     background: [0xf6, 0xf5, 0xf0],
     letterbox: [0xd8, 0xd8, 0xd3],
@@ -124,7 +125,7 @@ pub const STANDARD: Style = Style {
     obstacle_outline: [0x2c, 0x31, 0x38],
     trail_width_px: 2,
     trail_alpha: 220,
-    trail_keep: 140,
+    trail_keep: 120,
     agent_scale: 1.0,
     min_agent_radius_px: 0.0,
 };

@@ -170,9 +170,15 @@ impl Sim {
         self.run.world().step_count()
     }
 
-    /// Sets the canvas backing-store size in device px.
+    /// Sets the canvas backing-store size in device px. The trails are redrawn at the new size
+    /// from the recorded positions (entering Present mode mid-run keeps them).
     pub fn resize(&mut self, width: u32, height: u32) {
+        let before = (self.renderer.width(), self.renderer.height());
         self.renderer.resize(width, height);
+        if (self.renderer.width(), self.renderer.height()) != before {
+            self.renderer.render(self.run.world());
+            self.redraw_trails();
+        }
     }
 
     /// Draws the current state into the frame.
