@@ -47,7 +47,8 @@ test('Present fills the viewport, its controls fade when idle and return, Esc gi
     const presented = await canvasBox(page);
     assert.ok(covered(presented) >= 0.95, `the canvas covers ${(covered(presented) * 100).toFixed(1)} % of the viewport`);
     assert.equal(await page.getAttribute('#present', 'aria-pressed'), 'true');
-    // The backing store follows the new size: the Sim renders the full screen.
+    // The backing store follows the new size: the Sim (in its worker) renders the full screen.
+    await page.waitForFunction((w) => window.flockpath.view().canvasWidth >= 0.95 * w, presented.vw, { timeout: 5000 });
     const view = await page.evaluate(() => window.flockpath.view());
     assert.ok(view.canvasWidth >= 0.95 * presented.vw, `the renderer draws ${view.canvasWidth} px across`);
 
