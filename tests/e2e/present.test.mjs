@@ -98,14 +98,29 @@ test('Present fills the viewport, its controls fade when idle and return, Esc gi
       assert.ok(inside, `Tab ${i + 2} left the presentation`);
     }
 
-    // Esc leaves: the layout is the page's again, the focus back on Present.
+    // Esc leaves: the layout is the page's again. Entered by a mouse click, the focus goes to the
+    // page itself, so Space plays (a focused Present button would present again).
     await page.keyboard.press('Escape');
     await page.waitForFunction((w) => document.getElementById('scene-canvas').getBoundingClientRect().width === w, before.width);
     assert.deepEqual(await canvasBox(page), before);
-    // The focus comes back to Present (once the browser has left fullscreen, which drops it).
-    await page.waitForFunction(() => document.activeElement?.id === 'present', null, { timeout: 2000 });
     assert.equal(await page.getAttribute('#present', 'aria-pressed'), 'false');
     assert.equal(await page.evaluate(() => document.querySelector('.panel').inert), false, 'the page is usable again');
+    await page.waitForTimeout(300);
+    assert.equal(await page.evaluate(() => document.activeElement === document.body), true, 'the focus is on the page');
+    await page.keyboard.press(' ');
+    assert.equal(await page.evaluate(() => window.flockpath.isPlaying()), true, 'Space after Esc plays');
+    assert.equal(await page.evaluate(() => document.getElementById('stage').classList.contains('presenting')), false);
+    await page.evaluate(() => window.flockpath.pause());
+
+    // Entered by keyboard (Enter on the focused button), Esc gives the focus back to Present.
+    await page.focus('#present');
+    await page.keyboard.press('Enter');
+    await page.waitForFunction(() => document.getElementById('stage').classList.contains('presenting'));
+    await page.keyboard.press('Escape');
+    await page.waitForFunction(() => !document.getElementById('stage').classList.contains('presenting'));
+    // Once the browser has left fullscreen, which may drop the focus a frame later.
+    await page.waitForTimeout(300);
+    assert.equal(await page.evaluate(() => document.activeElement?.id), 'present', 'keyboard focus back on Present');
 
     // P enters from the page itself (focus on the body).
     await page.evaluate(() => document.activeElement.blur());

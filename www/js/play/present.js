@@ -115,9 +115,16 @@ export function setupPresent(app, stage) {
   let inerted = [];
   const onPointer = () => wake();
 
-  const enter = async () => {
+  /** Where the focus goes when the presentation ends (null: the page itself). */
+  let returnTo = null;
+  const enter = async ({ byPointer = false } = {}) => {
     if (presenting) return;
     presenting = true;
+    // Back to Present when it was pressed by keyboard, to the canvas when P was pressed there;
+    // else the page itself (P on a clicked button: a focus given back by script would no longer
+    // count as the pointer's, and the button would keep S, R and 1–7 from the shortcuts).
+    const at = document.activeElement;
+    returnTo = !byPointer && (at === present || at?.tagName === 'CANVAS') ? at : null;
     document.documentElement.classList.add('presenting');
     stage.classList.add('presenting');
     layer.hidden = false;
@@ -167,21 +174,28 @@ export function setupPresent(app, stage) {
     clearTimeout(idleTimer);
     document.removeEventListener('pointermove', onPointer, true);
     document.removeEventListener('pointerdown', onPointer, true);
-    // The focus goes back to Present. Leaving fullscreen (the browser's Esc first, then this) can
-    // drop it to the body a frame later, once the hidden bar loses it: taken back then too.
+    // The focus goes back where it was (`returnTo`); after a mouse click on Present, to the page
+    // itself (a focused Present button would take the next Space and present again, where the
+    // teacher meant to play). Leaving fullscreen (the browser's Esc first, then this) can drop it
+    // a frame later, once the hidden bar loses it: set again then.
+    const back = returnTo;
     const refocus = () => {
       const at = document.activeElement;
-      if (!presenting && (at === null || at === document.body || layer.contains(at))) present.focus({ preventScroll: true });
+      if (presenting || !(at === null || at === document.body || layer.contains(at))) return;
+      if (back?.isConnected && back !== document.body) back.focus({ preventScroll: true });
+      else at?.blur?.();
     };
     if (fullscreen && document.fullscreenElement === stage) document.exitFullscreen?.().then(refocus, refocus);
     fullscreen = false;
-    present.focus({ preventScroll: true });
+    if (back?.isConnected && back !== document.body) back.focus({ preventScroll: true });
+    else document.activeElement?.blur?.();
     requestAnimationFrame(() => requestAnimationFrame(refocus));
     setTimeout(refocus, 250);
     app.dispatchEvent(new Event('present'));
   };
 
-  present.addEventListener('click', () => enter());
+  // A mouse or touch click has a click count (`detail`); Enter or Space on the button has none.
+  present.addEventListener('click', (e) => enter({ byPointer: e.detail > 0 }));
   // The browser left fullscreen (its Esc, F11): the presentation ends with it.
   document.addEventListener('fullscreenchange', () => {
     if (presenting && fullscreen && document.fullscreenElement !== stage) leave();
