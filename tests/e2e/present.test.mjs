@@ -75,6 +75,12 @@ test('Present fills the viewport, its controls fade when idle and return, Esc gi
     await page.click('#present-step');
     await settled(page);
     assert.equal(await page.evaluate(() => window.flockpath.metrics().steps), steps + 1, 'Step steps once');
+    // The bar's zoom: + zooms in by 1.5, Fit shows the whole scene again.
+    const fitted = await page.evaluate(() => window.flockpath.view().scale);
+    await page.click('#present-zoom-in');
+    await page.waitForFunction((s) => Math.abs(window.flockpath.view().scale / s - 1.5) < 1e-3, fitted);
+    await page.click('#present-fit');
+    await page.waitForFunction((s) => window.flockpath.view().scale === s, fitted);
 
     // Idle: the bar fades after ~2 s without pointer movement (focus moved out of it first).
     await page.mouse.move(600, 300);

@@ -9,6 +9,7 @@
 
 import { onPage } from '../core/keys.js';
 import { formatNumber, onLanguageChange, setAttr, setText, t } from '../core/i18n.js';
+import { KEY_FACTOR } from './zoom.js';
 
 const $ = (id) => document.getElementById(id);
 /** The controls fade after this long without pointer movement (ms). */
@@ -67,8 +68,8 @@ export function setupPresent(app, stage) {
   play.addEventListener('click', () => $('play').click());
   step.addEventListener('click', () => $('step').click());
   reset.addEventListener('click', () => $('reset').click());
-  zoomOut.addEventListener('click', () => app.zoom?.zoomBy(1 / 1.5));
-  zoomIn.addEventListener('click', () => app.zoom?.zoomBy(1.5));
+  zoomOut.addEventListener('click', () => app.zoom?.zoomBy(1 / KEY_FACTOR));
+  zoomIn.addEventListener('click', () => app.zoom?.zoomBy(KEY_FACTOR));
   fit.addEventListener('click', () => app.zoom?.fit());
   exit.addEventListener('click', () => leave());
   for (const name of ['min', 'max', 'step']) speed.setAttribute(name, mainSpeed.getAttribute(name));

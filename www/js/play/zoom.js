@@ -8,7 +8,7 @@
 import { onPage } from '../core/keys.js';
 
 /** Zoom of one + / − press or one button press. */
-const KEY_FACTOR = 1.5;
+export const KEY_FACTOR = 1.5;
 /** Wheel delta (px) that zooms by e (a notch of 100 px: ×1.22). */
 const WHEEL_PX_PER_E = 500;
 
@@ -37,16 +37,6 @@ export function setupZoom(app, canvas, overlay) {
     app.guard((sim) => sim.fit_view());
     app.dirty = true;
   };
-  /** What other modules use: `spaceUsed` is set once a drag has panned with Space held (editor.js). */
-  const controls = {
-    zoomBy: (factor) => zoomBy(factor),
-    fit: () => fit(),
-    panBy: (dx, dy) => panBy(dx, dy),
-    level: () => level(),
-    spaceHeld: () => space,
-    pinching: () => pinch !== null,
-    spaceUsed: false,
-  };
   /** The zoom over the fitted view (1: the whole scene), as the worker last reported it. */
   const level = () => app.guard((sim) => sim.view_zoom()).value ?? 1;
 
@@ -73,6 +63,19 @@ export function setupZoom(app, canvas, overlay) {
     send();
   };
 
+  let space = false;
+  let pinch = null;
+  /** What other modules use: `spaceUsed` is set once a drag has panned with Space held (editor.js). */
+  const controls = {
+    zoomBy,
+    fit,
+    panBy,
+    level,
+    spaceHeld: () => space,
+    pinching: () => pinch !== null,
+    spaceUsed: false,
+  };
+
   overlay.addEventListener('wheel', (e) => {
     if (app.crashed || e.deltaY === 0) return;
     e.preventDefault();
@@ -83,7 +86,6 @@ export function setupZoom(app, canvas, overlay) {
 
   // Two touches pinch (zoom about their midpoint by the change of their distance) and pan.
   const touches = new Map();
-  let pinch = null;
   overlay.addEventListener('pointerdown', (e) => {
     if (e.pointerType !== 'touch') return;
     touches.set(e.pointerId, [e.clientX, e.clientY]);
@@ -118,7 +120,6 @@ export function setupZoom(app, canvas, overlay) {
   // Space held: a drag with any tool pans (the editor asks `spaceHeld()`). So that holding Space
   // to pan does not play meanwhile, on this page Space plays or pauses when it is released, and
   // only when no drag used it (its press is taken here, before the page's shortcuts).
-  let space = false;
   document.addEventListener('keydown', (e) => {
     if (e.key !== ' ' || e.altKey || e.ctrlKey || e.metaKey || app.crashed || !onPage(e)) return;
     e.preventDefault();
