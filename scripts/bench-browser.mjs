@@ -1,6 +1,7 @@
 // Drives www/bench.html in headless Chromium (playwright-core, Debian's /usr/bin/chromium; nothing
 // is downloaded) and prints the wasm figures next to the native ones.
-// Usage: node scripts/bench-browser.mjs [--quick] [--native target/bench-native.json] [--json FILE]
+// Usage: node scripts/bench-browser.mjs [--quick|--smoke] [--native target/bench-native.json] [--json FILE]
+// (--smoke: a hundredth of every size, one repetition: checks the benchmark runs.)
 // Run it under `taskset -c 0` (scripts/bench.sh does): Chromium inherits the pinning.
 
 import { readFile, writeFile } from 'node:fs/promises';
@@ -18,9 +19,10 @@ const flag = (name) => {
   return i >= 0 ? args[i + 1] : undefined;
 };
 const quick = args.includes('--quick');
+const smoke = args.includes('--smoke');
 
 const server = await serveStatic({ '/': WWW });
-const url = `${server.origin}/bench.html${quick ? '#quick' : ''}`;
+const url = `${server.origin}/bench.html${smoke ? '#smoke' : quick ? '#quick' : ''}`;
 
 let failed = false;
 const { context, page, close } = await launchChromium('flockpath-bench-', { width: 1400, height: 1000 });

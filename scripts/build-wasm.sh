@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Builds the page's wasm module into www/pkg (release, wasm-opt -O, SIMD) and prints its size.
-# Idempotent: skips the build when nothing under src/, Cargo.toml, Cargo.lock or .cargo/ changed
-# since the last one (stamp file www/pkg/.build-stamp). Pass --force to rebuild anyway.
+# Idempotent: skips the build when nothing under src/, Cargo.toml, Cargo.lock or .cargo/ changed,
+# nor scripts/jupedsim_runs.py (the JuPedSim export includes it word for word), since the last one (stamp file www/pkg/.build-stamp). Pass --force to rebuild anyway.
 # Either way it then rewrites www/pkg/precache.js (scripts/precache.mjs): the offline service
-# worker's file list and version, which follow every change to www/ too.
+# worker's file list and version, which follow every change to www/ too, and the precompressed
+# copies of www/ (scripts/precompress.mjs), rewritten only where a file changed.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 export PATH="$HOME/.cargo/bin:$PATH"
@@ -17,7 +18,7 @@ force=0
 
 # A fingerprint of every input: a changed, added or removed file changes it.
 inputs_hash() {
-  find src Cargo.toml Cargo.lock .cargo -type f -print0 | sort -z | xargs -0 sha256sum | sha256sum | cut -d' ' -f1
+  find src Cargo.toml Cargo.lock .cargo scripts/jupedsim_runs.py -type f -print0 | sort -z | xargs -0 sha256sum | sha256sum | cut -d' ' -f1
 }
 
 hash=$(inputs_hash)
@@ -25,6 +26,7 @@ if [ $force = 0 ] && [ -f "$wasm" ] && [ -f "$out/flockpath.js" ] && [ -f "$stam
    && [ "$(cat "$stamp")" = "$hash" ]; then
   echo "[build-wasm] up to date ($(stat -c %s "$wasm") bytes): $wasm"
   node scripts/precache.mjs
+  node scripts/precompress.mjs
   exit 0
 fi
 
@@ -45,3 +47,5 @@ raw=$(stat -c %s "$wasm")
 gz=$(gzip -9 -c "$wasm" | wc -c)
 echo "[build-wasm] $wasm: $raw bytes ($gz gzipped)"
 node scripts/precache.mjs
+# Brotli and gzip copies beside every page, script and the wasm, for servers that send them.
+node scripts/precompress.mjs

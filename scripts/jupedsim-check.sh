@@ -9,12 +9,14 @@
 #
 # Not part of scripts/test.sh: it needs PyPI. Usage:
 #   bash scripts/jupedsim-check.sh [TESTS] [BASELINES]
-#     TESTS      comma-separated test ids or prefixes (default t1,t4,t6,t9,t12,t16)
-#     BASELINES  flockpath planners to show beside JuPedSim (default orca,social_force)
+#     TESTS      comma-separated test ids or prefixes (default all: every test's goals are
+#                exits, which is what the translation needs)
+#     BASELINES  flockpath planners to show beside JuPedSim (default
+#                orca,social_force,collision_free_speed)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-tests="${1:-t1,t4,t6,t9,t12,t16}"
-baselines="${2:-orca,social_force}"
+tests="${1:-all}"
+baselines="${2:-orca,social_force,collision_free_speed}"
 venv=.jupedsim-venv
 out=target/jupedsim-check
 # The planner whose configuration sets up the scenes: every planner gets the same desired

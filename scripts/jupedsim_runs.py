@@ -8,8 +8,16 @@ measurement code judges them.
 
 Translation (one place): the walkable area is the world's rectangle minus every obstacle; each
 exit goal (a disc) is an exit stage, the disc cut to the walkable area; each group's walkers get
-a journey to their goal's exit, their body radius and desired speed. Coordinates stay as in
-flockpath (x right, y down): both models are mirror-symmetric, so the mirror changes nothing.
+a journey to their goal's exit, their body radius less half a millimetre (BODY_SLACK_M) and
+their desired speed. Coordinates stay as in flockpath (x right, y down): both models are
+mirror-symmetric, so the mirror changes nothing.
+
+The body slack: JuPedSim 1.4.2 refuses to add a collision-free-speed walker whose centre is
+within r1 + r2 of another's, touching included (`contact distance >= distance` is a "model
+constraint violation"), while flockpath lets bodies touch. At T16's 2.5 persons/m with 0.2 m
+radii the lattice's walkers are exactly 0.4 m apart, one body length: whether a pair is refused
+is decided by the last bit of a float sum (walker 29 was the first), and no nudge helps in a ring
+that is full. Bodies 1 mm narrower in diameter than flockpath's fit; 1 mm is 0.25% of a body.
 
 Not JuPedSim's: the periodic corridor. JuPedSim has no periodic boundary, so a walker whose
 centre leaves the band is removed and added back at the other end (same y, a new JuPedSim id,
@@ -31,6 +39,9 @@ import shapely
 from shapely.geometry import Point, Polygon, box
 
 DT = 0.01
+# How much narrower (m, in diameter) JuPedSim's bodies are than flockpath's, so that bodies that
+# touch in flockpath are apart in JuPedSim (see the module's note).
+BODY_SLACK_M = 1e-3
 
 
 def walkable_area(scene, ppm):
@@ -88,7 +99,8 @@ def lattice(starts, band, area, groups, group_of, ppm):
     flockpath spawns them at random and lets bodies touch, JuPedSim refuses overlapping bodies,
     so at 5–6 persons/m² no random start is free. Hexagonal rows across the corridor's width,
     the walkers spread evenly along each row."""
-    diameter = 2 * max(g["agent_radius"] for g in groups) / ppm + 1e-3
+    # JuPedSim's diameter plus the slack: flockpath's diameter.
+    diameter = 2 * max(g["agent_radius"] for g in groups) / ppm
     _, y0, _, y1 = area.bounds
     width = y1 - y0
     # Hexagonal rows: neighbouring rows offset by half a step may be 0.87 diameters apart.
@@ -130,7 +142,7 @@ def run(setup, model):
         g = groups[group_of[index]]
         journey, stage, _ = routes[g["goal"]]
         speed = setup["desired_speed_m_s"][group_of[index]]
-        radius = g["agent_radius"] / ppm
+        radius = g["agent_radius"] / ppm - BODY_SLACK_M / 2
         ours[sim.add_agent(agent(tuple(pos), journey, stage, speed, radius))] = index
 
     starts = setup["starts_m"]

@@ -45,8 +45,10 @@ if [ ! -x /usr/bin/chromium ] || [ ! -x /usr/bin/chromedriver ]; then
   apt-get install -y -qq chromium chromium-driver >/dev/null
 fi
 
-# npm packages: playwright-core (no browser download) and binaryen (wasm-opt).
+# npm packages: playwright-core (no browser download), binaryen (wasm-opt), axe-core, and
+# scorm-again (the LMS-side SCORM runtime the SCORM package's e2e test reports to).
 if [ ! -d node_modules/playwright-core ] || [ ! -x node_modules/.bin/wasm-opt ] \
+   || [ ! -f node_modules/scorm-again/dist/scorm12.js ] \
    || [ package-lock.json -nt node_modules/.package-lock.json ]; then
   log "installing npm packages"
   if [ -f package-lock.json ]; then

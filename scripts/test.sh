@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Runs every test: formatting and lints, native unit/integration/doc tests, wasm tests in headless
-# Chromium, and the end-to-end page tests. Installs whatever is missing first (scripts/setup.sh).
+# Chromium, the end-to-end page tests, and a smoke run of every benchmark. Installs whatever is
+# missing first (scripts/setup.sh).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 export PATH="$HOME/.cargo/bin:$PATH"
@@ -25,5 +26,9 @@ bash scripts/test-wasm.sh
 
 section "end-to-end tests (headless Chromium)"
 bash scripts/test-e2e.sh
+
+# Every benchmark script at a hundredth of its sizes: they keep running (figures mean nothing).
+section "benchmark smoke run"
+bash scripts/bench.sh --smoke
 
 section "all tests passed"

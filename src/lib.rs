@@ -10,13 +10,14 @@
 //!
 //! | layer | what it is |
 //! |---|---|
-//! | [`rng`] | the one seeded, portable generator (a leaf) |
+//! | [`rng`], [`digest`], [`csv`] | the one seeded, portable generator; the one fingerprint of bit patterns; CSV fields (leaves) |
 //! | [`model`] | what users draw and share: scene, geometry, planner parameters, codec, edits, presets |
 //! | [`spatial`] | neighbour queries: the agents' grid, the obstacle index, the flow field |
 //! | [`optim`] | optimizers on R^d and benchmark functions (a leaf beside the crowd) |
 //! | [`planners`] | the Planner trait and one file per planner |
 //! | [`sim`] | a run: the world's step, spawn, cost limits, metrics, one bounded series, recording, replay, comparison, and [`sim::run::Run`] (what the page and the CLI drive), budgets in [`sim::limits`] |
 //! | [`experiments`], [`tune`], [`render`], [`export`] | tables, GA tuning, pixels, files |
+//! | [`package`] | a store-only zip and the SCORM 1.2 package of an activity (what an LMS grades) |
 //! | `web` | wasm32 only: conversion and errors for the pages |
 //!
 //! ```
@@ -30,10 +31,13 @@
 //! assert!(m.overall.arrived_share > 0.5);
 //! ```
 
+pub mod csv;
+pub mod digest;
 pub mod experiments;
 pub mod export;
 pub mod model;
 pub mod optim;
+pub mod package;
 pub mod planners;
 pub mod render;
 pub mod rng;

@@ -214,16 +214,20 @@ fn the_scanner_sees_through_comments_and_test_modules_only() {
 const LAYERS: &[(&str, &[&str])] = &[
     // A leaf: the one seeded generator every layer draws from.
     ("rng", &[]),
+    // A leaf: the one fingerprint of bit patterns (run digests, cache keys).
+    ("digest", &[]),
+    // A leaf: CSV fields, for every CSV the project writes.
+    ("csv", &[]),
     // What users draw and share.
     ("model", &["rng"]),
     // Neighbour queries: the agents' grid, the obstacle index, the flow field.
-    ("spatial", &["model"]),
+    ("spatial", &["model", "digest"]),
     // Optimizers on R^d and benchmark functions: a leaf beside the crowd.
-    ("optim", &["rng"]),
+    ("optim", &["rng", "digest"]),
     // The Planner trait at the bottom, one planner per file above it; IGSA plans with optim.
     ("planners", &["model", "spatial", "optim", "rng"]),
     // A run: the world's step calls the planners; metrics, recording, replay, comparison.
-    ("sim", &["model", "spatial", "planners", "rng"]),
+    ("sim", &["model", "spatial", "planners", "rng", "digest", "csv"]),
     // The papers' tables and validation runs as data.
     ("experiments", &["model", "spatial", "planners", "optim", "sim", "rng"]),
     // The GA over the five force weights.
@@ -232,10 +236,24 @@ const LAYERS: &[(&str, &[&str])] = &[
     ("render", &["model", "spatial", "planners", "sim"]),
     // Files for other tools.
     ("export", &["model", "sim"]),
+    // Zips and SCORM packages for an LMS.
+    ("package", &["model", "sim"]),
     // wasm32 only: conversion and errors over everything below.
     (
         "web",
-        &["model", "spatial", "planners", "optim", "sim", "experiments", "tune", "render", "export", "rng"],
+        &[
+            "model",
+            "spatial",
+            "planners",
+            "optim",
+            "sim",
+            "experiments",
+            "tune",
+            "render",
+            "export",
+            "package",
+            "rng",
+        ],
     ),
 ];
 

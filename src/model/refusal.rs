@@ -590,6 +590,20 @@ codes! {
     BadSelection = "page.bad_selection" => "cannot read the selected item: {reason}",
     /// A classroom edit the page sent that does not read.
     NotAnEdit = "page.not_an_edit" => "not an edit: {reason}",
+    /// A zip entry name that is empty, absolute or climbs out of the archive's folder.
+    ZipBadName = "zip.bad_name" => "cannot put {name:?} in a zip: a file name must be a relative path without \"..\" or empty parts",
+    /// The same zip entry name twice.
+    ZipDuplicate = "zip.duplicate" => "the zip already has a file {name:?}",
+    /// A zip past the format's limits without zip64.
+    ZipTooLarge = "zip.too_large" => "the zip would be larger than {bytes} bytes or {entries} files",
+    /// A link for an LMS package without an activity.
+    ScormNoActivity = "scorm.no_activity" => "this scene has no activity: an LMS package grades an activity's check (add one with Share… → Activity)",
+    /// An activity without a check in an LMS package.
+    ScormNoCheck = "scorm.no_check" => "this activity has no check: an LMS package scores the check, so give it one (Share… → Activity)",
+    /// A check that only the compare page can decide.
+    ScormCompareOnly = "scorm.compare_only" => "this activity's check names panes of the compare page: an LMS package runs one scene, so its check must not name a pane",
+    /// A page file the package needs but was not given.
+    ScormMissingFile = "scorm.missing_file" => "the LMS package needs the page file {name:?}, which was not found (build the wasm first: bash scripts/build-wasm.sh)",
 }
 
 impl Refusal for crate::rng::EntropyError {

@@ -9,6 +9,7 @@
 
 use super::functions::{Benchmark, Function};
 use super::problem::{Algorithm, Objective, Optimizer, Settings};
+use crate::digest::Fnv1a;
 use crate::rng::Rng;
 
 /// Number of contour levels over the value range.
@@ -47,14 +48,11 @@ struct HeatMap {
 /// Digest of an optimizer's state: the best value's bits and every position's bits (FNV-1a).
 /// Equal digests natively and in wasm mean bit-identical runs.
 pub fn run_digest(optimizer: &dyn Optimizer) -> String {
-    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    let mut h = Fnv1a::new();
     for x in std::iter::once(optimizer.best_value()).chain(optimizer.positions().iter().copied()) {
-        for b in x.to_bits().to_le_bytes() {
-            h ^= u64::from(b);
-            h = h.wrapping_mul(0x0000_0100_0000_01b3);
-        }
+        h.f64(x);
     }
-    format!("{:016x} {:e}", h, optimizer.best_value())
+    format!("{:016x} {:e}", h.finish(), optimizer.best_value())
 }
 
 /// The reference run whose digest is pinned natively and in wasm: IGSA on Ackley, d = 5,

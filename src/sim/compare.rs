@@ -16,6 +16,7 @@
 //! every value, so a link replays the same runs after a default changes (as the scene codec does).
 //! Example: `1.scene~pso~firefly(2,0.2)` or `1.boids~1=pso;2=firefly`.
 
+use crate::csv;
 use crate::model::params::{PlannerConfig, PlannerKind};
 use crate::model::refusal::{Arg, Code, Message, Refusal};
 use crate::model::scene::{Scene, SceneError};
@@ -688,7 +689,7 @@ impl Comparison {
                 out,
                 "{},{},{},{},{:.4},{},{},{},{:.2},{:.3},{:.3},{}",
                 r.pane,
-                csv_field(&r.label),
+                csv::field(&r.label),
                 r.steps,
                 r.agents,
                 r.arrived_share,
@@ -717,15 +718,6 @@ fn pane_slot(spec: &mut ComparisonSpec, pane: usize) -> Result<&mut PaneSpec, Sp
         .ok_or_else(|| SpecError(Message::new(Code::CompareNoPane).with("number", pane as u64 + 1)))
 }
 
-/// Quotes a CSV field when it holds a comma, quote or line break.
-fn csv_field(text: &str) -> String {
-    if text.contains([',', '"', '\n', '\r']) {
-        format!("\"{}\"", text.replace('"', "\"\""))
-    } else {
-        text.to_string()
-    }
-}
-
 /// Steps simulated by `panes` (the same in every pane; 0 without panes).
 fn step_count(panes: &[Pane]) -> u32 {
     panes.first().map_or(0, |p| p.world.step_count())
@@ -748,12 +740,6 @@ mod tests {
             assert_eq!(text.parse::<f32>().expect("number"), x, "{text}");
         }
         assert_eq!(format_number(3.0), "3");
-    }
-
-    #[test]
-    fn csv_quotes_labels_with_commas() {
-        assert_eq!(csv_field("Boids, seek 2"), "\"Boids, seek 2\"");
-        assert_eq!(csv_field("PSO crowd"), "PSO crowd");
     }
 
     #[test]

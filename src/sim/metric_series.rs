@@ -9,6 +9,7 @@
 //! that accumulate (collisions, penetrations) are stored as totals and turned into per-step rates
 //! between neighbouring kept samples when read, so thinning loses no events.
 
+use crate::csv;
 use crate::model::params::PlannerKind;
 use crate::sim::limits;
 use crate::sim::metrics::{GroupMetrics, Metrics};
@@ -187,7 +188,7 @@ impl MetricSeries {
                     0 => "all".to_string(),
                     r => group_names.get(r - 1).cloned().unwrap_or_else(|| r.to_string()),
                 };
-                out.push_str(&format!("{step},{:.4},{}", f64::from(step) * dt, csv_field(&name)));
+                out.push_str(&format!("{step},{:.4},{}", f64::from(step) * dt, csv::field(&name)));
                 for values in series {
                     out.push(',');
                     if let Some(v) = values.get(i).filter(|v| v.is_finite()) {
@@ -209,14 +210,6 @@ fn plot_metrics(world: &World) -> Metrics {
     let planners: Vec<&str> = scene.groups.iter().map(|g| g.planner.kind().name()).collect();
     let firefly = |g: usize| scene.groups.get(g).is_some_and(|g| g.planner.kind() == PlannerKind::Firefly);
     world.metrics_recorder().summary_with_queue(scene, &planners, world.step_count(), firefly)
-}
-
-fn csv_field(s: &str) -> String {
-    if s.contains([',', '"', '\n']) {
-        format!("\"{}\"", s.replace('"', "\"\""))
-    } else {
-        s.to_string()
-    }
 }
 
 fn push_row(values: &mut Vec<f32>, g: &GroupMetrics) {

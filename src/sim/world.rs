@@ -1,5 +1,6 @@
 //! The running simulation: agent state as struct-of-arrays, the two-phase step, seeded spawn.
 
+use crate::digest::Fnv1a;
 use crate::model::geometry::{Aabb, Obstacle};
 use crate::model::params::PlannerConfig;
 use crate::model::refusal::{Code, Message};
@@ -1332,20 +1333,13 @@ impl World {
     /// A 64-bit FNV-1a digest of every position and velocity bit pattern: equal digests mean a
     /// bit-identical run (natively, in wasm, in any browser).
     pub fn digest(&self) -> u64 {
-        let mut h: u64 = 0xcbf2_9ce4_8422_2325;
-        let mut eat = |x: f32| {
-            for b in x.to_bits().to_le_bytes() {
-                h ^= u64::from(b);
-                h = h.wrapping_mul(0x0000_0100_0000_01b3);
-            }
-        };
+        let mut h = Fnv1a::new();
         for (p, v) in self.pos.iter().zip(&self.vel) {
-            eat(p.x);
-            eat(p.y);
-            eat(v.x);
-            eat(v.y);
+            for x in [p.x, p.y, v.x, v.y] {
+                h.f32(x);
+            }
         }
-        h
+        h.finish()
     }
 }
 

@@ -9,6 +9,7 @@
 //! neighbour, so an agent pressed against a wall is led back into the open. Only exact IEEE
 //! operations (+, ×, ÷, √): the same field on every platform.
 
+use crate::digest::Fnv1a;
 use crate::model::geometry::{Aabb, Obstacle};
 use crate::spatial::ObstacleIndex;
 use glam::Vec2;
@@ -358,11 +359,8 @@ impl CachedFlowField {
 /// A fingerprint of an obstacle list (FNV-1a over every coordinate's bits): a cached field is
 /// rebuilt when the obstacles it was built around change.
 pub fn obstacles_fingerprint(obstacles: &[Obstacle]) -> u64 {
-    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
-    let mut eat = |x: f32| {
-        h ^= u64::from(x.to_bits());
-        h = h.wrapping_mul(0x0000_0100_0000_01b3);
-    };
+    let mut h = Fnv1a::new();
+    let mut eat = |x: f32| h.f32(x);
     for o in obstacles {
         match o {
             Obstacle::Circle { center, radius } => {
@@ -380,7 +378,7 @@ pub fn obstacles_fingerprint(obstacles: &[Obstacle]) -> u64 {
             }
         }
     }
-    h
+    h.finish()
 }
 
 #[cfg(test)]

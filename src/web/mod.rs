@@ -10,6 +10,7 @@
 mod activity;
 mod diagnose;
 
+use crate::experiments::validation::{jupedsim, pedpy};
 use crate::export::{self, ExportOptions};
 use crate::model::codec;
 use crate::model::edit::{self, Edit, ItemRef};
@@ -27,6 +28,7 @@ pub mod classroom;
 mod compare;
 pub mod lab;
 mod paths;
+mod scorm;
 mod seed;
 mod timeline;
 pub mod tune;
@@ -389,6 +391,18 @@ impl Sim {
     /// The recorded trails as SVG.
     pub fn export_trails_svg(&self) -> String {
         export::trails_svg(self.run.world().scene(), self.run.recording())
+    }
+
+    /// The recorded paths as PedPy text (`id frame x y z` in metres), as `flockpath run --pedpy`
+    /// writes them.
+    pub fn export_pedpy_text(&self) -> String {
+        pedpy::recording_text(self.run.world().scene(), self.run.recording())
+    }
+
+    /// A Python script that runs the scene in JuPedSim from the recording's starts, as
+    /// `flockpath run --jupedsim` writes it.
+    pub fn export_jupedsim_script(&self) -> String {
+        jupedsim::recording_script(self.run.world().scene(), self.run.recording())
     }
 
     /// Erases the trails.

@@ -40,6 +40,7 @@ const PAGES = [
   { path: 'tune.html', ready: () => window.flocktune !== undefined },
   { path: 'lab.html', ready: () => window.flockpathLab !== undefined },
   { path: 'examples/course-notes.html', ready: allElementsRunning },
+  { path: 'activities.html', ready: () => window.flockpathActivities !== undefined },
 ];
 
 test('axe: no serious or critical violation on the playground, its dialogs and its keyboard cursor', async () => {

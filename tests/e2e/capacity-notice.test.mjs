@@ -60,10 +60,12 @@ test('a goal too small for its group is named in a notice that goes when the goa
     await screenshot(page, 'capacity-notice-en');
 
     await page.selectOption('#lang-select', 'zh');
+    await page.waitForFunction(() => document.documentElement.lang.startsWith('zh'));
     const zh = await noticeText(page);
     assert.equal(zh, `目标 1 约可容纳 13 个半径 4 px 的个体；群组“${flock.name}”有 ${flock.count} 个：${flock.count - 13} 个将在目标外等待。`);
     await screenshot(page, 'capacity-notice-zh');
     await page.selectOption('#lang-select', 'en');
+    await page.waitForFunction(() => document.documentElement.lang === 'en');
 
     // Two groups sharing the small goal: both named with their counts, counted together.
     const shared = structuredClone(small);

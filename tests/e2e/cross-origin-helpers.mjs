@@ -1,4 +1,5 @@
-// Servers for the cross-origin tests: scripts/serve.py (the documented server) on a free port, and
+// Servers for the cross-origin tests: scripts/static-server.mjs (the documented server, what
+// scripts/serve.sh runs) on a free port, and
 // a course site on another origin that serves pages made in the test.
 
 import { spawn } from 'node:child_process';
@@ -7,9 +8,9 @@ import path from 'node:path';
 import { createInterface } from 'node:readline';
 import { ROOT, WWW } from './helpers.mjs';
 
-/** Starts `python3 scripts/serve.py --port 0` on www/; resolves to { url, firstLine, close }. */
-export async function startServePy() {
-  const child = spawn('python3', ['-u', path.join(ROOT, 'scripts', 'serve.py'), '--port', '0', '--directory', WWW], {
+/** Starts `node scripts/static-server.mjs --port 0` on www/ (as serve.sh does); resolves to { url, firstLine, close }. */
+export async function startDocumentedServer() {
+  const child = spawn(process.execPath, [path.join(ROOT, 'scripts', 'static-server.mjs'), '--port', '0', '--directory', WWW], {
     stdio: ['ignore', 'pipe', 'pipe'],
   });
   let stderr = '';
@@ -17,12 +18,12 @@ export async function startServePy() {
   const lines = createInterface({ input: child.stdout });
   const firstLine = await new Promise((resolve, reject) => {
     lines.once('line', resolve);
-    child.once('exit', (code) => reject(new Error(`serve.py exited (${code}) before printing its address: ${stderr}`)));
+    child.once('exit', (code) => reject(new Error(`static-server.mjs exited (${code}) before printing its address: ${stderr}`)));
   });
   const url = /at (http:\/\/\S+\/)$/.exec(firstLine)?.[1];
   if (!url) {
     child.kill();
-    throw new Error(`serve.py printed no address: ${firstLine}`);
+    throw new Error(`static-server.mjs printed no address: ${firstLine}`);
   }
   const close = () =>
     new Promise((resolve) => {

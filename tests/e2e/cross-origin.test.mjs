@@ -1,5 +1,5 @@
 // The `<flock-path>` snippet from the Share dialog, pasted into a course page on another origin.
-// Works: served by scripts/serve.py (what serve.sh runs), with and without the README's CSP.
+// Works: served by scripts/static-server.mjs (what serve.sh runs), with and without the README's CSP.
 // Fails readably: no CORS at all, a wrong URL (the module never runs: the snippet's own fallback
 // text turns into the reason), CORS on the module only, the wasm blocked or missing, a CSP
 // without 'wasm-unsafe-eval' (the element says why in its box and fires `flockpath-error`), and a
@@ -13,7 +13,7 @@ import { readFile } from 'node:fs/promises';
 import path from 'node:path';
 import { chromium } from 'playwright-core';
 import { CHROMIUM_ARGS, ROOT, assertNoUnexpectedErrors, screenshot, simpleScene, startServer } from './helpers.mjs';
-import { startHost, startServePy } from './cross-origin-helpers.mjs';
+import { startHost, startDocumentedServer } from './cross-origin-helpers.mjs';
 import { coveringCircles, timedPause } from './pause-helpers.mjs';
 
 /** Host-page script (external, so a strict CSP allows it): records the element's events. */
@@ -87,7 +87,7 @@ function canvasStats() {
 }
 
 describe('the <flock-path> snippet on a page of another origin', () => {
-  let servePy;
+  let documented;
   let flock;
   let host;
   let browser;
@@ -100,15 +100,15 @@ describe('the <flock-path> snippet on a page of another origin', () => {
   let pageCount = 0;
 
   before(async () => {
-    servePy = await startServePy();
+    documented = await startDocumentedServer();
     flock = await startServer({ cors: (pathname) => corsFor(pathname) });
     host = await startHost(new Map([['/record.js', RECORDER]]));
     browser = await chromium.launch({ executablePath: '/usr/bin/chromium', headless: true, args: CHROMIUM_ARGS });
     context = await browser.newContext({ viewport: { width: 1000, height: 800 } });
 
-    // The snippet exactly as the Share dialog hands it out, from the playground served by serve.py.
+    // The snippet exactly as the Share dialog hands it out, from the playground served by static-server.mjs.
     const page = await context.newPage();
-    await page.goto(`${servePy.url}index.html`);
+    await page.goto(`${documented.url}index.html`);
     await page.waitForFunction(() => window.flockpath !== undefined, null, { timeout: 30_000 });
     playgroundDigest = await page.evaluate(async (scene) => {
       await window.flockpath.pause();
@@ -120,14 +120,14 @@ describe('the <flock-path> snippet on a page of another origin', () => {
     snippet = await page.locator('#share-component').inputValue();
     iframeSnippet = await page.locator('#share-iframe').inputValue();
     await page.close();
-    assert.ok(snippet.includes(`src="${servePy.url}js/flock-path.js"`), snippet);
+    assert.ok(snippet.includes(`src="${documented.url}js/flock-path.js"`), snippet);
   });
 
   after(async () => {
     await browser?.close();
     await host?.close();
     await flock?.close();
-    await servePy?.close();
+    await documented?.close();
   });
 
   /** Opens `page` ({ html, headers }) on the host origin; returns { page, errors, warnings }. */
@@ -146,8 +146,8 @@ describe('the <flock-path> snippet on a page of another origin', () => {
     return { page: tab, errors, warnings };
   }
 
-  /** The snippet pointed at the flockpath test server (sub-path, CORS switchable) instead of serve.py. */
-  const onTestServer = (text) => text.replaceAll(servePy.url, flock.url);
+  /** The snippet pointed at the flockpath test server (sub-path, CORS switchable) instead of static-server.mjs. */
+  const onTestServer = (text) => text.replaceAll(documented.url, flock.url);
 
   /** Waits for the message in the element's box; checks it is there for the reader and returns it. */
   async function waitForMessage(page, pattern) {
@@ -158,7 +158,7 @@ describe('the <flock-path> snippet on a page of another origin', () => {
     return message;
   }
 
-  test('served by serve.py, the element renders, fires flockpath-ready and its methods work', async () => {
+  test('served by static-server.mjs, the element renders, fires flockpath-ready and its methods work', async () => {
     // Wrapped in <p> as a Markdown tool that does not know the tag does: its fallback stays inside.
     const { page, errors } = await openHostPage(hostPage(`<p>${snippet}</p>`));
     try {
@@ -206,7 +206,7 @@ describe('the <flock-path> snippet on a page of another origin', () => {
         return { isWorker: remote.worker instanceof Worker, origin: location.origin };
       });
       assert.equal(worker.isWorker, true, 'the element runs its simulation in a Worker');
-      assert.notEqual(worker.origin, new URL(servePy.url).origin, 'the host page is on another origin');
+      assert.notEqual(worker.origin, new URL(documented.url).origin, 'the host page is on another origin');
       // The golden link (tests/golden_url.rs pins its native digest at step 300).
       const goldenUrl = (await readFile(path.join(ROOT, 'tests', 'data', 'golden-url.txt'), 'utf8')).trim();
       const goldenDigest = (await readFile(path.join(ROOT, 'tests', 'data', 'golden-digest.txt'), 'utf8')).trim();
@@ -240,7 +240,7 @@ describe('the <flock-path> snippet on a page of another origin', () => {
   });
 
   test('with a CSP without worker-src blob:, the box says the worker could not start and why', async () => {
-    const readme = await readmePolicy(new URL(servePy.url).origin);
+    const readme = await readmePolicy(new URL(documented.url).origin);
     const csp = readme.replace(/; worker-src [^;]*/, '');
     assert.notEqual(csp, readme, 'the README gives worker-src');
     const { page } = await openHostPage(hostPage(snippet, { 'content-security-policy': csp }));
@@ -256,7 +256,7 @@ describe('the <flock-path> snippet on a page of another origin', () => {
   });
 
   test('with the CSP the README gives, the element runs and is styled', async () => {
-    const csp = await readmePolicy(new URL(servePy.url).origin);
+    const csp = await readmePolicy(new URL(documented.url).origin);
     const { page, errors } = await openHostPage(hostPage(snippet, { 'content-security-policy': csp }));
     try {
       await page.waitForFunction(() => window.flockpathEvents.some((e) => e.type === 'flockpath-ready'), null, { timeout: 30_000 });
@@ -293,7 +293,7 @@ describe('the <flock-path> snippet on a page of another origin', () => {
   });
 
   test('with a CSP without wasm-unsafe-eval, the box says the WebAssembly could not start', async () => {
-    const readme = await readmePolicy(new URL(servePy.url).origin);
+    const readme = await readmePolicy(new URL(documented.url).origin);
     const csp = readme.replace(" 'wasm-unsafe-eval'", '');
     assert.notEqual(csp, readme);
     const { page } = await openHostPage(hostPage(snippet, { 'content-security-policy': csp }));

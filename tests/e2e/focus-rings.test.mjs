@@ -7,7 +7,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { openPath } from './helpers.mjs';
 
-const PAGES = ['index.html', 'compare.html', 'lab.html', 'tune.html', 'validation.html'];
+const PAGES = ['index.html', 'compare.html', 'lab.html', 'tune.html', 'validation.html', 'activities.html'];
 
 /** In the page: each header link or button focused by keyboard, its ring and the bar's colour. */
 function ringsOfHeader() {

@@ -2,12 +2,12 @@
 // page uses only relative URLs), Debian's Chromium driven by playwright-core, console-error
 // collection, and small helpers that talk to the page only through its public surface.
 
-import { createServer } from 'node:http';
-import { mkdtemp, mkdir, readFile, rm, stat } from 'node:fs/promises';
+import { mkdtemp, mkdir, rm } from 'node:fs/promises';
 import { tmpdir } from 'node:os';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
+import { serveStatic } from '../../scripts/static-server.mjs';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
 export const ROOT = path.resolve(here, '..', '..');
@@ -29,55 +29,14 @@ export const CHROMIUM_ARGS = [
   '--disable-sync',
 ];
 
-const MIME = {
-  '.html': 'text/html; charset=utf-8',
-  '.js': 'text/javascript; charset=utf-8',
-  '.mjs': 'text/javascript; charset=utf-8',
-  '.css': 'text/css; charset=utf-8',
-  '.json': 'application/json',
-  '.wasm': 'application/wasm',
-  '.png': 'image/png',
-  '.svg': 'image/svg+xml',
-  '.ts': 'text/plain; charset=utf-8',
-  '.webmanifest': 'application/manifest+json',
-};
-
 /**
- * Serves www/ at SUB_PATH on 127.0.0.1 and a free port; resolves to { url, close }. Option `cors`:
+ * Serves www/ at SUB_PATH on 127.0.0.1 and a free port (scripts/static-server.mjs, the server
+ * serve.sh runs: compressed answers as users get them); resolves to { url, close }. Option `cors`:
  * send `Access-Control-Allow-Origin: *` (true, or a function of the path that says for which files).
  */
 export async function startServer({ cors = false } = {}) {
-  const server = createServer(async (req, res) => {
-    const pathname = decodeURIComponent(new URL(req.url, 'http://x').pathname);
-    if (!pathname.startsWith(SUB_PATH)) {
-      res.writeHead(404).end('not found');
-      return;
-    }
-    const allow = (typeof cors === 'function' ? cors(pathname) : cors) ? { 'access-control-allow-origin': '*' } : {};
-    let file = path.join(WWW, pathname.slice(SUB_PATH.length));
-    if (!file.startsWith(WWW)) {
-      res.writeHead(403).end('forbidden');
-      return;
-    }
-    try {
-      if ((await stat(file)).isDirectory()) file = path.join(file, 'index.html');
-      const body = await readFile(file);
-      res.writeHead(200, {
-        'content-type': MIME[path.extname(file)] ?? 'application/octet-stream',
-        'cache-control': 'no-store',
-        ...allow,
-      });
-      res.end(body);
-    } catch {
-      res.writeHead(404, allow).end('not found');
-    }
-  });
-  await new Promise((resolve) => server.listen(0, '127.0.0.1', resolve));
-  const { port } = server.address();
-  return {
-    url: `http://127.0.0.1:${port}${SUB_PATH}`,
-    close: () => new Promise((resolve) => server.close(resolve)),
-  };
+  const server = await serveStatic({ [SUB_PATH]: WWW }, { cors, cacheControl: 'no-store' });
+  return { url: `${server.origin}${SUB_PATH}`, close: server.close };
 }
 
 /**

@@ -152,7 +152,7 @@ test('the core’s refusals are worded in Chinese (real errors from the wasm mod
   const names = new Set(JSON.parse(m.presets_json()).map((p) => p.name));
   try {
     for (const [k, e] of Object.entries(cases)) assert.equal(refusalText(e), e.message, `${k}: the English template is the core’s words`);
-    i18n.setLanguage('zh', null);
+    await i18n.setLanguage('zh', null);
     const zh = Object.fromEntries(Object.entries(cases).map(([k, e]) => [k, refusalText(e)]));
     for (const [k, text] of Object.entries(zh)) {
       assert.equal(typeof cases[k].code, 'string', `${k} carries a code`);
@@ -169,7 +169,7 @@ test('the core’s refusals are worded in Chinese (real errors from the wasm mod
     assert.equal(zh.field, 'groups[0].agent_radius 的值为 500；允许：0.5…100 像素 之间的数');
     assert.equal(zh.negative, '无法读取编辑操作：无效的值：整数 -5，应为 u32');
   } finally {
-    i18n.setLanguage('en', null);
+    await i18n.setLanguage('en', null);
   }
 });
 
@@ -258,7 +258,7 @@ test('every other refusal is worded in Chinese too: scene fields, items, compare
     for (const [k, e] of Object.entries(cases)) assert.equal(typeof e.code, 'string', `${k} carries a code (${e.message})`);
     for (const [k, e] of Object.entries(cases)) assert.equal(refusalText(e), e.message, `${k}: the English template is the core’s words`);
     assert.match(cases.spec_planner.message, /^comparison: unknown planner "zz"/, 'the English message is unchanged');
-    i18n.setLanguage('zh', null);
+    await i18n.setLanguage('zh', null);
     const zh = Object.fromEntries(Object.entries(cases).map(([k, e]) => [k, refusalText(e)]));
     for (const [k, text] of Object.entries(zh)) {
       assert.ok(text && /[\u4e00-\u9fff]/.test(text), `${k} in Chinese: ${text} (core: ${cases[k].message})`);
@@ -270,7 +270,7 @@ test('every other refusal is worded in Chinese too: scene fields, items, compare
     assert.match(zh.polygon, /^obstacles\[\d+\]\.points 的值为 边 \d+→\d+ 与 \d+→\d+ 相交或接触的多边形；允许：简单多边形/);
     assert.match(zh.tune_scene, /^无法读取场景：未知的场景格式版本“7”/, 'a tuning scene keeps its own code');
   } finally {
-    i18n.setLanguage('en', null);
+    await i18n.setLanguage('en', null);
   }
 });
 
@@ -316,7 +316,7 @@ test('names, strings that are no text, links too long and lab sizes are refused 
   new m.Lab('pso', 'sphere', max('lab-dim'), max('lab-pop'), max('lab-iters'), 1).free();
   try {
     for (const [k, e] of Object.entries(cases)) assert.equal(refusalText(e), e.message, `${k}: the English template is the core’s words`);
-    i18n.setLanguage('zh', null);
+    await i18n.setLanguage('zh', null);
     const zh = Object.fromEntries(Object.entries(cases).map(([k, e]) => [k, refusalText(e)]));
     assert.equal(zh.long_name, 'groups[0].name 的值为 7340032 个字符的文本（"xxxxxxxxxxxxxxxxxxxxxxxx"…）；允许：单行文本，最多 100 个字符');
     assert.equal(zh.surrogate, 'groups[0].name 的值为 无效的字符串（孤立的代理项 \\ud800）；允许：文本，其中每个 \\ud800…\\udbff 转义之后必须紧跟一个 \\udc00…\\udfff 转义（代理对）');
@@ -326,7 +326,7 @@ test('names, strings that are no text, links too long and lab sizes are refused 
     assert.equal(zh.lab_population, '种群规模 501 超出 2…500 的范围');
     assert.equal(zh.lab_iterations, '迭代次数 10001 超出 1…10000 的范围');
   } finally {
-    i18n.setLanguage('en', null);
+    await i18n.setLanguage('en', null);
   }
 });
 
@@ -340,21 +340,21 @@ test('the validation suite’s "measured" words are Chinese for every test (real
   }
   try {
     assert.equal(measuredText(rows[0].measured), rows[0].measured, 'English pages show the core’s words');
-    i18n.setLanguage('zh', null);
+    await i18n.setLanguage('zh', null);
     for (const row of rows) {
       const text = measuredText(row.measured);
       assert.match(text, /[\u4e00-\u9fff]/, `${row.test}: ${text}`);
       assert.deepEqual(englishWords(text, new Set()), [], `${row.test}: no English words left in ${text} (core: ${row.measured})`);
     }
   } finally {
-    i18n.setLanguage('en', null);
+    await i18n.setLanguage('en', null);
   }
 });
 
 // ---- static scan of the pages' HTML ----
 
 /** Pages a student meets; bench.html is a developer benchmark (not linked from any page). */
-const PAGES = ['index.html', 'embed.html', 'compare.html', 'tune.html', 'lab.html', 'validation.html'];
+const PAGES = ['index.html', 'embed.html', 'compare.html', 'tune.html', 'lab.html', 'validation.html', 'activities.html'];
 
 /** Words that are no language: units, proper names, file formats, key names. */
 const NEUTRAL_WORDS = new Set(['fps', 'px', 'flock', 'path', 'flockpath', 'Ctrl', 'Esc', 'Del', 'Space', 'Enter', 'Boids', 'PSO',
@@ -475,6 +475,7 @@ const ZH_PAGES = [
   { page: 'tune.html', ready: () => document.getElementById('loading').hidden, chinese: { '#tune': '调优', '#setup-title': '设置', '#status': '尚未开始。' }, scan: 'header, .panel' },
   { page: 'lab.html', ready: () => window.flockpathLab !== undefined || document.querySelector('#lab-function option') !== null, chinese: { '#lab-play': '播放', '#lab-plot-title': '收敛曲线（目前最优，对数坐标）' }, scan: 'header, .lab-toolbar' },
   { page: 'validation.html', ready: () => document.querySelector('#val-planners input') !== null, chinese: { '#val-run': '运行', '#val-table-title': '结果' }, scan: 'header, #val-run-title, fieldset legend, .row-buttons' },
+  { page: 'activities.html', ready: () => window.flockpathActivities !== undefined, chinese: { '#print-guide': '打印教师指南', '#topic-flocking': '群集行为' }, scan: 'header, main' },
   { page: 'embed.html#s=open-field', ready: () => document.getElementById('embedded')?.host !== undefined && document.getElementById('embedded').host !== null, chinese: { '#open-full': '在 flockpath 中打开 ↗' }, scan: 'body' },
 ];
 
@@ -539,6 +540,8 @@ test('switching language in the menu keeps the scene and the run, and is remembe
     await page.waitForFunction((s) => location.hash.includes(s.slice(0, 20)), before.scene);
 
     await page.selectOption('#lang-select', 'zh');
+    // The Chinese table is fetched on the first switch (an English page does not download it).
+    await page.waitForFunction(() => document.documentElement.lang === 'zh-Hans');
     assert.equal((await page.textContent('#play')).trim(), '播放', 'the paused Play button in Chinese');
     assert.equal((await page.textContent('#planner-title')).trim(), '规划器');
     assert.equal(await page.evaluate(() => document.documentElement.lang), 'zh-Hans');
@@ -564,6 +567,7 @@ test('switching language in the menu keeps the scene and the run, and is remembe
     await page.waitForFunction(() => window.flockpathCompare !== undefined);
     assert.equal((await page.textContent('#add-pane')).trim(), '添加窗格');
     await page.selectOption('#lang-select', 'en');
+    await page.waitForFunction(() => document.documentElement.lang === 'en');
     assert.equal((await page.textContent('#add-pane')).trim(), 'Add pane');
     assertNoUnexpectedErrors(errors);
   } finally {
@@ -651,8 +655,10 @@ test('in Chinese: a per-group compare pane’s label, a refused comparison and p
     assert.match(thrown, /^obstacles\[0\]\.points is a polygon whose edges 0→1 and 2→3 cross or touch; allowed: a simple polygon/);
     assert.equal(await page.textContent('#banner-text'), 'obstacles[0].points 的值为 边 0→1 与 2→3 相交或接触的多边形；允许：简单多边形：边只在共同的角点相交，面积不为零');
     await page.selectOption('#lang-select', 'en');
+    await page.waitForFunction(() => document.documentElement.lang === 'en');
     assert.equal(await page.getAttribute('link[rel="manifest"]', 'href'), 'manifest.webmanifest', 'English again');
     await page.selectOption('#lang-select', 'zh');
+    await page.waitForFunction(() => document.documentElement.lang.startsWith('zh'));
 
     // The tune worker's refusal comes back with its code and is worded in the page's language.
     await page.goto(`${url}tune.html?lang=zh`);

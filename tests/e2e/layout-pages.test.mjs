@@ -1,5 +1,5 @@
 // The other pages on phones and tablets (touch, 390×844 and 768×1024): the optimizer lab, Tune,
-// Compare, the embed view and the course-notes example fit the screen's width (no horizontal
+// Compare, the embed view, the Activities page and the course-notes example fit the screen's width (no horizontal
 // scrolling, every control — also inside <flock-path>'s shadow bar — within the width), the
 // header's controls are on screen (Compare folds them behind the playground's Menu on a phone),
 // and where a page is about a canvas, that canvas is wholly on the first screen and stays put
@@ -40,6 +40,13 @@ const PAGES = [
     ready: () => window.flockpathEmbed !== undefined,
     canvas: '#embedded',
     header: ['#open-full'],
+  },
+  {
+    // The activity library: a page of tables, only the widths and the header are checked.
+    path: 'activities.html',
+    ready: () => window.flockpathActivities !== undefined,
+    canvas: null,
+    header: ['#print-guide', '#to-playground'],
   },
   {
     // A page of text with simulations in it: only the widths are checked.

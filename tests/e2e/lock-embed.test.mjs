@@ -103,3 +103,58 @@ test('<flock-path> shows the controls its attribute names and refuses unknown na
     await close();
   }
 });
+
+// Issue 27 §4: the host page sets the teacher's options by postMessage, so they never appear in a
+// URL a student can edit; `openLink: false` also hides the way out to the full page.
+test('a host page sets the locks by postMessage: nothing in the iframe URL, the Open link hidden', async () => {
+  const { page, errors, close } = await openPath('examples/course-notes.html', { ready: () => document.getElementById('corridor') !== null });
+  try {
+    await page.evaluate(() => {
+      const frame = document.getElementById('corridor');
+      let next = 1;
+      const pending = new Map();
+      window.addEventListener('message', (event) => {
+        if (event.source === frame.contentWindow && event.data?.flockpath === 1) pending.get(event.data.id)?.(event.data);
+      });
+      window.__call = (method, ...args) => new Promise((resolve) => {
+        const id = next++;
+        pending.set(id, resolve);
+        frame.contentWindow.postMessage({ flockpath: 1, id, method, args }, '*');
+      });
+    });
+    const call = (method, ...args) => page.evaluate(([m, a]) => window.__call(m, ...a), [method, args]);
+    const frame = page.frameLocator('#corridor');
+    await frame.locator('flock-path').waitFor();
+    const src = await page.getAttribute('#corridor', 'src');
+    assert.doesNotMatch(src, /lock=|controls=/, 'the options are not in the iframe URL');
+
+    let reply = await call('setClassroom', { controls: ['play', 'reset'], lock: 'obstacles,goals', openLink: false });
+    assert.equal(reply.ok, true, reply.error);
+    assert.deepEqual([reply.result.controls, reply.result.lock], [['play', 'reset'], ['obstacles', 'goals']]);
+    const shown = () => frame.locator('flock-path').evaluate((el) => {
+      const visible = (node) => Boolean(node && !node.hidden && node.getClientRects().length > 0);
+      return { play: visible(el.shadowRoot.querySelector('.play')), step: visible(el.shadowRoot.querySelector('.step')), open: visible(document.getElementById('open-full')) };
+    });
+    assert.deepEqual(await shown(), { play: true, step: false, open: false });
+
+    // A refused name: an error naming the option and the allowed names; the other options apply.
+    reply = await call('setClassroom', { lock: 'walls', controls: 'step' });
+    assert.equal(reply.ok, false);
+    assert.match(reply.error, /lock/);
+    assert.match(reply.error, /"walls"/);
+    assert.match(reply.error, /obstacles, goals, groups, paths/);
+    assert.deepEqual((await shown()).step, true);
+    reply = await call('setClassroom', { locks: 'goals' });
+    assert.equal(reply.ok, false);
+    assert.match(reply.error, /unknown option "locks"; known: controls, lock, hide, openLink/);
+
+    // Back to everything allowed.
+    reply = await call('setClassroom', { controls: null, lock: null, openLink: true });
+    assert.equal(reply.ok, true, reply.error);
+    assert.equal(reply.result.open, true);
+    assert.deepEqual(await shown(), { play: true, step: true, open: true });
+    assertNoUnexpectedErrors(errors, [/walls/]);
+  } finally {
+    await close();
+  }
+});

@@ -3,63 +3,37 @@
 // served under a sub-path; a new build (a changed file, precache list rewritten by
 // scripts/precache.mjs) replaces the cache of the old version.
 //
-// The folder is served from a copy (the new-build case edits it), by a server of this file that
-// can drop every connection while "down".
+// The folder is served from a copy (the new-build case edits it) by scripts/static-server.mjs,
+// made to drop every connection while "down".
 
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
-import { createServer } from 'node:http';
-import { appendFile, cp, mkdtemp, readFile, rm, stat } from 'node:fs/promises';
+import { appendFile, cp, mkdtemp, readFile, rm } from 'node:fs/promises';
 import { tmpdir } from 'node:os';
 import path from 'node:path';
 import { chromium } from 'playwright-core';
 import { CHROMIUM_ARGS, ROOT, SUB_PATH, WWW, assertNoUnexpectedErrors, waitReady } from './helpers.mjs';
+import { serveStatic } from '../../scripts/static-server.mjs';
 
-const MIME = {
-  '.html': 'text/html; charset=utf-8',
-  '.js': 'text/javascript; charset=utf-8',
-  '.css': 'text/css; charset=utf-8',
-  '.json': 'application/json',
-  '.wasm': 'application/wasm',
-  '.svg': 'image/svg+xml',
-  '.webmanifest': 'application/manifest+json',
-};
-
-/** Serves `dir` at SUB_PATH; `down = true` makes it drop every request unanswered. */
+/** Serves `dir` at SUB_PATH (scripts/static-server.mjs); `down = true` makes it drop every request unanswered. */
 async function serve(dir) {
   const state = { down: false, servedWhileDown: 0, requests: [] };
-  const server = createServer(async (req, res) => {
-    if (state.down) {
-      state.servedWhileDown += 1;
-      req.socket.destroy();
-      return;
-    }
-    const pathname = decodeURIComponent(new URL(req.url, 'http://x').pathname);
-    state.requests.push(pathname);
-    let file = path.join(dir, pathname.slice(SUB_PATH.length));
-    if (!pathname.startsWith(SUB_PATH) || !file.startsWith(dir)) {
-      res.writeHead(404).end('not found');
-      return;
-    }
-    try {
-      if ((await stat(file)).isDirectory()) file = path.join(file, 'index.html');
-      const body = await readFile(file);
-      res.writeHead(200, { 'content-type': MIME[path.extname(file)] ?? 'application/octet-stream', 'cache-control': 'no-cache' });
-      res.end(body);
-    } catch {
-      res.writeHead(404).end('not found');
-    }
-  });
-  await new Promise((resolve) => server.listen(0, '127.0.0.1', resolve));
-  return {
-    state,
-    url: `http://127.0.0.1:${server.address().port}${SUB_PATH}`,
-    close: () => {
-      server.closeAllConnections();
-      return new Promise((resolve) => server.close(resolve));
+  const server = await serveStatic(
+    { [SUB_PATH]: dir },
+    {
+      onRequest: (req) => {
+        if (state.down) {
+          state.servedWhileDown += 1;
+          req.socket.destroy();
+          return false;
+        }
+        state.requests.push(decodeURIComponent(new URL(req.url, 'http://x').pathname));
+        return true;
+      },
     },
-  };
+  );
+  return { state, url: `${server.origin}${SUB_PATH}`, close: server.close };
 }
 
 /** The flockpath caches of the origin: `{ name: [listed paths relative to the scope] }`. */
@@ -92,7 +66,8 @@ const playgroundRuns = async (page) => {
 test('after one visit the pages open offline, under a sub-path, and a new build replaces the cache', async () => {
   const tmp = await mkdtemp(path.join(tmpdir(), 'flockpath-offline-'));
   const www = path.join(tmp, 'www');
-  await cp(WWW, www, { recursive: true });
+  // Without the precompressed copies: a copy gets new times, so a stale one could look fresh.
+  await cp(WWW, www, { recursive: true, filter: (src) => !/\.(br|gz)$/.test(src) });
   const server = await serve(www);
   const context = await chromium.launchPersistentContext(path.join(tmp, 'profile'), {
     executablePath: '/usr/bin/chromium',
@@ -123,7 +98,8 @@ test('after one visit the pages open offline, under a sub-path, and a new build 
     assert.deepEqual(Object.keys(caches1), [`flockpath ${scope} ${version}`], 'one cache, named for this build');
     const listed = caches1[`flockpath ${scope} ${version}`];
     for (const file of ['index.html', 'embed.html', 'examples/course-notes.html', 'style.css', 'manifest.webmanifest',
-      'icon.svg', 'js/flock-path.js', 'js/core/offline.js', 'js/play/main.js', 'pkg/flockpath.js', 'pkg/flockpath_bg.wasm']) {
+      'icon.svg', 'js/flock-path.js', 'js/core/offline.js', 'js/play/main.js', 'pkg/flockpath.js', 'pkg/flockpath_bg.wasm',
+      'activities.html', 'activities.css', 'js/activities/main.js', 'js/activities/library.js', 'js/activities/measured.js']) {
       assert.ok(listed.includes(file), `${file} is cached (cached: ${listed.join(', ')})`);
     }
     assert.ok(!listed.includes('sw.js') && !listed.includes('pkg/precache.js'), 'the worker and its list are not');
@@ -161,6 +137,11 @@ test('after one visit the pages open offline, under a sub-path, and a new build 
       const frame = document.getElementById('corridor').contentWindow;
       return frame.flockpathEmbed && frame.flockpathEmbed.steps > 10;
     }, null, { timeout: 30_000 });
+    // The Activities page, and an activity opened from it.
+    await page.goto(`${server.url}activities.html`);
+    await page.waitForFunction(() => window.flockpathActivities !== undefined, null, { timeout: 30_000 });
+    await page.locator('a.activity-open').first().click();
+    await page.locator('#activity .fp-activity .fp-prompt').waitFor({ timeout: 30_000 });
     assert.equal(server.state.requests.length > 0, true);
     assertNoUnexpectedErrors(errors);
 

@@ -53,6 +53,10 @@ test('a subset runs in a worker, the table shows pass/fail, a link opens the sce
     const t1 = rows.find((r) => r.test === 't1-free-walking' && r.planner === 'boids');
     assert.match(t1.measured, /m\/s/);
     assert.match(await page.textContent('#val-summary'), /of 6 passed/);
+    // Issue 27 §5: after a run the page stays inside a 1366 px screen (it was 31 px wider).
+    await page.setViewportSize({ width: 1366, height: 768 });
+    const widths = await page.evaluate(() => [document.documentElement.scrollWidth, document.documentElement.clientWidth]);
+    assert.ok(widths[0] <= widths[1], `the page is ${widths[0]} px wide in a ${widths[1]} px window`);
     // The T8 sweep is plotted per planner.
     const sweepLegend = await page.textContent('#val-sweep-legend');
     assert.match(sweepLegend, /boids/);

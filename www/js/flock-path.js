@@ -354,6 +354,8 @@ export class FlockPathElement extends HTMLElement {
     const classroom = readClassroom(new this.module.Classroom(value('controls') ?? 'none', value('lock'), value('hide')));
     classroom.handle.free();
     this.classroomView = classroom.view;
+    /** The refusals of the last attributes applied (a host's `setClassroom` answers with them). */
+    this.classroomErrors = classroom.errors;
     const shown = classroom.view.controls;
     for (const name of ['play', 'step', 'reset', 'planner']) this.$(`.${name}`).hidden = !shown.includes(name);
     this.$('.fullscreen').hidden = !document.fullscreenEnabled || !shown.includes('fullscreen');

@@ -22,8 +22,11 @@ const BRUTE_SIZES: &[u32] = &[1_000, 10_000];
 /// What to run.
 #[derive(Clone, Debug)]
 pub struct Options {
-    /// Fewer, shorter repetitions (a smoke run for CI).
+    /// Fewer, shorter repetitions (rough figures).
     pub quick: bool,
+    /// One short repetition at a hundredth of every size: checks the benchmark runs (the test
+    /// command's smoke run), its figures mean nothing.
+    pub smoke: bool,
     /// Run the step benchmarks.
     pub step: bool,
     /// Include the brute-force baseline in the step benchmarks.
@@ -44,6 +47,7 @@ impl Default for Options {
     fn default() -> Self {
         Self {
             quick: false,
+            smoke: false,
             step: true,
             brute: true,
             planners: true,
@@ -51,6 +55,28 @@ impl Default for Options {
             packed: true,
             metrics: true,
             json: None,
+        }
+    }
+}
+
+impl Options {
+    /// `n` agents, or a hundredth of them (at least 10) in a smoke run.
+    fn size(&self, n: u32) -> u32 {
+        if self.smoke {
+            (n / 100).max(10)
+        } else {
+            n
+        }
+    }
+
+    /// `quick` or `full`, or one repetition of one step in a smoke run.
+    fn plan(&self, quick: Plan, full: Plan) -> Plan {
+        if self.smoke {
+            Plan { warmup_steps: 1, steps: 1, agents_per_rep: 1, reps: 1 }
+        } else if self.quick {
+            quick
+        } else {
+            full
         }
     }
 }
@@ -80,10 +106,17 @@ pub fn main(options: &Options) -> Result<(), CliError> {
     println!("Pin to one core for stable figures: taskset -c 0 flockpath bench");
     println!(
         "Scenes: presets::constant_density(N, {NEIGHBOURS}); figures are medians of {} repetitions.",
-        if options.quick { "3 (quick)" } else { "7" }
+        if options.smoke {
+            "1 (smoke run: a hundredth of every size, figures mean nothing)"
+        } else if options.quick {
+            "3 (quick)"
+        } else {
+            "7"
+        }
     );
     let mut report = Map::new();
     report.insert("quick".into(), json!(options.quick));
+    report.insert("smoke".into(), json!(options.smoke));
     report.insert("neighbours_target".into(), json!(NEIGHBOURS));
     if options.step {
         step_benchmarks(options, &mut report)?;
@@ -110,16 +143,14 @@ pub fn main(options: &Options) -> Result<(), CliError> {
 }
 
 fn step_benchmarks(options: &Options, report: &mut Map<String, Value>) -> Result<(), CliError> {
-    let grid_plan = if options.quick {
-        Plan { warmup_steps: 2, steps: 5, agents_per_rep: 20_000, reps: 3 }
-    } else {
-        Plan { warmup_steps: 3, steps: 10, agents_per_rep: 100_000, reps: 7 }
-    };
-    let brute_plan = if options.quick {
-        Plan { warmup_steps: 1, steps: 2, agents_per_rep: 1_000, reps: 3 }
-    } else {
-        Plan { warmup_steps: 3, steps: 10, agents_per_rep: 10_000, reps: 5 }
-    };
+    let grid_plan = options.plan(
+        Plan { warmup_steps: 2, steps: 5, agents_per_rep: 20_000, reps: 3 },
+        Plan { warmup_steps: 3, steps: 10, agents_per_rep: 100_000, reps: 7 },
+    );
+    let brute_plan = options.plan(
+        Plan { warmup_steps: 1, steps: 2, agents_per_rep: 1_000, reps: 3 },
+        Plan { warmup_steps: 3, steps: 10, agents_per_rep: 10_000, reps: 5 },
+    );
 
     println!();
     println!("World::step, ns per agent-step (median; min…max over repetitions)");
@@ -131,7 +162,7 @@ fn step_benchmarks(options: &Options, report: &mut Map<String, Value>) -> Result
     let mut grid_cpu = Map::new();
     let mut by_n = Vec::new();
     let mut by_n_cpu = Vec::new();
-    for &n in STEP_SIZES {
+    for n in STEP_SIZES.iter().map(|&n| options.size(n)) {
         let r = time_steps(n, &grid_plan, false)?;
         print_row(n, &r);
         grid_ns.insert(n.to_string(), json!(r.median));
@@ -144,7 +175,9 @@ fn step_benchmarks(options: &Options, report: &mut Map<String, Value>) -> Result
     let ends = |v: &[(u32, f64)]| Some((v.first()?.1, v.last()?.1));
     let cpu: Vec<(u32, f64)> = by_n_cpu.iter().filter_map(|&(n, c)| Some((n, c?))).collect();
     for (label, figures) in [("wall-clock", &by_n), ("on-CPU", &cpu)] {
-        let Some((first, last)) = ends(figures).filter(|_| figures.len() == STEP_SIZES.len()) else {
+        let Some((first, last)) =
+            ends(figures).filter(|_| figures.len() == STEP_SIZES.len() && !options.smoke)
+        else {
             continue;
         };
         let growth = last / first;
@@ -161,7 +194,7 @@ fn step_benchmarks(options: &Options, report: &mut Map<String, Value>) -> Result
     println!();
     println!("Brute-force baseline (one grid cell: every agent scans every agent), ns per agent-step");
     let mut brute_ns = Map::new();
-    for &n in BRUTE_SIZES {
+    for n in BRUTE_SIZES.iter().map(|&n| options.size(n)) {
         let r = time_steps(n, &brute_plan, true)?;
         print_row(n, &r);
         brute_ns.insert(n.to_string(), json!(r.median));
@@ -209,11 +242,10 @@ pub fn planner_scene(n: u32, config: &PlannerConfig) -> Scene {
 /// constant-density scene heading for a central goal (from spawn, so the figures compare the
 /// same moment of every run).
 fn planner_benchmarks(options: &Options, report: &mut Map<String, Value>) -> Result<(), CliError> {
-    let plan = if options.quick {
-        Plan { warmup_steps: 2, steps: 3, agents_per_rep: 10_000, reps: 3 }
-    } else {
-        Plan { warmup_steps: 3, steps: 10, agents_per_rep: 20_000, reps: 5 }
-    };
+    let plan = options.plan(
+        Plan { warmup_steps: 2, steps: 3, agents_per_rep: 10_000, reps: 3 },
+        Plan { warmup_steps: 3, steps: 10, agents_per_rep: 20_000, reps: 5 },
+    );
     println!();
     println!(
         "Per planner: World::step, ns per agent-step (median; min…max), constant density, goal at the centre"
@@ -222,7 +254,7 @@ fn planner_benchmarks(options: &Options, report: &mut Map<String, Value>) -> Res
     let mut table = Map::new();
     for (name, config) in planner_configs() {
         let mut row = Map::new();
-        for &n in PLANNER_SIZES {
+        for n in PLANNER_SIZES.iter().map(|&n| options.size(n)) {
             let r = time_scene(n, &plan, |seed| {
                 let mut scene = planner_scene(n, &config);
                 scene.seed = seed;
@@ -274,18 +306,17 @@ pub fn packed_world(n: u32, config: &PlannerConfig, seed: u32) -> Result<World, 
 /// times as dear as a spread crowd.
 fn packed_benchmarks(options: &Options, report: &mut Map<String, Value>) -> Result<(), CliError> {
     // Ten worlds per repetition: the OS's on-CPU clock is too coarse for one small world.
-    let plan = if options.quick {
-        Plan { warmup_steps: 1, steps: 2, agents_per_rep: 10 * PACKED_SIZE, reps: 3 }
-    } else {
-        Plan { warmup_steps: 1, steps: 3, agents_per_rep: 10 * PACKED_SIZE, reps: 5 }
-    };
-    let n = PACKED_SIZE;
+    let plan = options.plan(
+        Plan { warmup_steps: 1, steps: 2, agents_per_rep: 10 * PACKED_SIZE, reps: 3 },
+        Plan { warmup_steps: 1, steps: 3, agents_per_rep: 10 * PACKED_SIZE, reps: 5 },
+    );
+    let n = options.size(PACKED_SIZE);
     println!();
     println!(
         "Packed vs spread: World::step, on-CPU ns per agent-step (median), {n} agents piled in a {PACKED_SIDE}×{PACKED_SIDE} px \
          square vs at constant density"
     );
-    println!("{:>10}  {:>14}  {:>14}  {:>8}", "planner", "spread ns", "packed ns", "ratio");
+    println!("{:>20}  {:>14}  {:>14}  {:>8}", "planner", "spread ns", "packed ns", "ratio");
     let mut table = Map::new();
     for &kind in PlannerKind::ALL {
         let config = kind.default_config();
@@ -295,7 +326,7 @@ fn packed_benchmarks(options: &Options, report: &mut Map<String, Value>) -> Resu
         let (spread, packed) =
             (spread.cpu_median.unwrap_or(spread.median), packed.cpu_median.unwrap_or(packed.median));
         let ratio = packed / spread;
-        println!("{:>10}  {:>14.1}  {:>14.1}  {:>7.2}×", kind.name(), spread, packed, ratio);
+        println!("{:>20}  {:>14.1}  {:>14.1}  {:>7.2}×", kind.name(), spread, packed, ratio);
         table.insert(kind.name().to_string(), json!({ "spread": spread, "packed": packed, "ratio": ratio }));
     }
     report.insert("packed_vs_spread_ns_per_agent_step".into(), Value::Object(table));
@@ -308,7 +339,13 @@ const METRICS_SIZES: &[u32] = &[1_000, 10_000, 100_000];
 /// ms per call of `World::metrics` serialised to JSON (what the page's metrics panel polls every
 /// 250 ms), against N, for Boids and firefly crowds at constant density and a packed Boids crowd.
 fn metrics_benchmarks(options: &Options, report: &mut Map<String, Value>) -> Result<(), CliError> {
-    let calls = if options.quick { 3 } else { 9 };
+    let calls = if options.smoke {
+        1
+    } else if options.quick {
+        3
+    } else {
+        9
+    };
     println!();
     println!("One metrics summary (World::metrics → JSON), on-CPU ms per call (median of {calls})");
     println!("{:>18}  {:>9}  {:>10}", "scene", "agents", "ms");
@@ -316,17 +353,18 @@ fn metrics_benchmarks(options: &Options, report: &mut Map<String, Value>) -> Res
     let boids = PlannerKind::Boids.default_config();
     let firefly = PlannerKind::Firefly.default_config();
     let mut rows: Vec<(&str, u32, World)> = Vec::new();
-    for &n in METRICS_SIZES {
+    for n in METRICS_SIZES.iter().map(|&n| options.size(n)) {
         rows.push(("boids", n, bench_world(planner_scene(n, &boids))?));
     }
-    rows.push(("firefly", 10_000, bench_world(planner_scene(10_000, &firefly))?));
-    rows.push(("boids packed", 10_000, packed_world(10_000, &boids, 1)?));
+    let n = options.size(10_000);
+    rows.push(("firefly", n, bench_world(planner_scene(n, &firefly))?));
+    rows.push(("boids packed", n, packed_world(n, &boids, 1)?));
     for (label, n, mut world) in rows {
         world.step_n(2);
         let mut samples = Vec::with_capacity(calls);
         for _ in 0..calls {
             // Enough calls per sample for the OS's coarse on-CPU clock.
-            let repeat = (100_000 / n).max(1);
+            let repeat = if options.smoke { 1 } else { (100_000 / n).max(1) };
             let (cpu, start) = (thread_cpu_ns(), Instant::now());
             for _ in 0..repeat {
                 let text = serde_json::to_string(&world.metrics()).map_err(failed)?;
@@ -470,7 +508,13 @@ const CANVAS: (u32, u32) = (1280, 800);
 const RENDER_SIZES: &[u32] = &[1_000, 10_000];
 
 fn render_benchmarks(options: &Options, report: &mut Map<String, Value>) -> Result<(), CliError> {
-    let (frames, reps, warmup) = if options.quick { (10, 3, 5) } else { (60, 7, 30) };
+    let (frames, reps, warmup) = if options.smoke {
+        (1, 1, 1)
+    } else if options.quick {
+        (10, 3, 5)
+    } else {
+        (60, 7, 30)
+    };
     println!();
     println!(
         "Render::render at {}×{}, trails on, ms per frame (median of {reps} runs of {frames} frames)",
@@ -479,7 +523,7 @@ fn render_benchmarks(options: &Options, report: &mut Map<String, Value>) -> Resu
     println!("{:>9}  {:>10}  {:>18}  {:>16}", "agents", "render ms", "range", "step+render ms");
     let mut render_ms = Map::new();
     let mut frame_ms = Map::new();
-    for &n in RENDER_SIZES {
+    for n in RENDER_SIZES.iter().map(|&n| options.size(n)) {
         let mut world = World::new_beyond_cost_limit(bench_scene(n))
             .map_err(|e| failed(format!("benchmark scene with {n} agents: {e}")))?;
         let mut renderer = Renderer::new(CANVAS.0, CANVAS.1);

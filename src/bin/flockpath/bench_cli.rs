@@ -8,14 +8,18 @@ use flockpath::scene_to_json;
 #[derive(clap::Args, Debug)]
 #[command(
     long_about = "ns per agent-step of World::step and render time per frame\n\n\
-                  Usage: taskset -c 0 flockpath bench [--quick] [--only step|grid|planners|render|packed|metrics] [--json FILE]",
+                  Usage: taskset -c 0 flockpath bench [--quick|--smoke] [--only step|grid|planners|render|packed|metrics] [--json FILE]",
     after_help = "Scenes are presets::constant_density(N, 9.0): about 9 neighbours per agent at every N.\n\
                   Pin to one core (taskset -c 0) so the figures are comparable between runs."
 )]
 pub struct BenchArgs {
-    /// Fewer and shorter repetitions (CI smoke run; figures are rougher)
+    /// Fewer and shorter repetitions (figures are rougher)
     #[arg(long)]
     quick: bool,
+    /// One short repetition at a hundredth of every size: checks that the benchmark runs (the
+    /// test command's smoke run); its figures mean nothing
+    #[arg(long, conflicts_with = "quick")]
+    smoke: bool,
     /// Run only the step benchmarks (grid, brute force, per planner), only the Boids grid step
     /// benchmark, only the per-planner table, only the render benchmark, only the
     /// packed-vs-spread table, or only the cost of one metrics summary against N
@@ -33,8 +37,12 @@ pub struct BenchArgs {
 impl BenchArgs {
     /// The measurements to run.
     pub fn options(&self) -> bench::Options {
-        let mut options =
-            bench::Options { quick: self.quick, json: self.json.clone(), ..bench::Options::default() };
+        let mut options = bench::Options {
+            quick: self.quick,
+            smoke: self.smoke,
+            json: self.json.clone(),
+            ..bench::Options::default()
+        };
         if let Some(only) = self.only.as_deref() {
             let o = &mut options;
             (o.step, o.brute, o.planners, o.render, o.packed, o.metrics) = match only {

@@ -1,6 +1,6 @@
 //! The command line's clap definition, its typed error and the helpers every command uses.
 
-use crate::{bench, bench_cli, optimize, run, scenes, tune, validate};
+use crate::{bench, bench_cli, optimize, run, scenes, scorm, tune, validate};
 use clap::{CommandFactory as _, Parser, Subcommand};
 use std::io::Write as _;
 use std::process::ExitCode;
@@ -46,6 +46,8 @@ pub(crate) enum Command {
     Tune(tune::TuneArgs),
     /// Run the validation suite (RiMEA tests, Jülich checks, lanes): table, JSON, CSV curves
     Validate(validate::ValidateArgs),
+    /// Package an activity link as a SCORM 1.2 zip an LMS can grade
+    Scorm(scorm::ScormArgs),
     /// The scene the benchmarks use, for the browser bench page (scripts/bench.sh)
     #[command(hide = true)]
     DensityScene(bench_cli::DensitySceneArgs),
@@ -130,6 +132,7 @@ fn dispatch() -> Result<(), CliError> {
         Command::Optimize(args) => optimize::optimize(&args),
         Command::Tune(args) => tune::tune(&args),
         Command::Validate(args) => validate::validate(&args),
+        Command::Scorm(args) => scorm::scorm(&args),
         Command::DensityScene(args) => bench_cli::density_scene(&args),
     }
 }
@@ -196,7 +199,9 @@ mod tests {
     #[test]
     fn every_command_has_help_and_the_exit_codes_are_documented() {
         let help = Cli::command().render_long_help().to_string();
-        for command in ["presets", "preset", "run", "url", "scene", "bench", "optimize", "tune", "validate"] {
+        for command in
+            ["presets", "preset", "run", "url", "scene", "bench", "optimize", "tune", "validate", "scorm"]
+        {
             assert!(help.contains(command), "{command} missing from --help:\n{help}");
             let e = Cli::try_parse_from(["flockpath", "help", command]).expect_err("help is an early exit");
             assert_eq!(e.exit_code(), 0, "help {command}");

@@ -1,5 +1,5 @@
 //! The flockpath command line: presets, batch runs with metrics, scene ↔ URL strings,
-//! optimizer experiments, force-weight tuning, benchmarks, the validation suite.
+//! optimizer experiments, force-weight tuning, benchmarks, the validation suite, SCORM packages.
 //!
 //! A stable contract (DESIGN §5): output formats and flag names are scripted against. The
 //! library computes; this binary parses the command line (clap), prints, writes files and draws
@@ -20,6 +20,8 @@ mod progress;
 mod run;
 #[cfg(not(target_arch = "wasm32"))]
 mod scenes;
+#[cfg(not(target_arch = "wasm32"))]
+mod scorm;
 #[cfg(not(target_arch = "wasm32"))]
 mod tune;
 #[cfg(not(target_arch = "wasm32"))]

@@ -85,22 +85,8 @@ impl RunArgs {
             ("--maya", self.maya.as_deref(), export::maya_mel),
             ("--blender", self.blender.as_deref(), export::blender_py),
             ("--svg", self.svg.as_deref(), |scene, rec, _| export::trails_svg(scene, rec)),
-            ("--pedpy", self.pedpy.as_deref(), |scene, rec, _| {
-                let traj = pedpy::from_recording(scene, rec, scene.px_per_metre);
-                pedpy::trajectory_text(&traj, None, &scene.name)
-            }),
-            ("--jupedsim", self.jupedsim.as_deref(), |scene, rec, _| {
-                let starts: Vec<glam::Vec2> =
-                    rec.frame(0).iter().map(|a| glam::Vec2::new(a[0], a[1])).collect();
-                let group_of: Vec<u32> = scene
-                    .groups
-                    .iter()
-                    .enumerate()
-                    .flat_map(|(g, group)| std::iter::repeat_n(g as u32, group.count as usize))
-                    .collect();
-                let seconds = rec.steps().last().map_or(0.0, |&s| s as f32 * flockpath::model::scene::DT);
-                jupedsim::script(scene, &starts, &group_of, seconds.max(1.0), "cfsm")
-            }),
+            ("--pedpy", self.pedpy.as_deref(), |scene, rec, _| pedpy::recording_text(scene, rec)),
+            ("--jupedsim", self.jupedsim.as_deref(), |scene, rec, _| jupedsim::recording_script(scene, rec)),
         ]
     }
 }

@@ -4,6 +4,7 @@
 
 use crate::progress::Progress;
 use crate::{failed, out, usage, write_file, CliError};
+use flockpath::csv::field;
 use flockpath::experiments::validation::pedpy::{parse_trajectory_text, trajectory_text};
 use flockpath::experiments::validation::suite::Run;
 use flockpath::experiments::validation::units::PX_PER_METRE;
@@ -205,15 +206,6 @@ fn write_runs(args: &ValidateArgs, runs: &[Run]) -> Result<(), CliError> {
         }
     }
     Ok(())
-}
-
-/// A CSV field, quoted when it holds a comma, a quote or a line break.
-fn field(text: &str) -> String {
-    if text.contains([',', '"', '\n']) {
-        format!("\"{}\"", text.replace('"', "\"\""))
-    } else {
-        text.to_string()
-    }
 }
 
 fn number(x: f64) -> String {

@@ -4,7 +4,8 @@
 //! and a main that runs it and writes the trajectories in the suite's text format.
 
 use super::suite::RunSetup;
-use crate::model::scene::Scene;
+use crate::model::scene::{Scene, DT};
+use crate::sim::recording::Recording;
 use glam::Vec2;
 
 /// The translation from a run's set-up to JuPedSim (the module `scripts/jupedsim-check.sh` runs).
@@ -33,6 +34,26 @@ pub fn script(scene: &Scene, starts: &[Vec2], group_of: &[u32], seconds: f32, mo
              print(f\"JuPedSim {{jps.__version__}} {model}: wrote {{target}}\")\n",
         name = scene.name,
     )
+}
+
+/// The JuPedSim script of a recorded run (Export → JuPedSim on the page, `flockpath run
+/// --jupedsim`): the walkers start where the recording's first frame has them and JuPedSim's
+/// collision-free speed model runs for as long as the recording (at least 1 s, so a scene
+/// exported before it was played still runs).
+pub fn recording_script(scene: &Scene, rec: &Recording) -> String {
+    let starts: Vec<Vec2> = if rec.steps().is_empty() {
+        vec![]
+    } else {
+        rec.frame(0).iter().map(|a| Vec2::new(a[0], a[1])).collect()
+    };
+    let group_of: Vec<u32> = scene
+        .groups
+        .iter()
+        .enumerate()
+        .flat_map(|(g, group)| std::iter::repeat_n(g as u32, group.count as usize))
+        .collect();
+    let seconds = rec.steps().last().map_or(0.0, |&s| s as f32 * DT);
+    script(scene, &starts, &group_of, seconds.max(1.0), "cfsm")
 }
 
 #[cfg(test)]

@@ -112,6 +112,12 @@ pub fn parse_trajectory_text(text: &str, period: Option<f32>) -> Result<Trajecto
     Ok(Trajectories { frame_s: dt, group: vec![0; agents], frames: frames_out })
 }
 
+/// A recorded run as PedPy text (Export → PedPy on the page, `flockpath run --pedpy`): metres at
+/// the scene's px_per_metre, titled with the scene's name.
+pub fn recording_text(scene: &Scene, rec: &Recording) -> String {
+    trajectory_text(&from_recording(scene, rec, scene.px_per_metre), None, &scene.name)
+}
+
 /// A recording (px, every `rec.every()` steps) of `scene` as trajectories in metres.
 pub fn from_recording(scene: &Scene, rec: &Recording, px_per_metre: f32) -> Trajectories {
     let group =

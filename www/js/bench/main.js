@@ -9,8 +9,13 @@ import { loadWasm } from '../core/boot.js';
 /** The wasm `Sim` class, once loaded. */
 let Sim = null;
 
-const SIZES = [1_000, 10_000, 100_000];
-const FRAME_AGENTS = 10_000;
+/** `#smoke` (scripts/bench.sh --smoke, the test command): a hundredth of every size, one short
+ * repetition — it checks that the benchmark runs; its figures mean nothing. */
+const SMOKE = location.hash.includes('smoke');
+const scaled = (n) => (SMOKE ? Math.max(10, Math.floor(n / 100)) : n);
+
+const SIZES = [1_000, 10_000, 100_000].map(scaled);
+const FRAME_AGENTS = scaled(10_000);
 const CANVAS = { width: 1280, height: 800 };
 
 const out = document.getElementById('out');
@@ -33,7 +38,9 @@ async function fetchText(file) {
 const sceneText = (n) => fetchText(`density-${n}.json`);
 
 /** The per-planner rows (the native bench's names), at 1k and 10k agents. */
-const PLANNER_SIZES = [1_000, 10_000];
+const PLANNER_SIZES = [1_000, 10_000].map(scaled);
+/** One repetition of one step (a smoke run). */
+const SMOKE_PLAN = { warmupSteps: 1, steps: 1, agentsPerRep: 1, reps: 1 };
 
 /**
  * Like the native bench: every repetition steps freshly spawned worlds (same simulated moment
@@ -83,12 +90,14 @@ async function main() {
   const quick = location.hash.includes('quick');
   const { module, wasm } = await loadWasm();
   Sim = module.Sim;
-  const plan = quick
-    ? { warmupSteps: 2, steps: 5, agentsPerRep: 20_000, reps: 3 }
-    : { warmupSteps: 3, steps: 10, agentsPerRep: 100_000, reps: 7 };
+  const plan = SMOKE
+    ? SMOKE_PLAN
+    : quick
+      ? { warmupSteps: 2, steps: 5, agentsPerRep: 20_000, reps: 3 }
+      : { warmupSteps: 3, steps: 10, agentsPerRep: 100_000, reps: 7 };
   out.textContent = '';
   log(`Sim.step in wasm, ns per agent-step (median of ${plan.reps}; min…max)`);
-  const results = { quick, step_ns_per_agent_step: {}, frame_ms: null };
+  const results = { quick, smoke: SMOKE, step_ns_per_agent_step: {}, frame_ms: null };
   for (const n of SIZES) {
     const t = timeSteps(await sceneText(n), n, plan);
     results.step_ns_per_agent_step[n] = t.median;
@@ -96,15 +105,17 @@ async function main() {
     // Let the page breathe between sizes (keeps the tab responsive, lets GC run).
     await new Promise((resolve) => setTimeout(resolve, 0));
   }
-  const f = timeFrames(wasm, await sceneText(FRAME_AGENTS), quick ? 10 : 60, quick ? 3 : 5);
+  const f = timeFrames(wasm, await sceneText(FRAME_AGENTS), SMOKE ? 1 : quick ? 10 : 60, SMOKE ? 1 : quick ? 3 : 5);
   results.frame_ms = f.median;
   log(`Frame at ${FRAME_AGENTS} agents, ${CANVAS.width}×${CANVAS.height} (step + render + putImageData): ` +
     `${f.median.toFixed(2)} ms (${f.min.toFixed(2)}…${f.max.toFixed(2)})`);
   // The same per-planner table as the native bench (fewer agent-steps per repetition: the paper
   // planners cost several times a Boids step).
-  const planPlanners = quick
-    ? { warmupSteps: 2, steps: 3, agentsPerRep: 10_000, reps: 3 }
-    : { warmupSteps: 3, steps: 10, agentsPerRep: 20_000, reps: 5 };
+  const planPlanners = SMOKE
+    ? SMOKE_PLAN
+    : quick
+      ? { warmupSteps: 2, steps: 3, agentsPerRep: 10_000, reps: 3 }
+      : { warmupSteps: 3, steps: 10, agentsPerRep: 20_000, reps: 5 };
   const names = (await fetchText('planners.txt')).split('\n').map((l) => l.trim()).filter(Boolean);
   results.planner_ns_per_agent_step = {};
   log('Per planner: Sim.step in wasm, ns per agent-step (median)');

@@ -59,7 +59,8 @@ function adoptStyle(root) {
 const SHARES = new Set(['arrived_share', 'queue_order']);
 /** Metrics keys that count (shown as whole numbers). */
 const COUNTS = new Set(['collisions_agent_agent', 'collisions_moving', 'penetrations_agent_obstacle', 'stuck_agents']);
-const OPS = { '>=': '≥', '<=': '≤', '>': '>', '<': '<', '=': '=' };
+/** Each comparison as the card writes it (also the Activities page's teacher guide). */
+export const OPS = { '>=': '≥', '<=': '≤', '>': '>', '<': '<', '=': '=' };
 
 /** A metric's value in the card's words. */
 export function formatValue(metric, value) {
@@ -82,7 +83,9 @@ const el = (tag, props = {}, ...children) => {
  * - `groupName(i)`: a group's name (the scene's);
  * - `paneName(i)`: a pane's label (compare page);
  * - `styleRoot`: where the card's style goes (the document, or a shadow root).
- * Returns `{ refresh(), stop(), element, answer() }`: `refresh()` after a new scene.
+ * Returns `{ refresh(), stop(), element, answer(), activity(), restoreAnswer(i) }`: `refresh()`
+ * after a new scene. The card element fires `fp-answer` (detail `{answer}`) when a prediction is
+ * locked in and `fp-decided` (detail `{report, answer}`) when the check is decided.
  */
 export function mountActivityCard(host, container, { readActivity, readReport, groupName = () => '', paneName = (i) => 'ABCD'[i] ?? String(i + 1), styleRoot = document } = {}) {
   adoptStyle(styleRoot);
@@ -167,6 +170,8 @@ export function mountActivityCard(host, container, { readActivity, readReport, g
       asked = false;
       renderPrediction();
       renderReport(true);
+      // For whoever keeps the answer (core/scorm.js: the LMS's suspend data).
+      card.dispatchEvent(new CustomEvent('fp-answer', { detail: { answer: Number(chosen.value) } }));
       if (playAfterAnswer) {
         playAfterAnswer = false;
         host.setPlaying(true);
@@ -276,6 +281,8 @@ export function mountActivityCard(host, container, { readActivity, readReport, g
         const decided = report && (report.status === 'met' || report.status === 'missed');
         if (decided && wasRunning) {
           if (host.playing) host.setPlaying(false);
+          // For whoever reports the result (core/scorm.js: the LMS's score and status).
+          card.dispatchEvent(new CustomEvent('fp-decided', { detail: { report, answer: answers.has(key) ? answers.get(key) : null } }));
           // Pages that refresh their tables on steps (the compare page) show the final values.
           host.dispatchEvent(new Event('stepped'));
         }
@@ -296,5 +303,25 @@ export function mountActivityCard(host, container, { readActivity, readReport, g
     },
     /** The chosen answer's index, or null. */
     answer: () => (answers.has(key) ? answers.get(key) : null),
+    /** The scene's activity as the card shows it (null without one). */
+    activity: () => activity,
+    /**
+     * Takes `index` as the student's answer, as if locked in (a saved answer restored: the LMS's
+     * suspend data). Ignored when there is no question, it is answered, or `index` is no choice.
+     * A run that waited for the answer plays.
+     */
+    restoreAnswer(index) {
+      const p = prediction();
+      if (!p || answered() || !Number.isInteger(index) || index < 0 || index >= p.choices.length) return false;
+      answers.set(key, index);
+      asked = false;
+      renderPrediction();
+      renderReport(true);
+      if (playAfterAnswer) {
+        playAfterAnswer = false;
+        host.setPlaying(true);
+      }
+      return true;
+    },
   };
 }

@@ -32,10 +32,12 @@ function buildHint() {
 let loaded = null;
 
 /**
- * Loads and initialises the wasm module once; resolves to `{ module, wasm }` (the JS bindings and
- * the instance exports, for `memory`), or rejects with a readable Error naming what failed.
+ * Loads and initialises the wasm module once; resolves to `{ module, wasm, wasmModule }` (the JS
+ * bindings, the instance exports, for `memory`, and the compiled `WebAssembly.Module`, which a
+ * page posts to its workers), or rejects with a readable Error naming what failed. `compiled`: a
+ * module compiled elsewhere (a worker gets its page's), instead of fetching the wasm.
  */
-export function loadWasm() {
+export function loadWasm(compiled = null) {
   loaded ??= (async () => {
     let module;
     try {
@@ -44,8 +46,10 @@ export function loadWasm() {
       throw loadError(t('boot.not_found', { url: PKG_URL }), PKG_URL, error, refusedHint() || buildHint());
     }
     let wasm;
+    let wasmModule;
     try {
-      wasm = await module.default({ module_or_path: WASM_URL });
+      wasmModule = compiled ?? (await compileWasm());
+      wasm = await module.default({ module_or_path: wasmModule });
     } catch (error) {
       // fetch() rejects with a TypeError when the browser refuses it (CORS, CSP) or is offline; a
       // CompileError is the CSP refusing WebAssembly or a file that is not wasm; else an HTTP error.
@@ -58,9 +62,24 @@ export function loadWasm() {
       }
       throw loadError(t('boot.not_loaded', { url: WASM_URL }), WASM_URL, error);
     }
-    return { module, wasm };
+    return { module, wasm, wasmModule };
   })();
   return loaded;
+}
+
+/**
+ * Fetches and compiles the wasm (while it downloads, when the server says `application/wasm`).
+ * A page's workers get the compiled module from the page (`loadWasm(compiled)`): one download and
+ * one compile per page, not one per worker.
+ */
+async function compileWasm() {
+  const response = await fetch(WASM_URL);
+  if (!response.ok) throw new Error(`HTTP ${response.status} ${response.statusText}`);
+  const type = response.headers.get('content-type') ?? '';
+  if (typeof WebAssembly.compileStreaming === 'function' && type.startsWith('application/wasm')) return WebAssembly.compileStreaming(response);
+  // For the course author whose server sends another type: it works, only later.
+  console.warn(`${WASM_URL} is served as "${type}", not application/wasm: compiled after the download instead of during it.`);
+  return WebAssembly.compile(await response.arrayBuffer());
 }
 
 /**

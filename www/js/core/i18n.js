@@ -12,14 +12,29 @@
 //
 // Keys are dotted: `<page or concern>.<thing>`. A key missing from a shipped table fails
 // tests/e2e/i18n.test.mjs; at run time it falls back to English, then to the key itself.
+//
+// A page downloads only the tables it speaks (issue 29 §1): English, the fallback, always; another
+// language's table when the page starts in it (this module waits for it: top-level await) or when
+// the language menu switches to it (`setLanguage` resolves once it is loaded).
 
 import en from './strings/en.js';
-import zh from './strings/zh.js';
 
 /** The shipped languages, each with its name in its own language (for the language menu). */
 export const LANGUAGES = Object.freeze({ en: 'English', zh: '简体中文' });
 
-const TABLES = { en, zh };
+/** How each shipped language's table is fetched (English is always loaded). */
+const LOADERS = {
+  en: async () => en,
+  zh: async () => (await import('./strings/zh.js')).default,
+};
+
+/** The tables loaded so far. */
+const TABLES = { en };
+
+/** Loads `code`'s table once (a shipped code); resolves when `t` can use it. */
+async function loadTable(code) {
+  TABLES[code] ??= await LOADERS[code]();
+}
 
 /** Where the language picked in the menu is remembered. */
 export const STORAGE_KEY = 'flockpath-lang';
@@ -28,7 +43,7 @@ export const STORAGE_KEY = 'flockpath-lang';
 export function shippedLanguage(tag) {
   if (typeof tag !== 'string') return null;
   const primary = tag.trim().toLowerCase().split(/[-_]/)[0];
-  return Object.hasOwn(TABLES, primary) ? primary : null;
+  return Object.hasOwn(LOADERS, primary) ? primary : null;
 }
 
 /** The `lang=` option of a location: the query's, else the fragment's (`#s=…&lang=zh`). */
@@ -62,6 +77,10 @@ function chooseLanguage() {
 }
 
 let current = chooseLanguage();
+const starting = loadTable(current);
+// A page waits for its words. A worker must not: a module worker awaiting at its top misses the
+// messages posted to it meanwhile; its few words (most cross as codes) are English until then.
+if (typeof document !== 'undefined') await starting;
 const listeners = new Set();
 
 /** The language the page speaks now (`en` or `zh`). */
@@ -75,12 +94,14 @@ export function htmlLang(code = current) {
 }
 
 /**
- * Switches language (an unknown code is ignored), re-translates `root` and tells every listener
- * (`onLanguageChange`) and the window (`flockpath-language` event). Returns the language now.
+ * Switches language (an unknown code is ignored) once its table is loaded, re-translates `root`
+ * and tells every listener (`onLanguageChange`) and the window (`flockpath-language` event).
+ * Resolves to the language now.
  */
-export function setLanguage(code, root = typeof document === 'undefined' ? null : document) {
+export async function setLanguage(code, root = typeof document === 'undefined' ? null : document) {
   const shipped = shippedLanguage(code);
   if (!shipped) return current;
+  await loadTable(shipped);
   const changed = shipped !== current;
   current = shipped;
   if (root) translatePage(root);
@@ -105,7 +126,7 @@ export function onLanguageChange(fn) {
 
 /** Whether the current (or English) table has `key`. */
 export function hasKey(key) {
-  return Object.hasOwn(TABLES[current], key) || Object.hasOwn(en, key);
+  return Object.hasOwn(TABLES[current] ?? en, key) || Object.hasOwn(en, key);
 }
 
 const fill = (text, vars) =>
@@ -113,7 +134,7 @@ const fill = (text, vars) =>
 
 /** The text for `key` in the current language, with `{name}` replaced by `vars.name`. */
 export function t(key, vars = undefined) {
-  return fill(TABLES[current][key] ?? en[key] ?? key, vars);
+  return fill((TABLES[current] ?? en)[key] ?? en[key] ?? key, vars);
 }
 
 /**
@@ -121,7 +142,7 @@ export function t(key, vars = undefined) {
  * (a planner's label, a parameter's help, a preset's description) keyed by their stable name.
  */
 export function tOr(key, fallback, vars = undefined) {
-  const text = TABLES[current][key] ?? en[key];
+  const text = (TABLES[current] ?? en)[key] ?? en[key];
   return text === undefined ? fill(String(fallback ?? ''), vars) : fill(text, vars);
 }
 

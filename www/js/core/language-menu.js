@@ -28,9 +28,9 @@ function remember(code) {
   }
 }
 
-/** Switches the page to `code`: re-translates, rewrites the URL, remembers it. */
-export function chooseLanguage(code) {
-  const now = setLanguage(code);
+/** Switches the page to `code`: re-translates, rewrites the URL, remembers it (once its words are loaded). */
+export async function chooseLanguage(code) {
+  const now = await setLanguage(code);
   writeToLocation(now);
   remember(now);
   const select = document.getElementById('lang-select');

@@ -64,7 +64,13 @@ function addStyle(root) {
 export function drawFrame(canvas, pixels, width, height) {
   if (width !== canvas.width || height !== canvas.height) return;
   canvas.getContext('2d', { alpha: false }).putImageData(new ImageData(new Uint8ClampedArray(pixels), width, height), 0, 0);
+  // For benchmarks and tests (scripts/bench-cold-load.mjs): when the page first showed a scene.
+  if (!firstFrameMarked) {
+    firstFrameMarked = true;
+    performance.mark('flockpath-first-frame');
+  }
 }
+let firstFrameMarked = false;
 
 /**
  * Starts drawing `remote`'s frames (a RemoteSim) into `canvas` for `app` (a SimHost whose `sim` is

@@ -8,6 +8,7 @@
 // one step that takes longer), it is ended and a new one starts from the scene the page knows, then
 // replays the run to the step the page last showed (the same steps: the run is deterministic).
 
+import { loadWasm } from './boot.js';
 import { errorFromData } from './errors.js';
 import { startModuleWorker } from './module-worker.js';
 import { READS } from './sim-reads.js';
@@ -109,7 +110,12 @@ export class RemoteSim extends EventTarget {
       event.preventDefault?.();
       this.onStartFailed?.(new Error(event.message || 'the simulation worker failed to start'));
     };
-    worker.postMessage({ ...options, type: 'start', kind, sceneText, linked, width, height, playing, stepsPerFrame, theme, replayTo });
+    // The page's compiled wasm goes along (a worker would otherwise download and compile its own).
+    const post = (wasmModule) => {
+      if (worker !== this.worker) return;
+      worker.postMessage({ ...options, type: 'start', kind, sceneText, linked, width, height, playing, stepsPerFrame, theme, replayTo, wasmModule });
+    };
+    loadWasm().then(({ wasmModule }) => post(wasmModule), () => post(null));
     return started;
   }
 

@@ -46,6 +46,8 @@ const SIM = {
     'export_maya_mel',
     'export_blender_py',
     'export_trails_svg',
+    'export_pedpy_text',
+    'export_jupedsim_script',
     'history_csv',
     'recorded_digest',
   ],

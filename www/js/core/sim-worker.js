@@ -232,7 +232,8 @@ function startCompare({ sceneText, fallbackText, specText, width, height }) {
 
 async function start(options) {
   const { sceneText, linked, width, height, theme } = options;
-  ({ module, wasm } = await loadWasm());
+  // The page's compiled wasm, when it sent one: no second download or compile.
+  ({ module, wasm } = await loadWasm(options.wasmModule ?? null));
   kind = options.kind ?? 'Sim';
   reads = READS[kind];
   if (kind === 'CompareSim') return startCompare(options);

@@ -62,6 +62,9 @@ export function observeSize(canvas, onSize) {
 export function setupView(app, canvas, overlay) {
   const apply = (size) => {
     if (app.crashed) return;
+    // A print layout (the handout's full-width stage) must not resize the canvas: resizing clears
+    // it, and core/print.js's still of what it showed stands in for it on paper.
+    if (window.matchMedia?.('print').matches) return;
     if (canvas.width === size.width && canvas.height === size.height && app.sim.width() === size.width &&
         app.sim.height() === size.height) {
       return;

@@ -1,6 +1,7 @@
 // embed.html: one <flock-path> filling the iframe, its scene from the fragment (`#s=…`,
 // `&autoplay=1`, `&controls=0`; the teacher's `&controls=play,step`, `&lock=…`, `&hide=…` become
-// the element's attributes), an "open in flockpath" link carrying the current scene and those
+// the element's attributes; `&scorm=1`, from a SCORM package's launch page, reports the activity
+// to the LMS: core/scorm.js), an "open in flockpath" link carrying the current scene and those
 // options (so the playground it opens is locked the same way), and a
 // postMessage API so the host page can script the iframe like the page API:
 //
@@ -17,6 +18,7 @@
 
 import '../flock-path.js';
 import { decodeValue, fragmentOptions } from '../core/fragment.js';
+import { connectScorm } from '../core/scorm.js';
 
 /** The methods a host may call, each mirroring the page API of the same name. */
 const METHODS = {
@@ -31,7 +33,38 @@ const METHODS = {
   digest: (el) => el.digest(),
   isPlaying: (el) => el.playing,
   classroom: (el) => el.classroom(),
+  setClassroom: (el, options) => setClassroom(el, options),
 };
+
+/** The options a host may set with `setClassroom`. */
+const CLASSROOM_OPTIONS = ['controls', 'lock', 'hide', 'openLink'];
+
+/**
+ * The teacher's options set by the host page instead of the iframe's URL (issue 27 §4), so a
+ * student never meets them in an address bar: `{controls, lock, hide}` as comma lists or arrays
+ * (null: back to everything allowed), `openLink: false` hides the "Open in flockpath" link (the
+ * one way out to an editable link). Resolves to `classroom()`; a refused name is an error naming
+ * the option and the allowed names (the other options still apply, as on the element).
+ */
+function setClassroom(el, options) {
+  if (!options || typeof options !== 'object' || Array.isArray(options)) {
+    throw new Error(`setClassroom expects one object {${CLASSROOM_OPTIONS.join(', ')}}`);
+  }
+  const unknown = Object.keys(options).find((key) => !CLASSROOM_OPTIONS.includes(key));
+  if (unknown !== undefined) throw new Error(`setClassroom: unknown option ${JSON.stringify(unknown)}; known: ${CLASSROOM_OPTIONS.join(', ')}`);
+  for (const name of ['controls', 'lock', 'hide']) {
+    if (!(name in options)) continue;
+    const value = options[name];
+    // Back to everything allowed: a bare `controls` shows them all; no `lock`/`hide`, nothing.
+    if (value === null && name === 'controls') el.setAttribute(name, '');
+    else if (value === null) el.removeAttribute(name);
+    else el.setAttribute(name, Array.isArray(value) ? value.join(',') : String(value));
+  }
+  if ('openLink' in options) openLink.hidden = options.openLink === false;
+  refreshOpenLink();
+  if (el.classroomErrors?.length) throw new Error(el.classroomErrors.join(' '));
+  return el.classroom();
+}
 
 const el = document.getElementById('embedded');
 const openLink = document.getElementById('open-full');
@@ -43,6 +76,9 @@ else if (options.controls !== undefined) el.setAttribute('controls', decodeValue
 for (const name of ['lock', 'hide']) {
   if (options[name] !== undefined) el.setAttribute(name, decodeValue(options[name]));
 }
+/** Opened from a SCORM package (its launch page adds `&scorm=1`): the playground is not in it. */
+const inPackage = options.scorm === '1';
+if (inPackage) openLink.remove();
 
 /** Points the link at the full page with the scene as it is now (edits via the API included). */
 function refreshOpenLink() {
@@ -101,6 +137,8 @@ window.addEventListener('message', async (event) => {
 booted.then(
   () => {
     refreshOpenLink();
+    // In an LMS the activity reports its completion and score to the LMS's SCORM runtime.
+    if (inPackage) window.flockpathScorm = connectScorm(el.activity);
     window.flockpathEmbed = el;
     if (window.parent !== window) window.parent.postMessage({ flockpath: 1, event: 'ready' }, '*');
   },

@@ -173,7 +173,6 @@ bootPage(t('boot.what_lab'), async ({ module }) => {
     frames: 0,
     renderMs: [],
     worker: null,
-    pings: 0,
   };
 
   const settings = () => ({
@@ -354,10 +353,6 @@ bootPage(t('boot.what_lab'), async ({ module }) => {
   compare.addEventListener('change', () => reset());
   $('lab-30').addEventListener('click', startTable);
   $('lab-cancel').addEventListener('click', () => finishTable(t('lab.cancelled')));
-  $('lab-ping').addEventListener('click', () => {
-    state.pings += 1;
-    $('lab-ping-count').textContent = String(state.pings);
-  });
   // Single-key shortcuts only while the page or a canvas has focus (core/keys.js): a focused
   // button or checkbox keeps Space.
   window.addEventListener('keydown', (e) => {

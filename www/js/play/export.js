@@ -1,12 +1,14 @@
-// Exports of the current run: paths (CSV, JSON, Maya MEL, Blender Python) and SVG trails from the
-// Sim's recording, a PNG snapshot of the canvas, and a WebM video (MediaRecorder on the canvas
-// stream) with a recording indicator. The recording's budget and any thinning are stated on screen.
+// Exports of the current run: paths (CSV, JSON, Maya MEL, Blender Python, PedPy text), a JuPedSim
+// script and SVG trails from the Sim's recording (each made by the core, as the CLI makes it), a
+// PNG snapshot of the canvas, and a WebM video (MediaRecorder on the canvas stream) with a
+// recording indicator. The recording's budget and any thinning are stated on screen.
 
 import { messageOf, showMessage } from '../core/errors.js';
 import { download } from '../core/download.js';
 import { fileStem } from './share.js';
 import { formatNumber, onLanguageChange, setAttr, setText, t } from '../core/i18n.js';
 import { withDuration } from './webm-duration.js';
+import { setupScormExport } from './export-scorm.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -20,6 +22,8 @@ const PATH_EXPORTS = {
   mel: { ext: 'mel', type: 'text/plain', make: (sim, o) => sim.export_maya_mel(o.fps, o.scale) },
   py: { ext: 'py', type: 'text/x-python', make: (sim, o) => sim.export_blender_py(o.fps, o.scale) },
   svg: { ext: 'svg', type: 'image/svg+xml', make: (sim) => sim.export_trails_svg() },
+  pedpy: { ext: 'pedpy.txt', type: 'text/plain', make: (sim) => sim.export_pedpy_text() },
+  jupedsim: { ext: 'jupedsim.py', type: 'text/x-python', make: (sim) => sim.export_jupedsim_script() },
 };
 
 const ordinal = (n) => (n === 2 ? t('export.2nd') : n === 3 ? t('export.3rd') : t('export.nth', { n }));
@@ -40,7 +44,7 @@ export function describeRecording(info) {
   return { line, note };
 }
 
-export function setupExport(app, canvas) {
+export function setupExport(app, canvas, share = null) {
   const dialog = $('export-dialog');
   const status = $('export-status');
   const info = $('recording-info');
@@ -102,6 +106,7 @@ export function setupExport(app, canvas) {
   }
 
   setupVideo(app, canvas, status);
+  setupScormExport(app, status, share);
 }
 
 /**

@@ -24,6 +24,12 @@ function tries() {
   return el('ol', { className: 'help-tries' }, TRIES.map((key) => text('li', key)));
 }
 
+/** Where the ready activities and the teacher guide are: a line with a link to the Activities page. */
+function activitiesLine(id) {
+  // Bound to their keys (setText), so a language switch rewords the open card too.
+  return el('p', { className: 'help-activities' }, [text('span', 'help.activities'), ' ', text('a', 'help.activities_link', { href: 'activities.html', id })]);
+}
+
 /** The Help dialog's contents for `planners` (name, label). */
 function helpBody(planners) {
   const keys = [
@@ -47,6 +53,8 @@ function helpBody(planners) {
     ])),
     text('h3', 'help.keys_title'),
     el('dl', { className: 'help-keys' }, keys.flatMap(([key, words]) => [el('dt', {}, [el('kbd', { textContent: key })]), text('dd', words)])),
+    text('h3', 'help.activities_title'),
+    activitiesLine('help-activities'),
     text('h3', 'help.share_title'),
     text('p', 'help.share'),
   ];
@@ -87,6 +95,7 @@ function showWelcome(openHelp) {
     title,
     text('p', 'help.what'),
     tries(),
+    activitiesLine('welcome-activities'),
     el('div', { className: 'row-buttons' }, [close, more]),
   ]);
   card.setAttribute('aria-labelledby', 'welcome-title');

@@ -30,6 +30,7 @@ import { setupNewScene } from './new-scene.js';
 import { setupHelp } from './help.js';
 import { setupPresent } from './present.js';
 import { setupZoom } from './zoom.js';
+import { setupHandout } from './handout.js';
 
 bootPage(t('boot.what_play'), async ({ module, wasm }) => {
   const canvas = document.getElementById('scene-canvas');
@@ -65,8 +66,8 @@ bootPage(t('boot.what_play'), async ({ module, wasm }) => {
   setupHistoryButtons(app, editor);
   watchLocation(app);
   keepLocationInSync(app);
-  setupShare(app);
-  setupExport(app, canvas);
+  const share = setupShare(app);
+  setupExport(app, canvas, share);
   setupTimeline(app);
   setupSceneLinks(app);
   setupNewScene(app);
@@ -76,6 +77,7 @@ bootPage(t('boot.what_play'), async ({ module, wasm }) => {
   setupCapacityNotice(app);
   setupInspector(app);
   setupActivity(app);
+  setupHandout(app);
   // The canvas in words for screen readers (core/describe.js), beside the canvas.
   setupDescription(app, overlay, () => ({
     scene: app.scene,

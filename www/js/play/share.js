@@ -161,4 +161,6 @@ export function setupShare(app) {
     const file = e.dataTransfer.files[0];
     if (file) await loadFile(app, file);
   });
+  // The Export dialog's LMS package carries the same "For students" options as the link.
+  return { classroomOptions: () => lock.options() };
 }

@@ -115,5 +115,12 @@ export default {
   "page.no_series": "no metrics series {key:?} for group {group}",
   "page.no_timeline": "this run keeps no timeline",
   "page.bad_selection": "cannot read the selected item: {reason}",
-  "page.not_an_edit": "not an edit: {reason}"
+  "page.not_an_edit": "not an edit: {reason}",
+  "zip.bad_name": "cannot put {name:?} in a zip: a file name must be a relative path without \"..\" or empty parts",
+  "zip.duplicate": "the zip already has a file {name:?}",
+  "zip.too_large": "the zip would be larger than {bytes} bytes or {entries} files",
+  "scorm.no_activity": "this scene has no activity: an LMS package grades an activity's check (add one with Share… → Activity)",
+  "scorm.no_check": "this activity has no check: an LMS package scores the check, so give it one (Share… → Activity)",
+  "scorm.compare_only": "this activity's check names panes of the compare page: an LMS package runs one scene, so its check must not name a pane",
+  "scorm.missing_file": "the LMS package needs the page file {name:?}, which was not found (build the wasm first: bash scripts/build-wasm.sh)"
 };

@@ -113,5 +113,12 @@ export default {
   "page.no_series": "群组 {group} 没有指标序列“{key}”",
   "page.no_timeline": "这次运行不保留时间线",
   "page.bad_selection": "无法读取所选对象：{reason}",
-  "page.not_an_edit": "不是编辑操作：{reason}"
+  "page.not_an_edit": "不是编辑操作：{reason}",
+  "zip.bad_name": "无法将 {name:?} 放入 zip：文件名必须是相对路径，不能含 \"..\" 或空的部分",
+  "zip.duplicate": "zip 中已有文件 {name:?}",
+  "zip.too_large": "zip 将超过 {bytes} 字节或 {entries} 个文件",
+  "scorm.no_activity": "此场景没有活动：LMS 课件包按活动的检查评分（用“分享… → 活动”添加一个）",
+  "scorm.no_check": "此活动没有检查：LMS 课件包按检查评分，请为它添加检查（分享… → 活动）",
+  "scorm.compare_only": "此活动的检查指定了比较页面的窗格：LMS 课件包只运行一个场景，因此检查不能指定窗格",
+  "scorm.missing_file": "LMS 课件包需要页面文件 {name:?}，但未找到（请先构建 wasm：bash scripts/build-wasm.sh）"
 };
