@@ -187,3 +187,41 @@ fn catalogues_list_presets_and_planners() {
     assert_eq!(planners[0]["name"], "boids");
     assert!(planners[0]["params"].as_array().is_some_and(|p| !p.is_empty()));
 }
+
+#[wasm_bindgen_test]
+fn zoom_and_pan_change_the_picture_not_the_run_and_keep_their_trails() {
+    let mut sim = Sim::new(&pillars(), 900, 560).expect("starts");
+    sim.set_seed(7).expect("reseeds");
+    sim.step(150);
+    sim.render();
+    let fitted = sim.view();
+    let fitted_frame = frame(&sim);
+    assert_eq!(sim.view_zoom(), 1.0);
+    sim.zoom_view(300.0, 250.0, 3.0);
+    sim.render();
+    let zoomed = sim.view();
+    assert_eq!(sim.view_zoom(), 3.0);
+    assert!((zoomed[0] - 3.0 * fitted[0]).abs() < 1e-4, "scale {} → {}", fitted[0], zoomed[0]);
+    // The scene point under (300, 250) is still there.
+    let before = ((300.0 - fitted[1]) / fitted[0], (250.0 - fitted[2]) / fitted[0]);
+    let after = ((300.0 - zoomed[1]) / zoomed[0], (250.0 - zoomed[2]) / zoomed[0]);
+    assert!((before.0 - after.0).abs() < 1e-2 && (before.1 - after.1).abs() < 1e-2);
+    let zoomed_frame = frame(&sim);
+    assert!(zoomed_frame != fitted_frame);
+    // Trails are redrawn for the zoomed view from the recording: the trail layer is not empty
+    // (a frame with trails off differs from it).
+    sim.set_trails(false).expect("trails off");
+    sim.render();
+    assert!(frame(&sim) != zoomed_frame, "the zoomed frame kept its trails");
+    sim.set_trails(true).expect("trails on");
+    sim.pan_view(40.0, -20.0);
+    sim.render();
+    let panned = sim.view();
+    assert!((panned[1] - zoomed[1] - 40.0).abs() < 1e-3 && (panned[2] - zoomed[2] + 20.0).abs() < 1e-3);
+    sim.fit_view();
+    sim.render();
+    assert_eq!(sim.view(), fitted);
+    // None of it changed the run.
+    sim.step(150);
+    assert_eq!(sim.digest(), GOLDEN_DIGEST.trim());
+}

@@ -65,6 +65,10 @@ pub const FADE_STEPS: u32 = 2;
 pub const HEADING_BUCKETS: usize = 32;
 /// Largest canvas side in device px; larger requests are clamped (and smaller than 1 become 1).
 pub const MAX_CANVAS_SIDE: u32 = 8192;
+/// Deepest zoom, as a multiple of the fitted scale: close enough to watch a few agents pass a
+/// gap, while a group's 32 heading sprites stay small (an agent of 5 scene px on a 1366 px
+/// canvas is ~70 device px in radius at 8×, ~2.4 MB of sprites; at 32× it would be ~40 MB).
+pub const MAX_ZOOM: f32 = 8.0;
 
 /// Grid spacing in scene px.
 const GRID_SPACING: f32 = 50.0;
@@ -115,6 +119,16 @@ impl BaseKey {
     }
 }
 
+/// A zoomed-in view: the scene point at the canvas centre and the scale as a multiple of the
+/// fitted one. Only the view changes: the run, its digest and the scene are the same at any zoom.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Zoom {
+    /// Scene point drawn at the canvas centre (scene px), kept inside the scene.
+    center: Vec2,
+    /// Scale over the fitted scale, in (1, [`MAX_ZOOM`]].
+    factor: f32,
+}
+
 /// An agent ready to draw: its pixel, group and heading bucket.
 #[derive(Clone, Copy, Debug, Default)]
 struct Placed {
@@ -156,6 +170,10 @@ pub struct Renderer {
     trails: Vec<u8>,
     base_key: Option<BaseKey>,
     view: ViewTransform,
+    /// The part of the scene shown when zoomed in (`None`: the whole scene, fitted).
+    zoom: Option<Zoom>,
+    /// The scene size the view was last fitted to (scene px; zero before the first frame).
+    scene_size: Vec2,
     /// What the current theme draws.
     style: Style,
     theme: Theme,
@@ -199,6 +217,8 @@ impl Renderer {
             trails: Vec::new(),
             base_key: None,
             view: ViewTransform { scale: 1.0, offset_x: 0.0, offset_y: 0.0 },
+            zoom: None,
+            scene_size: Vec2::ZERO,
             style: STANDARD,
             theme: Theme::Standard,
             trails_on: true,
@@ -423,11 +443,88 @@ impl Renderer {
         self.draw_pending(tick);
     }
 
-    /// Rebuilds the base layer and the view when the scene's size, obstacles or hills changed
-    /// (the trails then restart).
+    /// Zooms by `factor` (above 1 in, below 1 out) about `canvas_point` (device px): the scene
+    /// point under it stays there, unless the zoom reaches its limits (the whole scene fitted,
+    /// [`MAX_ZOOM`]) or the view would leave the scene. A factor that is not finite and
+    /// positive, or a call before the first frame, does nothing. Trails restart (a caller with
+    /// the run's history redraws them, as the playground does).
+    pub fn zoom_about(&mut self, canvas_point: Vec2, factor: f32) {
+        if !(factor.is_finite() && factor > 0.0 && canvas_point.is_finite()) || self.scene_size == Vec2::ZERO
+        {
+            return;
+        }
+        let fitted = self.fitted_view();
+        let old = self.zoom.map_or(1.0, |z| z.factor);
+        let wanted = (old * factor).clamp(1.0, MAX_ZOOM);
+        if wanted <= 1.0 {
+            self.fit_view();
+            return;
+        }
+        // The scene point under the pointer now, and where the centre must be to keep it there.
+        let anchor = self.view.to_scene(canvas_point);
+        let scale = fitted.scale * wanted;
+        let canvas_centre = 0.5 * Vec2::new(self.width as f32, self.height as f32);
+        let center = anchor + (canvas_centre - canvas_point) / scale;
+        self.set_zoom(Some(Zoom { center, factor: wanted }));
+    }
+
+    /// Moves a zoomed view by `canvas_delta` device px (the scene follows the pointer: a drag
+    /// to the right shows more of the scene's left). Does nothing at the fitted view.
+    pub fn pan_by(&mut self, canvas_delta: Vec2) {
+        let Some(zoom) = self.zoom else { return };
+        if !canvas_delta.is_finite() {
+            return;
+        }
+        let scale = self.fitted_view().scale * zoom.factor;
+        self.set_zoom(Some(Zoom { center: zoom.center - canvas_delta / scale, ..zoom }));
+    }
+
+    /// Shows the whole scene again, fitted and centred.
+    pub fn fit_view(&mut self) {
+        self.set_zoom(None);
+    }
+
+    /// The zoom over the fitted view: 1 shows the whole scene, up to [`MAX_ZOOM`].
+    pub fn zoom(&self) -> f32 {
+        self.zoom.map_or(1.0, |z| z.factor)
+    }
+
+    /// Stores a zoom (its centre kept inside the scene) and redraws the base at the next frame.
+    fn set_zoom(&mut self, zoom: Option<Zoom>) {
+        let size = self.scene_size;
+        let zoom = zoom.map(|z| Zoom { center: z.center.clamp(Vec2::ZERO, size), ..z });
+        if zoom == self.zoom {
+            return;
+        }
+        self.zoom = zoom;
+        self.base_key = None;
+        self.trails_stale = true;
+    }
+
+    /// The whole scene fitted into the canvas.
+    fn fitted_view(&self) -> ViewTransform {
+        ViewTransform::fit(self.scene_size.x, self.scene_size.y, self.width, self.height)
+    }
+
+    /// The view to draw with: the fitted one, or the zoomed part of the scene.
+    fn wanted_view(&self) -> ViewTransform {
+        let fitted = self.fitted_view();
+        let Some(zoom) = self.zoom else { return fitted };
+        let scale = fitted.scale * zoom.factor;
+        let offset = 0.5 * Vec2::new(self.width as f32, self.height as f32) - zoom.center * scale;
+        ViewTransform { scale, offset_x: offset.x, offset_y: offset.y }
+    }
+
+    /// Rebuilds the base layer and the view when the scene's size, obstacles or hills, or the
+    /// zoom changed (the trails then restart). A scene of another size shows whole again.
     fn fit_scene(&mut self, scene: &Scene) {
         if !self.base_key.as_ref().is_some_and(|k| k.matches(scene)) {
-            self.view = ViewTransform::fit(scene.width, scene.height, self.width, self.height);
+            let size = Vec2::new(scene.width, scene.height);
+            if size != self.scene_size {
+                self.scene_size = size;
+                self.zoom = None;
+            }
+            self.view = self.wanted_view();
             self.draw_base(scene);
             self.base_key = Some(BaseKey {
                 width: scene.width,
@@ -1301,8 +1398,8 @@ mod tests {
         // Faded trails: only the recent part is rebuilt, old positions show nothing.
         r.set_trail_fade(0.05);
         let start = r.trail_rebuild_start(&world);
-        // 90 · 0.95^k < 0.5 after k = 101 frames of 2 steps.
-        assert_eq!(400 - start, 202, "fade 0.05 keeps the last 202 steps");
+        // 220 · 0.95^k < 0.5 after k = 118.7 fade ticks of 2 steps.
+        assert_eq!(400 - start, 237, "fade 0.05 keeps the last 237 steps");
         r.rebuild_trails(&world, history.iter().filter(|h| h.0 >= start).cloned());
         let (_, early) = &history[40];
         assert!(early.iter().all(|&p| !trail_near(&r, p)), "trails long faded are not redrawn");
@@ -1360,6 +1457,60 @@ mod tests {
             let back = view.to_scene(Vec2::new(123.0, 45.0));
             assert!(view.to_canvas(back).distance(Vec2::new(123.0, 45.0)) < 1e-3);
         }
+    }
+
+    #[test]
+    fn zooming_keeps_the_point_under_the_pointer_and_fit_shows_the_whole_scene() {
+        let world = World::new(presets::pillars()).expect("valid");
+        let mut r = Renderer::new(900, 560);
+        r.zoom_about(Vec2::new(300.0, 200.0), 2.0);
+        assert_eq!(r.zoom(), 1.0, "before the first frame there is no scene to zoom into");
+        r.render(&world);
+        let fitted = r.view();
+        let fitted_frame = r.pixels().to_vec();
+        let pointer = Vec2::new(300.0, 200.0);
+        let under = fitted.to_scene(pointer);
+        r.zoom_about(pointer, 2.5);
+        r.render(&world);
+        assert_eq!(r.zoom(), 2.5);
+        assert!((r.view().scale - 2.5 * fitted.scale).abs() < 1e-4);
+        assert!(r.view().to_canvas(under).distance(pointer) < 1e-2, "the pointed-at point stays put");
+        assert!(r.pixels() != fitted_frame.as_slice(), "the zoomed frame differs");
+        // Panning moves the scene with the pointer.
+        r.pan_by(Vec2::new(40.0, -10.0));
+        r.render(&world);
+        assert!(r.view().to_canvas(under).distance(pointer + Vec2::new(40.0, -10.0)) < 1e-2);
+        // Limits: never below the fitted view, never past MAX_ZOOM; bad factors do nothing.
+        r.zoom_about(pointer, 1000.0);
+        assert_eq!(r.zoom(), MAX_ZOOM);
+        r.zoom_about(pointer, f32::NAN);
+        r.zoom_about(pointer, -1.0);
+        assert_eq!(r.zoom(), MAX_ZOOM);
+        r.zoom_about(pointer, 1e-6);
+        r.render(&world);
+        assert_eq!(r.zoom(), 1.0);
+        assert_eq!(r.view(), fitted);
+        r.zoom_about(pointer, 3.0);
+        r.fit_view();
+        r.render(&world);
+        assert_eq!(r.view(), fitted);
+        assert!(r.pixels() == fitted_frame.as_slice(), "Fit draws the fitted frame again");
+        // The fitted view does not pan.
+        r.pan_by(Vec2::new(50.0, 50.0));
+        r.render(&world);
+        assert_eq!(r.view(), fitted);
+    }
+
+    #[test]
+    fn a_zoomed_view_stays_over_the_scene() {
+        let world = World::new(presets::pillars()).expect("valid");
+        let mut r = Renderer::new(900, 560);
+        r.render(&world);
+        r.zoom_about(Vec2::new(450.0, 280.0), 4.0);
+        r.pan_by(Vec2::new(1e7, 1e7));
+        r.render(&world);
+        let centre = r.view().to_scene(Vec2::new(450.0, 280.0));
+        assert!(centre.abs_diff_eq(Vec2::ZERO, 1e-2), "panned to the scene's corner, no further: {centre}");
     }
 
     #[test]
@@ -1457,12 +1608,12 @@ mod tests {
         assert_eq!(Theme::from_name("neon"), None);
         let (thin, small, standard, _) = trail_rows_and_agent_pixels(Theme::Standard);
         let (thick, large, projector, x) = trail_rows_and_agent_pixels(Theme::Projector);
-        assert!(thin <= 2 && thick >= 3, "trail rows: standard {thin}, projector {thick}");
+        // Standard trails are 2 px (3 rows where the Wu lines straddle a pixel), projector ones 3 px.
+        assert!(thin <= 3 && thick > thin, "trail rows: standard {thin}, projector {thick}");
         assert!(large as f32 > 1.8 * small as f32, "agent pixels: standard {small}, projector {large}");
         assert_eq!(pixel(&standard, 5, 5)[..3], BACKGROUND_COLOR);
         assert_eq!(pixel(&projector, 5, 5)[..3], PROJECTOR.background);
-        // Projector trails are dark (red at half brightness, mostly opaque: white is 765, a
-        // standard red trail about 585).
+        // Projector trails are dark (red at half brightness, mostly opaque: white is 765).
         let darkest = (0..400usize)
             .map(|y| {
                 let at = (y * 800 + x) * 4;

@@ -52,7 +52,9 @@ impl ViewTransform {
 /// toggle); it is not part of the scene, so links and runs are the same in every theme.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Theme {
-    /// The everyday look: a warm light field, thin translucent trails, agents at their size.
+    /// The everyday look: a warm light field, two-pixel trails in the group colour darkened to
+    /// 47 % (every Okabe–Ito colour, yellow included, at ≥ 3:1 against the field, so trails
+    /// stay visible on a washed-out projector), agents at their size.
     #[default]
     Standard,
     /// For a projector or a screen seen from the back of a room: a white field, darker
@@ -111,16 +113,19 @@ pub struct Style {
     pub min_agent_radius_px: f32,
 }
 
-/// The [`Theme::Standard`] style.
+/// The [`Theme::Standard`] style. Its trails were 1 px at 35 % opacity in the full group colour
+/// (1.1–1.7:1 against the field: gone on a projector, issue 27); now 2 px at 86 % opacity at
+/// 47 % brightness: 3.8:1 (yellow) to 8:1 (blue) where a fresh trail covers a pixel fully
+/// (tests/e2e/trail-contrast.test.mjs measures the page's screenshot).
 pub const STANDARD: Style = Style {
     background: [0xf6, 0xf5, 0xf0],
     letterbox: [0xd8, 0xd8, 0xd3],
     grid: Some([0xe4, 0xe2, 0xda]),
     obstacle: [0x5b, 0x63, 0x70],
     obstacle_outline: [0x2c, 0x31, 0x38],
-    trail_width_px: 1,
-    trail_alpha: 90,
-    trail_keep: 255,
+    trail_width_px: 2,
+    trail_alpha: 220,
+    trail_keep: 120,
     agent_scale: 1.0,
     min_agent_radius_px: 0.0,
 };

@@ -33,6 +33,7 @@ mod seed;
 mod timeline;
 pub mod tune;
 pub mod validation;
+mod zoom;
 
 /// Installs the panic hook so a Rust panic shows its message in the console (runs on load).
 #[wasm_bindgen(start)]
@@ -146,6 +147,8 @@ impl Sim {
         self.run.load(scene).map_err(scene_error)?;
         self.renderer.set_selection(None);
         self.renderer.clear_trails();
+        // A new scene shows whole (an edit of the same scene keeps the zoom).
+        self.renderer.fit_view();
         self.show_scene_view();
         Ok(())
     }
@@ -169,9 +172,15 @@ impl Sim {
         self.run.world().step_count()
     }
 
-    /// Sets the canvas backing-store size in device px.
+    /// Sets the canvas backing-store size in device px. The trails are redrawn at the new size
+    /// from the recorded positions (entering Present mode mid-run keeps them).
     pub fn resize(&mut self, width: u32, height: u32) {
+        let before = (self.renderer.width(), self.renderer.height());
         self.renderer.resize(width, height);
+        if (self.renderer.width(), self.renderer.height()) != before {
+            self.renderer.render(self.run.world());
+            self.redraw_trails();
+        }
     }
 
     /// Draws the current state into the frame.

@@ -25,15 +25,8 @@ impl Sim {
             // A slice on the way: the trails are redrawn once, when the jump arrives.
             return Ok(resimulated);
         }
-        // Redraw the trails from the recorded positions before the new step (the timeline's
-        // quantised frames, every `frame_every`-th step once thinned), not a chord of the jump.
-        let world = self.run.world();
-        let from = self.renderer.trail_rebuild_start(world);
-        let now = world.step_count();
-        let frames = self.run.replay().map_or(&[][..], |r| r.frame_steps());
-        let recorded = frames.iter().copied().skip_while(|&s| s < from).take_while(|&s| s <= now);
-        let history = recorded.map_while(|s| Some((s, self.run.replay()?.positions_at(s)?)));
-        self.renderer.rebuild_trails(world, history);
+        // Redraw the trails from the recorded positions before the new step, not a chord of the jump.
+        self.redraw_trails();
         Ok(resimulated)
     }
 

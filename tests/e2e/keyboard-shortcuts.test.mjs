@@ -189,6 +189,8 @@ test('playground: every shortcut with every kind of control focused, by keyboard
           tool: document.querySelector('#tools [aria-checked="true"]')?.dataset.tool,
           preset: document.getElementById('preset').value,
           obstacles: window.flockpath.scene().obstacles.length,
+          presenting: document.getElementById('stage').classList.contains('presenting'),
+          scale: window.flockpath.view().scale,
         };
       });
     const tool = (name) => page.evaluate((n) => document.querySelector(`#tools [data-tool="${n}"]`).click(), name);
@@ -203,12 +205,12 @@ test('playground: every shortcut with every kind of control focused, by keyboard
     // Focused by keyboard (Tab order, here page.focus with no pointer): no single-key shortcut acts.
     // Keys each control would take itself are left out (a select's type-ahead on letters it has).
     const kinds = [
-      ['button', '#step', ['r', 's', '3', 'Delete', 'Escape']],
-      ['checkbox', '#overlay-landscape', ['r', 's', '3', 'Delete', 'Escape']],
-      ['tool radio', '#tools [data-tool="select"]', ['r', 's', '3', 'Delete', 'Escape']],
-      ['slider', '#spf', ['r', 's', '3', 'Delete', 'Escape', 'Space']],
-      ['select', '#preset', ['r', '3']],
-      ['number field', '#seed', ['r', 's', '3', 'Space']],
+      ['button', '#step', ['r', 's', '3', 'Delete', 'Escape', 'p', '+', '0']],
+      ['checkbox', '#overlay-landscape', ['r', 's', '3', 'Delete', 'Escape', 'p', '+', '0']],
+      ['tool radio', '#tools [data-tool="select"]', ['r', 's', '3', 'Delete', 'Escape', 'p', '+', '0']],
+      ['slider', '#spf', ['r', 's', '3', 'Delete', 'Escape', 'Space', 'p', '+', '0']],
+      ['select', '#preset', ['r', '3', '+']],
+      ['number field', '#seed', ['r', 's', '3', 'Space', 'p']],
     ];
     for (const [kind, selector, keys] of kinds) {
       await page.focus(selector);
@@ -219,6 +221,8 @@ test('playground: every shortcut with every kind of control focused, by keyboard
         assert.equal(now.tool, 'select', `${key} on a keyboard-focused ${kind} did not pick a tool`);
         assert.equal(now.playing, false, `${key} on a keyboard-focused ${kind} did not play`);
         assert.equal(now.preset, start.preset, `${key} on a keyboard-focused ${kind} did not switch scenes`);
+        assert.equal(now.presenting, false, `${key} on a keyboard-focused ${kind} did not present`);
+        assert.equal(now.scale, start.scale, `${key} on a keyboard-focused ${kind} did not zoom`);
       }
     }
     await page.evaluate(() => document.activeElement?.blur());
@@ -245,6 +249,18 @@ test('playground: every shortcut with every kind of control focused, by keyboard
       assert.equal((await state()).steps, 0, `R resets after a click on the ${kind}`);
       await page.evaluate(() => window.flockpath.step(5));
     }
+    // P, + and 0 act after a click too: present (Esc leaves), zoom in, fit.
+    await page.click('#step');
+    await page.keyboard.press('p');
+    assert.equal((await state()).presenting, true, 'P presents after a click on a button');
+    await page.keyboard.press('Escape');
+    assert.equal((await state()).presenting, false, 'Esc leaves');
+    await page.click('#step');
+    await page.keyboard.press('+');
+    await page.waitForFunction((s) => window.flockpath.view().scale > s * 1.4, start.scale);
+    await page.keyboard.press('0');
+    await page.waitForFunction((s) => window.flockpath.view().scale === s, start.scale);
+
     // Space and Enter stay the clicked button's own keys: Space presses Step, play stays paused.
     await page.click('#step');
     const pressed = (await state()).steps;

@@ -144,12 +144,13 @@ test('keys of controls not given do nothing; those given still work', () =>
     // The Keys card lists only the shortcuts that work: S (step), the tools, Esc; not Space, R
     // or Ctrl+Z, whose controls the link does not give.
     const listed = () => page.$$eval('#keys-list > span', (spans) => spans.filter((s) => s.getClientRects().length > 0).map((s) => s.textContent.trim()));
-    assert.deepEqual(await listed(), ['S step', '1–7 tools', 'Del delete', 'Esc cancel']);
+    // Present and zoom change no scene and no run: no lock takes them.
+    assert.deepEqual(await listed(), ['S step', '1–7 tools', 'Del delete', 'Esc cancel', 'P present', '+ − 0 zoom']);
     const dots = await page.$$eval('#keys-list > span', (spans) => spans.filter((s) => s.getClientRects().length > 0).map((s) => getComputedStyle(s, '::before').content));
-    assert.deepEqual(dots, ['none', '" · "', '" · "', '" · "'], 'a dot between the shown ones only');
+    assert.deepEqual(dots, ['none', '" · "', '" · "', '" · "', '" · "', '" · "'], 'a dot between the shown ones only');
     // All controls again (an old link, in a new tab): every shortcut is listed.
     await reopen(page, server.url, `#s=${fragment}`, { newTab: true });
-    assert.equal((await listed()).length, 7, 'every shortcut without a lock');
+    assert.equal((await listed()).length, 9, 'every shortcut without a lock');
   }));
 
 test('an unknown name is refused by field with the allowed names; an old link shows everything', () =>

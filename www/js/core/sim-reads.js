@@ -23,6 +23,7 @@ const SIM = {
     'recording_json',
     // Fitted by the renderer: read after each render (a resize, a new scene size).
     'view',
+    'view_zoom',
     'width',
     'height',
   ],
@@ -51,7 +52,11 @@ const SIM = {
     'recorded_digest',
   ],
   /** Calls that change the run's state but never the scene (no scene refresh after them). */
-  sceneKeeping: ['step', 'reset', 'clear_trails', 'inspect', 'set_selection', 'render', 'advance_planning'],
+  sceneKeeping: [
+    'step', 'reset', 'clear_trails', 'inspect', 'set_selection', 'render', 'advance_planning',
+    // Zoom and pan change the view only (src/web/zoom.rs).
+    'zoom_view', 'pan_view', 'fit_view',
+  ],
 };
 
 const COMPARE_SIM = {

@@ -34,6 +34,8 @@ let reads = READS.Sim;
 let crashed = false;
 let playing = false;
 let stepsPerFrame = 2;
+/** Slow motion (stepsPerFrame < 1): the share of a step the frames so far have earned. */
+let slowCredit = 0;
 /** Steps to reach without playing (a restarted worker replaying the run the page had). */
 let replayTo = 0;
 /** Evaluations per planning call, adapted to the scene's cost (core/planning-slice.js). */
@@ -158,6 +160,20 @@ function tick() {
         lastPlanningFrame = now;
         dirty = true;
       }
+    } else if (playing && stepsPerFrame < 1) {
+      // Slow motion: a step once the frames since the last one add up to a whole step (every
+      // fourth frame at 0.25×); every frame is still posted, so the page's acknowledgements pace
+      // the count, one per painted frame.
+      slowCredit += stepsPerFrame;
+      if (slowCredit >= 1 - 1e-9) {
+        slowCredit -= 1;
+        const before = performance.now();
+        sim.step(1);
+        stepMs = performance.now() - before;
+        asked = 1;
+        done = 1;
+      }
+      dirty = true;
     } else if (playing || replaying) {
       asked = replaying ? 1 : stepsPerFrame;
       const start = performance.now();

@@ -19,6 +19,9 @@ export const TOOLS = ['select', 'circle', 'rect', 'polygon', 'goal', 'group', 'p
 /** Tools whose shape is a list of clicked points. */
 const POINT_TOOLS = ['polygon', 'path'];
 
+/** How long the hint pill shows after its words change before it fades (ms). */
+export const HINT_SHOW_MS = 6000;
+
 /** The hint of each tool (its key in the strings tables). */
 const HINTS = {
   select: 'hint.select',
@@ -72,6 +75,8 @@ export class Editor {
     });
     app.addEventListener('resize', () => this.draw());
     app.addEventListener('scene', () => this.draw());
+    // A second finger turns a drag into a pinch (zoom.js): the first finger's gesture ends.
+    app.addEventListener('pinch', () => this.cancel());
     overlay.addEventListener('keydown', (e) => this.keyDown(e));
     overlay.addEventListener('focus', () => {
       if (overlay.matches(':focus-visible')) this.showCursor();
@@ -82,6 +87,7 @@ export class Editor {
       this.showHint();
       this.draw();
     });
+    this.fadeHintWhenRead();
     for (const button of document.querySelectorAll('button[data-tool]')) {
       button.setAttribute('role', 'radio');
       button.addEventListener('click', () => this.setTool(button.dataset.tool));
@@ -126,6 +132,29 @@ export class Editor {
     }
     this.showHint();
     if (this.keyboard) this.say(this.cursorText());
+  }
+
+  /**
+   * The hint pill sits over the canvas's bottom-left corner, where agents walk too: it shows for
+   * HINT_SHOW_MS whenever its words change (a tool, a refusal, the language) or the pointer
+   * enters the canvas, then fades out. While the keyboard cursor is on it stays: it lists the
+   * cursor's keys.
+   */
+  fadeHintWhenRead() {
+    const hint = document.getElementById('hint');
+    if (!hint) return;
+    let timer = null;
+    const show = () => {
+      hint.classList.remove('faded');
+      clearTimeout(timer);
+      timer = setTimeout(() => {
+        if (!this.keyboard) hint.classList.add('faded');
+      }, HINT_SHOW_MS);
+    };
+    new MutationObserver(show).observe(hint, { childList: true, characterData: true, subtree: true });
+    this.overlay.addEventListener('pointerenter', show);
+    this.overlay.addEventListener('blur', show);
+    show();
   }
 
   /** The hint line under the canvas: the tool's, plus the keys while the keyboard cursor shows. */
@@ -321,6 +350,12 @@ export class Editor {
       this.keyboard = false;
       this.showHint();
     }
+    // A second finger pinches (zoom.js); Space held, any tool's drag pans a zoomed view.
+    if (this.app.zoom?.pinching()) return;
+    if (this.app.zoom?.spaceHeld()) {
+      this.startPan(e);
+      return;
+    }
     const p = this.point(e);
     if (POINT_TOOLS.includes(this.tool)) {
       this.polygonClick(p);
@@ -331,7 +366,7 @@ export class Editor {
     } catch {
       // Handed over late (path-edit.js held it while a pick was answered): already released.
     }
-    this.drag = { pointerId: e.pointerId, start: p, current: p, item: null, picked: null };
+    this.drag = { pointerId: e.pointerId, start: p, current: p, item: null, picked: null, client: [e.clientX, e.clientY] };
     if (this.tool === 'select') {
       // The pick is answered by the simulation worker; the pointer-up waits for it (pointerUp).
       const drag = this.drag;
@@ -341,6 +376,8 @@ export class Editor {
         drag.item = item && this.lock.movable(item) ? item : null;
         this.app.select(item);
         if (item && item.kind === 'group') this.app.setActiveGroup(item.index);
+        // Empty space under the Select tool in a zoomed view: the drag pans (zoom.js).
+        if (!item && (this.app.zoom?.level() ?? 1) > 1) drag.pan = true;
         this.draw();
       });
       // A key pressed before the pick is answered (Delete) acts on what it picks.
@@ -356,16 +393,41 @@ export class Editor {
       return;
     }
     if (!this.drag || e.pointerId !== this.drag.pointerId) return;
+    if (this.drag.pan) {
+      const [x, y] = this.drag.client;
+      if (x !== e.clientX || y !== e.clientY) {
+        this.app.zoom?.panBy(e.clientX - x, e.clientY - y);
+        this.drag.client = [e.clientX, e.clientY];
+        this.drag.panned = true;
+      }
+      return;
+    }
     this.drag.current = this.point(e);
     this.draw();
+  }
+
+  /** A drag that only pans the view (Space held): no edit, no selection. */
+  startPan(e) {
+    try {
+      this.overlay.setPointerCapture(e.pointerId);
+    } catch {
+      // Already released: the drag still pans while the pointer is over the canvas.
+    }
+    // Space pressed to pan is not Space pressed to play (zoom.js plays on its release otherwise).
+    this.app.zoom.spaceUsed = true;
+    this.drag = { pointerId: e.pointerId, pan: true, panned: false, client: [e.clientX, e.clientY], start: null, current: null };
   }
 
   pointerUp(e) {
     if (!this.drag || e.pointerId !== this.drag.pointerId) return;
     const drag = this.drag;
-    drag.current = this.point(e);
     this.drag = null;
     if (this.overlay.hasPointerCapture(e.pointerId)) this.overlay.releasePointerCapture(e.pointerId);
+    if (drag.pan && (drag.panned || !drag.start)) {
+      this.draw();
+      return;
+    }
+    drag.current = this.point(e);
     if (drag.picked) {
       drag.picked.then(() => {
         this.finish(drag);

@@ -35,6 +35,7 @@ function helpBody(planners) {
   const keys = [
     ['Space', 'help.key.play'], ['S', 'help.key.step'], ['R', 'help.key.reset'], ['1–7', 'help.key.tools'],
     ['Delete', 'help.key.delete'], ['Esc', 'help.key.cancel'], ['Ctrl+Z / Ctrl+Y', 'help.key.undo'], ['Tab, ←↑→↓, Enter', 'help.key.canvas'],
+    ['P', 'help.key.present'], ['+ / − / 0', 'help.key.zoom'], ['Space + drag', 'help.key.pan'],
   ];
   return [
     text('p', 'help.what'),

@@ -28,6 +28,8 @@ import { prefersReducedMotion } from '../core/motion.js';
 import { t, tOr } from '../core/i18n.js';
 import { setupNewScene } from './new-scene.js';
 import { setupHelp } from './help.js';
+import { setupPresent } from './present.js';
+import { setupZoom } from './zoom.js';
 import { setupHandout } from './handout.js';
 
 bootPage(t('boot.what_play'), async ({ module, wasm }) => {
@@ -57,6 +59,7 @@ bootPage(t('boot.what_play'), async ({ module, wasm }) => {
   app.watchPanics();
   app.afterLoad();
   setupView(app, canvas, overlay);
+  setupZoom(app, canvas, overlay);
   const editor = new Editor(app, overlay, canvas);
   new Panel(app);
   setupControls(app, editor);
@@ -69,6 +72,7 @@ bootPage(t('boot.what_play'), async ({ module, wasm }) => {
   setupSceneLinks(app);
   setupNewScene(app);
   setupHelp(app);
+  setupPresent(app, document.getElementById('stage'));
   const onFrame = setupMetrics(app);
   setupCapacityNotice(app);
   setupInspector(app);
