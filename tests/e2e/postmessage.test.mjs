@@ -122,6 +122,9 @@ test('when the embed cannot load (its wasm missing), waiting and later requests 
         });
     });
     await wasmRequested;
+    // The embed's scripts listen once they have run (the wasm download starts earlier, from the
+    // page's preload): a message sent before that would reach no listener, in any browser.
+    await page.waitForFunction(() => Boolean(document.querySelector('iframe')?.contentWindow?.customElements?.get('flock-path')));
     await page.evaluate(() => {
       window.__send(1, 'step', 10);
       window.__send(2, 'metrics');
