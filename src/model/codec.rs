@@ -29,6 +29,7 @@
 use crate::model::activity::Activity;
 use crate::model::classroom::{Classroom, ClassroomError, Field, Options};
 use crate::model::geometry::Obstacle;
+use crate::model::link;
 use crate::model::params::{PlannerConfig, PlannerKind};
 use crate::model::refusal::{Arg, Code, Message};
 use crate::model::scene::{
@@ -205,7 +206,7 @@ fn base64_reason(e: &base64::DecodeError) -> Message {
 /// fragment.
 pub fn scene_from_fragment(input: &str) -> Result<Scene, SceneError> {
     let input = input.strip_prefix(BYTE_ORDER_MARK).unwrap_or(input);
-    let value = fragment_value(input.trim());
+    let value = link::option_or_fragment(input.trim(), "s");
     check_input_size(value)?;
     let (version, payload) = value.split_once('.').ok_or_else(|| {
         SceneError::parse(Message::new(Code::SceneNoVersion).with("expected", FRAGMENT_VERSION))
@@ -258,59 +259,15 @@ fn looks_like_preset_name(text: &str) -> bool {
         && text.chars().all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '-')
 }
 
-/// Extracts the `s=` value from a URL or fragment, or returns the input unchanged.
-fn fragment_value(input: &str) -> &str {
-    let after_hash = input.rsplit_once('#').map_or(input, |(_, f)| f);
-    for part in after_hash.split('&') {
-        if let Some(v) = part.strip_prefix("s=") {
-            return v;
-        }
-    }
-    after_hash
-}
-
-/// The raw value of option `key` in a URL or fragment (`…#s=…&lock=goals`), the first when
-/// repeated (as the page's `fragmentOptions` reads it), or `None`.
-fn link_option<'a>(input: &'a str, key: &str) -> Option<&'a str> {
-    let after_hash = input.rsplit_once('#').map_or(input, |(_, f)| f);
-    after_hash.split('&').find_map(|part| part.split_once('=').filter(|(k, _)| *k == key).map(|(_, v)| v))
-}
-
-/// `%XX` escapes decoded where they spell ASCII (a pasted link may carry `%2C` for a comma);
-/// anything else stays as written, and the option's parser names it.
-fn percent_decoded(value: &str) -> std::borrow::Cow<'_, str> {
-    if !value.contains('%') {
-        return value.into();
-    }
-    let bytes = value.as_bytes();
-    let mut out = String::with_capacity(value.len());
-    let mut i = 0;
-    while i < bytes.len() {
-        let hex = value.get(i + 1..i + 3).and_then(|h| u8::from_str_radix(h, 16).ok()).filter(u8::is_ascii);
-        match hex {
-            Some(byte) if bytes[i] == b'%' => {
-                out.push(char::from(byte));
-                i += 3;
-            }
-            _ => {
-                let c = value[i..].chars().next().unwrap_or('\u{fffd}');
-                out.push(c);
-                i += c.len_utf8();
-            }
-        }
-    }
-    out.into()
-}
-
 /// The classroom options of a link (`controls=`, `lock=`, `hide=` beside `s=`, in a URL, a
 /// `#…` fragment or the fragment's text), read leniently: each refused option is reported and
 /// left allowing everything. A link without them, every link written before they existed
 /// included, allows everything.
 pub fn classroom_from_link_lenient(input: &str) -> (Classroom, Vec<ClassroomError>) {
     let input = input.strip_prefix(BYTE_ORDER_MARK).unwrap_or(input).trim();
-    let controls = link_option(input, Field::Controls.key()).map(percent_decoded);
-    let lock = link_option(input, Field::Lock.key()).map(percent_decoded);
-    let hide = link_option(input, Field::Hide.key()).map(percent_decoded);
+    let controls = link::option(input, Field::Controls.key()).map(link::percent_decoded);
+    let lock = link::option(input, Field::Lock.key()).map(link::percent_decoded);
+    let hide = link::option(input, Field::Hide.key()).map(link::percent_decoded);
     Classroom::from_options_lenient(Options {
         controls: controls.as_deref(),
         lock: lock.as_deref(),
@@ -1390,15 +1347,6 @@ mod tests {
             let e = scene_from_any(bad).expect_err(bad);
             assert!(!e.to_string().is_empty());
         }
-    }
-
-    #[test]
-    fn link_options_are_percent_decoded_where_they_spell_ascii() {
-        assert_eq!(percent_decoded("obstacles%2Cgoals%2cpaths"), "obstacles,goals,paths");
-        // Multi-byte text, broken and non-ASCII escapes stay as written.
-        assert_eq!(percent_decoded("é%2Cü%zz%4%C3%A9%"), "é,ü%zz%4%C3%A9%");
-        assert_eq!(link_option("x#s=2.a&lock=goals&lock=paths", "lock"), Some("goals"));
-        assert_eq!(link_option("2.abc", "lock"), None);
     }
 
     /// Regression (issue 24): a lone surrogate in a name (`"\ud800x"`) was refused as "a finite

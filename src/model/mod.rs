@@ -11,6 +11,7 @@ pub mod codec;
 pub mod edit;
 pub mod forces_cases;
 pub mod geometry;
+pub mod link;
 pub mod palette;
 pub mod params;
 pub mod presets;

@@ -17,6 +17,7 @@
 //! Example: `1.scene~pso~firefly(2,0.2)` or `1.boids~1=pso;2=firefly`.
 
 use crate::csv;
+use crate::model::link;
 use crate::model::params::{PlannerConfig, PlannerKind};
 use crate::model::refusal::{Arg, Code, Message, Refusal};
 use crate::model::scene::{Scene, SceneError};
@@ -348,7 +349,7 @@ impl ComparisonSpec {
 
     /// Reads a spec string (`1.…`, or a URL / fragment holding `c=1.…`).
     pub fn parse(input: &str) -> Result<Self, SpecError> {
-        let value = spec_value(input.trim());
+        let value = link::option_or_fragment(input.trim(), "c");
         if value.len() > MAX_SPEC_BYTES {
             return err(Message::new(Code::CompareSpecTooLarge)
                 .with("bytes", value.len())
@@ -385,17 +386,6 @@ impl ComparisonSpec {
         }
         out
     }
-}
-
-/// Extracts the `c=` value from a URL or fragment, or returns the input unchanged.
-fn spec_value(input: &str) -> &str {
-    let after_hash = input.rsplit_once('#').map_or(input, |(_, f)| f);
-    for part in after_hash.split('&') {
-        if let Some(v) = part.strip_prefix("c=") {
-            return v;
-        }
-    }
-    after_hash
 }
 
 /// Sampled time series of one pane (every `every` steps), as the compare page reads it: one
