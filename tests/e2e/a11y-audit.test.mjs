@@ -7,24 +7,7 @@
 
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import path from 'node:path';
-import { ROOT, assertNoUnexpectedErrors, openPath } from './helpers.mjs';
-
-const AXE = path.join(ROOT, 'node_modules', 'axe-core', 'axe.min.js');
-
-/** axe-core's violations of impact serious or critical on the page as it is now, as readable lines. */
-async function seriousViolations(page) {
-  if (!(await page.evaluate(() => typeof window.axe === 'object'))) await page.addScriptTag({ path: AXE });
-  const violations = await page.evaluate(async () => {
-    const result = await window.axe.run(document);
-    return result.violations.map((v) => ({
-      id: v.id,
-      impact: v.impact,
-      nodes: v.nodes.map((n) => `${v.id} (${v.impact}) at ${n.target.join(' ')}: ${n.failureSummary ?? ''}`),
-    }));
-  });
-  return violations.filter((v) => v.impact === 'serious' || v.impact === 'critical').flatMap((v) => v.nodes);
-}
+import { assertNoUnexpectedErrors, openPath, seriousViolations } from './helpers.mjs';
 
 const allElementsRunning = () => {
   const els = [...document.querySelectorAll('flock-path')];

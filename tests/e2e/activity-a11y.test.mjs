@@ -4,21 +4,8 @@
 
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import path from 'node:path';
-import { ROOT, assertNoUnexpectedErrors, openPage } from './helpers.mjs';
+import { assertNoUnexpectedErrors, openPage, seriousViolations } from './helpers.mjs';
 import { linkWithActivity } from './activity-helpers.mjs';
-
-const AXE = path.join(ROOT, 'node_modules', 'axe-core', 'axe.min.js');
-
-/** axe-core's serious or critical violations on the page as it is now, as readable lines. */
-async function seriousViolations(page) {
-  if (!(await page.evaluate(() => typeof window.axe === 'object'))) await page.addScriptTag({ path: AXE });
-  const violations = await page.evaluate(async () => (await window.axe.run(document)).violations.map((v) => ({
-    impact: v.impact,
-    nodes: v.nodes.map((n) => `${v.id} (${v.impact}) at ${n.target.join(' ')}: ${n.failureSummary ?? ''}`),
-  })));
-  return violations.filter((v) => v.impact === 'serious' || v.impact === 'critical').flatMap((v) => v.nodes);
-}
 
 test('axe: the activity card, its result and the Activity dialog have no serious or critical violation', { timeout: 120_000 }, async () => {
   const activity = {

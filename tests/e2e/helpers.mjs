@@ -251,3 +251,17 @@ export async function openPath(pathAndHash, { ready, viewport, hasTouch = false,
   });
   return openIn(launched, pathAndHash, ready, `${pathAndHash} did not load`);
 }
+
+/** axe-core (npm) for the accessibility audits. */
+const AXE = path.join(ROOT, 'node_modules', 'axe-core', 'axe.min.js');
+
+/** axe-core's violations of impact serious or critical on `page` as it is now, as readable lines. */
+export async function seriousViolations(page) {
+  if (!(await page.evaluate(() => typeof window.axe === 'object'))) await page.addScriptTag({ path: AXE });
+  const violations = await page.evaluate(async () =>
+    (await window.axe.run(document)).violations.map((v) => ({
+      impact: v.impact,
+      nodes: v.nodes.map((n) => `${v.id} (${v.impact}) at ${n.target.join(' ')}: ${n.failureSummary ?? ''}`),
+    })));
+  return violations.filter((v) => v.impact === 'serious' || v.impact === 'critical').flatMap((v) => v.nodes);
+}

@@ -6,10 +6,7 @@
 
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import path from 'node:path';
-import { ROOT, assertNoUnexpectedErrors, frames, loadPaused, openPage, openPath, screenshot, settled, simpleScene } from './helpers.mjs';
-
-const AXE = path.join(ROOT, 'node_modules', 'axe-core', 'axe.min.js');
+import { assertNoUnexpectedErrors, frames, loadPaused, openPage, openPath, screenshot, seriousViolations, settled, simpleScene } from './helpers.mjs';
 
 const canvasBox = (page) =>
   page.evaluate(() => {
@@ -21,18 +18,6 @@ const barOpacity = (page) => page.evaluate(() => Number(getComputedStyle(documen
 
 /** Share of the viewport the canvas covers (0…1). */
 const covered = (box) => (box.width * box.height) / (box.vw * box.vh);
-
-async function seriousViolations(page) {
-  if (!(await page.evaluate(() => typeof window.axe === 'object'))) await page.addScriptTag({ path: AXE });
-  const violations = await page.evaluate(async () => {
-    const result = await window.axe.run(document);
-    return result.violations.map((v) => ({
-      impact: v.impact,
-      nodes: v.nodes.map((n) => `${v.id} (${v.impact}) at ${n.target.join(' ')}: ${n.failureSummary ?? ''}`),
-    }));
-  });
-  return violations.filter((v) => v.impact === 'serious' || v.impact === 'critical').flatMap((v) => v.nodes);
-}
 
 test('Present fills the viewport, its controls fade when idle and return, Esc gives the page back', async () => {
   const { page, errors, close } = await openPage({ viewport: { width: 1366, height: 768 } });
